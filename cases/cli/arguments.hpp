@@ -1,0 +1,49 @@
+// Command-line arguments of one subcommand: options declared up front, checked on parsing, and
+// every mistake reported with the option and what was expected.
+#pragma once
+
+#include <optional>
+#include <string>
+#include <vector>
+
+#include "cases/case_file.hpp"
+
+namespace sympathy::cli {
+
+struct OptionSpec {
+  std::string name;   // "--params"
+  std::string value;  // placeholder for the help ("NAME"); empty for a flag
+  bool repeatable = false;
+  std::string help;
+};
+
+class Arguments {
+ public:
+  // Parses args (after the subcommand's name); throws InputError.
+  Arguments(std::string command, const std::vector<std::string>& args,
+            std::vector<OptionSpec> options, std::vector<std::string> positional_names);
+
+  const std::string& positional(std::size_t i) const { return positional_.at(i); }
+  bool has(const std::string& option) const;
+  bool flag(const std::string& option) const { return has(option); }
+  std::optional<std::string> value(const std::string& option) const;
+  std::vector<std::string> values(const std::string& option) const;
+  std::string text(const std::string& option, const std::string& fallback) const;
+  double number(const std::string& option, double fallback) const;
+  int integer(const std::string& option, int fallback) const;
+  // Values of a repeatable KEY=VALUE option.
+  std::vector<Assignment> assignments(const std::string& option) const;
+
+  std::string usage() const;
+
+ private:
+  const OptionSpec& spec(const std::string& option) const;
+
+  std::string command_;
+  std::vector<OptionSpec> options_;
+  std::vector<std::string> positional_names_;
+  std::vector<std::string> positional_;
+  std::vector<std::pair<std::string, std::string>> given_;
+};
+
+}  // namespace sympathy::cli

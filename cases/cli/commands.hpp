@@ -1,0 +1,11 @@
+// The subcommands of the sympathy executable.
+#pragma once
+
+#include <string>
+#include <vector>
+
+namespace sympathy::cli {
+
+int run_simulate(const std::vector<std::string>& args);
+
+}  // namespace sympathy::cli

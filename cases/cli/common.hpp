@@ -1,0 +1,42 @@
+// What every subcommand shares: loading a case with its parameter set and --set overrides,
+// integrator options from the command line, and timing.
+#pragma once
+
+#include <chrono>
+#include <string>
+#include <vector>
+
+#include "cases/case_file.hpp"
+#include "cases/cli/arguments.hpp"
+#include "cases/metronome_model.hpp"
+#include "core/flow.hpp"
+
+namespace sympathy::cli {
+
+struct LoadedCase {
+  CaseFile file;
+  std::string params;  // the parameter set applied ("" if none)
+  ModelSpec spec;
+};
+
+// Options every command that loads a case accepts.
+std::vector<OptionSpec> case_options();
+// Integrator options: --rtol, --atol, --method, --linear-solver.
+std::vector<OptionSpec> integrator_options();
+
+LoadedCase load_case(const Arguments& args);
+FlowOptions flow_options(const Arguments& args, FlowOptions defaults);
+
+class Stopwatch {
+ public:
+  double seconds() const {
+    return std::chrono::duration<double>(std::chrono::steady_clock::now() - start_).count();
+  }
+
+ private:
+  std::chrono::steady_clock::time_point start_ = std::chrono::steady_clock::now();
+};
+
+std::string join(const std::vector<std::string>& items, const std::string& separator = ", ");
+
+}  // namespace sympathy::cli

@@ -1,0 +1,47 @@
+// sympathy: periodic orbits, their stability and their bifurcations, for metronomes on a
+// platform (and any system in cases/). One executable, one subcommand per job.
+#include <cstdio>
+#include <cstring>
+#include <string>
+#include <vector>
+
+#include "cases/cli/commands.hpp"
+#include "core/errors.hpp"
+#include "core/flow.hpp"
+
+namespace {
+
+void print_usage() {
+  std::fputs(
+      "usage: sympathy COMMAND CASE [options]\n"
+      "commands:\n"
+      "  simulate   integrate from a start; time series to CSV, summary of the end state\n"
+      "run 'sympathy COMMAND --help' for the options of a command\n",
+      stderr);
+}
+
+}  // namespace
+
+int main(int argc, char** argv) {
+  if (argc < 2 || !std::strcmp(argv[1], "--help") || !std::strcmp(argv[1], "-h")) {
+    print_usage();
+    return argc < 2 ? 2 : 0;
+  }
+  const std::string command = argv[1];
+  std::vector<std::string> args(argv + 2, argv + argc);
+  try {
+    if (command == "simulate") return sympathy::cli::run_simulate(args);
+    std::fprintf(stderr, "sympathy: unknown command '%s'\n", command.c_str());
+    print_usage();
+    return 2;
+  } catch (const sympathy::InputError& e) {
+    std::fprintf(stderr, "sympathy %s: error: %s\n", command.c_str(), e.what());
+    return 2;
+  } catch (const sympathy::IntegrationError& e) {
+    std::fprintf(stderr, "sympathy %s: integration failed: %s\n", command.c_str(), e.what());
+    return 3;
+  } catch (const std::exception& e) {
+    std::fprintf(stderr, "sympathy %s: %s\n", command.c_str(), e.what());
+    return 1;
+  }
+}

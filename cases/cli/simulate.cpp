@@ -1,0 +1,112 @@
+// sympathy simulate: a time series from a start, as CSV, with a summary of where it ends.
+#include <cmath>
+#include <cstdio>
+#include <memory>
+
+#include "cases/cli/commands.hpp"
+#include "cases/cli/common.hpp"
+#include "core/csv.hpp"
+#include "core/oscillation.hpp"
+
+namespace sympathy::cli {
+
+int run_simulate(const std::vector<std::string>& argv) {
+  auto options = case_options();
+  options.insert(options.end(),
+                 {{"--start", "NAME", false, "named start of the case (in-phase, ...)"},
+                  {"--initial", "VAR=VALUE", true, "initial state value (on top of --start)"},
+                  {"--t-end", "SECONDS", false, "end time (default 60)"},
+                  {"--dt", "SECONDS", false, "output interval (default 0.01)"},
+                  {"--out", "FILE.csv", false, "write the time series here"}});
+  const auto integrator = integrator_options();
+  options.insert(options.end(), integrator.begin(), integrator.end());
+  Arguments args("simulate", argv, options, {"CASE"});
+
+  Stopwatch clock;
+  const LoadedCase c = load_case(args);
+  const StartSpec* start = args.has("--start") ? &c.file.start(*args.value("--start")) : nullptr;
+  if (!start && !args.has("--initial"))
+    throw InputError("give --start NAME (one of: " + join(c.file.start_names()) +
+                     ") or --initial VAR=VALUE");
+  const Eigen::VectorXd z0 = c.file.initial_state(start, args.assignments("--initial"));
+  const double t_end = args.number("--t-end", 60.0);
+  const double dt = args.number("--dt", 0.01);
+  if (!(t_end > 0.0)) throw InputError("--t-end: expected a positive number of seconds");
+  if (!(dt > 0.0 && dt <= t_end)) throw InputError("--dt: expected a positive interval <= --t-end");
+
+  MetronomeModel model(c.spec);
+  FlowOptions defaults;
+  defaults.rtol = 1e-8;
+  defaults.atol = 1e-10;
+  Flow flow(model, flow_options(args, defaults));
+
+  const auto names = model.state_names();
+  std::unique_ptr<CsvWriter> csv;
+  if (auto out = args.value("--out")) {
+    std::vector<std::string> header{"t"};
+    header.insert(header.end(), names.begin(), names.end());
+    csv = std::make_unique<CsvWriter>(*out, header);
+  }
+  std::vector<int> angles, watched;
+  for (int i = 0; i < model.metronome_count(); ++i) angles.push_back(model.angle_index(i));
+  for (int a = 0; a < model.platform_directions(); ++a) watched.push_back(a);
+  watched.insert(watched.end(), angles.begin(), angles.end());
+  OscillationAnalyzer analyzer(angles, watched, std::min(10.0, 0.5 * t_end));
+
+  const long count = static_cast<long>(std::floor(t_end / dt + 1e-9));
+  std::vector<double> times;
+  times.reserve(count + 2);
+  for (long i = 0; i <= count; ++i) times.push_back(i * dt);
+  if (t_end - times.back() > 1e-12) times.push_back(t_end);
+  std::vector<double> row(names.size() + 1);
+  std::string failure;
+  try {
+    flow.sample(z0, 0.0, times, [&](double t, const Eigen::VectorXd& z) {
+      analyzer.add(t, z);
+      if (csv) {
+        row[0] = t;
+        for (int i = 0; i < z.size(); ++i) row[i + 1] = z[i];
+        csv->row(row);
+      }
+    });
+  } catch (const IntegrationError& e) {
+    failure = e.what();  // keep what was computed; report below
+  }
+  if (csv) csv->flush();
+
+  const auto s = analyzer.summary();
+  std::fprintf(stderr, "sympathy simulate %s  params %s  start %s  escapement %s\n",
+               c.file.path().c_str(), c.params.empty() ? "(none)" : c.params.c_str(),
+               start ? start->name.c_str() : "(--initial)", to_string(c.spec.escapement).c_str());
+  std::fprintf(stderr, "  t = 0 .. %g s, output every %g s%s%s\n", t_end, dt,
+               csv ? " -> " : " (no --out: time series not written)",
+               csv ? csv->path().c_str() : "");
+  if (!failure.empty()) std::fprintf(stderr, "  STOPPED: %s\n", failure.c_str());
+  std::fprintf(stderr, "  over the last %g s:\n", std::min(10.0, 0.5 * t_end));
+  if (s.frequency > 0.0)
+    std::fprintf(stderr, "    frequency %.6g Hz (period %.6g s, %d cycles)\n", s.frequency,
+                 1.0 / s.frequency, s.cycles);
+  else
+    std::fprintf(stderr, "    frequency: fewer than two cycles of th1\n");
+  std::fprintf(stderr, "    amplitudes:");
+  for (std::size_t k = 0; k < watched.size(); ++k)
+    std::fprintf(stderr, " %s %.4g %s", names[watched[k]].c_str(), s.amplitudes[k],
+                 watched[k] < model.platform_directions() ? "m" : "rad");
+  std::fprintf(stderr, "\n");
+  if (!s.phase_differences.empty()) {
+    std::fprintf(stderr, "    phase differences to th1:");
+    for (std::size_t k = 0; k < s.phase_differences.size(); ++k)
+      std::fprintf(stderr, " %s %+.4f rad", names[angles[k + 1]].c_str(), s.phase_differences[k]);
+    std::fprintf(stderr, "\n");
+  }
+  const auto& st = flow.statistics();
+  std::fprintf(stderr,
+               "  integrator: %s, rtol %g, atol %g; %ld steps, %ld rhs evaluations, %ld "
+               "steep-zone roots, %ld switchings\n",
+               to_string(flow.options().method).c_str(), flow.options().rtol, flow.options().atol,
+               st.steps, st.rhs_evaluations, st.steep_roots, st.switchings);
+  std::fprintf(stderr, "  run time %.3f s\n", clock.seconds());
+  return failure.empty() ? 0 : 3;
+}
+
+}  // namespace sympathy::cli

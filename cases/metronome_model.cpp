@@ -1,0 +1,303 @@
+#include "cases/metronome_model.hpp"
+
+#include <algorithm>
+#include <numbers>
+#include <stdexcept>
+
+namespace sympathy {
+
+std::string to_string(Escapement e) {
+  switch (e) {
+    case Escapement::Half:
+      return "half";
+    case Escapement::Double:
+      return "double";
+    case Escapement::Impulsive:
+      return "impulsive";
+  }
+  return "?";
+}
+
+namespace {
+
+constexpr double kDegree = std::numbers::pi / 180.0;
+
+bool is_metronome_key(const std::string& key) {
+  const auto& keys = metronome_keys();
+  return std::find(keys.begin(), keys.end(), key) != keys.end();
+}
+
+// Splits "d12" into ("d", 12); returns index 0 when there is no numeric suffix.
+std::pair<std::string, int> split_index(const std::string& name) {
+  std::size_t k = name.size();
+  while (k > 0 && std::isdigit(static_cast<unsigned char>(name[k - 1]))) --k;
+  if (k == name.size() || k == 0 || name[k] == '0') return {name, 0};
+  return {name.substr(0, k), std::stoi(name.substr(k))};
+}
+
+}  // namespace
+
+std::vector<std::string> ModelSpec::parameter_names() const {
+  std::vector<std::string> names{"M", "c", "k"};
+  if (directions == 2) names.insert(names.end(), {"cx", "cy", "kx", "ky"});
+  names.push_back("g");
+  for (const auto& key : metronome_keys()) {
+    if (key == "angle") continue;
+    for (const auto& m : metronomes)
+      if (!m.overridden.count(key)) {
+        names.push_back(key);
+        break;
+      }
+  }
+  for (std::size_t i = 0; i < metronomes.size(); ++i)
+    for (const auto& key : metronome_keys()) names.push_back(key + std::to_string(i + 1));
+  if (std::any_of(springs.begin(), springs.end(), [](auto& s) { return !s.overridden; }))
+    names.push_back("kappa");
+  for (std::size_t j = 0; j < springs.size(); ++j) names.push_back("kappa" + std::to_string(j + 1));
+  return names;
+}
+
+bool ModelSpec::has_parameter(const std::string& name) const {
+  const auto names = parameter_names();
+  return std::find(names.begin(), names.end(), name) != names.end();
+}
+
+void ModelSpec::set(const std::string& name, double value) {
+  if (name == "M") {
+    M = value;
+  } else if (name == "c") {
+    cx = cy = value;
+  } else if (name == "k") {
+    kx = ky = value;
+  } else if (directions == 2 && name == "cx") {
+    cx = value;
+  } else if (directions == 2 && name == "cy") {
+    cy = value;
+  } else if (directions == 2 && name == "kx") {
+    kx = value;
+  } else if (directions == 2 && name == "ky") {
+    ky = value;
+  } else if (name == "g") {
+    g = value;
+  } else if (name == "kappa") {
+    for (auto& s : springs)
+      if (!s.overridden) s.kappa = value;
+  } else if (is_metronome_key(name) && name != "angle") {
+    for (auto& m : metronomes)
+      if (!m.overridden.count(name)) m.values[name] = value;
+  } else {
+    auto [key, index] = split_index(name);
+    if (key == "kappa" && index >= 1 && index <= static_cast<int>(springs.size())) {
+      springs[index - 1].kappa = value;
+      springs[index - 1].overridden = true;
+    } else if (is_metronome_key(key) && index >= 1 &&
+               index <= static_cast<int>(metronomes.size())) {
+      metronomes[index - 1].values[key] = value;
+      metronomes[index - 1].overridden.insert(key);
+    } else {
+      std::string known;
+      for (const auto& n : parameter_names()) known += (known.empty() ? "" : ", ") + n;
+      throw std::invalid_argument("unknown parameter '" + name + "'; expected one of: " + known);
+    }
+  }
+}
+
+double ModelSpec::get(const std::string& name) const {
+  if (name == "M") return M;
+  if (name == "c" || name == "cx") return cx;
+  if (name == "cy" && directions == 2) return cy;
+  if (name == "k" || name == "kx") return kx;
+  if (name == "ky" && directions == 2) return ky;
+  if (name == "g") return g;
+  if (name == "kappa")
+    for (const auto& s : springs)
+      if (!s.overridden) return s.kappa;
+  if (is_metronome_key(name))
+    for (const auto& m : metronomes)
+      if (!m.overridden.count(name)) return m.values.at(name);
+  auto [key, index] = split_index(name);
+  if (key == "kappa" && index >= 1 && index <= static_cast<int>(springs.size()))
+    return springs[index - 1].kappa;
+  if (is_metronome_key(key) && index >= 1 && index <= static_cast<int>(metronomes.size()))
+    return metronomes[index - 1].values.at(key);
+  throw std::invalid_argument("unknown parameter '" + name + "'");
+}
+
+std::vector<std::pair<std::string, std::string>> ModelSpec::problems() const {
+  std::vector<std::pair<std::string, std::string>> out;
+  auto check = [&](const std::string& name, double v, bool positive) {
+    if (!std::isfinite(v))
+      out.emplace_back(name, "a finite number");
+    else if (positive && !(v > 0.0))
+      out.emplace_back(name, "a positive number");
+    else if (!positive && v < 0.0)
+      out.emplace_back(name, "a non-negative number");
+  };
+  if (directions != 1 && directions != 2) out.emplace_back("directions", "1 or 2");
+  check("M", M, true);
+  check(directions == 2 ? "cx" : "c", cx, false);
+  check(directions == 2 ? "kx" : "k", kx, false);
+  if (directions == 2) {
+    check("cy", cy, false);
+    check("ky", ky, false);
+  }
+  check("g", g, true);
+  if (metronomes.empty()) out.emplace_back("metronomes", "at least one metronome");
+  for (std::size_t i = 0; i < metronomes.size(); ++i) {
+    const auto& v = metronomes[i].values;
+    const std::string id = std::to_string(i + 1);
+    for (const auto& key : metronome_keys()) {
+      if (!v.count(key)) {
+        out.emplace_back(key + id, "a value");
+        continue;
+      }
+      const bool positive =
+          key == "mp" || key == "mb" || key == "lp" || key == "lb" || key == "eps";
+      if (key == "angle") {
+        if (!std::isfinite(v.at(key))) out.emplace_back(key + id, "a finite number");
+      } else {
+        check(key + id, v.at(key), positive);
+      }
+    }
+    if (v.count("mp") && v.count("lp") && v.count("mb") && v.count("lb") &&
+        !(v.at("mp") * v.at("lp") > v.at("mb") * v.at("lb")))
+      out.emplace_back("mp" + id, "a bottom-heavy pendulum, mp*lp > mb*lb");
+  }
+  for (std::size_t j = 0; j < springs.size(); ++j) {
+    const auto& s = springs[j];
+    const int n = static_cast<int>(metronomes.size());
+    if (s.first < 0 || s.first >= n || s.second < 0 || s.second >= n || s.first == s.second)
+      out.emplace_back("springs[" + std::to_string(j + 1) + "].between",
+                       "two different metronomes among 1.." + std::to_string(n));
+    check("kappa" + std::to_string(j + 1), s.kappa, false);
+  }
+  return out;
+}
+
+MetronomeModel::MetronomeModel(ModelSpec spec)
+    : spec_(std::move(spec)),
+      directions_(spec_.directions),
+      n_metronomes_(static_cast<int>(spec_.metronomes.size())) {
+  const auto problems = spec_.problems();
+  if (!problems.empty())
+    throw std::invalid_argument("invalid model: " + problems.front().first + " must be " +
+                                problems.front().second);
+  std::vector<double> raw{spec_.M, spec_.cx, spec_.cy, spec_.kx, spec_.ky, spec_.g};
+  for (const auto& m : spec_.metronomes)
+    for (const auto& key : metronome_keys())
+      raw.push_back(key == "angle" ? m.values.at(key) * kDegree : m.values.at(key));
+  for (const auto& s : spec_.springs) raw.push_back(s.kappa);
+
+  std::vector<NamedParameter> named{{"M", {0}}};
+  if (directions_ == 1) {
+    named.push_back({"c", {1}});
+    named.push_back({"k", {3}});
+  } else {
+    named.push_back({"c", {1, 2}});
+    named.push_back({"k", {3, 4}});
+    named.push_back({"cx", {1}});
+    named.push_back({"cy", {2}});
+    named.push_back({"kx", {3}});
+    named.push_back({"ky", {4}});
+  }
+  named.push_back({"g", {5}});
+  const auto& keys = metronome_keys();
+  for (int k = 0; k < kMetronomeRaw; ++k) {
+    if (keys[k] == "angle") continue;
+    NamedParameter shared{keys[k], {}};
+    for (int i = 0; i < n_metronomes_; ++i)
+      if (!spec_.metronomes[i].overridden.count(keys[k]))
+        shared.raw.push_back(metronome_offset(i) + k);
+    if (!shared.raw.empty()) named.push_back(shared);
+  }
+  for (int i = 0; i < n_metronomes_; ++i)
+    for (int k = 0; k < kMetronomeRaw; ++k)
+      named.push_back({keys[k] + std::to_string(i + 1),
+                       {metronome_offset(i) + k},
+                       keys[k] == "angle" ? kDegree : 1.0});
+  NamedParameter kappa{"kappa", {}};
+  for (int j = 0; j < static_cast<int>(spec_.springs.size()); ++j)
+    if (!spec_.springs[j].overridden) kappa.raw.push_back(spring_offset(j));
+  if (!kappa.raw.empty()) named.push_back(kappa);
+  for (int j = 0; j < static_cast<int>(spec_.springs.size()); ++j)
+    named.push_back({"kappa" + std::to_string(j + 1), {spring_offset(j)}});
+  set_parameter_layout(std::move(named), std::move(raw));
+}
+
+std::vector<std::string> MetronomeModel::state_names() const {
+  std::vector<std::string> names{"x"};
+  if (directions_ == 2) names.push_back("y");
+  for (int i = 0; i < n_metronomes_; ++i) names.push_back("th" + std::to_string(i + 1));
+  const int m = static_cast<int>(names.size());
+  for (int i = 0; i < m; ++i) names.push_back("v" + names[i]);
+  return names;
+}
+
+std::vector<SteepZone> MetronomeModel::steep_zones() const {
+  if (spec_.escapement == Escapement::Impulsive) return {};
+  std::vector<SteepZone> zones;
+  const auto& raw = raw_parameters();
+  for (int i = 0; i < n_metronomes_; ++i) {
+    // sigma = tanh(50 th'/eps) switches within |th'| < eps/50 of a turning point.
+    const double width = raw[metronome_offset(i) + 8] / 50.0;
+    zones.push_back({angular_velocity_index(i), width, std::max(1.0, 10.0 * width)});
+  }
+  return zones;
+}
+
+int MetronomeModel::switching_count() const {
+  return spec_.escapement == Escapement::Impulsive ? 5 * n_metronomes_ : 0;
+}
+
+void MetronomeModel::switching_functions(double /*t*/, const double* z, double* g) const {
+  const auto& raw = raw_parameters();
+  for (int i = 0; i < n_metronomes_; ++i) {
+    const double ths = raw[metronome_offset(i) + 6];
+    const double the = raw[metronome_offset(i) + 7];
+    const double th = z[angle_index(i)];
+    double* gi = g + 5 * i;
+    gi[0] = z[angular_velocity_index(i)];
+    gi[1] = th + ths;
+    gi[2] = th - the;
+    gi[3] = th + the;
+    gi[4] = th - ths;
+  }
+}
+
+double MetronomeModel::total_mass() const {
+  const auto& raw = raw_parameters();
+  double Mt = raw[0];
+  for (int i = 0; i < n_metronomes_; ++i)
+    Mt += raw[metronome_offset(i)] + raw[metronome_offset(i) + 1];
+  return Mt;
+}
+
+double MetronomeModel::mechanical_energy(const Eigen::VectorXd& z) const {
+  const auto& raw = raw_parameters();
+  const int D = directions_;
+  const int m = D + n_metronomes_;
+  double energy = 0.0;
+  double v2 = 0.0;
+  for (int a = 0; a < D; ++a) {
+    v2 += z[m + a] * z[m + a];
+    energy += 0.5 * raw[3 + a] * z[a] * z[a];
+  }
+  energy += 0.5 * total_mass() * v2;
+  for (int i = 0; i < n_metronomes_; ++i) {
+    const double* mi = raw.data() + metronome_offset(i);
+    const double p = mi[0] * mi[2] - mi[1] * mi[3];
+    const double I = mi[0] * mi[2] * mi[2] + mi[1] * mi[3] * mi[3];
+    const double th = z[D + i], w = z[m + D + i];
+    double e_dot_v = z[m] * std::cos(mi[9]);
+    if (D == 2) e_dot_v += z[m + 1] * std::sin(mi[9]);
+    energy += 0.5 * I * w * w + p * std::cos(th) * w * e_dot_v + p * raw[5] * (1.0 - std::cos(th));
+  }
+  for (int j = 0; j < static_cast<int>(spec_.springs.size()); ++j) {
+    const auto& s = spec_.springs[j];
+    const double dth = z[D + s.first] - z[D + s.second];
+    energy += 0.5 * raw[spring_offset(j)] * dth * dth;
+  }
+  return energy;
+}
+
+}  // namespace sympathy

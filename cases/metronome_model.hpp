@@ -1,0 +1,218 @@
+// Metronomes on a suspended platform (MODEL.md): any number of metronomes, a platform moving
+// in x (1-D) or in x and y (2-D), each metronome swinging along its own direction in the
+// platform plane, with its own parameters, and virtual torsion springs between chosen pairs.
+//
+// State: z = [x, (y), th_1..th_N, vx, (vy), vth_1..vth_N].
+// Equations (general form of eq. 4 and 7-15): with e_i the swing direction, p_i = mp lp - mb lb,
+// I_i = mp lp^2 + mb lb^2 and Mt = M + sum_i (mp_i + mb_i),
+//   Mt r'' + C r' + K r = -sum_i p_i e_i (th_i'' cos th_i - th_i'^2 sin th_i)
+//   I_i th_i'' + d_i th_i' + p_i g sin th_i = u_i - p_i (e_i . r'') cos th_i - q_i
+// The mass matrix is an arrow (platform block, border b_i = p_i cos(th_i) e_i, diagonal I_i),
+// so the accelerations follow from the platform block's Schur complement in O(N):
+//   (Mt - sum_i b_i b_i^T / I_i) r'' = F - sum_i b_i G_i / I_i,   th_i'' = (G_i - b_i . r'') / I_i.
+#pragma once
+
+#include <cmath>
+#include <map>
+#include <set>
+#include <string>
+#include <vector>
+
+#include "core/autodiff_system.hpp"
+#include "core/dual.hpp"
+
+namespace sympathy {
+
+enum class Escapement { Half, Double, Impulsive };
+std::string to_string(Escapement e);
+
+// The per-metronome parameters of Table I, in the order of the raw layout.
+inline const std::vector<std::string>& metronome_keys() {
+  static const std::vector<std::string> keys{"mp", "mb",  "lp",  "lb",  "d",
+                                             "s",  "ths", "the", "eps", "angle"};
+  return keys;
+}
+
+struct MetronomeSpec {
+  std::map<std::string, double> values;  // every key of metronome_keys(); angle in degrees
+  std::set<std::string> overridden;      // keys set for this metronome alone
+};
+
+struct SpringSpec {
+  int first = 0;  // 0-based metronome indices
+  int second = 1;
+  double kappa = 0.0;  // N m/rad
+  bool overridden = false;
+};
+
+// Everything that defines one model; case files and --set edit this, then a model is built.
+struct ModelSpec {
+  int directions = 1;  // platform degrees of freedom: 1 (x) or 2 (x, y)
+  double M = 0.0, cx = 0.0, cy = 0.0, kx = 0.0, ky = 0.0;
+  double g = 9.81;
+  Escapement escapement = Escapement::Half;
+  std::vector<MetronomeSpec> metronomes;
+  std::vector<SpringSpec> springs;
+
+  // Names accepted by set(): M, c, k (cx, cy, kx, ky when 2-D), g, the shared metronome keys
+  // (mp, ..., eps: every metronome not overriding it), per-metronome keys with a 1-based index
+  // (d2, angle3, ...), kappa (every spring not overriding it) and kappa1, kappa2, ...
+  std::vector<std::string> parameter_names() const;
+  bool has_parameter(const std::string& name) const;
+  // Sets a parameter by name (angles in degrees); throws std::invalid_argument if unknown.
+  void set(const std::string& name, double value);
+  double get(const std::string& name) const;
+
+  // Physically meaningless values, as (parameter name, what is expected); empty when valid.
+  std::vector<std::pair<std::string, std::string>> problems() const;
+};
+
+class MetronomeModel final : public AutoDiffSystem<MetronomeModel> {
+ public:
+  explicit MetronomeModel(ModelSpec spec);
+
+  const ModelSpec& spec() const { return spec_; }
+  int metronome_count() const { return n_metronomes_; }
+  int platform_directions() const { return directions_; }
+  int angle_index(int i) const { return directions_ + i; }
+  int angular_velocity_index(int i) const { return 2 * directions_ + n_metronomes_ + i; }
+
+  int dimension() const override { return 2 * (directions_ + n_metronomes_); }
+  std::vector<std::string> state_names() const override;
+  bool differentiable() const override { return spec_.escapement != Escapement::Impulsive; }
+  std::vector<SteepZone> steep_zones() const override;
+  int switching_count() const override;
+  void switching_functions(double t, const double* z, double* g) const override;
+
+  // Total mechanical energy (kinetic + gravity + platform spring + torsion springs), J.
+  double mechanical_energy(const Eigen::VectorXd& z) const;
+  // Platform mass with the metronomes' masses, Mt.
+  double total_mass() const;
+
+  template <class T, class P>
+  void evaluate(double t, const T* z, const P* raw, T* dz) const;
+
+ private:
+  // Raw layout: [M, cx, cy, kx, ky, g], then 10 entries per metronome, then one per spring.
+  static constexpr int kPlatformRaw = 6;
+  static constexpr int kMetronomeRaw = 10;
+  int metronome_offset(int i) const { return kPlatformRaw + kMetronomeRaw * i; }
+  int spring_offset(int j) const { return kPlatformRaw + kMetronomeRaw * n_metronomes_ + j; }
+
+  template <class T, class P>
+  T escapement(const T& th, const T& w, const P* m) const;
+
+  ModelSpec spec_;
+  int directions_;
+  int n_metronomes_;
+};
+
+template <class T, class P>
+T MetronomeModel::escapement(const T& th, const T& w, const P* m) const {
+  const P& s = m[5];
+  const P& ths = m[6];
+  const P& the = m[7];
+  const P& eps = m[8];
+  using std::tanh;
+  switch (spec_.escapement) {
+    case Escapement::Half: {
+      // Eq. 3 with the plateau s: sigma gives the sign of th', the tanh pair the window.
+      const T sigma = tanh(50.0 * w / eps);
+      const T st = sigma * th;
+      return 0.5 * s * sigma * (tanh((st + ths) / eps) - tanh((st - the) / eps));
+    }
+    case Escapement::Double: {
+      const T sigma = tanh(50.0 * w / eps);
+      const T st = sigma * th;
+      return s * sigma * (tanh((st + ths) / (2.0 * eps)) - tanh((st - the) / (2.0 * eps)));
+    }
+    case Escapement::Impulsive: {
+      // Eq. 2: +s on -ths <= th <= the while th' > 0; -s on -the <= th <= ths while th' < 0.
+      const double a = value_of(th), v = value_of(w);
+      if (v > 0.0 && a >= -value_of(ths) && a <= value_of(the)) return T(0.0) + s;
+      if (v < 0.0 && a >= -value_of(the) && a <= value_of(ths)) return T(0.0) - s;
+      return T(0.0);
+    }
+  }
+  return T(0.0);
+}
+
+template <class T, class P>
+void MetronomeModel::evaluate(double /*t*/, const T* z, const P* raw, T* dz) const {
+  using std::cos;
+  using std::sin;
+  const int D = directions_;
+  const int N = n_metronomes_;
+  const int m = D + N;
+  for (int i = 0; i < m; ++i) dz[i] = z[m + i];
+
+  // Per-call scratch without heap traffic in the hot path.
+  thread_local std::vector<T> G, b, inertia, torque;
+  G.resize(N);
+  b.resize(2 * N);
+  inertia.resize(N);
+  torque.assign(N, T(0.0));
+
+  for (int j = 0; j < static_cast<int>(spec_.springs.size()); ++j) {
+    const auto& spring = spec_.springs[j];
+    const T q = raw[spring_offset(j)] * (z[D + spring.first] - z[D + spring.second]);
+    torque[spring.first] += q;
+    torque[spring.second] -= q;
+  }
+
+  const P& g = raw[5];
+  P Mt = raw[0];
+  // Platform force F = -C r' - K r + sum_i p_i th_i'^2 sin(th_i) e_i, and the Schur complement.
+  T F[2] = {T(0.0), T(0.0)};
+  for (int a = 0; a < D; ++a) F[a] = -raw[1 + a] * z[m + a] - raw[3 + a] * z[a];
+  T A[3] = {T(0.0), T(0.0), T(0.0)};  // sum b b^T / I, upper triangle (00, 01, 11)
+  T R[2] = {T(0.0), T(0.0)};          // sum b G / I
+  for (int i = 0; i < N; ++i) {
+    const P* mi = raw + metronome_offset(i);
+    const P& mp = mi[0];
+    const P& mb = mi[1];
+    const P& lp = mi[2];
+    const P& lb = mi[3];
+    Mt = Mt + mp + mb;
+    const P p = mp * lp - mb * lb;
+    const P I = mp * lp * lp + mb * lb * lb;
+    const P e[2] = {cos(mi[9]), sin(mi[9])};
+    const T& th = z[D + i];
+    const T& w = z[m + D + i];
+    const T sn = sin(th);
+    const T cs = cos(th);
+    const T pw2s = p * w * w * sn;
+    G[i] = escapement(th, w, mi) - mi[4] * w - p * g * sn - torque[i];
+    inertia[i] = T(0.0) + I;
+    for (int a = 0; a < D; ++a) {
+      b[2 * i + a] = p * cs * e[a];
+      F[a] += pw2s * e[a];
+      R[a] += b[2 * i + a] * G[i] / I;
+    }
+    A[0] += b[2 * i] * b[2 * i] / I;
+    if (D == 2) {
+      A[1] += b[2 * i] * b[2 * i + 1] / I;
+      A[2] += b[2 * i + 1] * b[2 * i + 1] / I;
+    }
+  }
+
+  // Platform accelerations from (Mt - A) r'' = F - R.
+  T acc[2] = {T(0.0), T(0.0)};
+  if (D == 1) {
+    acc[0] = (F[0] - R[0]) / (Mt - A[0]);
+  } else {
+    const T s00 = Mt - A[0], s01 = -A[1], s11 = Mt - A[2];
+    const T det = s00 * s11 - s01 * s01;
+    const T r0 = F[0] - R[0], r1 = F[1] - R[1];
+    acc[0] = (s11 * r0 - s01 * r1) / det;
+    acc[1] = (s00 * r1 - s01 * r0) / det;
+  }
+  for (int a = 0; a < D; ++a) dz[m + a] = acc[a];
+  for (int i = 0; i < N; ++i) {
+    T ba = b[2 * i] * acc[0];
+    if (D == 2) ba += b[2 * i + 1] * acc[1];
+    dz[m + D + i] = (G[i] - ba) / inertia[i];
+  }
+}
+
+}  // namespace sympathy

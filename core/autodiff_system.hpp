@@ -1,0 +1,158 @@
+// An OdeSystem whose derivatives come from one templated right-hand side.
+//
+// The derived class writes
+//   template <class T, class P>
+//   void evaluate(double t, const T* z, const P* raw, T* dz) const;
+// where `raw` are the model's raw parameters. T is double or a dual number; P is double, or the
+// same dual as T when a parameter derivative is wanted. Named parameters are directions in raw
+// parameter space: a name maps to the raw entries it sets together (e.g. a damping shared by
+// several metronomes), so df/dp for a name is the derivative along that direction.
+#pragma once
+
+#include <algorithm>
+#include <stdexcept>
+#include <string>
+#include <utility>
+#include <vector>
+
+#include "core/dual.hpp"
+#include "core/ode_system.hpp"
+
+namespace sympathy {
+
+struct NamedParameter {
+  std::string name;
+  std::vector<int> raw;  // raw entries set together by this name
+  double scale = 1.0;    // raw value = scale * named value (e.g. degrees to radians)
+};
+
+template <class Derived>
+class AutoDiffSystem : public OdeSystem {
+ public:
+  std::vector<std::string> parameter_names() const override {
+    std::vector<std::string> names;
+    names.reserve(named_.size());
+    for (const auto& p : named_) names.push_back(p.name);
+    return names;
+  }
+  double parameter(int index) const override {
+    const auto& p = named_.at(index);
+    return raw_.at(p.raw.front()) / p.scale;
+  }
+  void set_parameter(int index, double value) override {
+    const auto& p = named_.at(index);
+    for (int r : p.raw) raw_[r] = p.scale * value;
+  }
+  using OdeSystem::parameter;
+  using OdeSystem::set_parameter;
+
+  const std::vector<double>& raw_parameters() const { return raw_; }
+
+  void rhs(double t, const double* z, double* dz) const override {
+    derived().evaluate(t, z, raw_.data(), dz);
+  }
+  using OdeSystem::rhs;
+
+  void jacobian(double t, const double* z, Eigen::MatrixXd& jac) const override {
+    const int n = dimension();
+    jac.resize(n, n);
+    for (int c0 = 0; c0 < n;) {
+      const int width = std::min(n - c0, 8);
+      // Seed the unit directions c0 .. c0+width-1.
+      auto seed = [&](auto tag) {
+        using D = decltype(tag);
+        std::vector<D> zd(n), dzd(n);
+        for (int i = 0; i < n; ++i) zd[i] = D(z[i]);
+        for (int k = 0; k < width; ++k) zd[c0 + k].d[k] = 1.0;
+        derived().evaluate(t, zd.data(), raw_.data(), dzd.data());
+        for (int i = 0; i < n; ++i)
+          for (int k = 0; k < width; ++k) jac(i, c0 + k) = dzd[i].d[k];
+      };
+      dispatch_width(width, seed);
+      c0 += width;
+    }
+  }
+  using OdeSystem::jacobian;
+
+  void variational_rhs(double t, const double* z, int columns, const double* const* S,
+                       double* const* out, std::span<const int> parameters) const override {
+    const int n = dimension();
+    const int state_columns = columns - static_cast<int>(parameters.size());
+    for (int c0 = 0; c0 < state_columns;) {
+      const int width = std::min(state_columns - c0, 8);
+      auto seed = [&](auto tag) {
+        using D = decltype(tag);
+        std::vector<D> zd(n), dzd(n);
+        for (int i = 0; i < n; ++i) {
+          zd[i] = D(z[i]);
+          for (int k = 0; k < width; ++k) zd[i].d[k] = S[c0 + k][i];
+        }
+        derived().evaluate(t, zd.data(), raw_.data(), dzd.data());
+        for (int k = 0; k < width; ++k)
+          for (int i = 0; i < n; ++i) out[c0 + k][i] = dzd[i].d[k];
+      };
+      dispatch_width(width, seed);
+      c0 += width;
+    }
+    for (int k = 0; k < static_cast<int>(parameters.size()); ++k) {
+      // J*s + df/dp in one pass: the state seeded with s, the parameter direction seeded too.
+      const int column = state_columns + k;
+      using D = Dual<1>;
+      std::vector<D> zd(n), dzd(n);
+      for (int i = 0; i < n; ++i) {
+        zd[i] = D(z[i]);
+        zd[i].d[0] = S[column][i];
+      }
+      const auto pd = seeded_parameters(parameters[k]);
+      derived().evaluate(t, zd.data(), pd.data(), dzd.data());
+      for (int i = 0; i < n; ++i) out[column][i] = dzd[i].d[0];
+    }
+  }
+
+  void parameter_derivative(double t, const double* z, int parameter, double* dfdp) const override {
+    using D = Dual<1>;
+    const int n = dimension();
+    std::vector<D> zd(z, z + n), dzd(n);
+    const auto pd = seeded_parameters(parameter);
+    derived().evaluate(t, zd.data(), pd.data(), dzd.data());
+    for (int i = 0; i < n; ++i) dfdp[i] = dzd[i].d[0];
+  }
+
+ protected:
+  AutoDiffSystem() = default;
+  void set_parameter_layout(std::vector<NamedParameter> named, std::vector<double> raw) {
+    for (const auto& p : named)
+      for (int r : p.raw)
+        if (r < 0 || r >= static_cast<int>(raw.size()))
+          throw std::logic_error("parameter '" + p.name + "' points outside the raw parameters");
+    named_ = std::move(named);
+    raw_ = std::move(raw);
+  }
+
+ private:
+  const Derived& derived() const { return static_cast<const Derived&>(*this); }
+
+  std::vector<Dual<1>> seeded_parameters(int parameter) const {
+    std::vector<Dual<1>> pd(raw_.begin(), raw_.end());
+    const auto& p = named_.at(parameter);
+    for (int r : p.raw) pd[r].d[0] = p.scale;
+    return pd;
+  }
+
+  // Narrow duals for narrow chunks: a 2-state system should not pay for 8 directions.
+  template <class F>
+  static void dispatch_width(int width, F& f) {
+    if (width <= 2) {
+      f(Dual<2>{});
+    } else if (width <= 4) {
+      f(Dual<4>{});
+    } else {
+      f(Dual<8>{});
+    }
+  }
+
+  std::vector<NamedParameter> named_;
+  std::vector<double> raw_;
+};
+
+}  // namespace sympathy

@@ -1,0 +1,16 @@
+// Error types shared by every layer.
+#pragma once
+
+#include <stdexcept>
+#include <string>
+
+namespace sympathy {
+
+// Bad input (a case file, a command-line argument, a data file), found before any computation.
+// The message names the source (file and line, or argument), the key and what was expected.
+class InputError : public std::runtime_error {
+ public:
+  using std::runtime_error::runtime_error;
+};
+
+}  // namespace sympathy

@@ -1,0 +1,491 @@
+#include "core/flow.hpp"
+
+#include <cvodes/cvodes.h>
+#include <nvector/nvector_serial.h>
+#include <sunlinsol/sunlinsol_dense.h>
+#include <sunlinsol/sunlinsol_klu.h>
+#include <sunmatrix/sunmatrix_dense.h>
+#include <sunmatrix/sunmatrix_sparse.h>
+#include <sunnonlinsol/sunnonlinsol_fixedpoint.h>
+#include <sunnonlinsol/sunnonlinsol_newton.h>
+
+#include <algorithm>
+#include <cmath>
+#include <cstring>
+#include <limits>
+#include <sstream>
+
+namespace sympathy {
+
+std::string to_string(Method m) {
+  return m == Method::BDF ? "BDF" : "Adams";
+}
+std::string to_string(LinearSolver s) {
+  return s == LinearSolver::Dense ? "dense" : "KLU";
+}
+
+FlowStatistics& FlowStatistics::operator+=(const FlowStatistics& o) {
+  calls += o.calls;
+  steps += o.steps;
+  rhs_evaluations += o.rhs_evaluations;
+  jacobian_evaluations += o.jacobian_evaluations;
+  variational_evaluations += o.variational_evaluations;
+  linear_setups += o.linear_setups;
+  error_test_failures += o.error_test_failures;
+  nonlinear_iterations += o.nonlinear_iterations;
+  steep_roots += o.steep_roots;
+  switchings += o.switchings;
+  return *this;
+}
+
+// Every SUNDIALS object of one integrator, freed in reverse order of creation.
+struct Flow::Cvodes {
+  SUNContext ctx = nullptr;
+  void* mem = nullptr;
+  N_Vector y = nullptr;
+  SUNMatrix matrix = nullptr;
+  SUNLinearSolver linear_solver = nullptr;
+  SUNNonlinearSolver nonlinear_solver = nullptr;
+  SUNNonlinearSolver sens_nonlinear_solver = nullptr;
+  N_Vector* yS = nullptr;
+  int sens_columns = 0;           // as allocated by CVodeSensInit
+  bool sens_initialized = false;  // CVodeSensInit called for sens_columns
+  bool sens_on = false;
+  bool initialized = false;
+
+  // Sparse (CSC) pattern of the Jacobian for KLU, and where each entry sits in the dense one.
+  std::vector<sunindextype> column_starts, row_indices;
+  std::vector<int> dense_positions;
+  Eigen::MatrixXd jacobian;
+  std::vector<const double*> columns_in;
+  std::vector<double*> columns_out;
+
+  Cvodes() = default;
+  Cvodes(const Cvodes&) = delete;
+  Cvodes& operator=(const Cvodes&) = delete;
+  ~Cvodes() {
+    if (mem) CVodeFree(&mem);
+    if (sens_nonlinear_solver) SUNNonlinSolFree(sens_nonlinear_solver);
+    if (nonlinear_solver) SUNNonlinSolFree(nonlinear_solver);
+    if (linear_solver) SUNLinSolFree(linear_solver);
+    if (matrix) SUNMatDestroy(matrix);
+    if (yS) N_VDestroyVectorArray(yS, sens_columns);
+    if (y) N_VDestroy(y);
+    if (ctx) SUNContext_Free(&ctx);
+  }
+};
+
+// C callbacks. They never let a C++ exception cross CVODES: it is stored and rethrown after
+// CVode returns.
+struct FlowCallbacks {
+  static int rhs(sunrealtype t, N_Vector y, N_Vector ydot, void* user) {
+    auto* flow = static_cast<Flow*>(user);
+    try {
+      const int n = flow->system_.dimension();
+      double* dz = N_VGetArrayPointer(ydot);
+      flow->system_.rhs(t, N_VGetArrayPointer(y), dz);
+      for (int i = 0; i < n; ++i)
+        if (!std::isfinite(dz[i])) return 1;  // recoverable: CVODES retries a smaller step
+      return 0;
+    } catch (...) {
+      flow->callback_error_ = std::current_exception();
+      return -1;
+    }
+  }
+
+  static int dense_jacobian(sunrealtype t, N_Vector y, N_Vector /*fy*/, SUNMatrix jac, void* user,
+                            N_Vector, N_Vector, N_Vector) {
+    auto* flow = static_cast<Flow*>(user);
+    try {
+      const int n = flow->system_.dimension();
+      Eigen::Map<Eigen::MatrixXd> out(SM_DATA_D(jac), n, n);
+      flow->system_.jacobian(t, N_VGetArrayPointer(y), flow->cv_->jacobian);
+      out = flow->cv_->jacobian;
+      return 0;
+    } catch (...) {
+      flow->callback_error_ = std::current_exception();
+      return -1;
+    }
+  }
+
+  static int sparse_jacobian(sunrealtype t, N_Vector y, N_Vector /*fy*/, SUNMatrix jac, void* user,
+                             N_Vector, N_Vector, N_Vector) {
+    auto* flow = static_cast<Flow*>(user);
+    try {
+      auto& cv = *flow->cv_;
+      flow->system_.jacobian(t, N_VGetArrayPointer(y), cv.jacobian);
+      std::copy(cv.column_starts.begin(), cv.column_starts.end(), SM_INDEXPTRS_S(jac));
+      std::copy(cv.row_indices.begin(), cv.row_indices.end(), SM_INDEXVALS_S(jac));
+      double* values = SM_DATA_S(jac);
+      const double* dense = cv.jacobian.data();
+      for (std::size_t k = 0; k < cv.dense_positions.size(); ++k)
+        values[k] = dense[cv.dense_positions[k]];
+      return 0;
+    } catch (...) {
+      flow->callback_error_ = std::current_exception();
+      return -1;
+    }
+  }
+
+  static int sensitivity_rhs(int columns, sunrealtype t, N_Vector y, N_Vector /*ydot*/,
+                             N_Vector* yS, N_Vector* ySdot, void* user, N_Vector, N_Vector) {
+    auto* flow = static_cast<Flow*>(user);
+    try {
+      auto& cv = *flow->cv_;
+      for (int j = 0; j < columns; ++j) {
+        cv.columns_in[j] = N_VGetArrayPointer(yS[j]);
+        cv.columns_out[j] = N_VGetArrayPointer(ySdot[j]);
+      }
+      flow->system_.variational_rhs(t, N_VGetArrayPointer(y), columns, cv.columns_in.data(),
+                                    cv.columns_out.data(), flow->parameters_);
+      return 0;
+    } catch (...) {
+      flow->callback_error_ = std::current_exception();
+      return -1;
+    }
+  }
+
+  static int roots(sunrealtype t, N_Vector y, sunrealtype* g, void* user) {
+    auto* flow = static_cast<Flow*>(user);
+    try {
+      const double* z = N_VGetArrayPointer(y);
+      int k = 0;
+      for (std::size_t i = 0; i < flow->zones_.size(); ++i) {
+        const double zc = z[flow->zones_[i].component];
+        for (double v : flow->levels_[i]) g[k++] = zc * zc - v * v;
+      }
+      if (flow->switching_count_ > 0) flow->system_.switching_functions(t, z, g + k);
+      return 0;
+    } catch (...) {
+      flow->callback_error_ = std::current_exception();
+      return -1;
+    }
+  }
+
+  static void error_handler(int /*code*/, const char* module, const char* function, char* msg,
+                            void* user) {
+    auto* flow = static_cast<Flow*>(user);
+    flow->last_error_ = std::string(module) + "/" + function + ": " + msg;
+  }
+};
+
+namespace {
+
+void require(bool ok, const std::string& what) {
+  if (!ok) throw std::runtime_error("SUNDIALS: " + what);
+}
+
+}  // namespace
+
+void Flow::fail(int flag, const char* function) {
+  if (callback_error_) {
+    auto e = callback_error_;
+    callback_error_ = nullptr;
+    std::rethrow_exception(e);
+  }
+  std::ostringstream msg;
+  msg << function << " failed at t = " << t_ << ": " << CVodeGetReturnFlagName(flag);
+  if (!last_error_.empty()) msg << " (" << last_error_ << ")";
+  last_error_.clear();
+  throw IntegrationError(msg.str(), t_);
+}
+
+#define SYMPATHY_CHECK(call)           \
+  do {                                 \
+    const int flag_ = (call);          \
+    if (flag_ < 0) fail(flag_, #call); \
+  } while (false)
+
+Flow::Flow(const OdeSystem& system, FlowOptions options)
+    : system_(system), options_(options), cv_(std::make_unique<Cvodes>()) {
+  if (!(options_.rtol > 0.0) || !(options_.atol > 0.0))
+    throw std::invalid_argument("flow tolerances must be positive");
+  const int n = system_.dimension();
+  auto& cv = *cv_;
+  require(SUNContext_Create(nullptr, &cv.ctx) == 0, "SUNContext_Create failed");
+  cv.y = N_VNew_Serial(n, cv.ctx);
+  require(cv.y != nullptr, "N_VNew_Serial failed");
+  N_VConst(0.0, cv.y);
+  cv.mem = CVodeCreate(options_.method == Method::BDF ? CV_BDF : CV_ADAMS, cv.ctx);
+  require(cv.mem != nullptr, "CVodeCreate failed");
+  SYMPATHY_CHECK(CVodeSetErrHandlerFn(cv.mem, FlowCallbacks::error_handler, this));
+  SYMPATHY_CHECK(CVodeInit(cv.mem, FlowCallbacks::rhs, 0.0, cv.y));
+  SYMPATHY_CHECK(CVodeSetUserData(cv.mem, this));
+  SYMPATHY_CHECK(CVodeSStolerances(cv.mem, options_.rtol, options_.atol));
+  SYMPATHY_CHECK(CVodeSetMaxNumSteps(cv.mem, options_.max_steps));
+
+  if (options_.nonlinear_solver == NonlinearSolver::FixedPoint) {
+    cv.nonlinear_solver = SUNNonlinSol_FixedPoint(cv.y, 0, cv.ctx);
+    require(cv.nonlinear_solver != nullptr, "SUNNonlinSol_FixedPoint failed");
+    SYMPATHY_CHECK(CVodeSetNonlinearSolver(cv.mem, cv.nonlinear_solver));
+  } else {
+    cv.nonlinear_solver = SUNNonlinSol_Newton(cv.y, cv.ctx);
+    require(cv.nonlinear_solver != nullptr, "SUNNonlinSol_Newton failed");
+    SYMPATHY_CHECK(CVodeSetNonlinearSolver(cv.mem, cv.nonlinear_solver));
+    if (options_.linear_solver == LinearSolver::KLU) {
+      if (!system_.differentiable())
+        throw std::invalid_argument("the KLU linear solver needs the system's Jacobian");
+      auto pattern = system_.jacobian_pattern();
+      if (pattern.empty())
+        for (int j = 0; j < n; ++j)
+          for (int i = 0; i < n; ++i) pattern.emplace_back(i, j);
+      std::sort(pattern.begin(), pattern.end(), [](auto a, auto b) {
+        return a.second != b.second ? a.second < b.second : a.first < b.first;
+      });
+      cv.column_starts.assign(n + 1, 0);
+      for (auto [i, j] : pattern) {
+        cv.row_indices.push_back(i);
+        cv.dense_positions.push_back(i + j * n);
+        ++cv.column_starts[j + 1];
+      }
+      for (int j = 0; j < n; ++j) cv.column_starts[j + 1] += cv.column_starts[j];
+      cv.matrix = SUNSparseMatrix(n, n, static_cast<sunindextype>(pattern.size()), CSC_MAT, cv.ctx);
+      require(cv.matrix != nullptr, "SUNSparseMatrix failed");
+      cv.linear_solver = SUNLinSol_KLU(cv.y, cv.matrix, cv.ctx);
+      require(cv.linear_solver != nullptr, "SUNLinSol_KLU failed");
+      SYMPATHY_CHECK(CVodeSetLinearSolver(cv.mem, cv.linear_solver, cv.matrix));
+      SYMPATHY_CHECK(CVodeSetJacFn(cv.mem, FlowCallbacks::sparse_jacobian));
+    } else {
+      cv.matrix = SUNDenseMatrix(n, n, cv.ctx);
+      require(cv.matrix != nullptr, "SUNDenseMatrix failed");
+      cv.linear_solver = SUNLinSol_Dense(cv.y, cv.matrix, cv.ctx);
+      require(cv.linear_solver != nullptr, "SUNLinSol_Dense failed");
+      SYMPATHY_CHECK(CVodeSetLinearSolver(cv.mem, cv.linear_solver, cv.matrix));
+      // Without derivatives CVODES falls back to difference quotients (simulation only).
+      if (system_.differentiable())
+        SYMPATHY_CHECK(CVodeSetJacFn(cv.mem, FlowCallbacks::dense_jacobian));
+    }
+  }
+
+  configure_roots();
+  dz_scratch_.resize(n);
+  cv.initialized = true;
+}
+
+Flow::~Flow() = default;
+
+// Root functions follow the system's current parameters (a zone's width may depend on them).
+void Flow::configure_roots() {
+  const int n = system_.dimension();
+  zones_ = options_.resolve_steep_zones ? system_.steep_zones() : std::vector<SteepZone>{};
+  levels_.clear();
+  steep_root_count_ = 0;
+  for (const auto& zone : zones_) {
+    if (zone.component < 0 || zone.component >= n || !(zone.width > 0.0) ||
+        !(zone.scale > zone.width))
+      throw std::invalid_argument("invalid steep zone of the system");
+    std::vector<double> levels{zone.scale};
+    while (levels.back() >= zone.width) levels.push_back(levels.back() / 3.0);
+    steep_root_count_ += static_cast<int>(levels.size());
+    levels_.push_back(std::move(levels));
+  }
+  switching_count_ = system_.switching_count();
+  const int roots = steep_root_count_ + switching_count_;
+  if (roots != static_cast<int>(root_info_.size())) {
+    SYMPATHY_CHECK(CVodeRootInit(cv_->mem, roots, roots > 0 ? FlowCallbacks::roots : nullptr));
+    if (roots > 0) SYMPATHY_CHECK(CVodeSetNoInactiveRootWarn(cv_->mem));
+    root_info_.assign(roots, 0);
+  }
+}
+
+void Flow::start(const Eigen::VectorXd& z0, double t0, int sensitivity_columns,
+                 std::span<const int> parameters) {
+  const int n = system_.dimension();
+  if (z0.size() != n)
+    throw std::invalid_argument("initial state has " + std::to_string(z0.size()) +
+                                " entries; the system has " + std::to_string(n));
+  if (!z0.allFinite()) throw std::invalid_argument("initial state is not finite");
+  auto& cv = *cv_;
+  t_ = t0;
+  callback_error_ = nullptr;
+  last_error_.clear();
+  std::copy(z0.data(), z0.data() + n, N_VGetArrayPointer(cv.y));
+  SYMPATHY_CHECK(CVodeReInit(cv.mem, t0, cv.y));
+  configure_roots();
+
+  parameters_.assign(parameters.begin(), parameters.end());
+  if (sensitivity_columns > 0) {
+    if (!system_.differentiable())
+      throw std::invalid_argument("sensitivities need a differentiable system");
+    const int ism =
+        options_.corrector == SensitivityCorrector::Staggered ? CV_STAGGERED : CV_SIMULTANEOUS;
+    if (cv.sens_columns != sensitivity_columns) {
+      if (cv.sens_columns > 0) {
+        CVodeSensFree(cv.mem);
+        cv.sens_initialized = false;
+        cv.sens_on = false;
+        N_VDestroyVectorArray(cv.yS, cv.sens_columns);
+        cv.yS = nullptr;
+        if (cv.sens_nonlinear_solver) SUNNonlinSolFree(cv.sens_nonlinear_solver);
+        cv.sens_nonlinear_solver = nullptr;
+      }
+      cv.yS = N_VCloneVectorArray(sensitivity_columns, cv.y);
+      require(cv.yS != nullptr, "N_VCloneVectorArray failed");
+      cv.sens_columns = sensitivity_columns;
+      cv.columns_in.resize(sensitivity_columns);
+      cv.columns_out.resize(sensitivity_columns);
+    }
+    // Initial sensitivities: identity in the state columns, zero in the parameter columns.
+    const int state_columns = sensitivity_columns - static_cast<int>(parameters.size());
+    for (int j = 0; j < sensitivity_columns; ++j) {
+      N_VConst(0.0, cv.yS[j]);
+      if (j < state_columns) N_VGetArrayPointer(cv.yS[j])[j] = 1.0;
+    }
+    if (!cv.sens_initialized) {
+      SYMPATHY_CHECK(
+          CVodeSensInit(cv.mem, sensitivity_columns, ism, FlowCallbacks::sensitivity_rhs, cv.yS));
+      std::vector<double> atols(sensitivity_columns, options_.atol);
+      SYMPATHY_CHECK(CVodeSensSStolerances(cv.mem, options_.rtol, atols.data()));
+      SYMPATHY_CHECK(CVodeSetSensErrCon(cv.mem, SUNTRUE));
+      if (options_.nonlinear_solver == NonlinearSolver::FixedPoint) {
+        cv.sens_nonlinear_solver =
+            ism == CV_SIMULTANEOUS
+                ? SUNNonlinSol_FixedPointSens(sensitivity_columns + 1, cv.y, 0, cv.ctx)
+                : SUNNonlinSol_FixedPointSens(sensitivity_columns, cv.y, 0, cv.ctx);
+        require(cv.sens_nonlinear_solver != nullptr, "SUNNonlinSol_FixedPointSens failed");
+        if (ism == CV_SIMULTANEOUS)
+          SYMPATHY_CHECK(CVodeSetNonlinearSolverSensSim(cv.mem, cv.sens_nonlinear_solver));
+        else
+          SYMPATHY_CHECK(CVodeSetNonlinearSolverSensStg(cv.mem, cv.sens_nonlinear_solver));
+      }
+      cv.sens_initialized = true;
+    } else {
+      SYMPATHY_CHECK(CVodeSensReInit(cv.mem, ism, cv.yS));
+    }
+    cv.sens_on = true;
+  } else if (cv.sens_on) {
+    SYMPATHY_CHECK(CVodeSensToggleOff(cv.mem));
+    cv.sens_on = false;
+  }
+  update_max_step(t0);
+  ++statistics_.calls;
+}
+
+void Flow::update_max_step(double t) {
+  double hmax = options_.max_step > 0.0 ? options_.max_step : 0.0;
+  if (!zones_.empty()) {
+    const double* z = N_VGetArrayPointer(cv_->y);
+    system_.rhs(t, z, dz_scratch_.data());
+    ++statistics_.rhs_evaluations;
+    for (std::size_t i = 0; i < zones_.size(); ++i) {
+      const int c = zones_[i].component;
+      const double rate = std::abs(dz_scratch_[c]);
+      if (rate == 0.0) continue;
+      const auto& levels = levels_[i];
+      const double a = std::abs(z[c]);
+      // The next level inside the current band (the innermost band keeps its own level).
+      double inner = levels.front();
+      for (std::size_t l = 0; l < levels.size(); ++l) {
+        if (a < levels[l]) inner = levels[std::min(l + 1, levels.size() - 1)];
+      }
+      const double cap = options_.steep_step_fraction * inner / rate;
+      hmax = hmax > 0.0 ? std::min(hmax, cap) : cap;
+    }
+  }
+  SYMPATHY_CHECK(CVodeSetMaxStep(cv_->mem, hmax));
+}
+
+void Flow::on_roots() {
+  auto& cv = *cv_;
+  SYMPATHY_CHECK(CVodeGetRootInfo(cv.mem, root_info_.data()));
+  bool steep = false, switching = false;
+  for (int k = 0; k < steep_root_count_; ++k) steep |= root_info_[k] != 0;
+  for (int k = steep_root_count_; k < static_cast<int>(root_info_.size()); ++k)
+    switching |= root_info_[k] != 0;
+  if (switching) {
+    // f jumps here: restart the multistep method from the state at the surface.
+    ++statistics_.switchings;
+    collect_statistics();
+    SYMPATHY_CHECK(CVodeReInit(cv.mem, t_, cv.y));
+  }
+  if (steep) ++statistics_.steep_roots;
+  if (steep || switching) update_max_step(t_);
+}
+
+void Flow::integrate_to(double t_target, double t_stop) {
+  auto& cv = *cv_;
+  while (t_ < t_target) {
+    SYMPATHY_CHECK(CVodeSetStopTime(cv.mem, t_stop));
+    const int flag = CVode(cv.mem, t_target, cv.y, &t_, CV_NORMAL);
+    if (flag < 0 || callback_error_) fail(flag, "CVode");
+    if (flag == CV_ROOT_RETURN) {
+      on_roots();
+      continue;
+    }
+    break;  // CV_SUCCESS or CV_TSTOP_RETURN: at t_target
+  }
+}
+
+void Flow::collect_statistics() {
+  auto& cv = *cv_;
+  long v = 0;
+  if (CVodeGetNumSteps(cv.mem, &v) == CV_SUCCESS) statistics_.steps += v;
+  if (CVodeGetNumRhsEvals(cv.mem, &v) == CV_SUCCESS) statistics_.rhs_evaluations += v;
+  if (CVodeGetNumLinSolvSetups(cv.mem, &v) == CV_SUCCESS) statistics_.linear_setups += v;
+  if (CVodeGetNumErrTestFails(cv.mem, &v) == CV_SUCCESS) statistics_.error_test_failures += v;
+  if (CVodeGetNumNonlinSolvIters(cv.mem, &v) == CV_SUCCESS) statistics_.nonlinear_iterations += v;
+  if (cv.linear_solver && CVodeGetNumJacEvals(cv.mem, &v) == CV_SUCCESS)
+    statistics_.jacobian_evaluations += v;
+  if (cv.sens_on && CVodeGetSensNumRhsEvals(cv.mem, &v) == CV_SUCCESS)
+    statistics_.variational_evaluations += v;
+}
+
+Eigen::VectorXd Flow::advance(const Eigen::VectorXd& z0, double t0, double t1) {
+  if (!(t1 >= t0)) throw std::invalid_argument("flow: end time before start time");
+  start(z0, t0, 0, {});
+  integrate_to(t1, t1);
+  collect_statistics();
+  const int n = system_.dimension();
+  return Eigen::Map<const Eigen::VectorXd>(N_VGetArrayPointer(cv_->y), n);
+}
+
+void Flow::sample(const Eigen::VectorXd& z0, double t0, std::span<const double> times,
+                  const std::function<void(double, const Eigen::VectorXd&)>& observer) {
+  if (times.empty()) return;
+  for (std::size_t i = 0; i < times.size(); ++i)
+    if (!(times[i] >= (i == 0 ? t0 : times[i - 1])))
+      throw std::invalid_argument("flow: sample times must be increasing and not before t0");
+  start(z0, t0, 0, {});
+  const int n = system_.dimension();
+  Eigen::Map<const Eigen::VectorXd> z(N_VGetArrayPointer(cv_->y), n);
+  for (double tau : times) {
+    integrate_to(tau, times.back());
+    observer(tau, z);
+  }
+  collect_statistics();
+}
+
+FlowDerivatives Flow::advance_with_sensitivities(const Eigen::VectorXd& z0, double t0, double t1,
+                                                 bool state, std::span<const int> parameters) {
+  if (!(t1 >= t0)) throw std::invalid_argument("flow: end time before start time");
+  const int n = system_.dimension();
+  for (int p : parameters)
+    if (p < 0 || p >= static_cast<int>(system_.parameter_names().size()))
+      throw std::invalid_argument("flow: no parameter with index " + std::to_string(p));
+  const int state_columns = state ? n : 0;
+  const int columns = state_columns + static_cast<int>(parameters.size());
+  if (columns == 0) {
+    FlowDerivatives r;
+    r.state = advance(z0, t0, t1);
+    return r;
+  }
+  start(z0, t0, columns, parameters);
+  integrate_to(t1, t1);
+  collect_statistics();
+
+  auto& cv = *cv_;
+  FlowDerivatives r;
+  r.state = Eigen::Map<const Eigen::VectorXd>(N_VGetArrayPointer(cv.y), n);
+  double t_sens = 0.0;
+  SYMPATHY_CHECK(CVodeGetSens(cv.mem, &t_sens, cv.yS));
+  r.transition.resize(state_columns, state_columns);
+  for (int j = 0; j < state_columns; ++j)
+    r.transition.col(j) = Eigen::Map<const Eigen::VectorXd>(N_VGetArrayPointer(cv.yS[j]), n);
+  r.parameter_sensitivities.resize(n, static_cast<int>(parameters.size()));
+  for (int k = 0; k < static_cast<int>(parameters.size()); ++k)
+    r.parameter_sensitivities.col(k) =
+        Eigen::Map<const Eigen::VectorXd>(N_VGetArrayPointer(cv.yS[state_columns + k]), n);
+  return r;
+}
+
+}  // namespace sympathy

@@ -1,0 +1,138 @@
+// The flow of an OdeSystem, computed by CVODES, with or without forward sensitivities.
+//
+// One Flow owns one CVODES integrator and every SUNDIALS object it needs (context, vectors,
+// matrix, linear and nonlinear solvers) and reuses them across calls: a continuation makes
+// thousands of calls. Each call asks only for what it needs: `advance` integrates the state
+// alone; `advance_with_sensitivities` adds the n state columns (the transition matrix) and/or
+// the columns of named parameters.
+//
+// Steep zones (OdeSystem::steep_zones) are resolved explicitly: roots of z_c^2 - v_l^2 on
+// geometric levels v_0 = scale > v_1 = v_0/3 > ... down to below the zone's width, and while
+// |z_c| < v_l the step is capped at fraction * v_(l+1) / |dz_c/dt|, so no step can jump over
+// the next inner level, and the innermost band (the steep part itself) is crossed in several
+// steps. Error control alone steps straight over such features (see NUMERICS.md).
+#pragma once
+
+#include <functional>
+#include <memory>
+#include <span>
+#include <stdexcept>
+#include <string>
+#include <vector>
+
+#include <Eigen/Dense>
+
+#include "core/ode_system.hpp"
+
+namespace sympathy {
+
+enum class Method { BDF, Adams };
+enum class NonlinearSolver { Newton, FixedPoint };
+enum class LinearSolver { Dense, KLU };
+enum class SensitivityCorrector { Staggered, Simultaneous };
+
+struct FlowOptions {
+  double rtol = 1e-10;
+  double atol = 1e-12;
+  Method method = Method::BDF;
+  NonlinearSolver nonlinear_solver = NonlinearSolver::Newton;
+  LinearSolver linear_solver = LinearSolver::Dense;
+  SensitivityCorrector corrector = SensitivityCorrector::Staggered;
+  long max_steps = 1000000;  // per call
+  double max_step = 0.0;     // 0: no limit
+  bool resolve_steep_zones = true;
+  double steep_step_fraction = 0.5;
+};
+
+std::string to_string(Method m);
+std::string to_string(LinearSolver s);
+
+struct FlowStatistics {
+  long calls = 0;
+  long steps = 0;
+  long rhs_evaluations = 0;
+  long jacobian_evaluations = 0;
+  long variational_evaluations = 0;  // calls of the sensitivity right-hand side
+  long linear_setups = 0;
+  long error_test_failures = 0;
+  long nonlinear_iterations = 0;
+  long steep_roots = 0;  // level crossings of steep zones
+  long switchings = 0;   // restarts at switching surfaces
+  FlowStatistics& operator+=(const FlowStatistics& other);
+};
+
+// Raised when CVODES fails (step size underflow, too many steps, a failing right-hand side).
+class IntegrationError : public std::runtime_error {
+ public:
+  IntegrationError(const std::string& what, double t) : std::runtime_error(what), t_(t) {}
+  double time() const { return t_; }
+
+ private:
+  double t_;
+};
+
+struct FlowDerivatives {
+  Eigen::VectorXd state;                    // z(t1)
+  Eigen::MatrixXd transition;               // dz(t1)/dz(t0), n x n (empty if not asked)
+  Eigen::MatrixXd parameter_sensitivities;  // dz(t1)/dp, one column per asked parameter
+};
+
+class Flow {
+ public:
+  explicit Flow(const OdeSystem& system, FlowOptions options = {});
+  ~Flow();
+  Flow(const Flow&) = delete;
+  Flow& operator=(const Flow&) = delete;
+
+  // z(t1) from z(t0) = z0. No sensitivities.
+  Eigen::VectorXd advance(const Eigen::VectorXd& z0, double t0, double t1);
+
+  // Integrates from z0 at t0 and calls `observer(t, z)` at each of `times` (increasing, >= t0).
+  void sample(const Eigen::VectorXd& z0, double t0, std::span<const double> times,
+              const std::function<void(double, const Eigen::VectorXd&)>& observer);
+
+  // z(t1) and its derivatives: the transition matrix if `state` is true, and dz(t1)/dp for each
+  // of `parameters` (indices into the system's parameters).
+  FlowDerivatives advance_with_sensitivities(const Eigen::VectorXd& z0, double t0, double t1,
+                                             bool state = true,
+                                             std::span<const int> parameters = {});
+
+  const FlowOptions& options() const { return options_; }
+  const OdeSystem& system() const { return system_; }
+  const FlowStatistics& statistics() const { return statistics_; }
+  void reset_statistics() { statistics_ = FlowStatistics{}; }
+
+ private:
+  struct Cvodes;  // the SUNDIALS objects, owned
+  friend struct FlowCallbacks;
+
+  void start(const Eigen::VectorXd& z0, double t0, int sensitivity_columns,
+             std::span<const int> parameters);
+  // Integrates to `t_target` (stop time t_stop), handling roots; returns the reached time.
+  void integrate_to(double t_target, double t_stop);
+  void configure_roots();
+  void on_roots();
+  void update_max_step(double t);
+  void collect_statistics();
+  [[noreturn]] void fail(int flag, const char* function);
+
+  const OdeSystem& system_;
+  FlowOptions options_;
+  FlowStatistics statistics_;
+  std::unique_ptr<Cvodes> cv_;
+
+  // Root functions: first the steep-zone levels, then the system's switching functions.
+  std::vector<SteepZone> zones_;
+  std::vector<std::vector<double>> levels_;  // per zone, decreasing
+  int steep_root_count_ = 0;
+  int switching_count_ = 0;
+  std::vector<int> root_info_;
+  std::vector<double> dz_scratch_;
+
+  std::vector<int> parameters_;  // parameters of the sensitivity columns now being integrated
+  double t_ = 0.0;
+  std::string last_error_;
+  std::exception_ptr callback_error_;
+};
+
+}  // namespace sympathy

@@ -1,0 +1,78 @@
+// The engine's view of a dynamical system z' = f(t, z; p).
+//
+// Everything above core (flows, shooting, Floquet, continuation) talks to this interface only;
+// it knows nothing about metronomes. A system has named states and named parameters, a
+// right-hand side, and its derivatives: the Jacobian df/dz, directional derivatives J*S for
+// many columns at once (the variational equations), and df/dp for one named parameter.
+#pragma once
+
+#include <span>
+#include <string>
+#include <string_view>
+#include <utility>
+#include <vector>
+
+#include <Eigen/Dense>
+
+namespace sympathy {
+
+// A state component near whose zero crossing the right-hand side changes steeply, within
+// `width` of zero (e.g. an escapement switching with the sign of a pendulum's velocity).
+// `scale` is a typical magnitude of the component away from the crossing. The flow resolves
+// such crossings explicitly (see Flow) instead of trusting error control to notice them.
+struct SteepZone {
+  int component = 0;
+  double width = 0.0;
+  double scale = 1.0;
+};
+
+class OdeSystem {
+ public:
+  virtual ~OdeSystem() = default;
+
+  virtual int dimension() const = 0;
+  virtual std::vector<std::string> state_names() const = 0;
+
+  virtual std::vector<std::string> parameter_names() const = 0;
+  virtual double parameter(int index) const = 0;
+  virtual void set_parameter(int index, double value) = 0;
+  // Index of a named parameter; throws std::invalid_argument naming the known ones.
+  int parameter_index(std::string_view name) const;
+  double parameter(std::string_view name) const { return parameter(parameter_index(name)); }
+  void set_parameter(std::string_view name, double value) {
+    set_parameter(parameter_index(name), value);
+  }
+
+  virtual void rhs(double t, const double* z, double* dz) const = 0;
+
+  // False when f has no derivatives (a discontinuous model): flows then refuse sensitivities.
+  virtual bool differentiable() const { return true; }
+  // df/dz, n x n.
+  virtual void jacobian(double t, const double* z, Eigen::MatrixXd& jac) const = 0;
+  // out[j] = J * S[j] for j < columns. The last parameters.size() columns are parameter
+  // columns: column columns - parameters.size() + k also gets df/dp for parameters[k] (the
+  // forward-sensitivity right-hand side of a parameter).
+  virtual void variational_rhs(double t, const double* z, int columns, const double* const* S,
+                               double* const* out, std::span<const int> parameters) const = 0;
+  // Structurally nonzero entries of df/dz as (row, column) pairs, for sparse linear solvers;
+  // empty means dense.
+  virtual std::vector<std::pair<int, int>> jacobian_pattern() const { return {}; }
+  // df/dp for one parameter.
+  virtual void parameter_derivative(double t, const double* z, int parameter,
+                                    double* dfdp) const = 0;
+
+  // Does f depend on t? Autonomous systems have a trivial Floquet multiplier.
+  virtual bool autonomous() const { return true; }
+
+  virtual std::vector<SteepZone> steep_zones() const { return {}; }
+
+  // Surfaces g(z) = 0 across which f jumps: a flow stops at each and restarts from there.
+  virtual int switching_count() const { return 0; }
+  virtual void switching_functions(double /*t*/, const double* /*z*/, double* /*g*/) const {}
+
+  // Convenience wrappers on Eigen vectors.
+  Eigen::VectorXd rhs(double t, const Eigen::VectorXd& z) const;
+  Eigen::MatrixXd jacobian(double t, const Eigen::VectorXd& z) const;
+};
+
+}  // namespace sympathy
