@@ -357,10 +357,22 @@ void Flow::start(const Eigen::VectorXd& z0, double t0, int sensitivity_columns,
     SYMPATHY_CHECK(CVodeSensToggleOff(cv.mem));
     cv.sens_on = false;
   }
+  forced_stop_.reset();
+  // Initial bands; a state on a level counts as inside it (its root at t0 is inactive).
+  bands_.assign(zones_.size(), -1);
+  for (std::size_t i = 0; i < zones_.size(); ++i) {
+    const double a = std::abs(z0[zones_[i].component]);
+    for (int l = 0; l < static_cast<int>(levels_[i].size()); ++l)
+      if (a <= levels_[i][l]) bands_[i] = l;
+  }
   update_max_step(t0);
   ++statistics_.calls;
 }
 
+// The band of a zone is the innermost level l with |z_c| < v_l (-1 outside all levels). The
+// step is capped at fraction * v_(l+1) / |dz_c/dt|: a step that crosses v_(l+1) then lands
+// above v_(l+2) (fraction < 2/3), so no level is ever jumped, and the innermost band, the
+// steep part itself, is crossed in several steps.
 void Flow::update_max_step(double t) {
   double hmax = options_.max_step > 0.0 ? options_.max_step : 0.0;
   if (!zones_.empty()) {
@@ -368,30 +380,43 @@ void Flow::update_max_step(double t) {
     system_.rhs(t, z, dz_scratch_.data());
     ++statistics_.rhs_evaluations;
     for (std::size_t i = 0; i < zones_.size(); ++i) {
-      const int c = zones_[i].component;
-      const double rate = std::abs(dz_scratch_[c]);
+      const double rate = std::abs(dz_scratch_[zones_[i].component]);
       if (rate == 0.0) continue;
       const auto& levels = levels_[i];
-      const double a = std::abs(z[c]);
-      // The next level inside the current band (the innermost band keeps its own level).
-      double inner = levels.front();
-      for (std::size_t l = 0; l < levels.size(); ++l) {
-        if (a < levels[l]) inner = levels[std::min(l + 1, levels.size() - 1)];
-      }
+      const int last = static_cast<int>(levels.size()) - 1;
+      const double inner = levels[std::min(bands_[i] + 1, last)];
       const double cap = options_.steep_step_fraction * inner / rate;
       hmax = hmax > 0.0 ? std::min(hmax, cap) : cap;
     }
   }
   SYMPATHY_CHECK(CVodeSetMaxStep(cv_->mem, hmax));
+  // CVODES applies a new maximum only when it next changes the step size; a step it keeps
+  // unchanged may exceed it. Shrink the step already planned with a stop time one cap ahead.
+  forced_stop_.reset();
+  long steps = 0;
+  SYMPATHY_CHECK(CVodeGetNumSteps(cv_->mem, &steps));
+  if (hmax > 0.0 && steps > 0) {
+    double h_next = 0.0, t_internal = 0.0;
+    SYMPATHY_CHECK(CVodeGetCurrentStep(cv_->mem, &h_next));
+    SYMPATHY_CHECK(CVodeGetCurrentTime(cv_->mem, &t_internal));
+    if (h_next > hmax) forced_stop_ = t_internal + hmax;
+  }
 }
 
 void Flow::on_roots() {
   auto& cv = *cv_;
   SYMPATHY_CHECK(CVodeGetRootInfo(cv.mem, root_info_.data()));
   bool steep = false, switching = false;
-  for (int k = 0; k < steep_root_count_; ++k) steep |= root_info_[k] != 0;
-  for (int k = steep_root_count_; k < static_cast<int>(root_info_.size()); ++k)
-    switching |= root_info_[k] != 0;
+  int k = 0;
+  for (std::size_t i = 0; i < zones_.size(); ++i) {
+    for (int l = 0; l < static_cast<int>(levels_[i].size()); ++l, ++k) {
+      if (root_info_[k] == 0) continue;
+      steep = true;
+      // g = z_c^2 - v_l^2 falling: now inside level l; rising: now outside it.
+      bands_[i] = root_info_[k] < 0 ? std::max(bands_[i], l) : std::min(bands_[i], l - 1);
+    }
+  }
+  for (; k < static_cast<int>(root_info_.size()); ++k) switching |= root_info_[k] != 0;
   if (switching) {
     // f jumps here: restart the multistep method from the state at the surface.
     ++statistics_.switchings;
@@ -405,11 +430,16 @@ void Flow::on_roots() {
 void Flow::integrate_to(double t_target, double t_stop) {
   auto& cv = *cv_;
   while (t_ < t_target) {
-    SYMPATHY_CHECK(CVodeSetStopTime(cv.mem, t_stop));
+    const bool forced = forced_stop_ && *forced_stop_ < t_stop;
+    SYMPATHY_CHECK(CVodeSetStopTime(cv.mem, forced ? *forced_stop_ : t_stop));
     const int flag = CVode(cv.mem, t_target, cv.y, &t_, CV_NORMAL);
     if (flag < 0 || callback_error_) fail(flag, "CVode");
     if (flag == CV_ROOT_RETURN) {
       on_roots();
+      continue;
+    }
+    if (flag == CV_TSTOP_RETURN && forced) {
+      forced_stop_.reset();  // the shortened step is done; the maximum step holds from here
       continue;
     }
     break;  // CV_SUCCESS or CV_TSTOP_RETURN: at t_target

@@ -10,11 +10,16 @@
 // geometric levels v_0 = scale > v_1 = v_0/3 > ... down to below the zone's width, and while
 // |z_c| < v_l the step is capped at fraction * v_(l+1) / |dz_c/dt|, so no step can jump over
 // the next inner level, and the innermost band (the steep part itself) is crossed in several
-// steps. Error control alone steps straight over such features (see NUMERICS.md).
+// steps. Error control alone steps straight over such features (see NUMERICS.md). The cap is
+// set when a level is crossed, so it holds for the steps after the one that found the root;
+// that step itself was capped by the band it started in. CVODES only applies a new maximum
+// step when it next changes the step size, so a stop time one capped step ahead also shortens
+// the step it has already planned.
 #pragma once
 
 #include <functional>
 #include <memory>
+#include <optional>
 #include <span>
 #include <stdexcept>
 #include <string>
@@ -124,12 +129,14 @@ class Flow {
   // Root functions: first the steep-zone levels, then the system's switching functions.
   std::vector<SteepZone> zones_;
   std::vector<std::vector<double>> levels_;  // per zone, decreasing
+  std::vector<int> bands_;                   // per zone: innermost level l with |z_c| < v_l
   int steep_root_count_ = 0;
   int switching_count_ = 0;
   std::vector<int> root_info_;
   std::vector<double> dz_scratch_;
 
-  std::vector<int> parameters_;  // parameters of the sensitivity columns now being integrated
+  std::optional<double> forced_stop_;  // a stop time that shortens the step CVODES planned
+  std::vector<int> parameters_;        // parameters of the sensitivity columns now being integrated
   double t_ = 0.0;
   std::string last_error_;
   std::exception_ptr callback_error_;

@@ -1,0 +1,175 @@
+#include "core/flow.hpp"
+
+#include <gtest/gtest.h>
+
+#include <unsupported/Eigen/MatrixFunctions>
+
+#include "tests/support/test_systems.hpp"
+
+namespace sympathy {
+namespace {
+
+using testing::BlowUp;
+using testing::Decay;
+using testing::LinearSystem;
+using testing::Pulse;
+
+// A damped oscillator coupled to a decaying mode: distinct, complex eigenvalues.
+Eigen::MatrixXd oscillator_matrix() {
+  Eigen::MatrixXd a(3, 3);
+  a << 0.0, 1.0, 0.0, -4.0, -0.3, 0.5, 0.2, 0.0, -1.5;
+  return a;
+}
+
+// Exact: z(t) = expm(A t) z0.
+TEST(Flow, LinearSystemMatchesMatrixExponential) {
+  const Eigen::MatrixXd a = oscillator_matrix();
+  LinearSystem system(a);
+  Eigen::VectorXd z0(3);
+  z0 << 1.0, -0.5, 0.25;
+  for (Method method : {Method::BDF, Method::Adams}) {
+    FlowOptions o;
+    o.method = method;
+    o.nonlinear_solver =
+        method == Method::BDF ? NonlinearSolver::Newton : NonlinearSolver::FixedPoint;
+    Flow flow(system, o);
+    const Eigen::VectorXd z = flow.advance(z0, 0.0, 3.0);
+    const Eigen::VectorXd exact = (a * 3.0).exp() * z0;
+    EXPECT_LT((z - exact).norm(), 1e-8 * exact.norm()) << to_string(method);
+  }
+}
+
+// Exact: dz(t)/dz0 = expm(A t), for dense and KLU linear solvers and both correctors.
+TEST(Flow, TransitionMatrixMatchesMatrixExponential) {
+  const Eigen::MatrixXd a = oscillator_matrix();
+  LinearSystem system(a);
+  const Eigen::VectorXd z0 = Eigen::VectorXd::Constant(3, 0.3);
+  const Eigen::MatrixXd exact = (a * 2.0).exp();
+  for (LinearSolver solver : {LinearSolver::Dense, LinearSolver::KLU}) {
+    for (SensitivityCorrector corrector :
+         {SensitivityCorrector::Staggered, SensitivityCorrector::Simultaneous}) {
+      FlowOptions o;
+      o.linear_solver = solver;
+      o.corrector = corrector;
+      Flow flow(system, o);
+      const auto r = flow.advance_with_sensitivities(z0, 0.0, 2.0);
+      EXPECT_LT((r.transition - exact).norm(), 1e-8 * exact.norm()) << to_string(solver);
+      EXPECT_LT((r.state - exact * z0).norm(), 1e-9);
+    }
+  }
+}
+
+// Exact: z = z0 exp(-a t), dz/da = -t z0 exp(-a t); state and parameter columns together.
+TEST(Flow, ParameterSensitivityOfDecay) {
+  Decay system(0.7);
+  Flow flow(system);
+  Eigen::VectorXd z0(1);
+  z0 << 2.0;
+  const int a = system.parameter_index("a");
+  const auto r = flow.advance_with_sensitivities(z0, 0.0, 1.5, true, std::vector<int>{a});
+  const double e = std::exp(-0.7 * 1.5);
+  EXPECT_NEAR(r.state[0], 2.0 * e, 1e-10);
+  EXPECT_NEAR(r.transition(0, 0), e, 1e-10);
+  EXPECT_NEAR(r.parameter_sensitivities(0, 0), -1.5 * 2.0 * e, 1e-9);
+  // Parameter column alone, without the state columns.
+  const auto p = flow.advance_with_sensitivities(z0, 0.0, 1.5, false, std::vector<int>{a});
+  EXPECT_EQ(p.transition.size(), 0);
+  EXPECT_NEAR(p.parameter_sensitivities(0, 0), -1.5 * 2.0 * e, 1e-9);
+}
+
+// Global errors are about ten times rtol (default 1e-10), hence the 1e-8 tolerances below.
+// Calls alternate between sensitivity settings on one Flow; each gives its own exact answer.
+TEST(Flow, ReusedAcrossCallsWithDifferentRequests) {
+  Decay system(1.1);
+  Flow flow(system);
+  Eigen::VectorXd z0(1);
+  z0 << 1.0;
+  for (int round = 0; round < 3; ++round) {
+    EXPECT_NEAR(flow.advance(z0, 0.0, 1.0)[0], std::exp(-1.1), 1e-8);
+    const auto r = flow.advance_with_sensitivities(z0, 0.0, 2.0);
+    EXPECT_NEAR(r.transition(0, 0), std::exp(-2.2), 1e-8);
+    const auto q = flow.advance_with_sensitivities(z0, 0.0, 2.0, true, std::vector<int>{0});
+    EXPECT_NEAR(q.parameter_sensitivities(0, 0), -2.0 * std::exp(-2.2), 1e-8);
+  }
+  EXPECT_EQ(flow.statistics().calls, 9);
+  EXPECT_GT(flow.statistics().steps, 0);
+  EXPECT_GT(flow.statistics().variational_evaluations, 0);
+}
+
+// The observer sees exactly the requested times, with the exact states.
+TEST(Flow, SampleAtRequestedTimes) {
+  Decay system(0.5);
+  Flow flow(system);
+  Eigen::VectorXd z0(1);
+  z0 << 1.0;
+  std::vector<double> times{0.0, 0.1, 0.25, 1.0, 4.0};
+  std::vector<double> seen;
+  flow.sample(z0, 0.0, times, [&](double t, const Eigen::VectorXd& z) {
+    seen.push_back(t);
+    EXPECT_NEAR(z[0], std::exp(-0.5 * t), 1e-8) << "t = " << t;
+  });
+  EXPECT_EQ(seen, times);
+  EXPECT_THROW(flow.sample(z0, 0.0, std::vector<double>{1.0, 0.5}, [](double, auto&) {}),
+               std::invalid_argument);
+}
+
+// A blow-up is an IntegrationError that says when, not a crash or a silent wrong answer.
+TEST(Flow, BlowUpIsReportedWithItsTime) {
+  BlowUp system;
+  FlowOptions o;
+  o.max_steps = 20000;  // fail fast: steps shrink without end near the singularity
+  Flow flow(system, o);
+  Eigen::VectorXd z0(1);
+  z0 << 1.0;
+  try {
+    flow.advance(z0, 0.0, 2.0);
+    FAIL() << "expected an IntegrationError";
+  } catch (const IntegrationError& e) {
+    EXPECT_NEAR(e.time(), 1.0, 1e-3);  // z = 1/(1 - t)
+    EXPECT_NE(std::string(e.what()).find("CVode"), std::string::npos);
+  }
+  // The same Flow works again afterwards.
+  z0[0] = 0.1;
+  EXPECT_NEAR(flow.advance(z0, 0.0, 1.0)[0], 0.1 / 0.9, 1e-9);
+}
+
+TEST(Flow, RejectsBadInput) {
+  Decay system(1.0);
+  Flow flow(system);
+  EXPECT_THROW(flow.advance(Eigen::VectorXd::Zero(2), 0.0, 1.0), std::invalid_argument);
+  EXPECT_THROW(flow.advance(Eigen::VectorXd::Zero(1), 1.0, 0.0), std::invalid_argument);
+  Eigen::VectorXd bad(1);
+  bad << std::nan("");
+  EXPECT_THROW(flow.advance(bad, 0.0, 1.0), std::invalid_argument);
+  FlowOptions o;
+  o.rtol = -1.0;
+  EXPECT_THROW(Flow(system, o), std::invalid_argument);
+}
+
+// A unit-area pulse of width 1e-4 as u crosses 0: resolved, q gains exactly 1 (erf(1e4) = 1)
+// up to the integrator's error, which falls with the tolerance (measured: BDF about 30 rtol,
+// Adams about 2 rtol); left to error control, the integrator steps straight over the pulse and
+// q gains nothing.
+TEST(Flow, SteepZoneIsResolved) {
+  Pulse system(1e-4);
+  Eigen::VectorXd z0(2);
+  z0 << 1.0, 0.0;
+  for (Method method : {Method::BDF, Method::Adams}) {
+    for (double rtol : {1e-8, 1e-10}) {
+      FlowOptions o;
+      o.method = method;
+      o.nonlinear_solver =
+          method == Method::BDF ? NonlinearSolver::Newton : NonlinearSolver::FixedPoint;
+      o.rtol = rtol;
+      Flow resolved(system, o);
+      EXPECT_NEAR(resolved.advance(z0, 0.0, 2.0)[1], 1.0, 100 * rtol) << to_string(method);
+      EXPECT_GT(resolved.statistics().steep_roots, 0);
+      o.resolve_steep_zones = false;
+      Flow blind(system, o);
+      EXPECT_LT(blind.advance(z0, 0.0, 2.0)[1], 0.5) << to_string(method);
+    }
+  }
+}
+
+}  // namespace
+}  // namespace sympathy
