@@ -335,6 +335,15 @@ CaseFile CaseFile::load(const std::string& path) {
       c.starts_.push_back(std::move(s));
     }
   }
+  // Tables iterate in key order; keep the file's order for listings and help texts.
+  auto line_of = [](const std::string& where) {
+    return std::stoi(where.substr(where.rfind(':') + 1));
+  };
+  std::stable_sort(c.starts_.begin(), c.starts_.end(), [&](const auto& a, const auto& b) {
+    return line_of(a.source) < line_of(b.source);
+  });
+  std::stable_sort(c.parameter_sets_.begin(), c.parameter_sets_.end(),
+                   [](const auto& a, const auto& b) { return a.line < b.line; });
 
   // Everything the file gives alone must already make sense (M, c, k may come from a set).
   for (const auto& [param, expected] : c.base_.problems()) {

@@ -9,6 +9,8 @@ Arguments::Arguments(std::string command, const std::vector<std::string>& args,
     : command_(std::move(command)),
       options_(std::move(options)),
       positional_names_(std::move(positional_names)) {
+  for (const auto& a : args)
+    if (a == "--help" || a == "-h") throw HelpRequested{usage()};
   for (std::size_t i = 0; i < args.size(); ++i) {
     const std::string& a = args[i];
     if (a.rfind("--", 0) == 0) {

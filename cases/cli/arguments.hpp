@@ -10,6 +10,11 @@
 
 namespace sympathy::cli {
 
+// Thrown when --help is given: carries the usage text, printed on stdout with exit code 0.
+struct HelpRequested {
+  std::string usage;
+};
+
 struct OptionSpec {
   std::string name;   // "--params"
   std::string value;  // placeholder for the help ("NAME"); empty for a flag

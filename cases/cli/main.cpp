@@ -5,6 +5,7 @@
 #include <string>
 #include <vector>
 
+#include "cases/cli/arguments.hpp"
 #include "cases/cli/commands.hpp"
 #include "core/errors.hpp"
 #include "core/flow.hpp"
@@ -34,6 +35,9 @@ int main(int argc, char** argv) {
     std::fprintf(stderr, "sympathy: unknown command '%s'\n", command.c_str());
     print_usage();
     return 2;
+  } catch (const sympathy::cli::HelpRequested& help) {
+    std::fputs(help.usage.c_str(), stdout);
+    return 0;
   } catch (const sympathy::InputError& e) {
     std::fprintf(stderr, "sympathy %s: error: %s\n", command.c_str(), e.what());
     return 2;
