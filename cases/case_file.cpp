@@ -428,6 +428,35 @@ const StartSpec& CaseFile::start(const std::string& name) const {
                    "; expected one of: " + join(start_names()));
 }
 
+InvariantSubspace CaseFile::invariant_subspace(const StartSpec& start,
+                                               const OdeSystem& system) const {
+  const auto names = state_names();
+  const int n = static_cast<int>(names.size());
+  auto index = [&](const std::string& name) {
+    return static_cast<int>(std::find(names.begin(), names.end(), name) - names.begin());
+  };
+  std::vector<ComponentRelation> relations;
+  std::string text;
+  for (const auto& r : start.invariant) {
+    const int a = index(r.component);
+    const int b = r.other.empty() ? -1 : index(r.other);
+    relations.push_back({a, b, r.sign});                               // positions
+    relations.push_back({a + n / 2, b < 0 ? -1 : b + n / 2, r.sign});  // their velocities
+    text += (text.empty() ? "" : ", ") + r.component + " = " +
+            (r.other.empty() ? "0" : (r.sign < 0 ? "-" : "") + r.other);
+  }
+  InvariantSubspace subspace(n, relations);
+  const double defect = subspace.invariance_defect(system, Eigen::VectorXd::Constant(n, 0.5));
+  if (defect > 1e-12)
+    throw InputError(start.source + ": start '" + start.name +
+                     "': the model does not keep the "
+                     "subspace {" +
+                     text + "} invariant (relative defect " + format_number(defect) +
+                     "); expected relations that a symmetry of the "
+                     "model keeps, or no 'invariant' key");
+  return subspace;
+}
+
 Eigen::VectorXd CaseFile::initial_state(const StartSpec* start,
                                         const std::vector<Assignment>& initial) const {
   const auto names = state_names();

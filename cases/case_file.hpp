@@ -13,6 +13,7 @@
 
 #include "cases/metronome_model.hpp"
 #include "core/errors.hpp"
+#include "core/invariant_subspace.hpp"
 
 namespace sympathy {
 
@@ -69,6 +70,9 @@ class CaseFile {
 
   // A named start; throws InputError listing the known ones.
   const StartSpec& start(const std::string& name) const;
+  // The invariant subspace a start declares, on positions and the matching velocities;
+  // throws InputError if `system` does not keep it invariant.
+  InvariantSubspace invariant_subspace(const StartSpec& start, const OdeSystem& system) const;
   // The initial state of a start, with assignments VAR=VALUE on top (state names).
   Eigen::VectorXd initial_state(const StartSpec* start,
                                 const std::vector<Assignment>& initial = {}) const;

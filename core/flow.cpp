@@ -471,18 +471,31 @@ Eigen::VectorXd Flow::advance(const Eigen::VectorXd& z0, double t0, double t1) {
 
 void Flow::sample(const Eigen::VectorXd& z0, double t0, std::span<const double> times,
                   const std::function<void(double, const Eigen::VectorXd&)>& observer) {
-  if (times.empty()) return;
+  sample_until(z0, t0, times, [&](double t, const Eigen::VectorXd& z) {
+    observer(t, z);
+    return false;
+  });
+}
+
+bool Flow::sample_until(const Eigen::VectorXd& z0, double t0, std::span<const double> times,
+                        const std::function<bool(double, const Eigen::VectorXd&)>& done) {
+  if (times.empty()) return false;
   for (std::size_t i = 0; i < times.size(); ++i)
     if (!(times[i] >= (i == 0 ? t0 : times[i - 1])))
       throw std::invalid_argument("flow: sample times must be increasing and not before t0");
   start(z0, t0, 0, {});
   const int n = system_.dimension();
   Eigen::Map<const Eigen::VectorXd> z(N_VGetArrayPointer(cv_->y), n);
+  bool stopped = false;
   for (double tau : times) {
     integrate_to(tau, times.back());
-    observer(tau, z);
+    if (done(tau, z)) {
+      stopped = true;
+      break;
+    }
   }
   collect_statistics();
+  return stopped;
 }
 
 FlowDerivatives Flow::advance_with_sensitivities(const Eigen::VectorXd& z0, double t0, double t1,

@@ -95,6 +95,9 @@ class Flow {
   // Integrates from z0 at t0 and calls `observer(t, z)` at each of `times` (increasing, >= t0).
   void sample(const Eigen::VectorXd& z0, double t0, std::span<const double> times,
               const std::function<void(double, const Eigen::VectorXd&)>& observer);
+  // The same, stopping as soon as `done(t, z)` returns true; returns whether it did.
+  bool sample_until(const Eigen::VectorXd& z0, double t0, std::span<const double> times,
+                    const std::function<bool(double, const Eigen::VectorXd&)>& done);
 
   // z(t1) and its derivatives: the transition matrix if `state` is true, and dz(t1)/dp for each
   // of `parameters` (indices into the system's parameters).

@@ -17,6 +17,7 @@ void print_usage() {
       "usage: sympathy COMMAND CASE [options]\n"
       "commands:\n"
       "  simulate   integrate from a start; time series to CSV, summary of the end state\n"
+      "  orbit      a periodic orbit from a start: period, Floquet multipliers, stability\n"
       "run 'sympathy COMMAND --help' for the options of a command\n",
       stderr);
 }
@@ -32,6 +33,7 @@ int main(int argc, char** argv) {
   std::vector<std::string> args(argv + 2, argv + argc);
   try {
     if (command == "simulate") return sympathy::cli::run_simulate(args);
+    if (command == "orbit") return sympathy::cli::run_orbit(args);
     std::fprintf(stderr, "sympathy: unknown command '%s'\n", command.c_str());
     print_usage();
     return 2;
@@ -41,7 +43,7 @@ int main(int argc, char** argv) {
   } catch (const sympathy::InputError& e) {
     std::fprintf(stderr, "sympathy %s: error: %s\n", command.c_str(), e.what());
     return 2;
-  } catch (const sympathy::IntegrationError& e) {
+  } catch (const sympathy::IntegrationError& e) {  // NOLINT: reported, not a crash
     std::fprintf(stderr, "sympathy %s: integration failed: %s\n", command.c_str(), e.what());
     return 3;
   } catch (const std::exception& e) {

@@ -59,6 +59,10 @@ struct Setup {
   Escapement escapement;
 };
 
+void PrintTo(const Setup& s, std::ostream* os) {
+  *os << s.name << " " << to_string(s.escapement);
+}
+
 class EverySetup : public ::testing::TestWithParam<Setup> {};
 
 // df/dz from dual numbers against central differences, at random states and at states inside

@@ -1,0 +1,67 @@
+// sympathy orbit: one periodic orbit from a named start, with its Floquet multipliers.
+#include <cmath>
+#include <cstdio>
+#include <fstream>
+#include <numbers>
+
+#include <nlohmann/json.hpp>
+
+#include "cases/cli/commands.hpp"
+#include "cases/cli/common.hpp"
+#include "cases/cli/report.hpp"
+#include "continuation/periodic_orbit.hpp"
+
+namespace sympathy::cli {
+
+int run_orbit(const std::vector<std::string>& argv) {
+  auto options = case_options();
+  options.insert(options.end(),
+                 {{"--start", "NAME", false, "named start of the case (required)"},
+                  {"--initial", "VAR=VALUE", true, "initial state value (on top of --start)"},
+                  {"--segments", "M", false, "shooting segments (default 1: single shooting)"},
+                  {"--transient", "SECONDS", false, "integration before Newton (default 60)"},
+                  {"--json", "FILE", false, "write the orbit as JSON"}});
+  const auto integrator = integrator_options();
+  options.insert(options.end(), integrator.begin(), integrator.end());
+  Arguments args("orbit", argv, options, {"CASE"});
+
+  Stopwatch clock;
+  const LoadedCase c = load_case(args);
+  if (!args.has("--start"))
+    throw InputError("--start NAME is required; expected one of: " + join(c.file.start_names()));
+  const StartSpec& start = c.file.start(*args.value("--start"));
+  MetronomeModel model(c.spec);
+  const InvariantSubspace subspace = c.file.invariant_subspace(start, model);
+  const Eigen::VectorXd z0 = c.file.initial_state(&start, args.assignments("--initial"));
+
+  OrbitOptions o;
+  o.shooting.segments = args.integer("--segments", 1);
+  if (o.shooting.segments < 1 || o.shooting.segments > 1000)
+    throw InputError("--segments: expected an integer from 1 to 1000");
+  o.transient = args.number("--transient", o.transient);
+  if (!(o.transient >= 0.0)) throw InputError("--transient: expected a non-negative number");
+  o.shooting.flow = flow_options(args, o.shooting.flow);
+
+  const PeriodicOrbit orbit = find_periodic_orbit(model, z0, subspace, o);
+  const double seconds = clock.seconds();
+  OrbitReport report = describe_orbit(model, orbit);
+
+  std::printf("sympathy orbit %s  params %s  start %s\n", c.file.path().c_str(),
+              c.params.empty() ? "(none)" : c.params.c_str(), start.name.c_str());
+  print_orbit(stdout, model, orbit, report, o);
+  std::printf("  run time     %.3f s\n", seconds);
+
+  if (auto path = args.value("--json")) {
+    nlohmann::json j = orbit_json(model, orbit, report);
+    j["case"] = c.file.path();
+    j["params_set"] = c.params;
+    j["start"] = start.name;
+    j["seconds"] = seconds;
+    std::ofstream out(*path);
+    if (!out) throw InputError(*path + ": cannot open for writing");
+    out << j.dump(2) << "\n";
+  }
+  return orbit.converged() ? 0 : 4;
+}
+
+}  // namespace sympathy::cli

@@ -1,0 +1,183 @@
+#include "continuation/periodic_orbit.hpp"
+
+#include <chrono>
+#include <cmath>
+
+#include "core/linear_solve.hpp"
+
+namespace sympathy {
+
+OrbitOptions::OrbitOptions() {
+  // Measured on the row setup: the trivial multiplier's error is about 200-500 rtol.
+  shooting.flow.rtol = 1e-11;
+  shooting.flow.atol = 1e-13;
+  transient_flow.rtol = 1e-8;
+  transient_flow.atol = 1e-10;
+}
+
+namespace {
+
+double inf_norm(const Eigen::VectorXd& v) {
+  return v.size() ? v.cwiseAbs().maxCoeff() : 0.0;
+}
+
+// Every segment state of the unknowns projected into the subspace (the period untouched).
+Eigen::VectorXd project_unknowns(const InvariantSubspace& subspace, Eigen::VectorXd x, int n,
+                                 int m) {
+  if (subspace.is_whole_space()) return x;
+  for (int j = 0; j < m; ++j) x.segment(j * n, n) = subspace.project(x.segment(j * n, n));
+  return x;
+}
+
+double seconds_since(std::chrono::steady_clock::time_point start) {
+  return std::chrono::duration<double>(std::chrono::steady_clock::now() - start).count();
+}
+
+}  // namespace
+
+PeriodicOrbit solve_periodic_orbit(const OdeSystem& system, const Eigen::VectorXd& z0,
+                                   double period, const InvariantSubspace& subspace,
+                                   const OrbitOptions& options) {
+  const auto started = std::chrono::steady_clock::now();
+  ShootingProblem problem(system, options.shooting, period);
+  const int n = problem.dimension(), m = problem.segments();
+  PeriodicOrbit orbit;
+  orbit.segments = m;
+  NewtonSummary& s = orbit.newton;
+  const Eigen::VectorXd z = subspace.project(z0);
+  problem.set_phase_reference(z);
+
+  LinearSolveOptions linear;
+  linear.prefer_sparse = m > 1;
+  linear.rank_tolerance = options.newton.rank_tolerance;
+
+  Eigen::VectorXd x;
+  ShootingProblem::Evaluation e;
+  try {
+    x = project_unknowns(subspace, problem.unknowns_from(z, period), n, m);
+    e = problem.evaluate(x, true);
+  } catch (const IntegrationError& error) {
+    s.reason = std::string("integration failed at the initial guess: ") + error.what();
+    orbit.state0 = z;
+    orbit.period = period;
+    orbit.flow = problem.flow().statistics();
+    orbit.seconds = seconds_since(started);
+    return orbit;
+  }
+  double norm = inf_norm(e.residual);
+  s.residual_norms.push_back(norm);
+  for (;;) {
+    if (norm <= options.newton.residual_tolerance) {
+      s.converged = true;
+      s.reason = "residual below tolerance";
+      break;
+    }
+    if (s.iterations >= options.newton.max_iterations) {
+      s.reason = "no convergence in " + std::to_string(s.iterations) + " iterations";
+      break;
+    }
+    const auto step = solve_linear(problem.jacobian(e), -e.residual, linear);
+    if (!step.x.allFinite()) {
+      s.reason = "the Newton step is not finite (a Jacobian with non-finite entries?)";
+      break;
+    }
+    s.rank_deficiency = step.rank_deficiency;
+    s.sparse = step.sparse;
+    ++s.iterations;
+    bool accepted = false;
+    double alpha = 1.0;
+    for (int h = 0; h <= options.newton.max_halvings && !accepted; ++h, alpha *= 0.5) {
+      const Eigen::VectorXd trial = project_unknowns(subspace, x + alpha * step.x, n, m);
+      try {
+        auto et = problem.evaluate(trial, true);
+        const double trial_norm = inf_norm(et.residual);
+        if (trial_norm < norm) {
+          accepted = true;
+          x = trial;
+          e = std::move(et);
+          norm = trial_norm;
+          s.halvings += h;
+          s.step_norms.push_back(alpha * inf_norm(step.x));
+        }
+      } catch (const IntegrationError&) {
+        // a step too far (e.g. a negative period): halve it
+      }
+    }
+    if (!accepted) {
+      s.reason = "no step reduced the residual below " + std::to_string(norm);
+      break;
+    }
+    s.residual_norms.push_back(norm);
+  }
+
+  orbit.state0 = x.head(n);
+  orbit.period = problem.period(x);
+  orbit.residual = inf_norm(e.residual.head(n * m));
+  const auto jac = problem.jacobian(e);
+  orbit.family_dimension = rank_deficiency(jac, options.newton.rank_tolerance);
+  const Eigen::VectorXd f =
+      problem.autonomous() ? system.rhs(0.0, orbit.state0) : Eigen::VectorXd();
+  orbit.floquet = analyze_floquet(e.transitions, f, orbit.family_dimension, options.floquet);
+  orbit.flow = problem.flow().statistics();
+  orbit.seconds = seconds_since(started);
+  return orbit;
+}
+
+double estimate_period(Flow& flow, const Eigen::VectorXd& z, double max_period, double dt) {
+  const Eigen::VectorXd f = flow.system().rhs(0.0, z);
+  std::vector<double> times;
+  for (double t = dt; t <= max_period; t += dt) times.push_back(t);
+  double previous_g = 0.0, previous_t = 0.0, farthest = 0.0, period = 0.0;
+  flow.sample_until(z, 0.0, times, [&](double t, const Eigen::VectorXd& y) {
+    const double g = f.dot(y - z);
+    const double distance = (y - z).cwiseAbs().maxCoeff();
+    farthest = std::max(farthest, distance);
+    // Back through the section in the flow's direction, near where it started (the orbit
+    // crosses the section's plane once more, far away and the other way).
+    if (previous_g < 0.0 && g >= 0.0 && distance < 0.2 * farthest) {
+      period = previous_t + (t - previous_t) * (-previous_g) / (g - previous_g);
+      return true;
+    }
+    previous_g = g;
+    previous_t = t;
+    return false;
+  });
+  return period;
+}
+
+PeriodicOrbit find_periodic_orbit(const OdeSystem& system, const Eigen::VectorXd& start,
+                                  const InvariantSubspace& subspace, const OrbitOptions& options) {
+  const auto started = std::chrono::steady_clock::now();
+  if (!system.autonomous())
+    throw std::invalid_argument("find_periodic_orbit: for autonomous systems; give the period");
+  Flow flow(system, options.transient_flow);
+  Eigen::VectorXd z = subspace.project(start);
+  PeriodicOrbit failed;
+  failed.segments = options.shooting.segments;
+  try {
+    for (double t = 0.0; t < options.transient;) {
+      const double dt = std::min(1.0, options.transient - t);
+      z = subspace.project(flow.advance(z, 0.0, dt));
+      t += dt;
+    }
+  } catch (const IntegrationError& e) {
+    failed.newton.reason = std::string("transient integration failed: ") + e.what();
+    failed.state0 = z;
+    return failed;
+  }
+  const double period = estimate_period(flow, z, options.max_period, options.max_period / 1e4);
+  if (!(period > 0.0)) {
+    failed.newton.reason = "no return to the section within " + std::to_string(options.max_period) +
+                           " s after the transient (an equilibrium, or a longer period?)";
+    failed.state0 = z;
+    failed.flow = flow.statistics();
+    failed.seconds = seconds_since(started);
+    return failed;
+  }
+  PeriodicOrbit orbit = solve_periodic_orbit(system, z, period, subspace, options);
+  orbit.flow += flow.statistics();
+  orbit.seconds = seconds_since(started);
+  return orbit;
+}
+
+}  // namespace sympathy

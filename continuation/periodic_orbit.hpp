@@ -1,0 +1,76 @@
+// Periodic orbits: Newton on the shooting problem, and finding an orbit from a start.
+//
+// Newton: full steps when they reduce the residual, halved otherwise; on a continuum of orbits
+// (a rank-deficient Jacobian) the minimum-norm step, and the continuum's dimension is reported.
+// Converged when |residual|_inf <= residual_tolerance. Every orbit carries its Newton residual,
+// its Floquet multipliers and the distance of its trivial multiplier from 1.
+#pragma once
+
+#include <string>
+#include <vector>
+
+#include <Eigen/Dense>
+
+#include "continuation/shooting.hpp"
+#include "core/invariant_subspace.hpp"
+#include "floquet/floquet.hpp"
+
+namespace sympathy {
+
+struct NewtonOptions {
+  double residual_tolerance = 1e-9;  // on |Phi_T(z0) - z0|_inf and the phase condition
+  int max_iterations = 20;
+  int max_halvings = 8;
+  double rank_tolerance = 1e-6;  // see LinearSolveOptions
+};
+
+struct NewtonSummary {
+  bool converged = false;
+  std::string reason;  // why it stopped
+  int iterations = 0;
+  std::vector<double> residual_norms;  // |r|_inf at each iterate, the start included
+  std::vector<double> step_norms;      // |dx|_inf of each accepted step
+  int halvings = 0;
+  int rank_deficiency = 0;  // at the last Jacobian: the dimension of a continuum
+  bool sparse = false;      // steps solved by the sparse LU (UMFPACK)
+};
+
+struct OrbitOptions {
+  ShootingOptions shooting;
+  NewtonOptions newton;
+  FloquetOptions floquet;
+  double transient = 60.0;     // s of integration before Newton (find_periodic_orbit)
+  double max_period = 10.0;    // s: the longest period looked for
+  FlowOptions transient_flow;  // for the transient and the period estimate
+  OrbitOptions();
+};
+
+struct PeriodicOrbit {
+  Eigen::VectorXd state0;  // a point of the orbit (on the phase section)
+  double period = 0.0;
+  FloquetAnalysis floquet;
+  double residual = 0.0;  // |Phi_T(z0) - z0|_inf at the converged point
+  int segments = 1;
+  int family_dimension = 0;  // > 0: the orbit belongs to a continuum of orbits
+  NewtonSummary newton;
+  FlowStatistics flow;  // integration work of the whole computation
+  double seconds = 0.0;
+  bool converged() const { return newton.converged; }
+};
+
+// Newton from a guess (z0, T). Keeps every iterate in `subspace`.
+PeriodicOrbit solve_periodic_orbit(const OdeSystem& system, const Eigen::VectorXd& z0,
+                                   double period, const InvariantSubspace& subspace,
+                                   const OrbitOptions& options);
+
+// From a start: a transient integration inside `subspace` (projected after every second, so
+// that even orbits unstable in the full space are approached), the period from the first return
+// to the section through the end point, then Newton.
+PeriodicOrbit find_periodic_orbit(const OdeSystem& system, const Eigen::VectorXd& start,
+                                  const InvariantSubspace& subspace, const OrbitOptions& options);
+
+// Period of the orbit through z: the first return to the section through z across the flow,
+// found by sampling every `dt` up to `max_period`; 0 if there is none.
+double estimate_period(Flow& flow, const Eigen::VectorXd& z, double max_period, double dt);
+
+}  // namespace sympathy

@@ -1,0 +1,106 @@
+#include "continuation/shooting.hpp"
+
+#include <stdexcept>
+
+namespace sympathy {
+
+ShootingProblem::ShootingProblem(const OdeSystem& system, ShootingOptions options,
+                                 double forced_period)
+    : system_(system),
+      options_(options),
+      n_(system.dimension()),
+      autonomous_(system.autonomous()),
+      forced_period_(forced_period),
+      flow_(system, options.flow) {
+  if (options_.segments < 1) throw std::invalid_argument("shooting needs at least one segment");
+  if (!autonomous_ && !(forced_period_ > 0.0))
+    throw std::invalid_argument("a periodically forced system needs its period");
+  z_ref_ = Eigen::VectorXd::Zero(n_);
+  f_ref_ = Eigen::VectorXd::Zero(n_);
+}
+
+void ShootingProblem::set_phase_reference(const Eigen::VectorXd& z_ref) {
+  z_ref_ = z_ref;
+  f_ref_ = system_.rhs(0.0, z_ref);
+}
+
+double ShootingProblem::period(const Eigen::VectorXd& x) const {
+  return autonomous_ ? x[n_ * options_.segments] : forced_period_;
+}
+
+Eigen::VectorXd ShootingProblem::unknowns_from(const Eigen::VectorXd& z0, double period) {
+  const int m = options_.segments;
+  Eigen::VectorXd x(unknowns());
+  const double T = autonomous_ ? period : forced_period_;
+  Eigen::VectorXd z = z0;
+  for (int j = 0; j < m; ++j) {
+    x.segment(j * n_, n_) = z;
+    if (j + 1 < m) z = flow_.advance(z, j * T / m, (j + 1) * T / m);
+  }
+  if (autonomous_) x[n_ * m] = period;
+  return x;
+}
+
+ShootingProblem::Evaluation ShootingProblem::evaluate(const Eigen::VectorXd& x, bool derivatives,
+                                                      int parameter) {
+  const int m = options_.segments;
+  const double T = period(x);
+  if (!(T > 0.0)) throw IntegrationError("shooting: the period is not positive", 0.0);
+  Evaluation e;
+  e.derivatives = derivatives;
+  e.parameter = parameter;
+  e.residual.resize(unknowns());
+  if (parameter >= 0) e.parameter_sensitivities.resize(n_, m);
+  const std::vector<int> parameters =
+      parameter >= 0 ? std::vector<int>{parameter} : std::vector<int>{};
+  for (int j = 0; j < m; ++j) {
+    const Eigen::VectorXd zj = x.segment(j * n_, n_);
+    // Autonomous segments all start at t = 0; forced ones at their place in the period.
+    const double t0 = autonomous_ ? 0.0 : j * T / m;
+    const double t1 = autonomous_ ? T / m : (j + 1) * T / m;
+    Eigen::VectorXd end;
+    if (derivatives) {
+      auto d = flow_.advance_with_sensitivities(zj, t0, t1, true, parameters);
+      end = std::move(d.state);
+      e.transitions.push_back(std::move(d.transition));
+      if (parameter >= 0) e.parameter_sensitivities.col(j) = d.parameter_sensitivities.col(0);
+      e.end_rates.push_back(system_.rhs(t1, end));
+    } else {
+      end = flow_.advance(zj, t0, t1);
+    }
+    e.residual.segment(j * n_, n_) = end - x.segment(((j + 1) % m) * n_, n_);
+  }
+  if (autonomous_) e.residual[n_ * m] = f_ref_.dot(x.head(n_) - z_ref_);
+  return e;
+}
+
+Eigen::SparseMatrix<double> ShootingProblem::jacobian(const Evaluation& e,
+                                                      bool parameter_column) const {
+  if (!e.derivatives)
+    throw std::logic_error("shooting Jacobian needs an evaluation with derivatives");
+  if (parameter_column && e.parameter < 0)
+    throw std::logic_error("shooting Jacobian: the evaluation has no parameter sensitivity");
+  const int m = options_.segments;
+  const int rows = unknowns();
+  const int cols = rows + (parameter_column ? 1 : 0);
+  std::vector<Eigen::Triplet<double>> t;
+  t.reserve(static_cast<std::size_t>(m) * (n_ * n_ + 3 * n_) + n_);
+  for (int j = 0; j < m; ++j) {
+    const int r0 = j * n_;
+    const int next = ((j + 1) % m) * n_;
+    for (int c = 0; c < n_; ++c)
+      for (int r = 0; r < n_; ++r) t.emplace_back(r0 + r, r0 + c, e.transitions[j](r, c));
+    for (int i = 0; i < n_; ++i) t.emplace_back(r0 + i, next + i, -1.0);
+    if (autonomous_)
+      for (int i = 0; i < n_; ++i) t.emplace_back(r0 + i, n_ * m, e.end_rates[j][i] / m);
+    if (parameter_column)
+      for (int i = 0; i < n_; ++i) t.emplace_back(r0 + i, rows, e.parameter_sensitivities(i, j));
+  }
+  if (autonomous_)
+    for (int i = 0; i < n_; ++i) t.emplace_back(n_ * m, i, f_ref_[i]);
+  Eigen::SparseMatrix<double> jac(rows, cols);
+  jac.setFromTriplets(t.begin(), t.end());  // duplicates (M - I with one segment) are summed
+  return jac;
+}
+
+}  // namespace sympathy

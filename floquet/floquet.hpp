@@ -1,0 +1,57 @@
+// Floquet multipliers of a periodic orbit and what they say.
+//
+// From one monodromy matrix (single shooting) the multipliers are its eigenvalues. From the
+// segment matrices of multiple shooting they come from a periodic Schur decomposition of the
+// segments (floquet/periodic_schur.hpp), never from their product, which loses small
+// multipliers to rounding. The trivial multiplier of an autonomous system (eigenvector along
+// the vector field f) is identified by that eigenvector, not by being nearest to 1, and its
+// distance from 1 is the orbit's accuracy figure. Multipliers at 1 that a continuum of orbits
+// forces (a family, found by the shooting Newton as a rank deficiency) are marked structural.
+#pragma once
+
+#include <complex>
+#include <string>
+#include <vector>
+
+#include <Eigen/Dense>
+
+namespace sympathy {
+
+enum class Stability { Stable, Unstable, Marginal };
+std::string to_string(Stability s);
+
+struct FloquetOptions {
+  // Stable: every multiplier but the trivial and structural ones has |mu| < 1 - tolerance;
+  // unstable: one has |mu| > 1 + tolerance; marginal otherwise. Default well above the
+  // multipliers' measured errors (about 1e-8 at the default integrator settings).
+  double stability_tolerance = 1e-6;
+};
+
+struct Multiplier {
+  std::complex<double> value;
+  double log_modulus = 0.0;  // log|value|, accurate even where |value| underflows
+  bool trivial = false;      // the multiplier of the vector field's direction
+  bool structural = false;   // forced to 1 by a family of orbits
+  double modulus() const { return std::abs(value); }
+};
+
+struct FloquetAnalysis {
+  std::vector<Multiplier> multipliers;  // by decreasing modulus
+  int trivial = -1;                     // index of the trivial multiplier; -1 if none
+  double trivial_error = 0.0;           // |mu_trivial - 1|
+  double trivial_alignment = 0.0;       // |cos| of the angle between its eigenvector and f
+  int structural = 0;                   // number of structural multipliers
+  Stability stability = Stability::Marginal;
+  double max_modulus = 0.0;  // largest |mu| among the others
+  int unstable_count = 0;    // others with |mu| > 1 + tolerance
+};
+
+// `segments`: transition matrices of the m shooting segments in order (one: the monodromy).
+// `flow_direction`: f at the orbit's initial point, or empty for a periodically forced
+// (non-autonomous) system, which has no trivial multiplier. `structural`: the number of
+// nontrivial multipliers forced to 1 by a family (the dimension of the family).
+FloquetAnalysis analyze_floquet(const std::vector<Eigen::MatrixXd>& segments,
+                                const Eigen::VectorXd& flow_direction, int structural = 0,
+                                const FloquetOptions& options = {});
+
+}  // namespace sympathy

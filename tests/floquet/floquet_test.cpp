@@ -1,0 +1,82 @@
+#include "floquet/floquet.hpp"
+
+#include <gtest/gtest.h>
+
+namespace sympathy {
+namespace {
+
+// A monodromy with known eigenvalues and eigenvectors: M = V diag(mu) V^-1.
+Eigen::MatrixXd with_spectrum(const Eigen::VectorXd& mu, const Eigen::MatrixXd& v) {
+  return v * mu.asDiagonal() * v.inverse();
+}
+
+Eigen::MatrixXd random_basis(int n, unsigned seed) {
+  std::srand(seed);
+  return Eigen::MatrixXd::Random(n, n) + 2.0 * Eigen::MatrixXd::Identity(n, n);
+}
+
+// The trivial multiplier is the one whose eigenvector is f, even when another multiplier is
+// nearer to 1 (as near a branch point): here mu = 1 + 2e-7 along f, and 1 + 1e-9 elsewhere.
+TEST(Floquet, TrivialMultiplierFoundByEigenvectorNotByDistance) {
+  const Eigen::MatrixXd v = random_basis(4, 3);
+  Eigen::VectorXd mu(4);
+  mu << 0.5, 1.0 + 1e-9, 1.0 + 2e-7, 0.9;
+  const auto a = analyze_floquet({with_spectrum(mu, v)}, v.col(2));
+  ASSERT_GE(a.trivial, 0);
+  EXPECT_NEAR(a.multipliers[a.trivial].value.real(), 1.0 + 2e-7, 1e-12);
+  EXPECT_NEAR(a.trivial_error, 2e-7, 1e-12);
+  EXPECT_GT(a.trivial_alignment, 1.0 - 1e-9);
+  // Sorted by modulus; the remaining largest is the one at 1 + 1e-9: marginal at tolerance 1e-6.
+  EXPECT_NEAR(a.max_modulus, 1.0 + 1e-9, 1e-12);
+  EXPECT_EQ(a.stability, Stability::Marginal);
+  for (std::size_t i = 1; i < a.multipliers.size(); ++i)
+    EXPECT_GE(a.multipliers[i - 1].modulus(), a.multipliers[i].modulus());
+}
+
+// Classification against the stated tolerance (default 1e-6).
+TEST(Floquet, StabilityVerdicts) {
+  const Eigen::MatrixXd v = random_basis(3, 5);
+  auto verdict = [&](double largest) {
+    Eigen::VectorXd mu(3);
+    mu << 1.0, largest, 0.3;
+    return analyze_floquet({with_spectrum(mu, v)}, v.col(0));
+  };
+  EXPECT_EQ(verdict(0.97).stability, Stability::Stable);
+  EXPECT_EQ(verdict(1.0 - 2e-6).stability, Stability::Stable);
+  EXPECT_EQ(verdict(1.0 + 5e-7).stability, Stability::Marginal);
+  const auto u = verdict(1.13);
+  EXPECT_EQ(u.stability, Stability::Unstable);
+  EXPECT_EQ(u.unstable_count, 1);
+  EXPECT_NEAR(u.max_modulus, 1.13, 1e-12);
+}
+
+// A family's structural multiplier at 1 is excluded from the verdict, and marked.
+TEST(Floquet, StructuralMultipliersAreMarkedAndExcluded) {
+  const Eigen::MatrixXd v = random_basis(4, 9);
+  Eigen::VectorXd mu(4);
+  mu << 1.0, 1.0 + 1e-10, 0.8, 0.95;
+  const auto a = analyze_floquet({with_spectrum(mu, v)}, v.col(0), 1);
+  EXPECT_EQ(a.structural, 1);
+  int structural = 0;
+  for (const auto& m : a.multipliers) structural += m.structural;
+  EXPECT_EQ(structural, 1);
+  EXPECT_EQ(a.stability, Stability::Stable);
+  EXPECT_NEAR(a.max_modulus, 0.95, 1e-12);
+}
+
+// Complex pairs keep their arguments; without f (a forced system) there is no trivial one.
+TEST(Floquet, ComplexPairsAndForcedSystems) {
+  Eigen::MatrixXd m(2, 2);
+  const double r = 0.9, phi = 0.4;
+  m << r * std::cos(phi), -r * std::sin(phi), r * std::sin(phi), r * std::cos(phi);
+  const auto a = analyze_floquet({m}, Eigen::VectorXd());
+  EXPECT_EQ(a.trivial, -1);
+  ASSERT_EQ(a.multipliers.size(), 2u);
+  EXPECT_NEAR(a.multipliers[0].modulus(), r, 1e-14);
+  EXPECT_NEAR(std::abs(std::arg(a.multipliers[0].value)), phi, 1e-14);
+  EXPECT_NEAR(a.multipliers[0].log_modulus, std::log(r), 1e-14);
+  EXPECT_EQ(a.stability, Stability::Stable);
+}
+
+}  // namespace
+}  // namespace sympathy
