@@ -1,0 +1,48 @@
+#!/usr/bin/env bash
+# The orbit command end to end: its report, its JSON, its exit codes.
+# Usage: orbit_test.sh SYMPATHY_BINARY SOURCE_DIR WORK_DIR
+set -u
+bin=$1 src=$2 work=$3
+mkdir -p "$work"
+failures=0
+check() {  # check DESCRIPTION COMMAND...
+  local what=$1; shift
+  if "$@"; then echo "ok: $what"; else echo "FAILED: $what"; failures=$((failures + 1)); fi
+}
+json_value() {  # json_value FILE EXPRESSION: evaluates a Python expression on the parsed JSON `j`
+  /usr/bin/python3 -c "import json,sys; j=json.load(open(sys.argv[1])); print($2)" "$1"
+}
+
+"$bin" orbit "$src/cases/row2.toml" --start anti-phase --json "$work/anti.json" > "$work/anti.out"
+check "orbit exits 0 when Newton converges" test $? -eq 0
+check "report gives the period" grep -q '^  period  .* s    frequency 1.7' "$work/anti.out"
+check "report marks the trivial multiplier" grep -q 'trivial$' "$work/anti.out"
+check "anti-phase at Table II is unstable (paper, Sec. III)" grep -q '^  stability    unstable' "$work/anti.out"
+check "report gives the accuracy figures" grep -q 'Newton residual .*trivial multiplier |mu - 1|' "$work/anti.out"
+check "report gives the run time" grep -q '^  run time' "$work/anti.out"
+for key in period multipliers stable trivial_multiplier_error residual state0 state_names params seconds; do
+  check "JSON has '$key'" test "$(json_value "$work/anti.json" "'$key' in j")" = True
+done
+check "JSON: six multipliers as [re, im]" test "$(json_value "$work/anti.json" "len(j['multipliers']) == 6 and all(len(m) == 2 for m in j['multipliers'])")" = True
+check "JSON: unstable" test "$(json_value "$work/anti.json" "j['stable']")" = False
+check "JSON: trivial multiplier within 1e-8 of 1" test "$(json_value "$work/anti.json" "j['trivial_multiplier_error'] < 1e-8")" = True
+check "JSON: state names" test "$(json_value "$work/anti.json" "','.join(j['state_names'])")" = "x,th1,th2,vx,vth1,vth2"
+check "JSON: parameters of the case" test "$(json_value "$work/anti.json" "j['params']['k']")" = 14.7467
+
+"$bin" orbit "$src/cases/cross4.toml" --start in-in --segments 4 > "$work/cross.out"
+check "cross in-in with 4 segments exits 0" test $? -eq 0
+check "cross in-in is reported as not isolated" grep -q 'not isolated' "$work/cross.out"
+check "cross in-in has a structural multiplier" grep -q 'structural$' "$work/cross.out"
+
+"$bin" orbit "$src/cases/row2.toml" > "$work/bad.out" 2> "$work/bad.err"
+check "missing --start exits 2" test $? -eq 2
+check "missing --start lists the starts" grep -q "expected one of: in-phase, anti-phase" "$work/bad.err"
+
+"$bin" orbit "$src/cases/row2.toml" --start in-phase --segments 0 2> "$work/bad.err"
+check "--segments 0 exits 2" test $? -eq 2
+
+"$bin" orbit "$src/cases/cross4.toml" --start in-anti --transient 5 > "$work/quasi.out"
+check "a start on no periodic orbit exits 4" test $? -eq 4
+check "and says Newton failed" grep -q 'newton       FAILED' "$work/quasi.out"
+
+exit $failures
