@@ -124,6 +124,80 @@ class TwoHopf final : public AutoDiffSystem<TwoHopf> {
   }
 };
 
+// Normal forms of bifurcations of periodic orbits around the unit circle (theta' = 1, period
+// 2 pi), each with one parameter mu and the bifurcation at an exactly known value.
+//   Fold:       r' = r (mu + r^2 - r^4): cycles at mu = r^4 - r^2, a fold at mu = -1/4
+//               (r^2 = 1/2), where the radial multiplier exp(2 pi (2 r^2 - 4 r^4)) is 1.
+//   Pitchfork:  r' = r (1 - r^2), w_k' = mu w_k - w_k^3 for `copies` transverse states: on
+//               w = 0 the multipliers exp(2 pi mu) cross +1 at mu = 0 (together if copies = 2).
+//   Rotation:   r' = r (1 - r^2), (u, v) rotating at 0.3 and growing at mu, cubically
+//               saturated: multipliers exp(2 pi (mu +- 0.3 i)), a Neimark-Sacker pair at mu = 0.
+//   Moebius:    r' from a transverse plane (a = r - 1, z) that turns half a revolution per
+//               period: in the frame turning with theta / 2, xi' = mu xi - xi^3 and eta' = -eta,
+//               so the multipliers are -exp(2 pi mu) and -exp(-2 pi): period doubling at
+//               mu = 0, the doubled orbit xi = +-sqrt(mu) of period 4 pi beyond it.
+class NormalForm final : public AutoDiffSystem<NormalForm> {
+ public:
+  enum class Kind { Fold, Pitchfork, Rotation, Moebius };
+  NormalForm(Kind kind, double mu, int copies = 1) : kind_(kind), copies_(copies) {
+    set_parameter_layout({{"mu", {0}}}, {mu});
+  }
+  int dimension() const override {
+    switch (kind_) {
+      case Kind::Fold:
+        return 2;
+      case Kind::Pitchfork:
+        return 2 + copies_;
+      case Kind::Rotation:
+        return 4;
+      case Kind::Moebius:
+        return 3;
+    }
+    return 2;
+  }
+  std::vector<std::string> state_names() const override {
+    std::vector<std::string> n{"x", "y"};
+    for (int i = 2; i < dimension(); ++i)
+      n.push_back(std::string("w").append(std::to_string(i - 1)));
+    return n;
+  }
+  template <class T, class P>
+  void evaluate(double, const T* z, const P* p, T* dz) const {
+    using std::sqrt;
+    const P& mu = p[0];
+    const T r2 = z[0] * z[0] + z[1] * z[1];
+    if (kind_ == Kind::Moebius) {
+      const T r = sqrt(r2);
+      const T c = z[0] / r, s = z[1] / r, a = r - 1.0, w = z[2];
+      const T cc = 0.5 * (1.0 + c), ss = 0.5 * (1.0 - c), cs = 0.5 * s;  // of theta / 2
+      const T xi2 = a * a * cc + 2.0 * a * w * cs + w * w * ss;
+      // [a; w]' = (J/2 + (mu - 1)/2 I + (mu + 1)/2 S(theta)) [a; w] - xi^2 xi [cos; sin](theta/2)
+      const T da = -0.5 * w + 0.5 * (mu - 1.0) * a + 0.5 * (mu + 1.0) * (c * a + s * w) -
+                   xi2 * (a * cc + w * cs);
+      const T dw = 0.5 * a + 0.5 * (mu - 1.0) * w + 0.5 * (mu + 1.0) * (s * a - c * w) -
+                   xi2 * (a * cs + w * ss);
+      dz[0] = -z[1] + c * da;
+      dz[1] = z[0] + s * da;
+      dz[2] = dw;
+      return;
+    }
+    const T g = kind_ == Kind::Fold ? T(mu + r2 - r2 * r2) : T(1.0 - r2);
+    dz[0] = -z[1] + z[0] * g;
+    dz[1] = z[0] + z[1] * g;
+    if (kind_ == Kind::Pitchfork)
+      for (int k = 2; k < dimension(); ++k) dz[k] = mu * z[k] - z[k] * z[k] * z[k];
+    if (kind_ == Kind::Rotation) {
+      const T q = z[2] * z[2] + z[3] * z[3];
+      dz[2] = mu * z[2] - 0.3 * z[3] - z[2] * q;
+      dz[3] = 0.3 * z[2] + mu * z[3] - z[3] * q;
+    }
+  }
+
+ private:
+  Kind kind_;
+  int copies_;
+};
+
 // z' = A(t) z with A(t) = [0 1; -10 cos t, -24 - 10 sin t], period 2 pi. In second-order form
 // x'' + (24 + 10 sin t) x' + 10 cos t x = d/dt (x' + (24 + 10 sin t) x) = 0, so the Floquet
 // exponents are exactly 0 and -24 (multipliers 1 and exp(-48 pi) = 2e-66).

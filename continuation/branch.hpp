@@ -1,0 +1,58 @@
+// Branches of periodic orbits and the bifurcations found on them.
+#pragma once
+
+#include <string>
+#include <vector>
+
+#include <Eigen/Dense>
+
+#include "continuation/periodic_orbit.hpp"
+
+namespace sympathy {
+
+enum class BifurcationType {
+  Fold,            // LP: the branch turns back; a real multiplier passes through +1
+  BranchPoint,     // BP: a real multiplier crosses +1 without a fold (symmetry-breaking pitchfork)
+  PeriodDoubling,  // PD: a real multiplier crosses -1
+  NeimarkSacker,   // NS: a complex pair crosses the unit circle
+};
+std::string to_string(BifurcationType t);  // "LP", "BP", "PD", "NS"
+std::string describe(BifurcationType t);   // "fold", ...
+
+// One computed point of a branch: a converged periodic orbit at a parameter value.
+struct ContinuationPoint {
+  int index = 0;  // along the branch; negative on the backward part of a two-way run
+  double parameter = 0.0;
+  PeriodicOrbit orbit;       // state, period, multipliers, residual, trivial-multiplier error
+  Eigen::VectorXd unknowns;  // shooting unknowns (all segment states and the period)
+  Eigen::VectorXd tangent;   // unit tangent (unknowns, parameter) in the scaled norm
+  double step = 0.0;         // arclength step that led here (scaled)
+  int iterations = 0;        // corrector iterations
+};
+
+struct Bifurcation {
+  BifurcationType type = BifurcationType::Fold;
+  int multiplicity = 1;      // multipliers crossing together (2: symmetric systems do this)
+  double parameter = 0.0;    // located value
+  double uncertainty = 0.0;  // width of the final bracket in the parameter
+  double period = 0.0;
+  FloquetAnalysis floquet;  // at the located point
+  Eigen::VectorXd state0;   // orbit at the located point
+  Eigen::VectorXd unknowns;
+  Eigen::VectorXd tangent;
+  bool located = false;  // the bracket shrank to the tolerance
+  bool trusted = true;   // false: a trivial-multiplier error too large near it
+  std::string note;      // what to know about it (why untrusted, how it was detected)
+  int after_point = 0;   // index of the branch point before it
+};
+
+struct Branch {
+  std::string parameter_name;
+  std::vector<ContinuationPoint> points;
+  std::vector<Bifurcation> events;
+  std::string stop_reason;
+  double seconds = 0.0;
+  FlowStatistics flow;
+};
+
+}  // namespace sympathy

@@ -1,0 +1,479 @@
+#include "continuation/continuation.hpp"
+
+#include <algorithm>
+#include <chrono>
+#include <cmath>
+#include <limits>
+#include <sstream>
+
+#include "core/linear_solve.hpp"
+
+namespace sympathy {
+
+std::string to_string(BifurcationType t) {
+  switch (t) {
+    case BifurcationType::Fold:
+      return "LP";
+    case BifurcationType::BranchPoint:
+      return "BP";
+    case BifurcationType::PeriodDoubling:
+      return "PD";
+    case BifurcationType::NeimarkSacker:
+      return "NS";
+  }
+  return "?";
+}
+
+std::string describe(BifurcationType t) {
+  switch (t) {
+    case BifurcationType::Fold:
+      return "fold";
+    case BifurcationType::BranchPoint:
+      return "branch point";
+    case BifurcationType::PeriodDoubling:
+      return "period doubling";
+    case BifurcationType::NeimarkSacker:
+      return "Neimark-Sacker";
+  }
+  return "?";
+}
+
+struct Continuation::Corrected {
+  bool converged = false;
+  std::string reason;
+  Eigen::VectorXd y;  // (unknowns, parameter)
+  ShootingProblem::Evaluation evaluation;
+  int iterations = 0;
+};
+
+namespace {
+
+double inf_norm(const Eigen::VectorXd& v) {
+  return v.size() ? v.cwiseAbs().maxCoeff() : 0.0;
+}
+
+// The multipliers that can cross: all but the trivial and structural ones.
+std::vector<std::complex<double>> movable(const FloquetAnalysis& f) {
+  std::vector<std::complex<double>> v;
+  for (const auto& m : f.multipliers)
+    if (!m.trivial && !m.structural) v.push_back(m.value);
+  return v;
+}
+
+// Pairs (a_i, b_j) matched greedily by distance; sizes must agree.
+std::vector<std::pair<std::complex<double>, std::complex<double>>> match(
+    std::vector<std::complex<double>> a, std::vector<std::complex<double>> b) {
+  std::vector<std::pair<std::complex<double>, std::complex<double>>> pairs;
+  while (!a.empty() && !b.empty()) {
+    std::size_t bi = 0, bj = 0;
+    double best = std::abs(a[0] - b[0]);
+    for (std::size_t i = 0; i < a.size(); ++i)
+      for (std::size_t j = 0; j < b.size(); ++j)
+        if (std::abs(a[i] - b[j]) < best) {
+          best = std::abs(a[i] - b[j]);
+          bi = i;
+          bj = j;
+        }
+    pairs.emplace_back(a[bi], b[bj]);
+    a.erase(a.begin() + bi);
+    b.erase(b.begin() + bj);
+  }
+  return pairs;
+}
+
+bool is_real(std::complex<double> mu) {
+  return std::abs(mu.imag()) <= 1e-6 * std::abs(mu);
+}
+
+}  // namespace
+
+Continuation::Continuation(OdeSystem& system, int parameter, ContinuationOptions options)
+    : system_(system), parameter_(parameter), options_(std::move(options)) {
+  if (!system.autonomous())
+    throw std::invalid_argument("continuation: for autonomous systems (periodic orbits)");
+  if (!(options_.upper > options_.lower))
+    throw std::invalid_argument("continuation: the upper bound must exceed the lower bound");
+  if (options_.max_parameter_step <= 0.0)
+    options_.max_parameter_step = (options_.upper - options_.lower) / 25.0;
+  problem_ = std::make_unique<ShootingProblem>(system_, options_.orbit.shooting);
+}
+
+double Continuation::scaled_dot(const Eigen::VectorXd& u, const Eigen::VectorXd& v) const {
+  return (weights_.array().square() * u.array() * v.array()).sum();
+}
+
+void Continuation::set_weights(const PeriodicOrbit& start) {
+  const int n = problem_->dimension(), m = problem_->segments();
+  const int unknowns = problem_->unknowns();
+  // Amplitudes of every state component on the starting orbit (one period, sampled).
+  Flow flow(system_, options_.orbit.transient_flow);
+  Eigen::VectorXd size = start.state0.cwiseAbs();
+  std::vector<double> times;
+  for (int k = 1; k <= 200; ++k) times.push_back(start.period * k / 200.0);
+  flow.sample(start.state0, 0.0, times,
+              [&](double, const Eigen::VectorXd& z) { size = size.cwiseMax(z.cwiseAbs()); });
+  const double floor = std::max(1e-3 * size.maxCoeff(), 1e-12);
+  weights_.resize(unknowns + 1);
+  for (int j = 0; j < m; ++j)
+    for (int i = 0; i < n; ++i)
+      weights_[j * n + i] = 1.0 / (std::max(size[i], floor) * std::sqrt(static_cast<double>(m)));
+  weights_[n * m] = 1.0 / start.period;
+  weights_[unknowns] = 1.0 / (options_.upper - options_.lower);
+}
+
+Continuation::Corrected Continuation::correct(const Eigen::VectorXd& from,
+                                              const Eigen::VectorXd& tangent, double step,
+                                              const Eigen::VectorXd& start_guess) {
+  const int N = problem_->unknowns();
+  Corrected c;
+  Eigen::VectorXd y = start_guess;
+  const Eigen::VectorXd row = weights_.array().square() * tangent.array();
+  LinearSolveOptions linear;
+  linear.prefer_sparse = problem_->segments() > 1;
+  linear.rank_tolerance = options_.orbit.newton.rank_tolerance;
+  double previous = std::numeric_limits<double>::infinity();
+  for (int it = 0;; ++it) {
+    system_.set_parameter(parameter_, y[N]);
+    ShootingProblem::Evaluation e;
+    try {
+      e = problem_->evaluate(y.head(N), true, parameter_);
+    } catch (const IntegrationError& error) {
+      c.reason = error.what();
+      return c;
+    }
+    const double norm = inf_norm(e.residual);
+    if (norm <= options_.corrector_tolerance) {
+      c.converged = true;
+      c.y = std::move(y);
+      c.evaluation = std::move(e);
+      c.iterations = it;
+      return c;
+    }
+    if (it >= options_.max_corrector_iterations || (it >= 2 && norm > previous)) {
+      std::ostringstream msg;
+      msg << "corrector " << (norm > previous ? "diverged" : "did not converge") << " (residual "
+          << norm << " after " << it << " iterations)";
+      c.reason = msg.str();
+      return c;
+    }
+    previous = norm;
+    // Bordered system: the shooting Jacobian with its parameter column, and the arclength row.
+    const Eigen::SparseMatrix<double> jac = problem_->jacobian(e, true);
+    std::vector<Eigen::Triplet<double>> t;
+    t.reserve(jac.nonZeros() + N + 1);
+    for (int k = 0; k < jac.outerSize(); ++k)
+      for (Eigen::SparseMatrix<double>::InnerIterator i(jac, k); i; ++i)
+        t.emplace_back(static_cast<int>(i.row()), static_cast<int>(i.col()), i.value());
+    for (int k = 0; k <= N; ++k)
+      if (row[k] != 0.0) t.emplace_back(N, k, row[k]);
+    Eigen::SparseMatrix<double> bordered(N + 1, N + 1);
+    bordered.setFromTriplets(t.begin(), t.end());
+    Eigen::VectorXd rhs(N + 1);
+    rhs.head(N) = -e.residual;
+    rhs[N] = -(row.dot(y - from) - step);
+    const auto dy = solve_linear(bordered, rhs, linear);
+    if (!dy.x.allFinite()) {
+      c.reason = "corrector step not finite";
+      return c;
+    }
+    y += dy.x;
+  }
+}
+
+Eigen::VectorXd Continuation::tangent_at(const Corrected& c,
+                                         const Eigen::VectorXd& previous) const {
+  const int N = problem_->unknowns();
+  const Eigen::SparseMatrix<double> jac = problem_->jacobian(c.evaluation, true);
+  std::vector<Eigen::Triplet<double>> t;
+  for (int k = 0; k < jac.outerSize(); ++k)
+    for (Eigen::SparseMatrix<double>::InnerIterator i(jac, k); i; ++i)
+      t.emplace_back(static_cast<int>(i.row()), static_cast<int>(i.col()), i.value());
+  const Eigen::VectorXd row = weights_.array().square() * previous.array();
+  for (int k = 0; k <= N; ++k)
+    if (row[k] != 0.0) t.emplace_back(N, k, row[k]);
+  Eigen::SparseMatrix<double> bordered(N + 1, N + 1);
+  bordered.setFromTriplets(t.begin(), t.end());
+  Eigen::VectorXd rhs = Eigen::VectorXd::Zero(N + 1);
+  rhs[N] = 1.0;
+  LinearSolveOptions linear;
+  linear.prefer_sparse = problem_->segments() > 1;
+  linear.rank_tolerance = options_.orbit.newton.rank_tolerance;
+  Eigen::VectorXd tau = solve_linear(bordered, rhs, linear).x;
+  tau /= std::sqrt(scaled_dot(tau, tau));
+  if (scaled_dot(tau, previous) < 0.0) tau = -tau;
+  return tau;
+}
+
+ContinuationPoint Continuation::make_point(const Corrected& c, const Eigen::VectorXd& tangent,
+                                           int index, double step) {
+  const int N = problem_->unknowns(), n = problem_->dimension(), m = problem_->segments();
+  ContinuationPoint p;
+  p.index = index;
+  p.parameter = c.y[N];
+  p.unknowns = c.y.head(N);
+  p.tangent = tangent;
+  p.step = step;
+  p.iterations = c.iterations;
+  PeriodicOrbit& o = p.orbit;
+  o.state0 = c.y.head(n);
+  o.period = c.y[n * m];
+  o.segments = m;
+  o.residual = inf_norm(c.evaluation.residual.head(n * m));
+  o.family_dimension =
+      rank_deficiency(problem_->jacobian(c.evaluation), options_.orbit.newton.rank_tolerance);
+  system_.set_parameter(parameter_, p.parameter);
+  o.floquet = analyze_floquet(c.evaluation.transitions, system_.rhs(0.0, o.state0),
+                              o.family_dimension, options_.orbit.floquet);
+  o.newton.converged = true;
+  o.newton.iterations = c.iterations;
+  o.newton.reason = "corrector converged";
+  return p;
+}
+
+Branch Continuation::run(const PeriodicOrbit& start, int direction,
+                         const ContinuationCallbacks& callbacks,
+                         const Eigen::VectorXd& initial_tangent) {
+  const auto started = std::chrono::steady_clock::now();
+  Branch branch;
+  branch.parameter_name = system_.parameter_names()[parameter_];
+  problem_->flow().reset_statistics();
+  auto finish = [&](const std::string& reason) {
+    branch.stop_reason = reason;
+    branch.flow = problem_->flow().statistics();
+    branch.seconds =
+        std::chrono::duration<double>(std::chrono::steady_clock::now() - started).count();
+    return branch;
+  };
+  const int N = problem_->unknowns();
+  try {
+    set_weights(start);
+  } catch (const IntegrationError& e) {
+    return finish(std::string("the starting orbit cannot be integrated: ") + e.what());
+  }
+
+  // The starting point, corrected at its parameter value.
+  const double p0 = system_.parameter(parameter_);
+  problem_->set_phase_reference(start.state0);
+  Eigen::VectorXd y0(N + 1);
+  try {
+    y0.head(N) = problem_->unknowns_from(start.state0, start.period);
+  } catch (const IntegrationError& e) {
+    return finish(std::string("the starting orbit cannot be integrated: ") + e.what());
+  }
+  y0[N] = p0;
+  Eigen::VectorXd along_parameter = Eigen::VectorXd::Zero(N + 1);
+  along_parameter[N] = 1.0 / weights_[N];  // unit in the scaled norm
+  const Corrected c0 = correct(y0, along_parameter, 0.0, y0);
+  if (!c0.converged) return finish("the starting orbit does not converge: " + c0.reason);
+  Eigen::VectorXd tau;
+  if (initial_tangent.size() == N + 1) {
+    tau = initial_tangent / std::sqrt(scaled_dot(initial_tangent, initial_tangent));
+  } else {
+    tau = tangent_at(c0, direction * along_parameter);
+  }
+  branch.points.push_back(make_point(c0, tau, 0, 0.0));
+  if (callbacks.on_point) callbacks.on_point(branch.points.back());
+
+  double ds = options_.initial_step;
+  const int sign = direction >= 0 ? 1 : -1;
+  for (;;) {
+    if (callbacks.stop_requested && callbacks.stop_requested()) return finish("interrupted");
+    if (static_cast<int>(branch.points.size()) >= options_.max_points)
+      return finish("point limit (" + std::to_string(options_.max_points) + ") reached");
+    const ContinuationPoint& a = branch.points.back();
+    const double dp_per_ds = std::abs(a.tangent[N]);
+    if (ds * dp_per_ds > options_.max_parameter_step)
+      ds = std::max(options_.max_parameter_step / dp_per_ds, options_.min_step);
+    Eigen::VectorXd ya(N + 1);
+    ya << a.unknowns, a.parameter;
+    problem_->set_phase_reference(a.orbit.state0);
+    const Corrected c = correct(ya, a.tangent, ds, ya + ds * a.tangent);
+    if (!c.converged) {
+      ds *= 0.5;
+      if (ds < options_.min_step) return finish("step size below the minimum: " + c.reason);
+      continue;
+    }
+    const Eigen::VectorXd tau_b = tangent_at(c, a.tangent);
+    ContinuationPoint b = make_point(c, tau_b, a.index + sign, ds);
+    // Multipliers that move far in one step may hide a window of instability: shorten it.
+    double change = 0.0;
+    const auto ma = movable(a.orbit.floquet), mb = movable(b.orbit.floquet);
+    if (ma.size() == mb.size())
+      for (const auto& [x, y] : match(ma, mb))
+        if (std::min(std::abs(std::abs(x) - 1.0), std::abs(std::abs(y) - 1.0)) <
+            options_.watch_band)
+          change = std::max(change, std::abs(x - y));
+    if (change > options_.max_multiplier_change && ds > 4 * options_.min_step) {
+      ds *= 0.5;
+      continue;
+    }
+    branch.points.push_back(std::move(b));
+    const ContinuationPoint& added = branch.points.back();
+    if (callbacks.on_point) callbacks.on_point(added);
+    if (options_.detect_bifurcations)
+      detect(branch.points[branch.points.size() - 2], added, branch, callbacks);
+    if (added.parameter < options_.lower || added.parameter > options_.upper)
+      return finish("reached the parameter bound");
+    if (c.iterations <= 2)
+      ds = std::min(1.5 * ds, options_.max_step);
+    else if (c.iterations >= 5)
+      ds *= 0.6;
+  }
+}
+
+void Continuation::detect(const ContinuationPoint& a, const ContinuationPoint& b, Branch& branch,
+                          const ContinuationCallbacks& callbacks) {
+  const int N = problem_->unknowns();
+  const bool fold = a.tangent[N] * b.tangent[N] < 0.0;
+  const auto ma = movable(a.orbit.floquet), mb = movable(b.orbit.floquet);
+  struct Crossing {
+    std::complex<double> a, b;
+  };
+  std::vector<Crossing> plus, minus, complex;
+  if (ma.size() == mb.size()) {
+    for (const auto& [x, y] : match(ma, mb)) {
+      if ((std::abs(x) - 1.0) * (std::abs(y) - 1.0) >= 0.0) continue;
+      if (is_real(x) && is_real(y)) {
+        (x.real() > 0 ? plus : minus).push_back({x, y});
+      } else if (x.imag() > 0.0 || y.imag() > 0.0) {
+        complex.push_back({x, y});  // one of each conjugate pair
+      }
+    }
+  }
+  // Crossings with equal multipliers happen together (symmetry): one event, its multiplicity.
+  auto clusters = [](const std::vector<Crossing>& c) {
+    std::vector<std::vector<Crossing>> groups;
+    for (const auto& x : c) {
+      bool placed = false;
+      for (auto& g : groups)
+        if (std::abs(g.front().a - x.a) <= 1e-6 * std::max(1.0, std::abs(x.a))) {
+          g.push_back(x);
+          placed = true;
+          break;
+        }
+      if (!placed) groups.push_back({x});
+    }
+    return groups;
+  };
+  auto report = [&](Bifurcation e) {
+    e.after_point = a.index;
+    const double worst = std::max(
+        {a.orbit.floquet.trivial_error, b.orbit.floquet.trivial_error, e.floquet.trivial_error});
+    if (worst > options_.trust_limit) {
+      e.trusted = false;
+      std::ostringstream msg;
+      msg << "not trusted: trivial-multiplier error " << worst << " above " << options_.trust_limit;
+      e.note += (e.note.empty() ? "" : "; ") + msg.str();
+    }
+    branch.events.push_back(e);
+    if (callbacks.on_event) callbacks.on_event(branch.events.back());
+  };
+  auto plus_groups = clusters(plus);
+  if (fold) {
+    Bifurcation e = locate(a, b, BifurcationType::Fold, 1, {}, {});
+    if (plus_groups.empty())
+      e.note = "no multiplier crossing +1 seen between the bracketing points";
+    report(e);
+    if (!plus_groups.empty()) plus_groups.erase(plus_groups.begin());
+  }
+  for (const auto& g : plus_groups) {
+    Bifurcation e = locate(a, b, BifurcationType::BranchPoint, static_cast<int>(g.size()),
+                           g.front().a, g.front().b);
+    if (g.size() > 1) e.note = std::to_string(g.size()) + " multipliers cross +1 together";
+    report(e);
+  }
+  for (const auto& g : clusters(minus)) {
+    Bifurcation e = locate(a, b, BifurcationType::PeriodDoubling, static_cast<int>(g.size()),
+                           g.front().a, g.front().b);
+    if (g.size() > 1) e.note = std::to_string(g.size()) + " multipliers cross -1 together";
+    report(e);
+  }
+  for (const auto& g : clusters(complex)) {
+    Bifurcation e = locate(a, b, BifurcationType::NeimarkSacker, static_cast<int>(g.size()),
+                           g.front().a, g.front().b);
+    if (g.size() > 1) e.note = std::to_string(g.size()) + " complex pairs cross together";
+    report(e);
+  }
+}
+
+Bifurcation Continuation::locate(const ContinuationPoint& a, const ContinuationPoint& b,
+                                 BifurcationType type, int multiplicity, std::complex<double> mu_a,
+                                 std::complex<double> mu_b) {
+  const int N = problem_->unknowns();
+  Eigen::VectorXd ya(N + 1);
+  ya << a.unknowns, a.parameter;
+  const double sb = b.step;
+  // The test function at a point: the tangent's parameter component for a fold; |mu| - 1 of
+  // the multiplier followed from mu_a to mu_b otherwise.
+  auto test = [&](const ContinuationPoint& p, double s) {
+    if (type == BifurcationType::Fold) return p.tangent[N];
+    const std::complex<double> expected = mu_a + (s / sb) * (mu_b - mu_a);
+    double best = std::numeric_limits<double>::infinity(), value = 0.0;
+    for (const auto& mu : movable(p.orbit.floquet)) {
+      const double d = std::abs(mu - expected);
+      if (d < best) {
+        best = d;
+        value = std::abs(mu) - 1.0;
+      }
+    }
+    return value;
+  };
+  Bifurcation e;
+  e.type = type;
+  e.multiplicity = multiplicity;
+  double s_lo = 0.0, s_hi = sb;
+  double f_lo = test(a, 0.0), f_hi = test(b, sb);
+  ContinuationPoint lo = a, hi = b, best = std::abs(f_lo) < std::abs(f_hi) ? a : b;
+  double f_best = std::min(std::abs(f_lo), std::abs(f_hi));
+  int side = 0;  // Illinois: which end was kept last time
+  problem_->set_phase_reference(a.orbit.state0);
+  for (int iteration = 0; iteration < 60; ++iteration) {
+    const double scale = std::max(std::abs(best.parameter), 1.0);
+    const bool narrow =
+        std::abs(hi.parameter - lo.parameter) <= options_.location_tolerance * scale;
+    const bool tight = (s_hi - s_lo) <= 1e-7 * sb;  // folds: the parameter is flat there
+    if ((narrow && (type != BifurcationType::Fold || tight)) || f_best == 0.0) {
+      e.located = true;
+      break;
+    }
+    double s = s_hi - f_hi * (s_hi - s_lo) / (f_hi - f_lo);
+    const double margin = 1e-3 * (s_hi - s_lo);
+    if (!(s > s_lo + margin && s < s_hi - margin)) s = 0.5 * (s_lo + s_hi);
+    const Corrected c = correct(ya, a.tangent, s, ya + s * a.tangent);
+    if (!c.converged) {
+      e.note = "location stopped: " + c.reason;
+      break;
+    }
+    ContinuationPoint p = make_point(c, tangent_at(c, a.tangent), a.index, s);
+    const double f = test(p, s);
+    if (std::abs(f) < f_best) {
+      f_best = std::abs(f);
+      best = p;
+    }
+    if ((f > 0) == (f_hi > 0)) {
+      s_hi = s;
+      f_hi = f;
+      hi = std::move(p);
+      if (side == +1) f_lo *= 0.5;
+      side = +1;
+    } else {
+      s_lo = s;
+      f_lo = f;
+      lo = std::move(p);
+      if (side == -1) f_hi *= 0.5;
+      side = -1;
+    }
+  }
+  e.parameter = best.parameter;
+  e.uncertainty = std::abs(hi.parameter - lo.parameter);
+  e.period = best.orbit.period;
+  e.floquet = best.orbit.floquet;
+  e.state0 = best.orbit.state0;
+  e.unknowns = best.unknowns;
+  e.tangent = best.tangent;
+  if (!e.located && e.note.empty()) e.note = "location did not reach the tolerance";
+  system_.set_parameter(parameter_, b.parameter);  // where the run goes on from
+  return e;
+}
+
+}  // namespace sympathy

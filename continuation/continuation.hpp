@@ -1,0 +1,82 @@
+// Pseudo-arclength continuation of periodic orbits in one parameter.
+//
+// Unknowns Y = (x, p): the shooting unknowns and the parameter. A point satisfies the shooting
+// equations F(x, p) = 0 (phase condition on the previous point's section) and the arclength
+// condition <tau, Y - Y_prev> = ds in a scaled norm (each state component by its amplitude on
+// the starting orbit, the period by itself, the parameter by the range asked for), so that
+// steps mean the same in metres, radians and newtons per metre. The tangent at a converged
+// point comes from that point's own Jacobian: nothing is integrated twice.
+//
+// Steps grow after easy corrections and shrink after hard or failed ones, and shrink when a
+// multiplier near the unit circle moves more than a set amount, so that a narrow window of
+// instability is not stepped over. Between points, test functions (the tangent's parameter
+// component for folds, |mu| - 1 of each multiplier crossing the unit circle) locate every
+// bifurcation to a relative tolerance in the parameter.
+#pragma once
+
+#include <functional>
+
+#include "continuation/branch.hpp"
+
+namespace sympathy {
+
+struct ContinuationOptions {
+  double lower = 0.0, upper = 0.0;  // parameter bounds; the run stops when it leaves them
+  double initial_step = 0.02;       // scaled arclength
+  double min_step = 1e-6;
+  double max_step = 0.1;
+  double max_parameter_step = 0.0;  // |dp| per step; 0: (upper - lower) / 25
+  int max_points = 400;
+  int max_corrector_iterations = 7;
+  double corrector_tolerance = 1e-9;  // |F|_inf, as NewtonOptions::residual_tolerance
+  // Per step, the largest change of a multiplier within `watch_band` of the unit circle (only
+  // those can cross it between two points and back).
+  double max_multiplier_change = 0.05;
+  double watch_band = 0.1;
+  double location_tolerance = 1e-8;  // relative, in the parameter
+  double trust_limit = 1e-6;         // trivial-multiplier error above which events are flagged
+  bool detect_bifurcations = true;
+  OrbitOptions orbit;  // shooting, rank tolerance, stability tolerance
+};
+
+struct ContinuationCallbacks {
+  std::function<void(const ContinuationPoint&)> on_point;  // each point as it is accepted
+  std::function<void(const Bifurcation&)> on_event;        // each bifurcation as it is located
+  std::function<bool()> stop_requested;                    // polled between points
+};
+
+class Continuation {
+ public:
+  // `parameter`: index of the continuation parameter of `system`, which the run changes.
+  Continuation(OdeSystem& system, int parameter, ContinuationOptions options);
+
+  // Continues from `start` (an orbit at the system's current parameter value) in the
+  // direction of increasing (+1) or decreasing (-1) parameter. When `initial_tangent` is given
+  // (branch switching), it is the first direction instead.
+  Branch run(const PeriodicOrbit& start, int direction, const ContinuationCallbacks& callbacks = {},
+             const Eigen::VectorXd& initial_tangent = Eigen::VectorXd());
+
+  const ContinuationOptions& options() const { return options_; }
+
+ private:
+  struct Corrected;
+  Corrected correct(const Eigen::VectorXd& from, const Eigen::VectorXd& tangent, double step,
+                    const Eigen::VectorXd& start_guess);
+  Eigen::VectorXd tangent_at(const Corrected& c, const Eigen::VectorXd& previous) const;
+  ContinuationPoint make_point(const Corrected& c, const Eigen::VectorXd& tangent, int index,
+                               double step);
+  void detect(const ContinuationPoint& a, const ContinuationPoint& b, Branch& branch,
+              const ContinuationCallbacks& callbacks);
+  Bifurcation locate(const ContinuationPoint& a, const ContinuationPoint& b, BifurcationType guess,
+                     int multiplicity, std::complex<double> mu_a, std::complex<double> mu_b);
+  double scaled_dot(const Eigen::VectorXd& u, const Eigen::VectorXd& v) const;
+  void set_weights(const PeriodicOrbit& start);
+
+  OdeSystem& system_;
+  int parameter_;
+  ContinuationOptions options_;
+  std::unique_ptr<ShootingProblem> problem_;
+  Eigen::VectorXd weights_;  // of (unknowns, parameter): 1 / typical size
+};
+
+}  // namespace sympathy

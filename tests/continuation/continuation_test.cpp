@@ -1,0 +1,164 @@
+#include "continuation/continuation.hpp"
+
+#include <gtest/gtest.h>
+
+#include <numbers>
+
+#include "tests/support/test_systems.hpp"
+
+namespace sympathy {
+namespace {
+
+using testing::NormalForm;
+using Kind = NormalForm::Kind;
+constexpr double kPi = std::numbers::pi;
+
+ContinuationOptions options(double lower, double upper) {
+  ContinuationOptions o;
+  o.lower = lower;
+  o.upper = upper;
+  o.orbit.shooting.flow.rtol = 1e-11;
+  o.orbit.shooting.flow.atol = 1e-13;
+  return o;
+}
+
+// The unit circle (with zero transverse states) as the starting orbit.
+PeriodicOrbit circle(const OdeSystem& system, double radius = 1.0) {
+  Eigen::VectorXd z = Eigen::VectorXd::Zero(system.dimension());
+  z[0] = radius;
+  const auto orbit = solve_periodic_orbit(system, z, 2 * kPi, {}, OrbitOptions{});
+  EXPECT_TRUE(orbit.converged()) << orbit.newton.reason;
+  return orbit;
+}
+
+std::vector<Bifurcation> events_of(const Branch& b, BifurcationType type) {
+  std::vector<Bifurcation> out;
+  for (const auto& e : b.events)
+    if (e.type == type) out.push_back(e);
+  return out;
+}
+
+// Fold of cycles at mu = -1/4 exactly (r^2 = 1/2), reached from the stable cycle near r = 1
+// going down; the branch turns back there (and would reach r = 0, the Hopf point, at mu = 0:
+// the upper bound stops it before). Located to 1e-8.
+TEST(Continuation, FoldOfCyclesLocated) {
+  NormalForm system(Kind::Fold, -0.05);
+  const auto start = circle(system);
+  Continuation c(system, 0, options(-0.5, -0.02));
+  Branch branch = c.run(start, -1);
+  const auto folds = events_of(branch, BifurcationType::Fold);
+  ASSERT_EQ(folds.size(), 1u) << branch.stop_reason;
+  EXPECT_NEAR(folds[0].parameter, -0.25, 1e-8);
+  EXPECT_TRUE(folds[0].located);
+  EXPECT_TRUE(folds[0].trusted);
+  EXPECT_NEAR(folds[0].state0.head(2).norm(), std::sqrt(0.5), 1e-4);
+  EXPECT_NEAR(folds[0].period, 2 * kPi, 1e-9);
+  // Before the fold stable, after it (the inner cycles) unstable.
+  EXPECT_EQ(branch.points.front().orbit.floquet.stability, Stability::Stable);
+  bool unstable_after = false;
+  for (const auto& p : branch.points)
+    if (p.orbit.state0.head(2).norm() < 0.6)
+      unstable_after |= p.orbit.floquet.stability == Stability::Unstable;
+  EXPECT_TRUE(unstable_after);
+  EXPECT_TRUE(events_of(branch, BifurcationType::BranchPoint).empty());
+}
+
+// A transverse pitchfork: the multiplier exp(2 pi mu) crosses +1 at mu = 0 without a fold.
+TEST(Continuation, BranchPointLocated) {
+  NormalForm system(Kind::Pitchfork, -0.4);
+  const auto start = circle(system);
+  Continuation c(system, 0, options(-0.5, 0.5));
+  const Branch branch = c.run(start, +1);
+  const auto bps = events_of(branch, BifurcationType::BranchPoint);
+  ASSERT_EQ(bps.size(), 1u) << branch.stop_reason;
+  EXPECT_NEAR(bps[0].parameter, 0.0, 1e-8);
+  EXPECT_EQ(bps[0].multiplicity, 1);
+  EXPECT_TRUE(events_of(branch, BifurcationType::Fold).empty());
+  EXPECT_EQ(branch.stop_reason, "reached the parameter bound");
+  // Multipliers along the branch: exp(2 pi mu), to the integration accuracy.
+  for (const auto& p : branch.points) {
+    double largest = 0.0;
+    for (const auto& m : p.orbit.floquet.multipliers)
+      if (!m.trivial) largest = std::max(largest, m.modulus());
+    EXPECT_NEAR(largest, std::exp(2 * kPi * p.parameter), 1e-8) << p.parameter;
+  }
+}
+
+// Two transverse directions cross +1 together (a symmetric system): the product of
+// (mu_i - 1) keeps its sign and would miss it; the event says multiplicity 2.
+TEST(Continuation, DoubleCrossingReported) {
+  NormalForm system(Kind::Pitchfork, -0.4, 2);
+  const auto start = circle(system);
+  Continuation c(system, 0, options(-0.5, 0.5));
+  const Branch branch = c.run(start, +1);
+  const auto bps = events_of(branch, BifurcationType::BranchPoint);
+  ASSERT_EQ(bps.size(), 1u);
+  EXPECT_EQ(bps[0].multiplicity, 2);
+  EXPECT_NEAR(bps[0].parameter, 0.0, 1e-8);
+  EXPECT_NE(bps[0].note.find("2 multipliers cross +1 together"), std::string::npos);
+}
+
+// A complex pair exp(2 pi (mu +- 0.3 i)) leaves the unit circle at mu = 0: Neimark-Sacker,
+// with the pair's argument 2 pi 0.3 (mod 2 pi) at the located point.
+TEST(Continuation, NeimarkSackerLocated) {
+  NormalForm system(Kind::Rotation, -0.3);
+  const auto start = circle(system);
+  Continuation c(system, 0, options(-0.5, 0.5));
+  const Branch branch = c.run(start, +1);
+  const auto ns = events_of(branch, BifurcationType::NeimarkSacker);
+  ASSERT_EQ(ns.size(), 1u) << branch.stop_reason;
+  EXPECT_NEAR(ns[0].parameter, 0.0, 1e-8);
+  double angle = 0.0;
+  for (const auto& m : ns[0].floquet.multipliers)
+    if (!m.trivial) angle = std::max(angle, std::abs(std::arg(m.value)));
+  EXPECT_NEAR(angle, 2 * kPi * 0.3, 1e-6);
+  EXPECT_TRUE(events_of(branch, BifurcationType::BranchPoint).empty());
+}
+
+// A real multiplier -exp(2 pi mu) crosses -1 at mu = 0: period doubling.
+TEST(Continuation, PeriodDoublingLocated) {
+  NormalForm system(Kind::Moebius, -0.3);
+  const auto start = circle(system);
+  EXPECT_NEAR(start.floquet.multipliers[1].value.real(), -std::exp(-0.6 * kPi), 1e-8);
+  Continuation c(system, 0, options(-0.5, 0.5));
+  const Branch branch = c.run(start, +1);
+  const auto pd = events_of(branch, BifurcationType::PeriodDoubling);
+  ASSERT_EQ(pd.size(), 1u) << branch.stop_reason;
+  EXPECT_NEAR(pd[0].parameter, 0.0, 1e-8);
+  EXPECT_EQ(pd[0].multiplicity, 1);
+  EXPECT_TRUE(events_of(branch, BifurcationType::NeimarkSacker).empty());
+}
+
+// Events near points whose trivial multiplier is off by more than the trust limit are flagged,
+// not reported as found: here with a limit no computation can meet.
+TEST(Continuation, UntrustedEventsAreFlagged) {
+  NormalForm system(Kind::Pitchfork, -0.4);
+  const auto start = circle(system);
+  auto o = options(-0.5, 0.5);
+  o.trust_limit = 1e-16;
+  Continuation c(system, 0, o);
+  const Branch branch = c.run(start, +1);
+  ASSERT_EQ(branch.events.size(), 1u);
+  EXPECT_FALSE(branch.events[0].trusted);
+  EXPECT_NE(branch.events[0].note.find("not trusted"), std::string::npos);
+}
+
+// Callbacks see every point as it comes, and a stop request ends the run, keeping the points.
+TEST(Continuation, StreamsPointsAndStopsOnRequest) {
+  NormalForm system(Kind::Pitchfork, -0.4);
+  const auto start = circle(system);
+  Continuation c(system, 0, options(-0.5, 0.5));
+  int seen = 0;
+  ContinuationCallbacks callbacks;
+  callbacks.on_point = [&](const ContinuationPoint&) { ++seen; };
+  callbacks.stop_requested = [&] { return seen >= 4; };
+  const Branch branch = c.run(start, +1, callbacks);
+  EXPECT_EQ(branch.stop_reason, "interrupted");
+  EXPECT_EQ(seen, 4);
+  EXPECT_EQ(branch.points.size(), 4u);
+  for (std::size_t i = 1; i < branch.points.size(); ++i)
+    EXPECT_GT(branch.points[i].parameter, branch.points[i - 1].parameter);
+}
+
+}  // namespace
+}  // namespace sympathy
