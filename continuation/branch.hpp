@@ -1,6 +1,7 @@
 // Branches of periodic orbits and the bifurcations found on them.
 #pragma once
 
+#include <complex>
 #include <string>
 #include <vector>
 
@@ -36,14 +37,16 @@ struct Bifurcation {
   double parameter = 0.0;    // located value
   double uncertainty = 0.0;  // width of the final bracket in the parameter
   double period = 0.0;
-  FloquetAnalysis floquet;  // at the located point
-  Eigen::VectorXd state0;   // orbit at the located point
+  FloquetAnalysis floquet;              // at the located point
+  std::complex<double> crossing = 0.0;  // the multiplier followed across (LP: nearest to +1)
+  Eigen::VectorXd state0;               // orbit at the located point
   Eigen::VectorXd unknowns;
   Eigen::VectorXd tangent;
-  bool located = false;  // the bracket shrank to the tolerance
-  bool trusted = true;   // false: a trivial-multiplier error too large near it
-  std::string note;      // what to know about it (why untrusted, how it was detected)
-  int after_point = 0;   // index of the branch point before it
+  bool located = false;    // the bracket shrank to the tolerance
+  bool trusted = true;     // false: a trivial-multiplier error too large near it
+  std::string note;        // what to know about it (why untrusted, how it was detected)
+  int after_point = 0;     // index of the branch point before it
+  double arclength = 0.0;  // from that point (orders events found in one interval)
 };
 
 struct Branch {

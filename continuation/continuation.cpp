@@ -5,6 +5,7 @@
 #include <cmath>
 #include <limits>
 #include <sstream>
+#include <type_traits>
 
 #include "core/linear_solve.hpp"
 
@@ -60,17 +61,31 @@ std::vector<std::complex<double>> movable(const FloquetAnalysis& f) {
   return v;
 }
 
-// Pairs (a_i, b_j) matched greedily by distance; sizes must agree.
-std::vector<std::pair<std::complex<double>, std::complex<double>>> match(
-    std::vector<std::complex<double>> a, std::vector<std::complex<double>> b) {
-  std::vector<std::pair<std::complex<double>, std::complex<double>>> pairs;
+std::vector<Multiplier> nontrivial(const FloquetAnalysis& f) {
+  std::vector<Multiplier> v;
+  for (const auto& m : f.multipliers)
+    if (!m.trivial) v.push_back(m);
+  return v;
+}
+
+// Pairs (a_i, b_j) matched greedily by distance.
+template <class T>
+std::vector<std::pair<T, T>> match(std::vector<T> a, std::vector<T> b) {
+  auto value = [](const auto& x) {
+    if constexpr (std::is_same_v<T, Multiplier>) {
+      return x.value;
+    } else {
+      return x;
+    }
+  };
+  std::vector<std::pair<T, T>> pairs;
   while (!a.empty() && !b.empty()) {
     std::size_t bi = 0, bj = 0;
-    double best = std::abs(a[0] - b[0]);
+    double best = std::abs(value(a[0]) - value(b[0]));
     for (std::size_t i = 0; i < a.size(); ++i)
       for (std::size_t j = 0; j < b.size(); ++j)
-        if (std::abs(a[i] - b[j]) < best) {
-          best = std::abs(a[i] - b[j]);
+        if (std::abs(value(a[i]) - value(b[j])) < best) {
+          best = std::abs(value(a[i]) - value(b[j]));
           bi = i;
           bj = j;
         }
@@ -180,10 +195,15 @@ Continuation::Corrected Continuation::correct(const Eigen::VectorXd& from,
   }
 }
 
-Eigen::VectorXd Continuation::tangent_at(const Corrected& c,
-                                         const Eigen::VectorXd& previous) const {
+// The tangent in the phase section through the point itself, which the next step's corrector
+// uses: with the previous point's section it would carry a slide along the orbit, which the
+// scaled norm weighs heavily and which can turn the next step backwards.
+Eigen::VectorXd Continuation::tangent_at(const Corrected& c, const Eigen::VectorXd& previous) {
   const int N = problem_->unknowns();
+  const Eigen::VectorXd reference = problem_->phase_reference();
+  problem_->set_phase_reference(c.y.head(problem_->dimension()));
   const Eigen::SparseMatrix<double> jac = problem_->jacobian(c.evaluation, true);
+  problem_->set_phase_reference(reference);
   std::vector<Eigen::Triplet<double>> t;
   for (int k = 0; k < jac.outerSize(); ++k)
     for (Eigen::SparseMatrix<double>::InnerIterator i(jac, k); i; ++i)
@@ -219,8 +239,7 @@ ContinuationPoint Continuation::make_point(const Corrected& c, const Eigen::Vect
   o.period = c.y[n * m];
   o.segments = m;
   o.residual = inf_norm(c.evaluation.residual.head(n * m));
-  o.family_dimension =
-      rank_deficiency(problem_->jacobian(c.evaluation), options_.orbit.newton.rank_tolerance);
+  o.family_dimension = family_dimension_;
   system_.set_parameter(parameter_, p.parameter);
   o.floquet = analyze_floquet(c.evaluation.transitions, system_.rhs(0.0, o.state0),
                               o.family_dimension, options_.orbit.floquet);
@@ -265,6 +284,10 @@ Branch Continuation::run(const PeriodicOrbit& start, int direction,
   along_parameter[N] = 1.0 / weights_[N];  // unit in the scaled norm
   const Corrected c0 = correct(y0, along_parameter, 0.0, y0);
   if (!c0.converged) return finish("the starting orbit does not converge: " + c0.reason);
+  // A continuum of orbits persists along the branch: its dimension is decided once, here, not
+  // at each point (near a branch point the Jacobian is nearly singular too, for other reasons).
+  family_dimension_ =
+      rank_deficiency(problem_->jacobian(c0.evaluation), options_.orbit.newton.rank_tolerance);
   Eigen::VectorXd tau;
   if (initial_tangent.size() == N + 1) {
     tau = initial_tangent / std::sqrt(scaled_dot(initial_tangent, initial_tangent));
@@ -294,16 +317,28 @@ Branch Continuation::run(const PeriodicOrbit& start, int direction,
       continue;
     }
     const Eigen::VectorXd tau_b = tangent_at(c, a.tangent);
+    if (scaled_dot(tau_b, a.tangent) < options_.min_tangent_cosine && ds > 4 * options_.min_step) {
+      ds *= 0.5;
+      continue;
+    }
     ContinuationPoint b = make_point(c, tau_b, a.index + sign, ds);
-    // Multipliers that move far in one step may hide a window of instability: shorten it.
-    double change = 0.0;
-    const auto ma = movable(a.orbit.floquet), mb = movable(b.orbit.floquet);
-    if (ma.size() == mb.size())
-      for (const auto& [x, y] : match(ma, mb))
-        if (std::min(std::abs(std::abs(x) - 1.0), std::abs(std::abs(y) - 1.0)) <
-            options_.watch_band)
-          change = std::max(change, std::abs(x - y));
-    if (change > options_.max_multiplier_change && ds > 4 * options_.min_step) {
+    // Multipliers whose modulus moves far in one step near the unit circle may hide a window of
+    // instability; any that moves very far makes the matching of multipliers doubtful.
+    // A multiplier near the circle that moves more than half way to its nearest neighbour
+    // could be matched to the wrong one (gaps below 0.01, collisions, are left alone).
+    bool too_far = false;
+    const auto from = movable(a.orbit.floquet);
+    for (const auto& [x, y] : match(from, movable(b.orbit.floquet))) {
+      const bool near =
+          std::min(std::abs(std::abs(x) - 1.0), std::abs(std::abs(y) - 1.0)) < options_.watch_band;
+      too_far |= near && std::abs(std::abs(x) - std::abs(y)) > options_.max_modulus_change;
+      too_far |= std::abs(x - y) > options_.max_multiplier_change;
+      double gap = std::numeric_limits<double>::infinity();
+      for (const auto& z : from)
+        if (z != x) gap = std::min(gap, std::abs(z - x));
+      too_far |= near && gap > 0.01 && std::abs(x - y) > 0.5 * gap;
+    }
+    if (too_far && ds > 4 * options_.min_step) {
       ds *= 0.5;
       continue;
     }
@@ -325,13 +360,16 @@ void Continuation::detect(const ContinuationPoint& a, const ContinuationPoint& b
                           const ContinuationCallbacks& callbacks) {
   const int N = problem_->unknowns();
   const bool fold = a.tangent[N] * b.tangent[N] < 0.0;
-  const auto ma = movable(a.orbit.floquet), mb = movable(b.orbit.floquet);
   struct Crossing {
     std::complex<double> a, b;
   };
   std::vector<Crossing> plus, minus, complex;
-  if (ma.size() == mb.size()) {
-    for (const auto& [x, y] : match(ma, mb)) {
+  {
+    // Every nontrivial multiplier is followed; only one structural at both ends (a family's
+    // multiplier sitting at 1) is ignored.
+    for (const auto& [mx, my] : match(nontrivial(a.orbit.floquet), nontrivial(b.orbit.floquet))) {
+      if (mx.structural && my.structural) continue;
+      const auto x = mx.value, y = my.value;
       if ((std::abs(x) - 1.0) * (std::abs(y) - 1.0) >= 0.0) continue;
       if (is_real(x) && is_real(y)) {
         (x.real() > 0 ? plus : minus).push_back({x, y});
@@ -355,6 +393,7 @@ void Continuation::detect(const ContinuationPoint& a, const ContinuationPoint& b
     }
     return groups;
   };
+  std::vector<Bifurcation> found;
   auto report = [&](Bifurcation e) {
     e.after_point = a.index;
     const double worst = std::max(
@@ -365,8 +404,7 @@ void Continuation::detect(const ContinuationPoint& a, const ContinuationPoint& b
       msg << "not trusted: trivial-multiplier error " << worst << " above " << options_.trust_limit;
       e.note += (e.note.empty() ? "" : "; ") + msg.str();
     }
-    branch.events.push_back(e);
-    if (callbacks.on_event) callbacks.on_event(branch.events.back());
+    found.push_back(std::move(e));
   };
   auto plus_groups = clusters(plus);
   if (fold) {
@@ -394,6 +432,12 @@ void Continuation::detect(const ContinuationPoint& a, const ContinuationPoint& b
     if (g.size() > 1) e.note = std::to_string(g.size()) + " complex pairs cross together";
     report(e);
   }
+  std::stable_sort(found.begin(), found.end(),
+                   [](const auto& x, const auto& y) { return x.arclength < y.arclength; });
+  for (auto& e : found) {
+    branch.events.push_back(std::move(e));
+    if (callbacks.on_event) callbacks.on_event(branch.events.back());
+  }
 }
 
 Bifurcation Continuation::locate(const ContinuationPoint& a, const ContinuationPoint& b,
@@ -403,28 +447,36 @@ Bifurcation Continuation::locate(const ContinuationPoint& a, const ContinuationP
   Eigen::VectorXd ya(N + 1);
   ya << a.unknowns, a.parameter;
   const double sb = b.step;
-  // The test function at a point: the tangent's parameter component for a fold; |mu| - 1 of
-  // the multiplier followed from mu_a to mu_b otherwise.
-  auto test = [&](const ContinuationPoint& p, double s) {
-    if (type == BifurcationType::Fold) return p.tangent[N];
-    const std::complex<double> expected = mu_a + (s / sb) * (mu_b - mu_a);
-    double best = std::numeric_limits<double>::infinity(), value = 0.0;
-    for (const auto& mu : movable(p.orbit.floquet)) {
-      const double d = std::abs(mu - expected);
-      if (d < best) {
-        best = d;
-        value = std::abs(mu) - 1.0;
+  // The multiplier followed across, by continuity: the one nearest the value interpolated
+  // between the multipliers followed at the current ends of the bracket (for a fold, the
+  // nontrivial one nearest to 1).
+  double s_lo = 0.0, s_hi = sb;
+  std::complex<double> mu_lo = mu_a, mu_hi = mu_b;
+  auto tracked = [&](const ContinuationPoint& p, double s) {
+    const std::complex<double> expected =
+        type == BifurcationType::Fold ? 1.0 : mu_lo + (s - s_lo) / (s_hi - s_lo) * (mu_hi - mu_lo);
+    std::complex<double> found = 0.0;
+    double best = std::numeric_limits<double>::infinity();
+    for (const auto& m : nontrivial(p.orbit.floquet))
+      if (std::abs(m.value - expected) < best) {
+        best = std::abs(m.value - expected);
+        found = m.value;
       }
-    }
-    return value;
+    return found;
+  };
+  // The test function: the tangent's parameter component for a fold; |mu| - 1 of the
+  // multiplier followed otherwise.
+  auto test = [&](const ContinuationPoint& p, std::complex<double> mu) {
+    return type == BifurcationType::Fold ? p.tangent[N] : std::abs(mu) - 1.0;
   };
   Bifurcation e;
   e.type = type;
   e.multiplicity = multiplicity;
-  double s_lo = 0.0, s_hi = sb;
-  double f_lo = test(a, 0.0), f_hi = test(b, sb);
+  double f_lo = test(a, mu_a), f_hi = test(b, mu_b);
   ContinuationPoint lo = a, hi = b, best = std::abs(f_lo) < std::abs(f_hi) ? a : b;
   double f_best = std::min(std::abs(f_lo), std::abs(f_hi));
+  std::complex<double> mu_best = std::abs(f_lo) < std::abs(f_hi) ? mu_a : mu_b;
+  double s_best = std::abs(f_lo) < std::abs(f_hi) ? 0.0 : sb;
   int side = 0;  // Illinois: which end was kept last time
   problem_->set_phase_reference(a.orbit.state0);
   for (int iteration = 0; iteration < 60; ++iteration) {
@@ -445,29 +497,37 @@ Bifurcation Continuation::locate(const ContinuationPoint& a, const ContinuationP
       break;
     }
     ContinuationPoint p = make_point(c, tangent_at(c, a.tangent), a.index, s);
-    const double f = test(p, s);
+    const std::complex<double> mu = tracked(p, s);
+    const double f = test(p, mu);
     if (std::abs(f) < f_best) {
       f_best = std::abs(f);
       best = p;
+      mu_best = mu;
+      s_best = s;
     }
     if ((f > 0) == (f_hi > 0)) {
       s_hi = s;
       f_hi = f;
+      mu_hi = mu;
       hi = std::move(p);
       if (side == +1) f_lo *= 0.5;
       side = +1;
     } else {
       s_lo = s;
       f_lo = f;
+      mu_lo = mu;
       lo = std::move(p);
       if (side == -1) f_hi *= 0.5;
       side = -1;
     }
   }
   e.parameter = best.parameter;
+  e.arclength = s_best;
   e.uncertainty = std::abs(hi.parameter - lo.parameter);
   e.period = best.orbit.period;
   e.floquet = best.orbit.floquet;
+  e.crossing = type == BifurcationType::Fold ? tracked(best, 0.0) : mu_best;
+  if (e.crossing.imag() < 0.0) e.crossing = std::conj(e.crossing);
   e.state0 = best.orbit.state0;
   e.unknowns = best.unknowns;
   e.tangent = best.tangent;

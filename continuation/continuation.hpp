@@ -7,11 +7,11 @@
 // steps mean the same in metres, radians and newtons per metre. The tangent at a converged
 // point comes from that point's own Jacobian: nothing is integrated twice.
 //
-// Steps grow after easy corrections and shrink after hard or failed ones, and shrink when a
-// multiplier near the unit circle moves more than a set amount, so that a narrow window of
-// instability is not stepped over. Between points, test functions (the tangent's parameter
-// component for folds, |mu| - 1 of each multiplier crossing the unit circle) locate every
-// bifurcation to a relative tolerance in the parameter.
+// Steps grow after easy corrections and shrink after hard or failed ones, after a step that
+// turns the tangent too far, and when a multiplier near the unit circle moves more than a set
+// amount, so that a narrow window of instability is not stepped over. Between points, test
+// functions (the tangent's parameter component for folds, |mu| - 1 of each multiplier crossing the
+// unit circle) locate every bifurcation to a relative tolerance in the parameter.
 #pragma once
 
 #include <functional>
@@ -29,10 +29,14 @@ struct ContinuationOptions {
   int max_points = 400;
   int max_corrector_iterations = 7;
   double corrector_tolerance = 1e-9;  // |F|_inf, as NewtonOptions::residual_tolerance
-  // Per step, the largest change of a multiplier within `watch_band` of the unit circle (only
-  // those can cross it between two points and back).
-  double max_multiplier_change = 0.05;
+  // Per step, the largest change of the modulus of a multiplier within `watch_band` of the unit
+  // circle (only those can cross it and come back between two points), and of any multiplier.
+  double max_modulus_change = 0.02;
   double watch_band = 0.1;
+  double max_multiplier_change = 0.3;
+  // Smallest cosine between consecutive unit tangents: a step that turns the tangent more is
+  // halved, so that orientation (and hence direction along the branch) stays unambiguous.
+  double min_tangent_cosine = 0.9;
   double location_tolerance = 1e-8;  // relative, in the parameter
   double trust_limit = 1e-6;         // trivial-multiplier error above which events are flagged
   bool detect_bifurcations = true;
@@ -62,7 +66,7 @@ class Continuation {
   struct Corrected;
   Corrected correct(const Eigen::VectorXd& from, const Eigen::VectorXd& tangent, double step,
                     const Eigen::VectorXd& start_guess);
-  Eigen::VectorXd tangent_at(const Corrected& c, const Eigen::VectorXd& previous) const;
+  Eigen::VectorXd tangent_at(const Corrected& c, const Eigen::VectorXd& previous);
   ContinuationPoint make_point(const Corrected& c, const Eigen::VectorXd& tangent, int index,
                                double step);
   void detect(const ContinuationPoint& a, const ContinuationPoint& b, Branch& branch,
@@ -76,7 +80,8 @@ class Continuation {
   int parameter_;
   ContinuationOptions options_;
   std::unique_ptr<ShootingProblem> problem_;
-  Eigen::VectorXd weights_;  // of (unknowns, parameter): 1 / typical size
+  Eigen::VectorXd weights_;   // of (unknowns, parameter): 1 / typical size
+  int family_dimension_ = 0;  // of the starting orbit's continuum, kept along the branch
 };
 
 }  // namespace sympathy

@@ -38,6 +38,7 @@ class ShootingProblem {
 
   // The phase condition's section: through z_ref, normal f(z_ref).
   void set_phase_reference(const Eigen::VectorXd& z_ref);
+  const Eigen::VectorXd& phase_reference() const { return z_ref_; }
   const Eigen::VectorXd& phase_normal() const { return f_ref_; }
 
   // Unknowns from an initial state and period: the segment states by integrating one period.

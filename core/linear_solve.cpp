@@ -1,5 +1,6 @@
 #include "core/linear_solve.hpp"
 
+#include <cmath>
 #include <stdexcept>
 
 #include "core/sparse_lu.hpp"
@@ -17,12 +18,22 @@ Eigen::VectorXd column_scale(const Eigen::SparseMatrix<double>& a) {
   return scale;
 }
 
+// Row scales of a (already column-scaled) matrix: each row to unit norm.
+Eigen::VectorXd row_scale(const Eigen::SparseMatrix<double>& a) {
+  Eigen::VectorXd norm2 = Eigen::VectorXd::Zero(a.rows());
+  for (int k = 0; k < a.outerSize(); ++k)
+    for (Eigen::SparseMatrix<double>::InnerIterator i(a, k); i; ++i)
+      norm2[i.row()] += i.value() * i.value();
+  Eigen::VectorXd scale(a.rows());
+  for (int i = 0; i < a.rows(); ++i) scale[i] = norm2[i] > 0.0 ? 1.0 / std::sqrt(norm2[i]) : 1.0;
+  return scale;
+}
+
 // An SVD, not Eigen 3.4's CompleteOrthogonalDecomposition: its solve reads uninitialized
 // workspace on rank-deficient matrices (seen with valgrind), which is the case that matters here.
-Eigen::BDCSVD<Eigen::MatrixXd> scaled_svd(const Eigen::SparseMatrix<double>& a,
-                                          const Eigen::VectorXd& scale, double rank_tolerance,
-                                          bool vectors) {
-  Eigen::BDCSVD<Eigen::MatrixXd> svd((a * scale.asDiagonal()).toDense(),
+Eigen::BDCSVD<Eigen::MatrixXd> scaled_svd(const Eigen::SparseMatrix<double>& scaled,
+                                          double rank_tolerance, bool vectors) {
+  Eigen::BDCSVD<Eigen::MatrixXd> svd(scaled.toDense(),
                                      vectors ? Eigen::ComputeThinU | Eigen::ComputeThinV : 0);
   svd.setThreshold(rank_tolerance);
   return svd;
@@ -31,7 +42,9 @@ Eigen::BDCSVD<Eigen::MatrixXd> scaled_svd(const Eigen::SparseMatrix<double>& a,
 }  // namespace
 
 int rank_deficiency(const Eigen::SparseMatrix<double>& a, double rank_tolerance) {
-  const auto svd = scaled_svd(a, column_scale(a), rank_tolerance, false);
+  const Eigen::SparseMatrix<double> columns = a * column_scale(a).asDiagonal();
+  const Eigen::SparseMatrix<double> scaled = row_scale(columns).asDiagonal() * columns;
+  const auto svd = scaled_svd(scaled, rank_tolerance, false);
   return static_cast<int>(std::min(a.rows(), a.cols()) - svd.rank());
 }
 
@@ -40,20 +53,24 @@ LinearSolution solve_linear(const Eigen::SparseMatrix<double>& a, const Eigen::V
   if (a.rows() != a.cols() || a.rows() != b.size())
     throw std::invalid_argument("solve_linear: sizes do not match");
   const int n = static_cast<int>(a.cols());
-  const Eigen::VectorXd scale = column_scale(a);
-  const Eigen::SparseMatrix<double> scaled = a * scale.asDiagonal();
+  // Solve (R A C) y = R b and x = C y: the same x, with rank decided free of units.
+  const Eigen::VectorXd columns = column_scale(a);
+  const Eigen::SparseMatrix<double> partly = a * columns.asDiagonal();
+  const Eigen::VectorXd rows = row_scale(partly);
+  const Eigen::SparseMatrix<double> scaled = rows.asDiagonal() * partly;
+  const Eigen::VectorXd rb = rows.asDiagonal() * b;
   LinearSolution s;
   if (options.prefer_sparse) {
     SparseLU lu(scaled);
     if (lu.rcond() > options.sparse_rcond_limit) {
-      s.x = scale.asDiagonal() * lu.solve(b);
+      s.x = columns.asDiagonal() * lu.solve(rb);
       s.sparse = true;
       return s;
     }
   }
-  const auto svd = scaled_svd(a, scale, options.rank_tolerance, true);
+  const auto svd = scaled_svd(scaled, options.rank_tolerance, true);
   s.rank_deficiency = n - static_cast<int>(svd.rank());
-  s.x = scale.asDiagonal() * svd.solve(b);  // the minimum-norm solution
+  s.x = columns.asDiagonal() * svd.solve(rb);  // minimum norm in the column-scaled variables
   return s;
 }
 

@@ -1,11 +1,11 @@
 // Solving the bordered linear systems of shooting Newton steps.
 //
-// Columns are scaled to unit norm first, so that mixed units (metres of platform travel next to
-// radians and seconds) do not pass for rank deficiency. A sparse system is factored by UMFPACK;
-// a small one, or one UMFPACK finds (nearly) singular, by a singular value decomposition, which
-// gives the rank and the minimum-norm solution. A singular system is not an error: on a
-// continuum of periodic orbits the Newton step is the minimum-norm one, and the rank deficiency
-// is the dimension of the continuum.
+// Columns, then rows, are scaled to unit norm first, so that mixed units (metres of platform
+// travel next to radians and seconds) do not pass for rank deficiency. A sparse system is factored
+// by UMFPACK; a small one, or one UMFPACK finds (nearly) singular, by a singular value
+// decomposition, which gives the rank and the minimum-norm solution. A singular system is not an
+// error: on a continuum of periodic orbits the Newton step is the minimum-norm one, and the rank
+// deficiency is the dimension of the continuum.
 #pragma once
 
 #include <Eigen/Dense>

@@ -18,6 +18,7 @@ void print_usage() {
       "commands:\n"
       "  simulate   integrate from a start; time series to CSV, summary of the end state\n"
       "  orbit      a periodic orbit from a start: period, Floquet multipliers, stability\n"
+      "  continue   a branch of orbits in one parameter, with its bifurcations\n"
       "run 'sympathy COMMAND --help' for the options of a command\n",
       stderr);
 }
@@ -34,6 +35,7 @@ int main(int argc, char** argv) {
   try {
     if (command == "simulate") return sympathy::cli::run_simulate(args);
     if (command == "orbit") return sympathy::cli::run_orbit(args);
+    if (command == "continue") return sympathy::cli::run_continue(args);
     std::fprintf(stderr, "sympathy: unknown command '%s'\n", command.c_str());
     print_usage();
     return 2;

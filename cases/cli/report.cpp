@@ -2,42 +2,67 @@
 
 #include <algorithm>
 #include <cmath>
+#include <numbers>
 
 namespace sympathy::cli {
 
-OrbitReport describe_orbit(const OdeSystem& system, const PeriodicOrbit& orbit) {
+OrbitReport describe_orbit(const MetronomeModel& model, const PeriodicOrbit& orbit) {
   OrbitReport r;
-  const int positions = system.dimension() / 2;
+  const int positions = model.dimension() / 2;
+  const int pendula = model.metronome_count();
   r.amplitudes.assign(positions, 0.0);
+  r.phase_differences.assign(pendula - 1, std::nan(""));
   if (!(orbit.period > 0.0)) return r;
   FlowOptions o;
   o.rtol = 1e-9;
   o.atol = 1e-12;
-  Flow flow(system, o);
+  Flow flow(model, o);
+  const int samples = 800;
   std::vector<double> times;
-  for (int k = 0; k <= 400; ++k) times.push_back(orbit.period * k / 400.0);
-  Eigen::VectorXd lo = orbit.state0, hi = orbit.state0;
+  for (int k = 0; k <= samples; ++k) times.push_back(orbit.period * k / samples);
+  Eigen::VectorXd lo = orbit.state0, hi = orbit.state0, previous = orbit.state0;
+  std::vector<double> crossing(pendula, std::nan(""));
+  double t_previous = 0.0;
   try {
-    flow.sample(orbit.state0, 0.0, times, [&](double, const Eigen::VectorXd& z) {
+    flow.sample(orbit.state0, 0.0, times, [&](double t, const Eigen::VectorXd& z) {
       lo = lo.cwiseMin(z);
       hi = hi.cwiseMax(z);
+      for (int i = 0; i < pendula; ++i) {
+        const int c = model.angle_index(i);
+        if (t > 0.0 && previous[c] < 0.0 && z[c] >= 0.0 && std::isnan(crossing[i]))
+          crossing[i] = t_previous + (t - t_previous) * (-previous[c]) / (z[c] - previous[c]);
+      }
+      previous = z;
+      t_previous = t;
     });
   } catch (const IntegrationError&) {
     return r;  // amplitudes unknown; the orbit's own figures still stand
   }
   for (int i = 0; i < positions; ++i) r.amplitudes[i] = 0.5 * (hi[i] - lo[i]);
+  for (int i = 1; i < pendula; ++i) {
+    if (std::isnan(crossing[0]) || std::isnan(crossing[i])) continue;
+    double phase = 2.0 * std::numbers::pi * (crossing[0] - crossing[i]) / orbit.period;
+    phase = std::remainder(phase, 2.0 * std::numbers::pi);
+    if (phase <= -std::numbers::pi) phase += 2.0 * std::numbers::pi;
+    r.phase_differences[i - 1] = phase;
+  }
   return r;
 }
 
-void print_orbit(std::FILE* out, const OdeSystem& system, const PeriodicOrbit& orbit,
+void print_orbit(std::FILE* out, const MetronomeModel& model, const PeriodicOrbit& orbit,
                  const OrbitReport& report, const OrbitOptions& options) {
-  const auto names = system.state_names();
+  const auto names = model.state_names();
   const auto& f = orbit.floquet;
   std::fprintf(out, "  period       %.12g s    frequency %.9g Hz\n", orbit.period,
                1.0 / orbit.period);
   std::fprintf(out, "  amplitudes  ");
   for (std::size_t i = 0; i < report.amplitudes.size(); ++i)
     std::fprintf(out, " %s %.6g", names[i].c_str(), report.amplitudes[i]);
+  if (!report.phase_differences.empty()) {
+    std::fprintf(out, "\n  phases to th1");
+    for (std::size_t i = 0; i < report.phase_differences.size(); ++i)
+      std::fprintf(out, " th%zu %+.6f", i + 2, report.phase_differences[i]);
+  }
   std::fprintf(out, "\n  multipliers  (modulus, argument in rad)\n");
   for (const auto& m : f.multipliers) {
     std::fprintf(out, "    %.12f  %+.6f", m.modulus(), std::arg(m.value));
@@ -89,8 +114,9 @@ nlohmann::json parameters_json(const OdeSystem& system) {
   return j;
 }
 
-nlohmann::json orbit_json(const OdeSystem& system, const PeriodicOrbit& orbit,
+nlohmann::json orbit_json(const MetronomeModel& model, const PeriodicOrbit& orbit,
                           const OrbitReport& report) {
+  const OdeSystem& system = model;
   const auto& f = orbit.floquet;
   nlohmann::json j;
   j["converged"] = orbit.converged();
@@ -117,6 +143,7 @@ nlohmann::json orbit_json(const OdeSystem& system, const PeriodicOrbit& orbit,
   for (std::size_t i = 0; i < report.amplitudes.size(); ++i)
     amplitudes[names[i]] = report.amplitudes[i];
   j["amplitudes"] = amplitudes;
+  j["phase_differences"] = report.phase_differences;
   j["params"] = parameters_json(system);
   j["newton"] = {{"converged", orbit.newton.converged},
                  {"reason", orbit.newton.reason},

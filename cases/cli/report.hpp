@@ -6,22 +6,26 @@
 
 #include <nlohmann/json.hpp>
 
+#include "cases/metronome_model.hpp"
 #include "continuation/periodic_orbit.hpp"
 #include "core/ode_system.hpp"
 
 namespace sympathy::cli {
 
 struct OrbitReport {
-  std::vector<double> amplitudes;  // half the range of each position over one period
+  std::vector<double> amplitudes;         // half the range of each position over one period
+  std::vector<double> phase_differences;  // of each angle but the first, to th1: rad in (-pi, pi]
 };
 
-// Samples the orbit over one period (plain integration) for its amplitudes.
-OrbitReport describe_orbit(const OdeSystem& system, const PeriodicOrbit& orbit);
+// Samples the orbit over one period (plain integration) for its amplitudes and the phase
+// differences of the pendula (from upward zero crossings; NaN for a pendulum that does not
+// cross zero).
+OrbitReport describe_orbit(const MetronomeModel& model, const PeriodicOrbit& orbit);
 
-void print_orbit(std::FILE* out, const OdeSystem& system, const PeriodicOrbit& orbit,
+void print_orbit(std::FILE* out, const MetronomeModel& model, const PeriodicOrbit& orbit,
                  const OrbitReport& report, const OrbitOptions& options);
 
-nlohmann::json orbit_json(const OdeSystem& system, const PeriodicOrbit& orbit,
+nlohmann::json orbit_json(const MetronomeModel& model, const PeriodicOrbit& orbit,
                           const OrbitReport& report);
 // [[re, im], ...]
 nlohmann::json multipliers_json(const FloquetAnalysis& floquet);

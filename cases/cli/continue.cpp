@@ -1,0 +1,93 @@
+// sympathy continue: a branch of periodic orbits in one parameter, with its bifurcations.
+#include <cstdio>
+#include <fstream>
+
+#include "cases/cli/branch_run.hpp"
+#include "cases/cli/commands.hpp"
+
+namespace sympathy::cli {
+
+int run_continue(const std::vector<std::string>& argv) {
+  auto options = case_options();
+  options.insert(
+      options.end(),
+      {{"--start", "NAME", false, "named start of the case (required)"},
+       {"--param", "P", false, "the continuation parameter (required): M, c, k, d, ..."},
+       {"--from", "A", false, "first parameter value (required): the branch starts here"},
+       {"--to", "B", false, "last parameter value (required)"},
+       {"--at", "V", false, "start at V instead and continue both ways, to A and to B"},
+       {"--initial", "VAR=VALUE", true, "initial state value (on top of --start)"},
+       {"--segments", "M", false, "shooting segments (default 1)"},
+       {"--step", "DS", false, "initial arclength step, scaled (default 0.02)"},
+       {"--max-step", "DS", false, "largest arclength step, scaled (default 0.1)"},
+       {"--max-points", "N", false, "point limit per direction (default 400)"},
+       {"--transient", "SECONDS", false, "integration before the first Newton (default 60)"},
+       {"--csv", "FILE", false, "stream every point to this CSV"},
+       {"--json", "FILE", false, "write the branch and its bifurcations as JSON"},
+       {"--quiet", "", false, "no progress lines"}});
+  const auto integrator = integrator_options();
+  options.insert(options.end(), integrator.begin(), integrator.end());
+  Arguments args("continue", argv, options, {"CASE"});
+
+  Stopwatch clock;
+  const LoadedCase c = load_case(args);
+  for (const char* required : {"--start", "--param", "--from", "--to"})
+    if (!args.has(required)) throw InputError(std::string(required) + " is required");
+  BranchRequest request;
+  request.start = *args.value("--start");
+  c.file.start(request.start);  // fails early with the list of starts
+  request.parameter = *args.value("--param");
+  if (!c.spec.has_parameter(request.parameter))
+    throw InputError("--param " + request.parameter + ": not a parameter of " + c.file.path() +
+                     "; expected one of: " + join(c.spec.parameter_names()));
+  request.from = args.number("--from", 0.0);
+  request.to = args.number("--to", 0.0);
+  if (request.from == request.to) throw InputError("--from and --to: expected different values");
+  if (args.has("--at")) request.at = args.number("--at", 0.0);
+  request.initial = args.assignments("--initial");
+  request.csv_path = args.text("--csv", "");
+  request.transient = args.number("--transient", 60.0);
+  if (args.flag("--quiet")) request.progress = nullptr;
+  auto& o = request.continuation;
+  o.orbit.shooting.segments = args.integer("--segments", 1);
+  if (o.orbit.shooting.segments < 1 || o.orbit.shooting.segments > 1000)
+    throw InputError("--segments: expected an integer from 1 to 1000");
+  o.initial_step = args.number("--step", o.initial_step);
+  o.max_step = args.number("--max-step", o.max_step);
+  o.max_points = args.integer("--max-points", o.max_points);
+  if (!(o.initial_step > 0.0) || !(o.max_step >= o.initial_step))
+    throw InputError("--step, --max-step: expected 0 < step <= max-step");
+  if (o.max_points < 2) throw InputError("--max-points: expected at least 2");
+  o.orbit.shooting.flow = flow_options(args, o.orbit.shooting.flow);
+  std::ofstream json_out;
+  if (auto path = args.value("--json")) {
+    json_out.open(*path);
+    if (!json_out) throw InputError(*path + ": cannot open for writing");
+  }
+
+  std::printf("sympathy continue %s  params %s  start %s  %s from %g to %g\n",
+              c.file.path().c_str(), c.params.empty() ? "(none)" : c.params.c_str(),
+              request.start.c_str(), request.parameter.c_str(), request.from, request.to);
+  std::fflush(stdout);
+  const BranchResult r = run_branch(c, request, interrupt_flag());
+  if (!r.started) {
+    std::printf("  %s\n  run time %.3f s\n", r.start_failure.c_str(), clock.seconds());
+    return 4;
+  }
+  std::printf("  %zu points; stopped: %s\n", r.branch.points.size(), r.branch.stop_reason.c_str());
+  std::printf("bifurcations:\n");
+  print_events(stdout, r, request.parameter);
+  std::printf("  run time %.3f s (%ld integrations, %ld steps)\n", clock.seconds(),
+              r.branch.flow.calls, r.branch.flow.steps);
+  if (json_out.is_open()) {
+    MetronomeModel model(c.spec);
+    nlohmann::json j = branch_json(r, request, model);
+    j["case"] = c.file.path();
+    j["params_set"] = c.params;
+    j["seconds"] = clock.seconds();
+    json_out << j.dump(1) << "\n";
+  }
+  return 0;
+}
+
+}  // namespace sympathy::cli
