@@ -27,6 +27,8 @@ struct ContinuationPoint {
   PeriodicOrbit orbit;       // state, period, multipliers, residual, trivial-multiplier error
   Eigen::VectorXd unknowns;  // shooting unknowns (all segment states and the period)
   Eigen::VectorXd tangent;   // unit tangent (unknowns, parameter) in the scaled norm
+  Eigen::VectorXd section;   // point the phase section goes through, for the tangent and the
+                             // next step (kept while the flow crosses it well)
   double step = 0.0;         // arclength step that led here (scaled)
   int iterations = 0;        // corrector iterations
 };
@@ -49,8 +51,17 @@ struct Bifurcation {
   double arclength = 0.0;  // from that point (orders events found in one interval)
 };
 
+// Steps rejected and retried shorter, by reason: what step control did on a branch.
+struct StepRejections {
+  int corrector = 0;    // the corrector failed
+  int turn = 0;         // the tangent turned too far
+  int multipliers = 0;  // multipliers near the circle moved too far, or ambiguously
+  int location = 0;     // a bifurcation in the step could not be located
+};
+
 struct Branch {
   std::string parameter_name;
+  StepRejections rejected;
   std::vector<ContinuationPoint> points;
   std::vector<Bifurcation> events;
   std::string stop_reason;

@@ -53,14 +53,6 @@ double inf_norm(const Eigen::VectorXd& v) {
   return v.size() ? v.cwiseAbs().maxCoeff() : 0.0;
 }
 
-// The multipliers that can cross: all but the trivial and structural ones.
-std::vector<std::complex<double>> movable(const FloquetAnalysis& f) {
-  std::vector<std::complex<double>> v;
-  for (const auto& m : f.multipliers)
-    if (!m.trivial && !m.structural) v.push_back(m.value);
-  return v;
-}
-
 std::vector<Multiplier> nontrivial(const FloquetAnalysis& f) {
   std::vector<Multiplier> v;
   for (const auto& m : f.multipliers)
@@ -100,6 +92,40 @@ bool is_real(std::complex<double> mu) {
   return std::abs(mu.imag()) <= 1e-6 * std::abs(mu);
 }
 
+// Multipliers of a followed to b. Each is first predicted at b by extrapolating its motion
+// from the point before a (moved by `ratio` times its last step), then matched to the nearest
+// of b's; `ambiguity` is the largest distance from a prediction to its match, relative to the
+// gap from that match to its nearest neighbour at b (above 1/2 the match is doubtful). Only
+// multipliers near the unit circle, and gaps above 0.01 (not collisions), count.
+struct Tracked {
+  std::vector<std::pair<Multiplier, Multiplier>> pairs;
+  double ambiguity = 0.0;
+};
+
+Tracked follow(const std::vector<Multiplier>& a, const std::vector<Multiplier>* before,
+               double ratio, const std::vector<Multiplier>& b) {
+  std::vector<Multiplier> predicted = a;
+  if (before && before->size() == a.size() && ratio > 0.0)
+    for (const auto& [x, y] : match(*before, a))
+      for (std::size_t i = 0; i < a.size(); ++i)
+        if (a[i].value == y.value) predicted[i].value = y.value + ratio * (y.value - x.value);
+  Tracked t;
+  for (const auto& [p, y] : match(predicted, b)) {
+    Multiplier origin = p;  // back from the prediction to a's own multiplier
+    for (std::size_t i = 0; i < predicted.size(); ++i)
+      if (predicted[i].value == p.value) origin = a[i];
+    double gap = std::numeric_limits<double>::infinity();
+    for (const auto& z : b)
+      if (z.value != y.value) gap = std::min(gap, std::abs(z.value - y.value));
+    const double from_circle =
+        std::min(std::abs(origin.modulus() - 1.0), std::abs(y.modulus() - 1.0));
+    if (gap > 0.01 && from_circle < 0.1)
+      t.ambiguity = std::max(t.ambiguity, std::abs(p.value - y.value) / gap);
+    t.pairs.emplace_back(origin, y);
+  }
+  return t;
+}
+
 }  // namespace
 
 Continuation::Continuation(OdeSystem& system, int parameter, ContinuationOptions options)
@@ -115,6 +141,28 @@ Continuation::Continuation(OdeSystem& system, int parameter, ContinuationOptions
 
 double Continuation::scaled_dot(const Eigen::VectorXd& u, const Eigen::VectorXd& v) const {
   return (weights_.array().square() * u.array() * v.array()).sum();
+}
+
+// The direction of a shift in time along the orbits at y: f at each segment's state, nothing in
+// the period or the parameter. Sections and phase drift move tangents along it without any
+// change of orbit, so comparisons of tangents leave it out.
+Eigen::VectorXd Continuation::time_shift(const Eigen::VectorXd& y) const {
+  const int n = problem_->dimension(), m = problem_->segments();
+  Eigen::VectorXd phi = Eigen::VectorXd::Zero(y.size());
+  for (int j = 0; j < m; ++j) phi.segment(j * n, n) = system_.rhs(0.0, y.segment(j * n, n));
+  return phi;
+}
+
+double Continuation::orbit_cosine(const Eigen::VectorXd& u, const Eigen::VectorXd& v,
+                                  const Eigen::VectorXd& at) const {
+  const Eigen::VectorXd phi = time_shift(at);
+  const double pp = scaled_dot(phi, phi);
+  auto strip = [&](const Eigen::VectorXd& x) {
+    return pp > 0.0 ? Eigen::VectorXd(x - scaled_dot(x, phi) / pp * phi) : x;
+  };
+  const Eigen::VectorXd a = strip(u), b = strip(v);
+  const double norms = std::sqrt(scaled_dot(a, a) * scaled_dot(b, b));
+  return norms > 0.0 ? scaled_dot(a, b) / norms : 0.0;
 }
 
 void Continuation::set_weights(const PeriodicOrbit& start) {
@@ -195,15 +243,10 @@ Continuation::Corrected Continuation::correct(const Eigen::VectorXd& from,
   }
 }
 
-// The tangent in the phase section through the point itself, which the next step's corrector
-// uses: with the previous point's section it would carry a slide along the orbit, which the
-// scaled norm weighs heavily and which can turn the next step backwards.
+// The tangent in the problem's current phase section: the one the next step's corrector uses.
 Eigen::VectorXd Continuation::tangent_at(const Corrected& c, const Eigen::VectorXd& previous) {
   const int N = problem_->unknowns();
-  const Eigen::VectorXd reference = problem_->phase_reference();
-  problem_->set_phase_reference(c.y.head(problem_->dimension()));
   const Eigen::SparseMatrix<double> jac = problem_->jacobian(c.evaluation, true);
-  problem_->set_phase_reference(reference);
   std::vector<Eigen::Triplet<double>> t;
   for (int k = 0; k < jac.outerSize(); ++k)
     for (Eigen::SparseMatrix<double>::InnerIterator i(jac, k); i; ++i)
@@ -220,7 +263,7 @@ Eigen::VectorXd Continuation::tangent_at(const Corrected& c, const Eigen::Vector
   linear.rank_tolerance = options_.orbit.newton.rank_tolerance;
   Eigen::VectorXd tau = solve_linear(bordered, rhs, linear).x;
   tau /= std::sqrt(scaled_dot(tau, tau));
-  if (scaled_dot(tau, previous) < 0.0) tau = -tau;
+  if (orbit_cosine(tau, previous, c.y) < 0.0) tau = -tau;
   return tau;
 }
 
@@ -295,10 +338,10 @@ Branch Continuation::run(const PeriodicOrbit& start, int direction,
     tau = tangent_at(c0, direction * along_parameter);
   }
   branch.points.push_back(make_point(c0, tau, 0, 0.0));
+  branch.points.back().section = start.state0;
   if (callbacks.on_point) callbacks.on_point(branch.points.back());
 
   double ds = options_.initial_step;
-  const int sign = direction >= 0 ? 1 : -1;
   for (;;) {
     if (callbacks.stop_requested && callbacks.stop_requested()) return finish("interrupted");
     if (static_cast<int>(branch.points.size()) >= options_.max_points)
@@ -309,44 +352,71 @@ Branch Continuation::run(const PeriodicOrbit& start, int direction,
       ds = std::max(options_.max_parameter_step / dp_per_ds, options_.min_step);
     Eigen::VectorXd ya(N + 1);
     ya << a.unknowns, a.parameter;
-    problem_->set_phase_reference(a.orbit.state0);
+    problem_->set_phase_reference(a.section);
     const Corrected c = correct(ya, a.tangent, ds, ya + ds * a.tangent);
     if (!c.converged) {
+      ++branch.rejected.corrector;
       ds *= 0.5;
       if (ds < options_.min_step) return finish("step size below the minimum: " + c.reason);
       continue;
     }
+    // The section stays while the flow crosses it well: moved every step, it would let the
+    // points drift along the orbits, which turns the tangents and shortens the steps.
+    const Eigen::VectorXd zb = c.y.head(problem_->dimension());
+    const Eigen::VectorXd fb = system_.rhs(0.0, zb);
+    const double crossing = problem_->phase_normal().normalized().dot(fb.normalized());
+    const Eigen::VectorXd section = crossing < 0.9 ? zb : a.section;
+    problem_->set_phase_reference(section);
     const Eigen::VectorXd tau_b = tangent_at(c, a.tangent);
-    if (scaled_dot(tau_b, a.tangent) < options_.min_tangent_cosine && ds > 4 * options_.min_step) {
+    if (orbit_cosine(tau_b, a.tangent, c.y) < options_.min_tangent_cosine &&
+        ds > 4 * options_.min_step) {
+      ++branch.rejected.turn;
       ds *= 0.5;
       continue;
     }
-    ContinuationPoint b = make_point(c, tau_b, a.index + sign, ds);
+    ContinuationPoint b = make_point(c, tau_b, a.index + 1, ds);
+    b.section = section;
     // Multipliers whose modulus moves far in one step near the unit circle may hide a window of
     // instability; any that moves very far makes the matching of multipliers doubtful.
-    // A multiplier near the circle that moves more than half way to its nearest neighbour
-    // could be matched to the wrong one (gaps below 0.01, collisions, are left alone).
-    bool too_far = false;
-    const auto from = movable(a.orbit.floquet);
-    for (const auto& [x, y] : match(from, movable(b.orbit.floquet))) {
+    // A multiplier near the circle whose modulus moves far in one step may hide a window of
+    // instability; one whose match at b is doubtful (followed with its predicted motion)
+    // makes crossings unreliable.
+    const ContinuationPoint* before =
+        branch.points.size() >= 2 ? &branch.points[branch.points.size() - 2] : nullptr;
+    const auto tracked = track(before, a, b);
+    bool too_far = tracked.ambiguity > 0.5;
+    for (const auto& [mx, my] : tracked.pairs) {
+      if (mx.structural && my.structural) continue;
+      const auto x = mx.value, y = my.value;
       const bool near =
           std::min(std::abs(std::abs(x) - 1.0), std::abs(std::abs(y) - 1.0)) < options_.watch_band;
       too_far |= near && std::abs(std::abs(x) - std::abs(y)) > options_.max_modulus_change;
-      too_far |= std::abs(x - y) > options_.max_multiplier_change;
-      double gap = std::numeric_limits<double>::infinity();
-      for (const auto& z : from)
-        if (z != x) gap = std::min(gap, std::abs(z - x));
-      too_far |= near && gap > 0.01 && std::abs(x - y) > 0.5 * gap;
     }
     if (too_far && ds > 4 * options_.min_step) {
+      ++branch.rejected.multipliers;
       ds *= 0.5;
       continue;
+    }
+    std::vector<Bifurcation> events;
+    if (options_.detect_bifurcations) {
+      events = detect(tracked, a, b);
+      // An event that could not be located in this step: try a shorter one (the multipliers
+      // are then easier to follow), unless the step is short already.
+      const bool unlocated =
+          std::any_of(events.begin(), events.end(), [](const auto& e) { return !e.located; });
+      if (unlocated && ds > 1e-3 * options_.initial_step && ds > 4 * options_.min_step) {
+        ++branch.rejected.location;
+        ds *= 0.5;
+        continue;
+      }
     }
     branch.points.push_back(std::move(b));
     const ContinuationPoint& added = branch.points.back();
     if (callbacks.on_point) callbacks.on_point(added);
-    if (options_.detect_bifurcations)
-      detect(branch.points[branch.points.size() - 2], added, branch, callbacks);
+    for (auto& e : events) {
+      branch.events.push_back(std::move(e));
+      if (callbacks.on_event) callbacks.on_event(branch.events.back());
+    }
     if (added.parameter < options_.lower || added.parameter > options_.upper)
       return finish("reached the parameter bound");
     if (c.iterations <= 2)
@@ -356,8 +426,22 @@ Branch Continuation::run(const PeriodicOrbit& start, int direction,
   }
 }
 
-void Continuation::detect(const ContinuationPoint& a, const ContinuationPoint& b, Branch& branch,
-                          const ContinuationCallbacks& callbacks) {
+Continuation::Followed Continuation::track(const ContinuationPoint* before,
+                                           const ContinuationPoint& a,
+                                           const ContinuationPoint& b) const {
+  const auto na = nontrivial(a.orbit.floquet), nb = nontrivial(b.orbit.floquet);
+  const double ratio = a.step > 0.0 ? b.step / a.step : 0.0;
+  if (before) {
+    const auto nbefore = nontrivial(before->orbit.floquet);
+    const auto t = follow(na, &nbefore, ratio, nb);
+    return {t.pairs, t.ambiguity};
+  }
+  const auto t = follow(na, nullptr, 0.0, nb);
+  return {t.pairs, t.ambiguity};
+}
+
+std::vector<Bifurcation> Continuation::detect(const Followed& tracked, const ContinuationPoint& a,
+                                              const ContinuationPoint& b) {
   const int N = problem_->unknowns();
   const bool fold = a.tangent[N] * b.tangent[N] < 0.0;
   struct Crossing {
@@ -367,7 +451,7 @@ void Continuation::detect(const ContinuationPoint& a, const ContinuationPoint& b
   {
     // Every nontrivial multiplier is followed; only one structural at both ends (a family's
     // multiplier sitting at 1) is ignored.
-    for (const auto& [mx, my] : match(nontrivial(a.orbit.floquet), nontrivial(b.orbit.floquet))) {
+    for (const auto& [mx, my] : tracked.pairs) {
       if (mx.structural && my.structural) continue;
       const auto x = mx.value, y = my.value;
       if ((std::abs(x) - 1.0) * (std::abs(y) - 1.0) >= 0.0) continue;
@@ -434,10 +518,7 @@ void Continuation::detect(const ContinuationPoint& a, const ContinuationPoint& b
   }
   std::stable_sort(found.begin(), found.end(),
                    [](const auto& x, const auto& y) { return x.arclength < y.arclength; });
-  for (auto& e : found) {
-    branch.events.push_back(std::move(e));
-    if (callbacks.on_event) callbacks.on_event(branch.events.back());
-  }
+  return found;
 }
 
 Bifurcation Continuation::locate(const ContinuationPoint& a, const ContinuationPoint& b,
@@ -478,7 +559,7 @@ Bifurcation Continuation::locate(const ContinuationPoint& a, const ContinuationP
   std::complex<double> mu_best = std::abs(f_lo) < std::abs(f_hi) ? mu_a : mu_b;
   double s_best = std::abs(f_lo) < std::abs(f_hi) ? 0.0 : sb;
   int side = 0;  // Illinois: which end was kept last time
-  problem_->set_phase_reference(a.orbit.state0);
+  problem_->set_phase_reference(a.section);
   for (int iteration = 0; iteration < 60; ++iteration) {
     const double scale = std::max(std::abs(best.parameter), 1.0);
     const bool narrow =

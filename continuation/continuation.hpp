@@ -30,10 +30,9 @@ struct ContinuationOptions {
   int max_corrector_iterations = 7;
   double corrector_tolerance = 1e-9;  // |F|_inf, as NewtonOptions::residual_tolerance
   // Per step, the largest change of the modulus of a multiplier within `watch_band` of the unit
-  // circle (only those can cross it and come back between two points), and of any multiplier.
+  // circle (only those can cross it and come back between two points).
   double max_modulus_change = 0.02;
   double watch_band = 0.1;
-  double max_multiplier_change = 0.3;
   // Smallest cosine between consecutive unit tangents: a step that turns the tangent more is
   // halved, so that orientation (and hence direction along the branch) stays unambiguous.
   double min_tangent_cosine = 0.9;
@@ -69,11 +68,24 @@ class Continuation {
   Eigen::VectorXd tangent_at(const Corrected& c, const Eigen::VectorXd& previous);
   ContinuationPoint make_point(const Corrected& c, const Eigen::VectorXd& tangent, int index,
                                double step);
-  void detect(const ContinuationPoint& a, const ContinuationPoint& b, Branch& branch,
-              const ContinuationCallbacks& callbacks);
+  // The nontrivial multipliers of a followed to b (with their motion predicted from the point
+  // before a), and how doubtful the matching is (above 1/2: doubtful).
+  struct Followed {
+    std::vector<std::pair<Multiplier, Multiplier>> pairs;
+    double ambiguity = 0.0;
+  };
+  Followed track(const ContinuationPoint* before, const ContinuationPoint& a,
+                 const ContinuationPoint& b) const;
+  // Bifurcations between two consecutive points, located, in order along the branch.
+  std::vector<Bifurcation> detect(const Followed& tracked, const ContinuationPoint& a,
+                                  const ContinuationPoint& b);
   Bifurcation locate(const ContinuationPoint& a, const ContinuationPoint& b, BifurcationType guess,
                      int multiplicity, std::complex<double> mu_a, std::complex<double> mu_b);
   double scaled_dot(const Eigen::VectorXd& u, const Eigen::VectorXd& v) const;
+  Eigen::VectorXd time_shift(const Eigen::VectorXd& y) const;
+  // Cosine between two tangents with shifts in time along the orbits left out.
+  double orbit_cosine(const Eigen::VectorXd& u, const Eigen::VectorXd& v,
+                      const Eigen::VectorXd& at) const;
   void set_weights(const PeriodicOrbit& start);
 
   OdeSystem& system_;

@@ -148,13 +148,7 @@ struct FlowCallbacks {
   static int roots(sunrealtype t, N_Vector y, sunrealtype* g, void* user) {
     auto* flow = static_cast<Flow*>(user);
     try {
-      const double* z = N_VGetArrayPointer(y);
-      int k = 0;
-      for (std::size_t i = 0; i < flow->zones_.size(); ++i) {
-        const double zc = z[flow->zones_[i].component];
-        for (double v : flow->levels_[i]) g[k++] = zc * zc - v * v;
-      }
-      if (flow->switching_count_ > 0) flow->system_.switching_functions(t, z, g + k);
+      flow->system_.switching_functions(t, N_VGetArrayPointer(y), g);
       return 0;
     } catch (...) {
       flow->callback_error_ = std::current_exception();
@@ -170,6 +164,9 @@ struct FlowCallbacks {
 };
 
 namespace {
+
+// Unwinds a sampling run whose observer is done.
+struct Stop {};
 
 void require(bool ok, const std::string& what) {
   if (!ok) throw std::runtime_error("SUNDIALS: " + what);
@@ -264,27 +261,26 @@ Flow::Flow(const OdeSystem& system, FlowOptions options)
 
 Flow::~Flow() = default;
 
-// Root functions follow the system's current parameters (a zone's width may depend on them).
+// Zones and switching surfaces follow the system's current parameters (a zone's width may
+// depend on them).
 void Flow::configure_roots() {
   const int n = system_.dimension();
   zones_ = options_.resolve_steep_zones ? system_.steep_zones() : std::vector<SteepZone>{};
   levels_.clear();
-  steep_root_count_ = 0;
   for (const auto& zone : zones_) {
     if (zone.component < 0 || zone.component >= n || !(zone.width > 0.0) ||
         !(zone.scale > zone.width))
       throw std::invalid_argument("invalid steep zone of the system");
     std::vector<double> levels{zone.scale};
     while (levels.back() >= zone.width) levels.push_back(levels.back() / 3.0);
-    steep_root_count_ += static_cast<int>(levels.size());
     levels_.push_back(std::move(levels));
   }
   switching_count_ = system_.switching_count();
-  const int roots = steep_root_count_ + switching_count_;
-  if (roots != static_cast<int>(root_info_.size())) {
-    SYMPATHY_CHECK(CVodeRootInit(cv_->mem, roots, roots > 0 ? FlowCallbacks::roots : nullptr));
-    if (roots > 0) SYMPATHY_CHECK(CVodeSetNoInactiveRootWarn(cv_->mem));
-    root_info_.assign(roots, 0);
+  if (switching_count_ != static_cast<int>(root_info_.size())) {
+    SYMPATHY_CHECK(CVodeRootInit(cv_->mem, switching_count_,
+                                 switching_count_ > 0 ? FlowCallbacks::roots : nullptr));
+    if (switching_count_ > 0) SYMPATHY_CHECK(CVodeSetNoInactiveRootWarn(cv_->mem));
+    root_info_.assign(switching_count_, 0);
   }
 }
 
@@ -358,14 +354,8 @@ void Flow::start(const Eigen::VectorXd& z0, double t0, int sensitivity_columns,
     cv.sens_on = false;
   }
   forced_stop_.reset();
-  // Initial bands; a state on a level counts as inside it (its root at t0 is inactive).
-  bands_.assign(zones_.size(), -1);
-  for (std::size_t i = 0; i < zones_.size(); ++i) {
-    const double a = std::abs(z0[zones_[i].component]);
-    for (int l = 0; l < static_cast<int>(levels_[i].size()); ++l)
-      if (a <= levels_[i][l]) bands_[i] = l;
-  }
-  update_max_step(t0);
+  bands_.assign(zones_.size(), -2);  // unknown: set from the state below
+  update_bands(t0);
   ++statistics_.calls;
 }
 
@@ -403,46 +393,65 @@ void Flow::update_max_step(double t) {
   }
 }
 
-void Flow::on_roots() {
-  auto& cv = *cv_;
-  SYMPATHY_CHECK(CVodeGetRootInfo(cv.mem, root_info_.data()));
-  bool steep = false, switching = false;
-  int k = 0;
-  for (std::size_t i = 0; i < zones_.size(); ++i) {
-    for (int l = 0; l < static_cast<int>(levels_[i].size()); ++l, ++k) {
-      if (root_info_[k] == 0) continue;
-      steep = true;
-      // g = z_c^2 - v_l^2 falling: now inside level l; rising: now outside it.
-      bands_[i] = root_info_[k] < 0 ? std::max(bands_[i], l) : std::min(bands_[i], l - 1);
-    }
-  }
-  for (; k < static_cast<int>(root_info_.size()); ++k) switching |= root_info_[k] != 0;
-  if (switching) {
-    // f jumps here: restart the multistep method from the state at the surface.
-    ++statistics_.switchings;
-    collect_statistics();
-    SYMPATHY_CHECK(CVodeReInit(cv.mem, t_, cv.y));
-  }
-  if (steep) ++statistics_.steep_roots;
-  if (steep || switching) update_max_step(t_);
+// A state on a level counts as inside it.
+int Flow::band_of(std::size_t zone, double value) const {
+  int band = -1;
+  const auto& levels = levels_[zone];
+  for (int l = 0; l < static_cast<int>(levels.size()); ++l)
+    if (std::abs(value) <= levels[l]) band = l;
+  return band;
 }
 
-void Flow::integrate_to(double t_target, double t_stop) {
+void Flow::update_bands(double t) {
+  const double* z = N_VGetArrayPointer(cv_->y);
+  bool changed = false;
+  for (std::size_t i = 0; i < zones_.size(); ++i) {
+    const int band = band_of(i, z[zones_[i].component]);
+    if (band != bands_[i]) {
+      if (bands_[i] != -2) ++statistics_.steep_roots;
+      bands_[i] = band;
+      changed = true;
+    }
+  }
+  if (changed || bands_.empty()) update_max_step(t);
+}
+
+void Flow::on_switching() {
   auto& cv = *cv_;
-  while (t_ < t_target) {
-    const bool forced = forced_stop_ && *forced_stop_ < t_stop;
-    SYMPATHY_CHECK(CVodeSetStopTime(cv.mem, forced ? *forced_stop_ : t_stop));
-    const int flag = CVode(cv.mem, t_target, cv.y, &t_, CV_NORMAL);
+  SYMPATHY_CHECK(CVodeGetRootInfo(cv.mem, root_info_.data()));
+  // f jumps here: restart the multistep method from the state at the surface.
+  ++statistics_.switchings;
+  collect_statistics();
+  SYMPATHY_CHECK(CVodeReInit(cv.mem, t_, cv.y));
+  forced_stop_.reset();
+  update_max_step(t_);
+}
+
+// One internal step at a time: after each, the steep zones' bands are read off the state, and a
+// changed band sets the step cap at once. `after_step(t_old, t_new)` may interpolate outputs in
+// the step just taken (CVodeGetDky) before anything restarts the integrator.
+void Flow::integrate_to(double t_end, const std::function<void(double, double)>& after_step) {
+  auto& cv = *cv_;
+  // One step per CVode call, so CVODES's own step limit never triggers: count here.
+  for (long steps = 0; t_ < t_end; ++steps) {
+    if (steps >= options_.max_steps) {
+      std::ostringstream msg;
+      msg << "CVode: more than " << options_.max_steps << " steps before t = " << t_end
+          << ", at t = " << t_;
+      throw IntegrationError(msg.str(), t_);
+    }
+    const bool forced = forced_stop_ && *forced_stop_ < t_end;
+    SYMPATHY_CHECK(CVodeSetStopTime(cv.mem, forced ? *forced_stop_ : t_end));
+    const double t_old = t_;
+    const int flag = CVode(cv.mem, t_end, cv.y, &t_, CV_ONE_STEP);
     if (flag < 0 || callback_error_) fail(flag, "CVode");
+    if (after_step) after_step(t_old, t_);
     if (flag == CV_ROOT_RETURN) {
-      on_roots();
+      on_switching();
       continue;
     }
-    if (flag == CV_TSTOP_RETURN && forced) {
-      forced_stop_.reset();  // the shortened step is done; the maximum step holds from here
-      continue;
-    }
-    break;  // CV_SUCCESS or CV_TSTOP_RETURN: at t_target
+    if (flag == CV_TSTOP_RETURN && forced) forced_stop_.reset();  // the shortened step is done
+    if (!zones_.empty()) update_bands(t_);
   }
 }
 
@@ -463,7 +472,7 @@ void Flow::collect_statistics() {
 Eigen::VectorXd Flow::advance(const Eigen::VectorXd& z0, double t0, double t1) {
   if (!(t1 >= t0)) throw std::invalid_argument("flow: end time before start time");
   start(z0, t0, 0, {});
-  integrate_to(t1, t1);
+  integrate_to(t1);
   collect_statistics();
   const int n = system_.dimension();
   return Eigen::Map<const Eigen::VectorXd>(N_VGetArrayPointer(cv_->y), n);
@@ -485,15 +494,30 @@ bool Flow::sample_until(const Eigen::VectorXd& z0, double t0, std::span<const do
       throw std::invalid_argument("flow: sample times must be increasing and not before t0");
   start(z0, t0, 0, {});
   const int n = system_.dimension();
-  Eigen::Map<const Eigen::VectorXd> z(N_VGetArrayPointer(cv_->y), n);
+  Eigen::VectorXd z(n);
+  std::size_t next = 0;
   bool stopped = false;
-  for (double tau : times) {
-    integrate_to(tau, times.back());
-    if (done(tau, z)) {
-      stopped = true;
-      break;
-    }
+  // Outputs at t0 itself, then those inside each step, from the step's interpolant.
+  while (next < times.size() && times[next] <= t0) {
+    z = Eigen::Map<const Eigen::VectorXd>(N_VGetArrayPointer(cv_->y), n);
+    if (done(times[next++], z)) return true;
   }
+  N_Vector out = N_VClone(cv_->y);
+  try {
+    integrate_to(times.back(), [&](double, double t_new) {
+      while (!stopped && next < times.size() && times[next] <= t_new) {
+        SYMPATHY_CHECK(CVodeGetDky(cv_->mem, times[next], 0, out));
+        z = Eigen::Map<const Eigen::VectorXd>(N_VGetArrayPointer(out), n);
+        stopped = done(times[next++], z);
+      }
+      if (stopped) throw Stop{};
+    });
+  } catch (const Stop&) {
+  } catch (...) {
+    N_VDestroy(out);
+    throw;
+  }
+  N_VDestroy(out);
   collect_statistics();
   return stopped;
 }
@@ -513,7 +537,7 @@ FlowDerivatives Flow::advance_with_sensitivities(const Eigen::VectorXd& z0, doub
     return r;
   }
   start(z0, t0, columns, parameters);
-  integrate_to(t1, t1);
+  integrate_to(t1);
   collect_statistics();
 
   auto& cv = *cv_;

@@ -6,15 +6,16 @@
 // alone; `advance_with_sensitivities` adds the n state columns (the transition matrix) and/or
 // the columns of named parameters.
 //
-// Steep zones (OdeSystem::steep_zones) are resolved explicitly: roots of z_c^2 - v_l^2 on
-// geometric levels v_0 = scale > v_1 = v_0/3 > ... down to below the zone's width, and while
-// |z_c| < v_l the step is capped at fraction * v_(l+1) / |dz_c/dt|, so no step can jump over
-// the next inner level, and the innermost band (the steep part itself) is crossed in several
-// steps. Error control alone steps straight over such features (see NUMERICS.md). The cap is
-// set when a level is crossed, so it holds for the steps after the one that found the root;
-// that step itself was capped by the band it started in. CVODES only applies a new maximum
-// step when it next changes the step size, so a stop time one capped step ahead also shortens
-// the step it has already planned.
+// Steep zones (OdeSystem::steep_zones) are resolved explicitly: on geometric levels
+// v_0 = scale > v_1 = v_0/3 > ... down to below the zone's width, while |z_c| <= v_l the step
+// is capped at fraction * v_(l+1) / |dz_c/dt|, so no step can jump over the next inner level,
+// and the innermost band (the steep part itself) is crossed in several steps. Error control
+// alone steps straight over such features (see NUMERICS.md). The integrator takes one internal
+// step at a time and reads the bands off the state after each; a step that crosses a level was
+// capped by the band it started in, and lands in the next. CVODES applies a new maximum step
+// only when it next changes the step size, so a stop time one capped step ahead also shortens
+// the step it has already planned. (Root functions on the levels were tried first: CVODES
+// returns the same root forever when two identical ones, from symmetric pendula, coincide.)
 #pragma once
 
 #include <functional>
@@ -61,7 +62,7 @@ struct FlowStatistics {
   long linear_setups = 0;
   long error_test_failures = 0;
   long nonlinear_iterations = 0;
-  long steep_roots = 0;  // level crossings of steep zones
+  long steep_roots = 0;  // level crossings of steep zones (band changes)
   long switchings = 0;   // restarts at switching surfaces
   FlowStatistics& operator+=(const FlowStatistics& other);
 };
@@ -116,10 +117,12 @@ class Flow {
 
   void start(const Eigen::VectorXd& z0, double t0, int sensitivity_columns,
              std::span<const int> parameters);
-  // Integrates to `t_target` (stop time t_stop), handling roots; returns the reached time.
-  void integrate_to(double t_target, double t_stop);
+  // Integrates to t_end one internal step at a time; see flow.cpp.
+  void integrate_to(double t_end, const std::function<void(double, double)>& after_step = {});
   void configure_roots();
-  void on_roots();
+  int band_of(std::size_t zone, double value) const;
+  void update_bands(double t);
+  void on_switching();
   void update_max_step(double t);
   void collect_statistics();
   [[noreturn]] void fail(int flag, const char* function);
@@ -129,11 +132,10 @@ class Flow {
   FlowStatistics statistics_;
   std::unique_ptr<Cvodes> cv_;
 
-  // Root functions: first the steep-zone levels, then the system's switching functions.
+  // Steep zones with their levels, and the system's switching functions (CVODES roots).
   std::vector<SteepZone> zones_;
   std::vector<std::vector<double>> levels_;  // per zone, decreasing
-  std::vector<int> bands_;                   // per zone: innermost level l with |z_c| < v_l
-  int steep_root_count_ = 0;
+  std::vector<int> bands_;                   // per zone: innermost level l with |z_c| <= v_l
   int switching_count_ = 0;
   std::vector<int> root_info_;
   std::vector<double> dz_scratch_;

@@ -98,8 +98,11 @@ BranchResult run_branch(const LoadedCase& c, const BranchRequest& request,
   if (!request.csv_path.empty())
     csv = std::make_unique<CsvWriter>(request.csv_path, csv_header(model, request.parameter));
   std::vector<std::pair<int, OrbitReport>> reports;
+  int index_sign = +1;  // -1 on the backward part of a two-way run
   ContinuationCallbacks callbacks;
-  callbacks.on_point = [&](const ContinuationPoint& p) {
+  callbacks.on_point = [&](const ContinuationPoint& point) {
+    ContinuationPoint p = point;
+    p.index *= index_sign;
     OrbitReport r = describe_orbit(model, p.orbit);
     if (csv) {
       csv->row(csv_row(p, r));
@@ -128,19 +131,31 @@ BranchResult run_branch(const LoadedCase& c, const BranchRequest& request,
   branch.parameter_name = request.parameter;
   if (request.at && !(stop && stop->load())) {
     model.set_parameter(parameter, first);
+    index_sign = -1;
     Branch backward = continuation.run(orbit, -toward, callbacks);
+    for (auto& p : backward.points) p.index = -p.index;
+    // The point before each event along the merged branch: -(k+1) for one between -k and -(k+1).
+    for (auto& e : backward.events) e.after_point = -(e.after_point + 1);
     // Along the branch: the backward part reversed (without its copy of the start), then forward.
     for (auto it = backward.points.rbegin(); it != backward.points.rend() - 1; ++it)
       branch.points.push_back(std::move(*it));
     for (auto& e : backward.events) branch.events.push_back(std::move(e));
     branch.stop_reason = "backward: " + backward.stop_reason + "; forward: " + forward.stop_reason;
     branch.flow += backward.flow;
+    branch.rejected.corrector += backward.rejected.corrector;
+    branch.rejected.turn += backward.rejected.turn;
+    branch.rejected.multipliers += backward.rejected.multipliers;
+    branch.rejected.location += backward.rejected.location;
   } else {
     branch.stop_reason = forward.stop_reason;
   }
   for (auto& p : forward.points) branch.points.push_back(std::move(p));
   for (auto& e : forward.events) branch.events.push_back(std::move(e));
   branch.flow += forward.flow;
+  branch.rejected.corrector += forward.rejected.corrector;
+  branch.rejected.turn += forward.rejected.turn;
+  branch.rejected.multipliers += forward.rejected.multipliers;
+  branch.rejected.location += forward.rejected.location;
   // Along the branch: by the point before each event, then by arclength from it (the backward
   // part's indices are negative and its arclength runs the other way).
   std::stable_sort(branch.events.begin(), branch.events.end(), [](const auto& a, const auto& b) {

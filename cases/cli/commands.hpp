@@ -9,5 +9,6 @@ namespace sympathy::cli {
 int run_simulate(const std::vector<std::string>& args);
 int run_orbit(const std::vector<std::string>& args);
 int run_continue(const std::vector<std::string>& args);
+int run_study(const std::vector<std::string>& args);
 
 }  // namespace sympathy::cli

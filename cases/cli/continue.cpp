@@ -74,7 +74,12 @@ int run_continue(const std::vector<std::string>& argv) {
     std::printf("  %s\n  run time %.3f s\n", r.start_failure.c_str(), clock.seconds());
     return 4;
   }
-  std::printf("  %zu points; stopped: %s\n", r.branch.points.size(), r.branch.stop_reason.c_str());
+  const auto& rj = r.branch.rejected;
+  std::printf(
+      "  %zu points; stopped: %s\n  steps retried shorter: %d corrector, %d turn, %d "
+      "multipliers, %d location\n",
+      r.branch.points.size(), r.branch.stop_reason.c_str(), rj.corrector, rj.turn, rj.multipliers,
+      rj.location);
   std::printf("bifurcations:\n");
   print_events(stdout, r, request.parameter);
   std::printf("  run time %.3f s (%ld integrations, %ld steps)\n", clock.seconds(),

@@ -19,6 +19,7 @@ void print_usage() {
       "  simulate   integrate from a start; time series to CSV, summary of the end state\n"
       "  orbit      a periodic orbit from a start: period, Floquet multipliers, stability\n"
       "  continue   a branch of orbits in one parameter, with its bifurcations\n"
+      "  study      the branches of a figure (cases/figures/*.toml), side by side\n"
       "run 'sympathy COMMAND --help' for the options of a command\n",
       stderr);
 }
@@ -36,6 +37,7 @@ int main(int argc, char** argv) {
     if (command == "simulate") return sympathy::cli::run_simulate(args);
     if (command == "orbit") return sympathy::cli::run_orbit(args);
     if (command == "continue") return sympathy::cli::run_continue(args);
+    if (command == "study") return sympathy::cli::run_study(args);
     std::fprintf(stderr, "sympathy: unknown command '%s'\n", command.c_str());
     print_usage();
     return 2;

@@ -1,0 +1,225 @@
+// sympathy study: the branches that make one figure, described in a study file next to a case
+// (cases/figures/*.toml), computed side by side; a CSV per branch and one JSON for the figure.
+#include <toml++/toml.h>
+
+#include <cstdio>
+#include <filesystem>
+#include <fstream>
+#include <mutex>
+#include <thread>
+
+#include "cases/cli/branch_run.hpp"
+#include "cases/cli/commands.hpp"
+
+namespace sympathy::cli {
+
+namespace {
+
+struct StudyBranch {
+  std::string name;
+  BranchRequest request;
+  std::vector<Assignment> sets;  // on top of the study's parameter set
+};
+
+struct Study {
+  std::string path, name, title, case_path, params, parameter, axis;
+  std::vector<StudyBranch> branches;
+};
+
+[[noreturn]] void fail(const std::string& path, const toml::node& node, const std::string& key,
+                       const std::string& expected) {
+  throw InputError(path + ":" + std::to_string(node.source().begin.line) + ": key '" + key +
+                   "': expected " + expected);
+}
+
+double number(const std::string& path, const toml::node& node, const std::string& key) {
+  if (!node.is_number() || !std::isfinite(*node.value<double>()))
+    fail(path, node, key, "a finite number");
+  return *node.value<double>();
+}
+
+std::string text(const std::string& path, const toml::node& node, const std::string& key) {
+  if (!node.is_string()) fail(path, node, key, "a string");
+  return std::string(*node.value<std::string_view>());
+}
+
+void only(const std::string& path, const toml::table& t, const std::string& prefix,
+          const std::vector<std::string>& allowed) {
+  for (auto&& [k, v] : t) {
+    const std::string key(k.str());
+    if (std::find(allowed.begin(), allowed.end(), key) == allowed.end())
+      throw InputError(path + ":" + std::to_string(k.source().begin.line) + ": key '" + prefix +
+                       key + "': expected one of the keys " + join(allowed) + " (unknown key)");
+  }
+}
+
+Study load_study(const std::string& path) {
+  if (!std::filesystem::is_regular_file(path))
+    throw InputError(path + ": cannot read the study file (no such file)");
+  toml::table root;
+  try {
+    root = toml::parse_file(path);
+  } catch (const toml::parse_error& e) {
+    throw InputError(path + ":" + std::to_string(e.source().begin.line) +
+                     ": not valid TOML: " + std::string(e.description()));
+  }
+  only(path, root, "", {"title", "case", "params", "parameter", "axis", "branches"});
+  Study s;
+  s.path = path;
+  s.name = std::filesystem::path(path).stem().string();
+  auto required = [&](const char* key) -> const toml::node& {
+    const toml::node* n = root.get(key);
+    if (!n) throw InputError(path + ": key '" + key + "' is missing");
+    return *n;
+  };
+  s.title = root.get("title") ? text(path, *root.get("title"), "title") : s.name;
+  const std::string case_file = text(path, required("case"), "case");
+  s.case_path = (std::filesystem::path(path).parent_path() / case_file).lexically_normal().string();
+  if (root.get("params")) s.params = text(path, *root.get("params"), "params");
+  s.parameter = text(path, required("parameter"), "parameter");
+  s.axis = root.get("axis") ? text(path, *root.get("axis"), "axis") : "phase";
+  if (s.axis != "phase" && s.axis != "frequency")
+    fail(path, *root.get("axis"), "axis", "\"phase\" or \"frequency\"");
+  const toml::node& list = required("branches");
+  if (!list.is_array_of_tables() || list.as_array()->empty())
+    fail(path, list, "branches", "one or more [[branches]] tables");
+  int index = 0;
+  for (const auto& entry : *list.as_array()) {
+    ++index;
+    const std::string prefix = "branches[" + std::to_string(index) + "].";
+    const auto& t = *entry.as_table();
+    only(path, t, prefix,
+         {"name", "start", "from", "to", "at", "set", "initial", "max_points", "step", "max_step",
+          "transient"});
+    StudyBranch b;
+    for (const char* key : {"name", "start", "from", "to"})
+      if (!t.get(key))
+        throw InputError(path + ":" + std::to_string(entry.source().begin.line) + ": key '" +
+                         prefix + key + "' is missing");
+    b.name = text(path, *t.get("name"), prefix + "name");
+    b.request.start = text(path, *t.get("start"), prefix + "start");
+    b.request.parameter = s.parameter;
+    b.request.from = number(path, *t.get("from"), prefix + "from");
+    b.request.to = number(path, *t.get("to"), prefix + "to");
+    if (auto* n = t.get("at")) b.request.at = number(path, *n, prefix + "at");
+    if (auto* n = t.get("transient")) b.request.transient = number(path, *n, prefix + "transient");
+    auto& o = b.request.continuation;
+    if (auto* n = t.get("max_points"))
+      o.max_points = static_cast<int>(number(path, *n, prefix + "max_points"));
+    if (auto* n = t.get("step")) o.initial_step = number(path, *n, prefix + "step");
+    if (auto* n = t.get("max_step")) o.max_step = number(path, *n, prefix + "max_step");
+    for (const char* group : {"set", "initial"}) {
+      const toml::node* n = t.get(group);
+      if (!n) continue;
+      if (!n->is_table()) fail(path, *n, prefix + group, "a table of NAME = VALUE");
+      for (auto&& [k, v] : *n->as_table()) {
+        Assignment a{std::string(k.str()),
+                     number(path, v, prefix + group + "." + std::string(k.str())),
+                     path + ":" + std::to_string(v.source().begin.line)};
+        (std::string(group) == "set" ? b.sets : b.request.initial).push_back(a);
+      }
+    }
+    s.branches.push_back(std::move(b));
+  }
+  return s;
+}
+
+}  // namespace
+
+int run_study(const std::vector<std::string>& argv) {
+  Arguments args("study", argv,
+                 {{"--out", "DIR", false, "where the CSV and JSON files go (default out/figures)"},
+                  {"--jobs", "N", false, "branches computed side by side (default 2)"}},
+                 {"STUDY"});
+  Stopwatch clock;
+  const Study study = load_study(args.positional(0));
+  const std::string out = args.text("--out", "out/figures");
+  const int jobs = args.integer("--jobs", 2);
+  if (jobs < 1) throw InputError("--jobs: expected a positive integer");
+  std::filesystem::create_directories(out);
+
+  // Every branch's case, set and start checked before anything is computed.
+  const CaseFile file = CaseFile::load(study.case_path);
+  std::vector<LoadedCase> cases;
+  for (const auto& b : study.branches) {
+    LoadedCase c{file, study.params.empty() ? file.default_parameter_set() : study.params, {}};
+    c.spec = file.spec(c.params, b.sets);
+    if (!c.spec.has_parameter(study.parameter))
+      throw InputError(study.path + ": parameter '" + study.parameter + "' is not one of " +
+                       file.path() + "'s: " + join(c.spec.parameter_names()));
+    file.start(b.request.start);
+    cases.push_back(std::move(c));
+  }
+
+  std::printf("sympathy study %s: %s\n  case %s  params %s  parameter %s\n", study.path.c_str(),
+              study.title.c_str(), file.path().c_str(), cases.front().params.c_str(),
+              study.parameter.c_str());
+  std::fflush(stdout);
+  const auto* stop = interrupt_flag();
+  std::vector<BranchResult> results(study.branches.size());
+  std::vector<BranchRequest> requests;
+  for (const auto& b : study.branches) {
+    BranchRequest r = b.request;
+    r.csv_path = out + "/" + study.name + "-" + b.name + ".csv";
+    r.progress = nullptr;
+    requests.push_back(r);
+  }
+  std::mutex print;
+  std::size_t next = 0;
+  std::vector<std::string> errors(study.branches.size());
+  auto worker = [&] {
+    for (;;) {
+      std::size_t i;
+      {
+        std::lock_guard<std::mutex> lock(print);
+        if (next >= study.branches.size()) return;
+        i = next++;
+      }
+      try {
+        results[i] = run_branch(cases[i], requests[i], stop);
+      } catch (const std::exception& e) {
+        errors[i] = e.what();
+      }
+      std::lock_guard<std::mutex> lock(print);
+      std::printf("  branch %-14s %zu points in %.1f s; %s\n", study.branches[i].name.c_str(),
+                  results[i].branch.points.size(), results[i].seconds,
+                  !errors[i].empty()   ? errors[i].c_str()
+                  : results[i].started ? results[i].branch.stop_reason.c_str()
+                                       : results[i].start_failure.c_str());
+      std::fflush(stdout);
+    }
+  };
+  std::vector<std::thread> threads;
+  for (int t = 0; t < std::min<int>(jobs, static_cast<int>(study.branches.size())); ++t)
+    threads.emplace_back(worker);
+  for (auto& t : threads) t.join();
+
+  nlohmann::json j;
+  j["study"] = study.name;
+  j["title"] = study.title;
+  j["case"] = file.path();
+  j["params_set"] = cases.front().params;
+  j["parameter"] = study.parameter;
+  j["axis"] = study.axis;
+  j["branches"] = nlohmann::json::array();
+  bool ok = true;
+  for (std::size_t i = 0; i < study.branches.size(); ++i) {
+    MetronomeModel model(cases[i].spec);
+    nlohmann::json b = branch_json(results[i], requests[i], model);
+    b["name"] = study.branches[i].name;
+    b["csv"] = std::filesystem::path(requests[i].csv_path).filename().string();
+    if (!errors[i].empty()) b["error"] = errors[i];
+    j["branches"].push_back(b);
+    ok = ok && errors[i].empty() && results[i].started;
+    std::printf("bifurcations on %s:\n", study.branches[i].name.c_str());
+    print_events(stdout, results[i], study.parameter);
+  }
+  j["seconds"] = clock.seconds();
+  const std::string json_path = out + "/" + study.name + ".json";
+  std::ofstream(json_path) << j.dump(1) << "\n";
+  std::printf("  wrote %s and %zu CSV files; run time %.2f s\n", json_path.c_str(),
+              study.branches.size(), clock.seconds());
+  return ok ? 0 : 4;
+}
+
+}  // namespace sympathy::cli
