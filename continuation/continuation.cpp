@@ -42,8 +42,9 @@ std::string describe(BifurcationType t) {
 struct Continuation::Corrected {
   bool converged = false;
   std::string reason;
-  Eigen::VectorXd y;  // (unknowns, parameter)
-  ShootingProblem::Evaluation evaluation;
+  Eigen::VectorXd y;                       // (unknowns, parameter)
+  ShootingProblem::Evaluation evaluation;  // at y, with sensitivities
+  double residual = 0.0;                   // |F|_inf at y
   int iterations = 0;
 };
 
@@ -184,6 +185,26 @@ void Continuation::set_weights(const PeriodicOrbit& start) {
   weights_[unknowns] = 1.0 / (options_.upper - options_.lower);
 }
 
+// The shooting Jacobian (with its parameter column) bordered by one more row.
+Eigen::SparseMatrix<double> bordered(const Eigen::SparseMatrix<double>& jac,
+                                     const Eigen::VectorXd& row) {
+  const int N = static_cast<int>(jac.rows());
+  std::vector<Eigen::Triplet<double>> t;
+  t.reserve(jac.nonZeros() + N + 1);
+  for (int k = 0; k < jac.outerSize(); ++k)
+    for (Eigen::SparseMatrix<double>::InnerIterator i(jac, k); i; ++i)
+      t.emplace_back(static_cast<int>(i.row()), static_cast<int>(i.col()), i.value());
+  for (int k = 0; k <= N; ++k)
+    if (row[k] != 0.0) t.emplace_back(N, k, row[k]);
+  Eigen::SparseMatrix<double> b(N + 1, N + 1);
+  b.setFromTriplets(t.begin(), t.end());
+  return b;
+}
+
+// Newton on the bordered system (shooting equations and arclength), each iteration with the
+// flow's sensitivities: the converged point's monodromy is the stability's and the next
+// tangent's. (A chord iteration on plain integrations was tried: plain and sensitivity runs
+// take different steps and differ by about the tolerance, which moved located points.)
 Continuation::Corrected Continuation::correct(const Eigen::VectorXd& from,
                                               const Eigen::VectorXd& tangent, double step,
                                               const Eigen::VectorXd& start_guess) {
@@ -194,8 +215,15 @@ Continuation::Corrected Continuation::correct(const Eigen::VectorXd& from,
   LinearSolveOptions linear;
   linear.prefer_sparse = problem_->segments() > 1;
   linear.rank_tolerance = options_.orbit.newton.rank_tolerance;
+  auto rhs_at = [&](const Eigen::VectorXd& residual) {
+    Eigen::VectorXd rhs(N + 1);
+    rhs.head(N) = -residual;
+    rhs[N] = -(row.dot(y - from) - step);
+    return rhs;
+  };
+  int iterations = 0;
   double previous = std::numeric_limits<double>::infinity();
-  for (int it = 0;; ++it) {
+  for (int it = 0;; ++it, ++iterations) {
     system_.set_parameter(parameter_, y[N]);
     ShootingProblem::Evaluation e;
     try {
@@ -209,32 +237,20 @@ Continuation::Corrected Continuation::correct(const Eigen::VectorXd& from,
       c.converged = true;
       c.y = std::move(y);
       c.evaluation = std::move(e);
-      c.iterations = it;
+      c.residual = norm;
+      c.iterations = iterations;
       return c;
     }
     if (it >= options_.max_corrector_iterations || (it >= 2 && norm > previous)) {
       std::ostringstream msg;
       msg << "corrector " << (norm > previous ? "diverged" : "did not converge") << " (residual "
-          << norm << " after " << it << " iterations)";
+          << norm << " after " << iterations << " iterations)";
       c.reason = msg.str();
       return c;
     }
     previous = norm;
-    // Bordered system: the shooting Jacobian with its parameter column, and the arclength row.
-    const Eigen::SparseMatrix<double> jac = problem_->jacobian(e, true);
-    std::vector<Eigen::Triplet<double>> t;
-    t.reserve(jac.nonZeros() + N + 1);
-    for (int k = 0; k < jac.outerSize(); ++k)
-      for (Eigen::SparseMatrix<double>::InnerIterator i(jac, k); i; ++i)
-        t.emplace_back(static_cast<int>(i.row()), static_cast<int>(i.col()), i.value());
-    for (int k = 0; k <= N; ++k)
-      if (row[k] != 0.0) t.emplace_back(N, k, row[k]);
-    Eigen::SparseMatrix<double> bordered(N + 1, N + 1);
-    bordered.setFromTriplets(t.begin(), t.end());
-    Eigen::VectorXd rhs(N + 1);
-    rhs.head(N) = -e.residual;
-    rhs[N] = -(row.dot(y - from) - step);
-    const auto dy = solve_linear(bordered, rhs, linear);
+    const auto dy =
+        solve_linear(bordered(problem_->jacobian(e, true), row), rhs_at(e.residual), linear);
     if (!dy.x.allFinite()) {
       c.reason = "corrector step not finite";
       return c;
@@ -243,27 +259,21 @@ Continuation::Corrected Continuation::correct(const Eigen::VectorXd& from,
   }
 }
 
-// The tangent in the problem's current phase section: the one the next step's corrector uses.
-Eigen::VectorXd Continuation::tangent_at(const Corrected& c, const Eigen::VectorXd& previous) {
+// The unit tangent from a shooting Jacobian (with its parameter column), in the problem's current
+// phase section (the one the next step's corrector uses), oriented along `previous`.
+Eigen::VectorXd Continuation::tangent_of(const Eigen::SparseMatrix<double>& jac,
+                                         const Eigen::VectorXd& y,
+                                         const Eigen::VectorXd& previous) const {
   const int N = problem_->unknowns();
-  const Eigen::SparseMatrix<double> jac = problem_->jacobian(c.evaluation, true);
-  std::vector<Eigen::Triplet<double>> t;
-  for (int k = 0; k < jac.outerSize(); ++k)
-    for (Eigen::SparseMatrix<double>::InnerIterator i(jac, k); i; ++i)
-      t.emplace_back(static_cast<int>(i.row()), static_cast<int>(i.col()), i.value());
-  const Eigen::VectorXd row = weights_.array().square() * previous.array();
-  for (int k = 0; k <= N; ++k)
-    if (row[k] != 0.0) t.emplace_back(N, k, row[k]);
-  Eigen::SparseMatrix<double> bordered(N + 1, N + 1);
-  bordered.setFromTriplets(t.begin(), t.end());
   Eigen::VectorXd rhs = Eigen::VectorXd::Zero(N + 1);
   rhs[N] = 1.0;
   LinearSolveOptions linear;
   linear.prefer_sparse = problem_->segments() > 1;
   linear.rank_tolerance = options_.orbit.newton.rank_tolerance;
-  Eigen::VectorXd tau = solve_linear(bordered, rhs, linear).x;
+  const Eigen::VectorXd row = weights_.array().square() * previous.array();
+  Eigen::VectorXd tau = solve_linear(bordered(jac, row), rhs, linear).x;
   tau /= std::sqrt(scaled_dot(tau, tau));
-  if (orbit_cosine(tau, previous, c.y) < 0.0) tau = -tau;
+  if (orbit_cosine(tau, previous, y) < 0.0) tau = -tau;
   return tau;
 }
 
@@ -275,17 +285,24 @@ ContinuationPoint Continuation::make_point(const Corrected& c, const Eigen::Vect
   p.parameter = c.y[N];
   p.unknowns = c.y.head(N);
   p.tangent = tangent;
+  p.section = problem_->phase_reference();
   p.step = step;
   p.iterations = c.iterations;
   PeriodicOrbit& o = p.orbit;
   o.state0 = c.y.head(n);
   o.period = c.y[n * m];
   o.segments = m;
-  o.residual = inf_norm(c.evaluation.residual.head(n * m));
+  o.residual = c.residual;
   o.family_dimension = family_dimension_;
   system_.set_parameter(parameter_, p.parameter);
-  o.floquet = analyze_floquet(c.evaluation.transitions, system_.rhs(0.0, o.state0),
-                              o.family_dimension, options_.orbit.floquet);
+  // A continuum's directions: the null vectors of the shooting Jacobian, at the first segment.
+  const Eigen::MatrixXd family =
+      family_dimension_ > 0
+          ? Eigen::MatrixXd(null_vectors(problem_->jacobian(c.evaluation), family_dimension_)
+                                .topRows(problem_->dimension()))
+          : Eigen::MatrixXd();
+  o.floquet = analyze_floquet(c.evaluation.transitions, system_.rhs(0.0, o.state0), family,
+                              options_.orbit.floquet);
   o.newton.converged = true;
   o.newton.iterations = c.iterations;
   o.newton.reason = "corrector converged";
@@ -335,13 +352,13 @@ Branch Continuation::run(const PeriodicOrbit& start, int direction,
   if (initial_tangent.size() == N + 1) {
     tau = initial_tangent / std::sqrt(scaled_dot(initial_tangent, initial_tangent));
   } else {
-    tau = tangent_at(c0, direction * along_parameter);
+    tau = tangent_of(problem_->jacobian(c0.evaluation, true), c0.y, direction * along_parameter);
   }
   branch.points.push_back(make_point(c0, tau, 0, 0.0));
-  branch.points.back().section = start.state0;
   if (callbacks.on_point) callbacks.on_point(branch.points.back());
 
   double ds = options_.initial_step;
+  int location_retries = 0;  // shorter tries of the current step for an unlocated event
   for (;;) {
     if (callbacks.stop_requested && callbacks.stop_requested()) return finish("interrupted");
     if (static_cast<int>(branch.points.size()) >= options_.max_points)
@@ -367,7 +384,8 @@ Branch Continuation::run(const PeriodicOrbit& start, int direction,
     const double crossing = problem_->phase_normal().normalized().dot(fb.normalized());
     const Eigen::VectorXd section = crossing < 0.9 ? zb : a.section;
     problem_->set_phase_reference(section);
-    const Eigen::VectorXd tau_b = tangent_at(c, a.tangent);
+    const Eigen::VectorXd tau_b =
+        tangent_of(problem_->jacobian(c.evaluation, true), c.y, a.tangent);
     if (orbit_cosine(tau_b, a.tangent, c.y) < options_.min_tangent_cosine &&
         ds > 4 * options_.min_step) {
       ++branch.rejected.turn;
@@ -375,7 +393,6 @@ Branch Continuation::run(const PeriodicOrbit& start, int direction,
       continue;
     }
     ContinuationPoint b = make_point(c, tau_b, a.index + 1, ds);
-    b.section = section;
     // Multipliers whose modulus moves far in one step near the unit circle may hide a window of
     // instability; any that moves very far makes the matching of multipliers doubtful.
     // A multiplier near the circle whose modulus moves far in one step may hide a window of
@@ -404,12 +421,14 @@ Branch Continuation::run(const PeriodicOrbit& start, int direction,
       // are then easier to follow), unless the step is short already.
       const bool unlocated =
           std::any_of(events.begin(), events.end(), [](const auto& e) { return !e.located; });
-      if (unlocated && ds > 1e-3 * options_.initial_step && ds > 4 * options_.min_step) {
+      if (unlocated && location_retries < 3 && ds > 4 * options_.min_step) {
         ++branch.rejected.location;
+        ++location_retries;
         ds *= 0.5;
         continue;
       }
     }
+    location_retries = 0;
     branch.points.push_back(std::move(b));
     const ContinuationPoint& added = branch.points.back();
     if (callbacks.on_point) callbacks.on_point(added);
@@ -560,7 +579,7 @@ Bifurcation Continuation::locate(const ContinuationPoint& a, const ContinuationP
   double s_best = std::abs(f_lo) < std::abs(f_hi) ? 0.0 : sb;
   int side = 0;  // Illinois: which end was kept last time
   problem_->set_phase_reference(a.section);
-  for (int iteration = 0; iteration < 60; ++iteration) {
+  for (int iteration = 0; iteration < 30; ++iteration) {
     const double scale = std::max(std::abs(best.parameter), 1.0);
     const bool narrow =
         std::abs(hi.parameter - lo.parameter) <= options_.location_tolerance * scale;
@@ -577,7 +596,8 @@ Bifurcation Continuation::locate(const ContinuationPoint& a, const ContinuationP
       e.note = "location stopped: " + c.reason;
       break;
     }
-    ContinuationPoint p = make_point(c, tangent_at(c, a.tangent), a.index, s);
+    const Eigen::VectorXd tau = tangent_of(problem_->jacobian(c.evaluation, true), c.y, a.tangent);
+    ContinuationPoint p = make_point(c, tau, a.index, s);
     const std::complex<double> mu = tracked(p, s);
     const double f = test(p, mu);
     if (std::abs(f) < f_best) {

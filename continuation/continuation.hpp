@@ -65,7 +65,8 @@ class Continuation {
   struct Corrected;
   Corrected correct(const Eigen::VectorXd& from, const Eigen::VectorXd& tangent, double step,
                     const Eigen::VectorXd& start_guess);
-  Eigen::VectorXd tangent_at(const Corrected& c, const Eigen::VectorXd& previous);
+  Eigen::VectorXd tangent_of(const Eigen::SparseMatrix<double>& jac, const Eigen::VectorXd& y,
+                             const Eigen::VectorXd& previous) const;
   ContinuationPoint make_point(const Corrected& c, const Eigen::VectorXd& tangent, int index,
                                double step);
   // The nontrivial multipliers of a followed to b (with their motion predicted from the point

@@ -117,7 +117,11 @@ PeriodicOrbit solve_periodic_orbit(const OdeSystem& system, const Eigen::VectorX
   orbit.family_dimension = rank_deficiency(jac, options.newton.rank_tolerance);
   const Eigen::VectorXd f =
       problem.autonomous() ? system.rhs(0.0, orbit.state0) : Eigen::VectorXd();
-  orbit.floquet = analyze_floquet(e.transitions, f, orbit.family_dimension, options.floquet);
+  const Eigen::MatrixXd family =
+      orbit.family_dimension > 0
+          ? Eigen::MatrixXd(null_vectors(jac, orbit.family_dimension).topRows(n))
+          : Eigen::MatrixXd();
+  orbit.floquet = analyze_floquet(e.transitions, f, family, options.floquet);
   orbit.flow = problem.flow().statistics();
   orbit.seconds = seconds_since(started);
   return orbit;

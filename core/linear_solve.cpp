@@ -48,6 +48,18 @@ int rank_deficiency(const Eigen::SparseMatrix<double>& a, double rank_tolerance)
   return static_cast<int>(std::min(a.rows(), a.cols()) - svd.rank());
 }
 
+Eigen::MatrixXd null_vectors(const Eigen::SparseMatrix<double>& a, int dimension) {
+  const Eigen::VectorXd columns = column_scale(a);
+  const Eigen::SparseMatrix<double> partly = a * columns.asDiagonal();
+  const Eigen::SparseMatrix<double> scaled = row_scale(partly).asDiagonal() * partly;
+  Eigen::BDCSVD<Eigen::MatrixXd> svd(scaled.toDense(), Eigen::ComputeFullV);
+  const int n = static_cast<int>(a.cols());
+  Eigen::MatrixXd v(n, dimension);
+  for (int k = 0; k < dimension; ++k)
+    v.col(k) = (columns.asDiagonal() * svd.matrixV().col(n - 1 - k)).normalized();
+  return v;
+}
+
 LinearSolution solve_linear(const Eigen::SparseMatrix<double>& a, const Eigen::VectorXd& b,
                             const LinearSolveOptions& options) {
   if (a.rows() != a.cols() || a.rows() != b.size())

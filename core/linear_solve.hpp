@@ -29,6 +29,8 @@ struct LinearSolveOptions {
 
 // Dimension of the null space of the column-scaled matrix (see rank_tolerance).
 int rank_deficiency(const Eigen::SparseMatrix<double>& a, double rank_tolerance = 1e-6);
+// Its `dimension` right null vectors (least singular), in the unscaled variables, as columns.
+Eigen::MatrixXd null_vectors(const Eigen::SparseMatrix<double>& a, int dimension);
 
 LinearSolution solve_linear(const Eigen::SparseMatrix<double>& a, const Eigen::VectorXd& b,
                             const LinearSolveOptions& options = {});

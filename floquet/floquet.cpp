@@ -21,17 +21,57 @@ std::string to_string(Stability s) {
   return "?";
 }
 
+namespace {
+
+// The multiplier whose eigenvector lies along `direction`, among those not excluded. Within a
+// cluster of (nearly) equal multipliers single eigenvectors are arbitrary, so first the cluster
+// whose eigenvectors' span holds the direction best (all its members count, taken ones too: a
+// family's multiplier shares its eigenspace with the trivial one), then the free member whose
+// own vector does. Returns the index and the member's alignment |cos|.
+std::pair<int, double> aligned(const std::vector<std::complex<double>>& values,
+                               const std::vector<Eigen::VectorXcd>& vectors,
+                               const Eigen::VectorXd& direction,
+                               const std::vector<bool>& excluded) {
+  const int n = static_cast<int>(values.size());
+  const Eigen::VectorXcd d = direction.cast<std::complex<double>>().normalized();
+  int best = -1;
+  double best_span = -1.0, best_own = -1.0;
+  for (int i = 0; i < n; ++i) {
+    if (excluded[i]) continue;
+    std::vector<int> cluster;
+    for (int j = 0; j < n; ++j)
+      if (std::abs(values[j] - values[i]) <= 1e-6 * std::max(1.0, std::abs(values[i])))
+        cluster.push_back(j);
+    Eigen::MatrixXcd span(n, cluster.size());
+    for (std::size_t k = 0; k < cluster.size(); ++k) span.col(k) = vectors[cluster[k]];
+    const Eigen::HouseholderQR<Eigen::MatrixXcd> qr(span);
+    const Eigen::MatrixXcd q =
+        qr.householderQ() * Eigen::MatrixXcd::Identity(n, static_cast<int>(cluster.size()));
+    const double in_span = (q.adjoint() * d).norm();
+    const double own = std::abs(vectors[i].dot(d));
+    if (in_span > best_span + 1e-12 || (std::abs(in_span - best_span) <= 1e-12 && own > best_own)) {
+      best_span = std::max(best_span, in_span);
+      best = i;
+      best_own = own;
+    }
+  }
+  return {best, best_own};
+}
+
+}  // namespace
+
 FloquetAnalysis analyze_floquet(const std::vector<Eigen::MatrixXd>& segments,
-                                const Eigen::VectorXd& flow_direction, int structural,
-                                const FloquetOptions& options) {
+                                const Eigen::VectorXd& flow_direction,
+                                const Eigen::MatrixXd& family, const FloquetOptions& options) {
   if (segments.empty()) throw std::invalid_argument("analyze_floquet: no segment matrices");
   const int n = static_cast<int>(segments.front().rows());
 
-  // The product is formed for eigenvectors only (to find the trivial multiplier); with one
-  // segment it is the monodromy and its eigenvalues are the multipliers.
+  // The product is formed for eigenvectors only (to find the trivial and structural
+  // multipliers); with one segment it is the monodromy and its eigenvalues are the multipliers.
   Eigen::MatrixXd monodromy = segments.front();
   for (std::size_t k = 1; k < segments.size(); ++k) monodromy = segments[k] * monodromy;
-  Eigen::EigenSolver<Eigen::MatrixXd> eig(monodromy, flow_direction.size() > 0);
+  Eigen::EigenSolver<Eigen::MatrixXd> eig(monodromy,
+                                          flow_direction.size() > 0 || family.cols() > 0);
 
   FloquetAnalysis a;
   std::vector<std::complex<double>> values;
@@ -48,13 +88,13 @@ FloquetAnalysis analyze_floquet(const std::vector<Eigen::MatrixXd>& segments,
   }
   for (int i = 0; i < n; ++i) a.multipliers.push_back({values[i], logs[i]});
 
-  if (flow_direction.size() == n && flow_direction.norm() > 0.0) {
-    // The trivial multiplier is the one whose eigenvector is f. Eigenvectors come from the
-    // formed product, matched to the multipliers by value (accurate for moduli near 1). Within
-    // a cluster of (nearly) equal multipliers, as on a family of orbits, single eigenvectors are
-    // arbitrary, so first choose the cluster whose eigenvectors' span holds f best, then the
-    // member whose own eigenvector does.
-    const Eigen::VectorXcd f = flow_direction.cast<std::complex<double>>().normalized();
+  // The trivial multiplier is the one whose eigenvector is f, the structural ones those whose
+  // eigenvectors lie along the family's directions: identified by eigenvectors, not by being
+  // nearest to 1. Eigenvectors come from the formed product, matched to the multipliers by
+  // value (accurate for moduli near 1).
+  std::vector<bool> taken(n, false);
+  const bool autonomous = flow_direction.size() == n && flow_direction.norm() > 0.0;
+  if (autonomous || family.cols() > 0) {
     std::vector<Eigen::VectorXcd> vectors;
     for (int i = 0; i < n; ++i) {
       int nearest = 0;
@@ -64,31 +104,29 @@ FloquetAnalysis analyze_floquet(const std::vector<Eigen::MatrixXd>& segments,
           nearest = j;
       vectors.push_back(eig.eigenvectors().col(nearest).normalized());
     }
-    double best_span = -1.0;
-    for (int i = 0; i < n; ++i) {
-      std::vector<int> cluster;
-      for (int j = 0; j < n; ++j)
-        if (std::abs(values[j] - values[i]) <= 1e-6 * std::max(1.0, std::abs(values[i])))
-          cluster.push_back(j);
-      Eigen::MatrixXcd span(n, cluster.size());
-      for (std::size_t k = 0; k < cluster.size(); ++k) span.col(k) = vectors[cluster[k]];
-      const Eigen::HouseholderQR<Eigen::MatrixXcd> qr(span);
-      const Eigen::MatrixXcd q =
-          qr.householderQ() * Eigen::MatrixXcd::Identity(n, static_cast<int>(cluster.size()));
-      const double in_span = (q.adjoint() * f).norm();
-      const double own = std::abs(vectors[i].dot(f));
-      // Prefer the better span; among members of one cluster (equal spans), the better vector.
-      if (in_span > best_span + 1e-12 ||
-          (std::abs(in_span - best_span) <= 1e-12 && own > a.trivial_alignment)) {
-        best_span = std::max(best_span, in_span);
-        a.trivial = i;
-        a.trivial_alignment = own;
+    if (autonomous) {
+      const auto [index, alignment] = aligned(values, vectors, flow_direction, taken);
+      a.trivial = index;
+      a.trivial_alignment = alignment;
+      taken[index] = true;
+      a.multipliers[index].trivial = true;
+    }
+    for (int k = 0; k < family.cols() && k + 1 < n; ++k) {
+      // A family direction from a null vector of the shooting equations mixes in f (the phase
+      // condition fixes only the mixture): take f out before aligning.
+      Eigen::VectorXd d = family.col(k);
+      if (autonomous) {
+        const Eigen::VectorXd f = flow_direction.normalized();
+        d -= f.dot(d) * f;
       }
+      const int index = aligned(values, vectors, d, taken).first;
+      taken[index] = true;
+      a.multipliers[index].structural = true;
+      ++a.structural;
     }
   }
 
   // Order by decreasing modulus, keeping track of the trivial one.
-  if (a.trivial >= 0) a.multipliers[a.trivial].trivial = true;
   std::stable_sort(a.multipliers.begin(), a.multipliers.end(),
                    [](const auto& x, const auto& y) { return x.log_modulus > y.log_modulus; });
   // Conjugate pairs have equal moduli up to rounding: put the positive argument first, so that
@@ -104,16 +142,6 @@ FloquetAnalysis analyze_floquet(const std::vector<Eigen::MatrixXd>& segments,
   for (int i = 0; i < n; ++i)
     if (a.multipliers[i].trivial) a.trivial = i;
   if (a.trivial >= 0) a.trivial_error = std::abs(a.multipliers[a.trivial].value - 1.0);
-
-  // Structural multipliers: the nontrivial ones nearest to 1.
-  std::vector<int> order;
-  for (int i = 0; i < n; ++i)
-    if (i != a.trivial) order.push_back(i);
-  std::sort(order.begin(), order.end(), [&](int x, int y) {
-    return std::abs(a.multipliers[x].value - 1.0) < std::abs(a.multipliers[y].value - 1.0);
-  });
-  a.structural = std::min<int>(structural, static_cast<int>(order.size()));
-  for (int k = 0; k < a.structural; ++k) a.multipliers[order[k]].structural = true;
 
   const double tol = options.stability_tolerance;
   a.max_modulus = 0.0;

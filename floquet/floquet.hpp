@@ -48,10 +48,12 @@ struct FloquetAnalysis {
 
 // `segments`: transition matrices of the m shooting segments in order (one: the monodromy).
 // `flow_direction`: f at the orbit's initial point, or empty for a periodically forced
-// (non-autonomous) system, which has no trivial multiplier. `structural`: the number of
-// nontrivial multipliers forced to 1 by a family (the dimension of the family).
+// (non-autonomous) system, which has no trivial multiplier. `family`: directions at the
+// initial point along a continuum of orbits (columns; none for an isolated orbit): the
+// multipliers whose eigenvectors lie along them are the structural ones, forced to 1.
 FloquetAnalysis analyze_floquet(const std::vector<Eigen::MatrixXd>& segments,
-                                const Eigen::VectorXd& flow_direction, int structural = 0,
+                                const Eigen::VectorXd& flow_direction,
+                                const Eigen::MatrixXd& family = Eigen::MatrixXd(),
                                 const FloquetOptions& options = {});
 
 }  // namespace sympathy

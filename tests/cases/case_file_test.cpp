@@ -233,7 +233,8 @@ TEST(CaseFiles, PaperTablesByName) {
   const auto row = CaseFile::load(case_path("row2"));
   EXPECT_EQ(row.spec("table2").kx, 14.7467);
   EXPECT_EQ(row.spec("table3").cx, 0.3868);
-  EXPECT_EQ(row.start_names(), (std::vector<std::string>{"in-phase", "anti-phase", "in-phase-low"}));
+  EXPECT_EQ(row.start_names(),
+            (std::vector<std::string>{"in-phase", "anti-phase", "in-phase-low"}));
   const auto cross = CaseFile::load(case_path("cross4"));
   EXPECT_EQ(cross.spec("table4").M, 0.6366);
   EXPECT_EQ(cross.spec("table5").ky, 62.8719);

@@ -50,18 +50,26 @@ TEST(Floquet, StabilityVerdicts) {
   EXPECT_NEAR(u.max_modulus, 1.13, 1e-12);
 }
 
-// A family's structural multiplier at 1 is excluded from the verdict, and marked.
-TEST(Floquet, StructuralMultipliersAreMarkedAndExcluded) {
-  const Eigen::MatrixXd v = random_basis(4, 9);
-  Eigen::VectorXd mu(4);
-  mu << 1.0, 1.0 + 1e-10, 0.8, 0.95;
-  const auto a = analyze_floquet({with_spectrum(mu, v)}, v.col(0), 1);
+// A family's structural multiplier (eigenvector along the family's direction) is marked and
+// left out of the verdict, found by its eigenvector even when another multiplier, crossing 1
+// near a branch point, is nearer to 1 than it.
+TEST(Floquet, StructuralMultipliersFoundByEigenvector) {
+  const Eigen::MatrixXd v = random_basis(5, 9);
+  Eigen::VectorXd mu(5);
+  mu << 1.0, 1.0 + 3e-9, 1.0 + 1e-10, 0.8, 0.95;  // trivial, structural, crossing, others
+  // The direction as a null vector delivers it: mixed with f.
+  const Eigen::VectorXd family = v.col(1) + 0.7 * v.col(0);
+  const auto a = analyze_floquet({with_spectrum(mu, v)}, v.col(0), family);
   EXPECT_EQ(a.structural, 1);
-  int structural = 0;
-  for (const auto& m : a.multipliers) structural += m.structural;
-  EXPECT_EQ(structural, 1);
-  EXPECT_EQ(a.stability, Stability::Stable);
-  EXPECT_NEAR(a.max_modulus, 0.95, 1e-12);
+  for (const auto& m : a.multipliers) {
+    if (m.structural) EXPECT_NEAR(m.value.real(), 1.0 + 3e-9, 1e-13);
+  }
+  EXPECT_NEAR(a.max_modulus, 1.0 + 1e-10, 1e-13);  // the crossing one counts
+  EXPECT_EQ(a.stability, Stability::Marginal);
+  mu[2] = 0.9;
+  const auto b = analyze_floquet({with_spectrum(mu, v)}, v.col(0), family);
+  EXPECT_EQ(b.stability, Stability::Stable);
+  EXPECT_NEAR(b.max_modulus, 0.95, 1e-12);
 }
 
 // Complex pairs keep their arguments; without f (a forced system) there is no trivial one.

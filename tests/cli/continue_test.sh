@@ -1,0 +1,57 @@
+#!/usr/bin/env bash
+# The continue and study commands end to end: JSON and CSV contents, Ctrl-C, bad input.
+# Usage: continue_test.sh SYMPATHY_BINARY SOURCE_DIR WORK_DIR
+set -u
+bin=$1 src=$2 work=$3
+mkdir -p "$work"
+failures=0
+check() {
+  local what=$1; shift
+  if "$@"; then echo "ok: $what"; else echo "FAILED: $what"; failures=$((failures + 1)); fi
+}
+json() { /usr/bin/python3 -c "import json,sys; j=json.load(open(sys.argv[1])); print($2)" "$1"; }
+
+# The anti-phase branch across its first stability change (paper: about 47 N/m).
+"$bin" continue "$src/cases/row2.toml" --start anti-phase --param k --from 40 --to 52 \
+  --csv "$work/anti.csv" --json "$work/anti.json" > "$work/anti.out" 2> "$work/anti.err"
+check "continue exits 0" test $? -eq 0
+check "table of bifurcation points printed" grep -q '^  BP   47.06' "$work/anti.out"
+check "run time printed" grep -q 'run time' "$work/anti.out"
+check "progress lines on stderr" grep -q '^  \[   1\] k = ' "$work/anti.err"
+for key in parameter points events seconds; do
+  check "JSON has '$key'" test "$(json "$work/anti.json" "'$key' in j")" = True
+done
+check "JSON points carry value, period, stable, multipliers, trivial_multiplier_error" \
+  test "$(json "$work/anti.json" "all(all(k in p for k in ('value','period','stable','multipliers','trivial_multiplier_error')) for p in j['points'])")" = True
+check "JSON events: BP then NS with type, value, period, multipliers" \
+  test "$(json "$work/anti.json" "[e['type'] for e in j['events']] == ['BP', 'NS'] and all(all(k in e for k in ('type','value','period','multipliers')) for e in j['events'])")" = True
+check "every point within 1e-8 of a trivial multiplier of 1" \
+  test "$(json "$work/anti.json" "max(p['trivial_multiplier_error'] for p in j['points']) < 1e-8")" = True
+check "CSV has a row per point" test "$(($(wc -l < "$work/anti.csv") - 1))" -eq "$(json "$work/anti.json" "len(j['points'])")"
+check "CSV header" grep -q '^index,k,period,frequency,stability' "$work/anti.csv"
+
+# Ctrl-C: the run stops after the point in progress, keeping the CSV and writing the JSON.
+# (Stale files from an earlier run would send the signal before the handler is in place.)
+rm -f "$work/int.csv" "$work/int.json"
+"$bin" continue "$src/cases/row2.toml" --start in-phase --param k --from 1 --to 100 \
+  --csv "$work/int.csv" --json "$work/int.json" > "$work/int.out" 2>&1 &
+pid=$!
+for _ in $(seq 1 100); do [ "$(wc -l < "$work/int.csv" 2>/dev/null || echo 0)" -ge 4 ] && break; sleep 0.2; done
+kill -INT $pid
+wait $pid
+check "interrupted run exits 0" test $? -eq 0
+check "interrupted run says so" grep -q 'stopped: interrupted' "$work/int.out"
+check "interrupted run keeps its points" test "$(json "$work/int.json" "len(j['points']) >= 3")" = True
+
+# Bad input.
+"$bin" continue "$src/cases/row2.toml" --start anti-phase --param q --from 1 --to 2 2> "$work/bad.err"
+check "unknown parameter exits 2" test $? -eq 2
+check "unknown parameter is named" grep -q -- "--param q: not a parameter" "$work/bad.err"
+"$bin" continue "$src/cases/row2.toml" --start anti-phase --param k --from 5 --to 5 2> "$work/bad.err"
+check "--from = --to exits 2" test $? -eq 2
+printf 'case = "../row2.toml"\nparameter = "k"\ncolour = 3\n' > "$work/bad.toml"
+"$bin" study "$work/bad.toml" --out "$work" 2> "$work/bad.err"
+check "study with an unknown key exits 2" test $? -eq 2
+check "study error names file, line and key" grep -q "bad.toml:3: key 'colour'" "$work/bad.err"
+
+exit $failures

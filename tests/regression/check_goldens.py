@@ -1,0 +1,58 @@
+#!/usr/bin/python3
+"""Compares the bifurcation points of computed studies with the goldens.
+
+usage: check_goldens.py GOLDENS.json STUDY_DIR [--perturb]
+
+Every golden branch must have the same events, in order, with the same types, and each value
+within max(relative * |value|, absolute) of the golden one. With --perturb the first golden
+value is moved by ten tolerances first: the check must then fail (it shows that it can).
+Exit code 0 when everything matches, 1 otherwise, with a table of what differs.
+"""
+import json
+import os
+import sys
+
+
+def main():
+    args = [a for a in sys.argv[1:] if not a.startswith("--")]
+    if len(args) != 2:
+        sys.exit(__doc__)
+    goldens_path, folder = args
+    with open(goldens_path) as f:
+        goldens = json.load(f)
+    rel, absolute = goldens["tolerance"]["relative"], goldens["tolerance"]["absolute"]
+    studies = goldens["studies"]
+    if "--perturb" in sys.argv:
+        study = next(iter(studies.values()))
+        branch = next(b for b in study.values() if b)
+        branch[0]["value"] += 10 * max(rel * abs(branch[0]["value"]), absolute)
+
+    failures = 0
+    for study, branches in studies.items():
+        path = os.path.join(folder, study + ".json")
+        if not os.path.exists(path):
+            print(f"FAILED {study}: no computed {path}")
+            failures += 1
+            continue
+        with open(path) as f:
+            computed = {b["name"]: b for b in json.load(f)["branches"]}
+        for name, expected in branches.items():
+            events = [e for e in computed.get(name, {}).get("events", [])]
+            got = [(e["type"], e["value"]) for e in events]
+            want = [(e["type"], e["value"]) for e in expected]
+            if [t for t, _ in got] != [t for t, _ in want]:
+                print(f"FAILED {study}/{name}: types {[t for t, _ in got]} != {[t for t, _ in want]}")
+                failures += 1
+                continue
+            for (t, v), (_, w) in zip(got, want):
+                tol = max(rel * abs(w), absolute)
+                ok = abs(v - w) <= tol
+                failures += not ok
+                print(f"{'ok    ' if ok else 'FAILED'} {study}/{name} {t} {v:.10g} golden {w:.10g} "
+                      f"diff {v - w:+.2e} tolerance {tol:.1e}")
+    print(f"{failures} failure(s)")
+    sys.exit(1 if failures else 0)
+
+
+if __name__ == "__main__":
+    main()
