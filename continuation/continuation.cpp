@@ -166,21 +166,30 @@ double Continuation::orbit_cosine(const Eigen::VectorXd& u, const Eigen::VectorX
   return norms > 0.0 ? scaled_dot(a, b) / norms : 0.0;
 }
 
+// The largest |z_i| on an orbit (one period, sampled) widens each component's scale: scales only
+// grow, so that a component whose amplitude grows along the branch (a platform starting to
+// swing) does not take all the arclength.
+void Continuation::widen_scales(const Eigen::VectorXd& z0, double period) {
+  Flow flow(system_, options_.orbit.transient_flow);
+  Eigen::VectorXd size = z0.cwiseAbs();
+  std::vector<double> times;
+  for (int k = 1; k <= 100; ++k) times.push_back(period * k / 100.0);
+  flow.sample(z0, 0.0, times,
+              [&](double, const Eigen::VectorXd& z) { size = size.cwiseMax(z.cwiseAbs()); });
+  sizes_ = sizes_.size() ? Eigen::VectorXd(sizes_.cwiseMax(size)) : size;
+  const int n = problem_->dimension(), m = problem_->segments();
+  const double floor = std::max(1e-3 * sizes_.maxCoeff(), 1e-12);
+  for (int j = 0; j < m; ++j)
+    for (int i = 0; i < n; ++i)
+      weights_[j * n + i] = 1.0 / (std::max(sizes_[i], floor) * std::sqrt(static_cast<double>(m)));
+}
+
 void Continuation::set_weights(const PeriodicOrbit& start) {
   const int n = problem_->dimension(), m = problem_->segments();
   const int unknowns = problem_->unknowns();
-  // Amplitudes of every state component on the starting orbit (one period, sampled).
-  Flow flow(system_, options_.orbit.transient_flow);
-  Eigen::VectorXd size = start.state0.cwiseAbs();
-  std::vector<double> times;
-  for (int k = 1; k <= 200; ++k) times.push_back(start.period * k / 200.0);
-  flow.sample(start.state0, 0.0, times,
-              [&](double, const Eigen::VectorXd& z) { size = size.cwiseMax(z.cwiseAbs()); });
-  const double floor = std::max(1e-3 * size.maxCoeff(), 1e-12);
   weights_.resize(unknowns + 1);
-  for (int j = 0; j < m; ++j)
-    for (int i = 0; i < n; ++i)
-      weights_[j * n + i] = 1.0 / (std::max(size[i], floor) * std::sqrt(static_cast<double>(m)));
+  sizes_.resize(0);
+  widen_scales(start.state0, start.period);
   weights_[n * m] = 1.0 / start.period;
   weights_[unknowns] = 1.0 / (options_.upper - options_.lower);
 }
@@ -441,6 +450,14 @@ Branch Continuation::run(const PeriodicOrbit& start, int direction,
     }
     if (added.parameter < options_.lower || added.parameter > options_.upper)
       return finish("reached the parameter bound");
+    // Scales follow the amplitudes met so far; the tangent stays a unit vector in them.
+    try {
+      widen_scales(added.orbit.state0, added.orbit.period);
+    } catch (const IntegrationError&) {
+      // keep the scales as they are
+    }
+    auto& last = branch.points.back();
+    last.tangent /= std::sqrt(scaled_dot(last.tangent, last.tangent));
     if (c.iterations <= 2)
       ds = std::min(1.5 * ds, options_.max_step);
     else if (c.iterations >= 5)

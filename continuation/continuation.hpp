@@ -1,11 +1,11 @@
 // Pseudo-arclength continuation of periodic orbits in one parameter.
 //
 // Unknowns Y = (x, p): the shooting unknowns and the parameter. A point satisfies the shooting
-// equations F(x, p) = 0 (phase condition on the previous point's section) and the arclength
-// condition <tau, Y - Y_prev> = ds in a scaled norm (each state component by its amplitude on
-// the starting orbit, the period by itself, the parameter by the range asked for), so that
-// steps mean the same in metres, radians and newtons per metre. The tangent at a converged
-// point comes from that point's own Jacobian: nothing is integrated twice.
+// equations F(x, p) = 0 (phase condition on a section through an earlier point) and the
+// arclength condition <tau, Y - Y_prev> = ds in a scaled norm (each state component by the
+// largest amplitude met on the branch so far, the period by itself, the parameter by the range
+// asked for), so that steps mean the same in metres, radians and newtons per metre. The tangent at
+// a converged point comes from that point's own Jacobian: nothing is integrated twice.
 //
 // Steps grow after easy corrections and shrink after hard or failed ones, after a step that
 // turns the tangent too far, and when a multiplier near the unit circle moves more than a set
@@ -88,12 +88,14 @@ class Continuation {
   double orbit_cosine(const Eigen::VectorXd& u, const Eigen::VectorXd& v,
                       const Eigen::VectorXd& at) const;
   void set_weights(const PeriodicOrbit& start);
+  void widen_scales(const Eigen::VectorXd& z0, double period);
 
   OdeSystem& system_;
   int parameter_;
   ContinuationOptions options_;
   std::unique_ptr<ShootingProblem> problem_;
   Eigen::VectorXd weights_;   // of (unknowns, parameter): 1 / typical size
+  Eigen::VectorXd sizes_;     // largest |z_i| met on the branch's orbits so far
   int family_dimension_ = 0;  // of the starting orbit's continuum, kept along the branch
 };
 
