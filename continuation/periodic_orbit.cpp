@@ -2,6 +2,7 @@
 
 #include <chrono>
 #include <cmath>
+#include <sstream>
 
 #include "core/linear_solve.hpp"
 
@@ -185,6 +186,24 @@ PeriodicOrbit find_periodic_orbit(const OdeSystem& system, const Eigen::VectorXd
     return failed;
   }
   PeriodicOrbit orbit = solve_periodic_orbit(system, z, period, subspace, options);
+  if (!orbit.converged()) {
+    // Say whether the transient had settled: how far the motion still moved in one period.
+    try {
+      const Eigen::VectorXd later = subspace.project(flow.advance(z, 0.0, period));
+      const double moved = (later - z).cwiseAbs().maxCoeff();
+      const double size = std::max(z.cwiseAbs().maxCoeff(), 1e-300);
+      std::ostringstream note;
+      note.precision(2);
+      note << "; after the " << options.transient << " s transient the motion still moved by "
+           << moved << " (" << 100.0 * moved / size << "% of the state) in one period: "
+           << (moved > 1e-3 * size ? "it had not settled on a periodic orbit (a longer "
+                                     "transient, or there may be none, e.g. when no "
+                                     "dissipation balances a drive)"
+                                   : "it had settled, so the orbit may be hard for Newton here");
+      orbit.newton.reason += note.str();
+    } catch (const IntegrationError&) {
+    }
+  }
   orbit.flow += flow.statistics();
   orbit.seconds = seconds_since(started);
   return orbit;

@@ -31,7 +31,14 @@ void CsvWriter::row(const std::vector<std::string>& fields) {
   std::string line;
   for (std::size_t i = 0; i < fields.size(); ++i) {
     if (i) line += ',';
-    line += fields[i];
+    // RFC 4180: a field with a comma, quote or line break is quoted, its quotes doubled.
+    if (fields[i].find_first_of(",\"\n\r") == std::string::npos) {
+      line += fields[i];
+    } else {
+      line += '"';
+      for (char c : fields[i]) line += c == '"' ? std::string("\"\"") : std::string(1, c);
+      line += '"';
+    }
   }
   line += '\n';
   std::fputs(line.c_str(), file_);

@@ -59,6 +59,8 @@ struct Flow::Cvodes {
   Eigen::MatrixXd jacobian;
   std::vector<const double*> columns_in;
   std::vector<double*> columns_out;
+  std::vector<double> dq_parameters, dq_scales;  // for CVODES's difference quotients
+  std::vector<int> dq_list;
 
   Cvodes() = default;
   Cvodes(const Cvodes&) = delete;
@@ -220,7 +222,7 @@ Flow::Flow(const OdeSystem& system, FlowOptions options)
     require(cv.nonlinear_solver != nullptr, "SUNNonlinSol_Newton failed");
     SYMPATHY_CHECK(CVodeSetNonlinearSolver(cv.mem, cv.nonlinear_solver));
     if (options_.linear_solver == LinearSolver::KLU) {
-      if (!system_.differentiable())
+      if (!system_.differentiable() || options_.derivatives != Derivatives::Model)
         throw std::invalid_argument("the KLU linear solver needs the system's Jacobian");
       auto pattern = system_.jacobian_pattern();
       if (pattern.empty())
@@ -248,8 +250,8 @@ Flow::Flow(const OdeSystem& system, FlowOptions options)
       cv.linear_solver = SUNLinSol_Dense(cv.y, cv.matrix, cv.ctx);
       require(cv.linear_solver != nullptr, "SUNLinSol_Dense failed");
       SYMPATHY_CHECK(CVodeSetLinearSolver(cv.mem, cv.linear_solver, cv.matrix));
-      // Without derivatives CVODES falls back to difference quotients (simulation only).
-      if (system_.differentiable())
+      // Without derivatives CVODES falls back to difference quotients.
+      if (system_.differentiable() && options_.derivatives == Derivatives::Model)
         SYMPATHY_CHECK(CVodeSetJacFn(cv.mem, FlowCallbacks::dense_jacobian));
     }
   }
@@ -303,6 +305,9 @@ void Flow::start(const Eigen::VectorXd& z0, double t0, int sensitivity_columns,
   if (sensitivity_columns > 0) {
     if (!system_.differentiable())
       throw std::invalid_argument("sensitivities need a differentiable system");
+    if (options_.derivatives == Derivatives::DifferenceQuotients && !parameters.empty())
+      throw std::invalid_argument(
+          "parameter sensitivities need the system's derivatives, not difference quotients");
     const int ism =
         options_.corrector == SensitivityCorrector::Staggered ? CV_STAGGERED : CV_SIMULTANEOUS;
     if (cv.sens_columns != sensitivity_columns) {
@@ -328,8 +333,20 @@ void Flow::start(const Eigen::VectorXd& z0, double t0, int sensitivity_columns,
       if (j < state_columns) N_VGetArrayPointer(cv.yS[j])[j] = 1.0;
     }
     if (!cv.sens_initialized) {
-      SYMPATHY_CHECK(
-          CVodeSensInit(cv.mem, sensitivity_columns, ism, FlowCallbacks::sensitivity_rhs, cv.yS));
+      const bool quotients = options_.derivatives == Derivatives::DifferenceQuotients;
+      SYMPATHY_CHECK(CVodeSensInit(cv.mem, sensitivity_columns, ism,
+                                   quotients ? nullptr : FlowCallbacks::sensitivity_rhs, cv.yS));
+      if (quotients) {
+        // CVODES perturbs a parameter array along with the state; dummies that f never reads
+        // make the parameter terms zero: initial-state sensitivities alone.
+        cv.dq_parameters.assign(sensitivity_columns, 1.0);
+        cv.dq_scales.assign(sensitivity_columns, 1.0);
+        cv.dq_list.resize(sensitivity_columns);
+        for (int j = 0; j < sensitivity_columns; ++j) cv.dq_list[j] = j;
+        SYMPATHY_CHECK(CVodeSetSensParams(cv.mem, cv.dq_parameters.data(), cv.dq_scales.data(),
+                                          cv.dq_list.data()));
+        SYMPATHY_CHECK(CVodeSetSensDQMethod(cv.mem, CV_CENTERED, 0.0));
+      }
       std::vector<double> atols(sensitivity_columns, options_.atol);
       SYMPATHY_CHECK(CVodeSensSStolerances(cv.mem, options_.rtol, atols.data()));
       SYMPATHY_CHECK(CVodeSetSensErrCon(cv.mem, SUNTRUE));

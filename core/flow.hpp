@@ -36,6 +36,9 @@ enum class Method { BDF, Adams };
 enum class NonlinearSolver { Newton, FixedPoint };
 enum class LinearSolver { Dense, KLU };
 enum class SensitivityCorrector { Staggered, Simultaneous };
+// Where the Jacobian and the sensitivity right-hand side come from: the system's own
+// derivatives, or CVODES's difference quotients (state sensitivities only; for comparison).
+enum class Derivatives { Model, DifferenceQuotients };
 
 struct FlowOptions {
   double rtol = 1e-10;
@@ -44,6 +47,7 @@ struct FlowOptions {
   NonlinearSolver nonlinear_solver = NonlinearSolver::Newton;
   LinearSolver linear_solver = LinearSolver::Dense;
   SensitivityCorrector corrector = SensitivityCorrector::Staggered;
+  Derivatives derivatives = Derivatives::Model;
   long max_steps = 1000000;  // per call
   double max_step = 0.0;     // 0: no limit
   bool resolve_steep_zones = true;

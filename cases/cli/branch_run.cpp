@@ -114,6 +114,13 @@ BranchResult run_branch(const LoadedCase& c, const BranchRequest& request,
                    request.parameter.c_str(), p.parameter, p.orbit.period,
                    to_string(p.orbit.floquet.stability).c_str(), p.orbit.floquet.max_modulus,
                    p.step, p.iterations);
+    if (request.progress && request.verbose) {
+      std::fprintf(request.progress, "         multipliers");
+      for (const auto& m : p.orbit.floquet.multipliers)
+        std::fprintf(request.progress, " %.6f%+.6fi", m.value.real(), m.value.imag());
+      std::fprintf(request.progress, "; trivial |mu - 1| %.1e, residual %.1e\n",
+                   p.orbit.floquet.trivial_error, p.orbit.residual);
+    }
     reports.emplace_back(p.index, std::move(r));
   };
   callbacks.on_event = [&](const Bifurcation& e) {

@@ -27,6 +27,7 @@ struct BranchRequest {
   ContinuationOptions continuation;  // bounds are set from from/to
   double transient = 60.0;
   std::FILE* progress = stderr;  // nullptr: quiet
+  bool verbose = false;          // multipliers on each progress line
 };
 
 struct BranchResult {

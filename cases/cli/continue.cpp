@@ -24,7 +24,8 @@ int run_continue(const std::vector<std::string>& argv) {
        {"--transient", "SECONDS", false, "integration before the first Newton (default 60)"},
        {"--csv", "FILE", false, "stream every point to this CSV"},
        {"--json", "FILE", false, "write the branch and its bifurcations as JSON"},
-       {"--quiet", "", false, "no progress lines"}});
+       {"--quiet", "", false, "no progress lines"},
+       {"--verbose", "", false, "multipliers on each progress line; the full report at the end"}});
   const auto integrator = integrator_options();
   options.insert(options.end(), integrator.begin(), integrator.end());
   Arguments args("continue", argv, options, {"CASE"});
@@ -48,6 +49,7 @@ int run_continue(const std::vector<std::string>& argv) {
   request.csv_path = args.text("--csv", "");
   request.transient = args.number("--transient", 60.0);
   if (args.flag("--quiet")) request.progress = nullptr;
+  request.verbose = args.flag("--verbose");
   auto& o = request.continuation;
   o.orbit.shooting.segments = args.integer("--segments", 1);
   if (o.orbit.shooting.segments < 1 || o.orbit.shooting.segments > 1000)
@@ -82,6 +84,7 @@ int run_continue(const std::vector<std::string>& argv) {
       rj.location);
   std::printf("bifurcations:\n");
   print_events(stdout, r, request.parameter);
+  if (request.verbose) print_flow_statistics(stdout, r.branch.flow);
   std::printf("  run time %.3f s (%ld integrations, %ld steps)\n", clock.seconds(),
               r.branch.flow.calls, r.branch.flow.steps);
   if (json_out.is_open()) {

@@ -20,7 +20,8 @@ int run_orbit(const std::vector<std::string>& argv) {
                   {"--initial", "VAR=VALUE", true, "initial state value (on top of --start)"},
                   {"--segments", "M", false, "shooting segments (default 1: single shooting)"},
                   {"--transient", "SECONDS", false, "integration before Newton (default 60)"},
-                  {"--json", "FILE", false, "write the orbit as JSON"}});
+                  {"--json", "FILE", false, "write the orbit as JSON"},
+                  {"--verbose", "", false, "the full report: Newton steps, integration work"}});
   const auto integrator = integrator_options();
   options.insert(options.end(), integrator.begin(), integrator.end());
   Arguments args("orbit", argv, options, {"CASE"});
@@ -49,6 +50,13 @@ int run_orbit(const std::vector<std::string>& argv) {
   std::printf("sympathy orbit %s  params %s  start %s\n", c.file.path().c_str(),
               c.params.empty() ? "(none)" : c.params.c_str(), start.name.c_str());
   print_orbit(stdout, model, orbit, report, o);
+  if (args.flag("--verbose")) {
+    std::printf("  newton steps");
+    for (double step : orbit.newton.step_norms) std::printf(" %.1e", step);
+    std::printf(" (|dx|_inf; %d halvings; %s linear solves)\n", orbit.newton.halvings,
+                orbit.newton.sparse ? "sparse LU" : "dense SVD");
+    print_flow_statistics(stdout, orbit.flow);
+  }
   std::printf("  run time     %.3f s\n", seconds);
 
   if (auto path = args.value("--json")) {

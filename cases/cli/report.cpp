@@ -101,6 +101,18 @@ void print_orbit(std::FILE* out, const MetronomeModel& model, const PeriodicOrbi
                st.jacobian_evaluations);
 }
 
+void print_flow_statistics(std::FILE* out, const FlowStatistics& s) {
+  std::fprintf(out,
+               "  integration  %ld integrations, %ld steps, %ld error-test failures, %ld "
+               "nonlinear iterations\n"
+               "               %ld rhs and %ld sensitivity-rhs evaluations, %ld Jacobians, %ld "
+               "linear-solver setups\n"
+               "               %ld steep-zone band changes, %ld restarts at switching surfaces\n",
+               s.calls, s.steps, s.error_test_failures, s.nonlinear_iterations, s.rhs_evaluations,
+               s.variational_evaluations, s.jacobian_evaluations, s.linear_setups, s.steep_roots,
+               s.switchings);
+}
+
 nlohmann::json multipliers_json(const FloquetAnalysis& floquet) {
   nlohmann::json j = nlohmann::json::array();
   for (const auto& m : floquet.multipliers) j.push_back({m.value.real(), m.value.imag()});

@@ -25,6 +25,9 @@ OrbitReport describe_orbit(const MetronomeModel& model, const PeriodicOrbit& orb
 void print_orbit(std::FILE* out, const MetronomeModel& model, const PeriodicOrbit& orbit,
                  const OrbitReport& report, const OrbitOptions& options);
 
+// The full report of a flow's work (--verbose).
+void print_flow_statistics(std::FILE* out, const FlowStatistics& s);
+
 nlohmann::json orbit_json(const MetronomeModel& model, const PeriodicOrbit& orbit,
                           const OrbitReport& report);
 // [[re, im], ...]

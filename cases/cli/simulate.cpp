@@ -5,6 +5,7 @@
 
 #include "cases/cli/commands.hpp"
 #include "cases/cli/common.hpp"
+#include "cases/cli/report.hpp"
 #include "core/csv.hpp"
 #include "core/oscillation.hpp"
 
@@ -17,7 +18,8 @@ int run_simulate(const std::vector<std::string>& argv) {
                   {"--initial", "VAR=VALUE", true, "initial state value (on top of --start)"},
                   {"--t-end", "SECONDS", false, "end time (default 60)"},
                   {"--dt", "SECONDS", false, "output interval (default 0.01)"},
-                  {"--out", "FILE.csv", false, "write the time series here"}});
+                  {"--out", "FILE.csv", false, "write the time series here"},
+                  {"--verbose", "", false, "the full report of the integration's work"}});
   const auto integrator = integrator_options();
   options.insert(options.end(), integrator.begin(), integrator.end());
   Arguments args("simulate", argv, options, {"CASE"});
@@ -105,6 +107,7 @@ int run_simulate(const std::vector<std::string>& argv) {
                "steep-zone band changes, %ld switchings\n",
                to_string(flow.options().method).c_str(), flow.options().rtol, flow.options().atol,
                st.steps, st.rhs_evaluations, st.steep_roots, st.switchings);
+  if (args.flag("--verbose")) print_flow_statistics(stderr, st);
   std::fprintf(stderr, "  run time %.3f s\n", clock.seconds());
   return failure.empty() ? 0 : 3;
 }

@@ -173,3 +173,26 @@ TEST(Flow, SteepZoneIsResolved) {
 
 }  // namespace
 }  // namespace sympathy
+
+namespace sympathy {
+namespace {
+
+// CVODES's difference quotients give the same transition matrix (exact: expm(A t)) to their
+// own accuracy, and refuse parameter columns.
+TEST(Flow, DifferenceQuotientDerivatives) {
+  Eigen::MatrixXd a(2, 2);
+  a << 0.0, 1.0, -4.0, -0.3;
+  testing::LinearSystem system(a);
+  FlowOptions o;
+  o.derivatives = Derivatives::DifferenceQuotients;
+  Flow flow(system, o);
+  const Eigen::VectorXd z0 = Eigen::VectorXd::Constant(2, 0.5);
+  const Eigen::MatrixXd exact = (a * 2.0).exp();
+  EXPECT_LT((flow.advance_with_sensitivities(z0, 0.0, 2.0).transition - exact).norm(),
+            1e-6 * exact.norm());
+  EXPECT_THROW(flow.advance_with_sensitivities(z0, 0.0, 2.0, true, std::vector<int>{0}),
+               std::invalid_argument);
+}
+
+}  // namespace
+}  // namespace sympathy

@@ -1,0 +1,51 @@
+#!/usr/bin/env bash
+# The bench command end to end (--quick): its files, and that its errors behave as errors should.
+# Usage: bench_test.sh SYMPATHY_BINARY SOURCE_DIR WORK_DIR
+set -u
+bin=$1 src=$2 work=$3
+mkdir -p "$work"
+failures=0
+check() {  # check DESCRIPTION COMMAND...
+  local what=$1; shift
+  if "$@"; then echo "ok: $what"; else echo "FAILED: $what"; failures=$((failures + 1)); fi
+}
+csv_check() {  # csv_check PYTHON_EXPRESSION: evaluated with `rows`, the CSV's rows as dicts
+  /usr/bin/python3 -c "
+import csv, sys
+rows = list(csv.DictReader(open('$work/bench.csv')))
+def err(problem, setting, rtol, column):
+    for r in rows:
+        if r['problem'].startswith(problem) and r['setting'] == setting and float(r['rtol']) == rtol:
+            return float(r[column])
+    raise SystemExit('no row %s %s %g' % (problem, setting, rtol))
+sys.exit(0 if ($1) else 1)"
+}
+
+(cd "$work" && "$bin" bench --quick --out "$work") > "$work/bench.out"
+check "bench exits 0" test $? -eq 0
+check "bench writes bench.csv and bench.md" test -s "$work/bench.csv" -a -s "$work/bench.md"
+check "bench prints its run time" grep -q 'run time .* s$' "$work/bench.out"
+check "names with commas survive the CSV (RFC 4180 quoting)" \
+  csv_check "any(r['setting'] == 'BDF, dense, model derivatives' for r in rows)"
+# The expected behaviour: errors against a rtol 1e-13 reference fall as the tolerance tightens
+# (NUMERICS.md: the error tracks rtol, with a factor of ~100 for the multipliers).
+for p in "(a)" "(b)"; do
+  for s in "BDF, dense, model derivatives" "Adams"; do
+    check "$p $s: multiplier error falls 1e-6 -> 1e-9 -> 1e-12" csv_check \
+      "err('$p', '$s', 1e-6, 'multiplier_error') > err('$p', '$s', 1e-9, 'multiplier_error') > err('$p', '$s', 1e-12, 'multiplier_error')"
+    check "$p $s: at rtol 1e-12 multipliers within 1e-8, period within 1e-10" csv_check \
+      "err('$p', '$s', 1e-12, 'multiplier_error') < 1e-8 and err('$p', '$s', 1e-12, 'period_error') < 1e-10"
+  done
+done
+check "(c) BDF: the branch point's k within 1e-9 at rtol 1e-12" \
+  csv_check "err('(c)', 'BDF, dense, model derivatives', 1e-12, 'parameter_error') < 1e-9"
+check "(c) the k error falls 1e-6 -> 1e-12" csv_check \
+  "err('(c)', 'BDF, dense, model derivatives', 1e-6, 'parameter_error') > err('(c)', 'BDF, dense, model derivatives', 1e-12, 'parameter_error')"
+check "difference quotients converge at rtol 1e-7" csv_check \
+  "any(r['setting'] == 'BDF, difference quotients' and r['converged'] == 'yes' for r in rows)"
+check "every row reports seconds and evaluation counts" csv_check \
+  "all(float(r['seconds']) >= 0 and int(r['rhs_evaluations']) > 0 for r in rows if r['converged'] == 'yes')"
+
+"$bin" bench --bogus > /dev/null 2> "$work/bad.err"
+check "an unknown option exits 2" test $? -eq 2
+exit $failures
