@@ -10,5 +10,6 @@ int run_simulate(const std::vector<std::string>& args);
 int run_orbit(const std::vector<std::string>& args);
 int run_continue(const std::vector<std::string>& args);
 int run_study(const std::vector<std::string>& args);
+int run_fit(const std::vector<std::string>& args);
 
 }  // namespace sympathy::cli

@@ -20,6 +20,7 @@ void print_usage() {
       "  orbit      a periodic orbit from a start: period, Floquet multipliers, stability\n"
       "  continue   a branch of orbits in one parameter, with its bifurcations\n"
       "  study      the branches of a figure (cases/figures/*.toml), side by side\n"
+      "  fit        parameters fitted to a recorded time series (least squares)\n"
       "run 'sympathy COMMAND --help' for the options of a command\n",
       stderr);
 }
@@ -38,6 +39,7 @@ int main(int argc, char** argv) {
     if (command == "orbit") return sympathy::cli::run_orbit(args);
     if (command == "continue") return sympathy::cli::run_continue(args);
     if (command == "study") return sympathy::cli::run_study(args);
+    if (command == "fit") return sympathy::cli::run_fit(args);
     std::fprintf(stderr, "sympathy: unknown command '%s'\n", command.c_str());
     print_usage();
     return 2;
