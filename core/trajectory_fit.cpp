@@ -285,13 +285,15 @@ LocalOutcome levenberg_marquardt(Evaluator& ev, Eigen::VectorXd u, const Bounds&
           std::string("evaluation limit reached (") + std::to_string(o.max_evaluations) + ")";
       break;
     }
-    // Near the optimum of data the model fits exactly, the sum of squares is the integration's
-    // own error, which no step lowers reliably: stop after a few failures to lower it there.
-    if (rejections >= 3 && -g.dot(gn) < 1e-2 * rss) {
+    // Where the model fits the data to the integration's accuracy (scaled residuals below 1e3
+    // rtol), the sum of squares is the integration's own error, which no step lowers reliably:
+    // stop after a few failures to lower it there.
+    const double floor = 1e3 * o.flow.rtol;
+    if (rejections >= 3 && rss <= floor * floor * static_cast<double>(out.r.size())) {
       out.converged = true;
       out.reason =
-          "at the optimum to the integration's accuracy (3 steps that promised a relative "
-          "decrease below 1e-2 raised the sum of squares)";
+          "at the optimum to the integration's accuracy (residuals below 1e3 rtol; 3 steps "
+          "in a row raised the sum of squares)";
       break;
     }
     if (lambda > 1e12) {

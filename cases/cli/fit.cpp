@@ -199,6 +199,19 @@ int run_fit(const std::vector<std::string>& argv) {
         "  note         the initial %s is the first row's, noise included; with noisy data "
         "fit it too (--free-initial %s)\n",
         from_data.c_str(), from_data.c_str());
+  // A fit that explains little of the data's variation is likely a local minimum.
+  double total = 0.0;
+  for (int k = 0; k < static_cast<int>(rec.columns.size()); ++k) {
+    const Eigen::VectorXd column = rec.values.col(k);
+    const double mean = column.mean();
+    total += (column.array() - mean).square().sum() / std::pow(fit.problem.column_scale[k], 2);
+  }
+  const double explained = total > 0.0 ? 1.0 - r.rss / total : 1.0;
+  if (explained < 0.9)
+    std::printf(
+        "  note         the model explains only %.0f%% of the data's variation: a local "
+        "minimum? (--global searches start/10 .. start*10)\n",
+        100.0 * std::max(explained, 0.0));
   std::printf("  result       %s: %s\n", r.converged ? "converged" : "NOT CONVERGED",
               r.stop_reason.c_str());
   std::printf(
