@@ -274,10 +274,19 @@ LocalOutcome levenberg_marquardt(Evaluator& ev, Eigen::VectorXd u, const Bounds&
     Eigen::MatrixXd K = A;
     K.diagonal() += 1e-12 * D;
     const Eigen::VectorXd gn = K.ldlt().solve(-g);
-    if (-g.dot(gn) <= o.rss_tolerance * rss) {
+    const double promised = -g.dot(gn);
+    if (promised <= o.rss_tolerance * rss) {
       out.converged = true;
       out.reason = std::string("optimal: Gauss-Newton promises a relative decrease below ") +
                    format_tolerance(o.rss_tolerance);
+      break;
+    }
+    // The step left, in standard errors: promised = |J gn|^2 = gn^T (J^T J) gn, over s^2.
+    const double s2 = rss / static_cast<double>(out.r.size() - u.size());
+    if (s2 > 0.0 && promised <= o.offset_tolerance * o.offset_tolerance * s2) {
+      out.converged = true;
+      out.reason = std::string("optimal: the Gauss-Newton step left is below ") +
+                   format_tolerance(o.offset_tolerance) + " standard errors";
       break;
     }
     if (ev.evaluations() - first >= o.max_evaluations) {

@@ -86,6 +86,9 @@ struct TrajectoryFitOptions {
   int max_evaluations = 200;     // of the local stage and of the polish, each
   double step_tolerance = 1e-9;  // on the scaled unknowns
   double rss_tolerance = 1e-10;  // relative change, and relative predicted decrease
+  // Statistical convergence: the Gauss-Newton step left is below this many standard errors
+  // (its length in the metric of the covariance, Bates and Watts' relative offset).
+  double offset_tolerance = 1e-3;
   double rank_tolerance = 1e-8;  // relative singular value below which a direction is lost
 };
 
