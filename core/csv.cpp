@@ -2,6 +2,7 @@
 
 #include <charconv>
 #include <cmath>
+#include <fstream>
 #include <stdexcept>
 
 #include "core/errors.hpp"
@@ -53,6 +54,94 @@ void CsvWriter::row(const std::vector<double>& values) {
 
 void CsvWriter::flush() {
   std::fflush(file_);
+}
+
+namespace {
+
+std::string trim(const std::string& s) {
+  const auto first = s.find_first_not_of(" \t");
+  if (first == std::string::npos) return "";
+  const auto last = s.find_last_not_of(" \t");
+  return s.substr(first, last - first + 1);
+}
+
+std::vector<std::string> split_fields(const std::string& line) {
+  std::vector<std::string> fields;
+  std::size_t begin = 0;
+  while (true) {
+    const auto comma = line.find(',', begin);
+    fields.push_back(
+        trim(line.substr(begin, comma == std::string::npos ? std::string::npos : comma - begin)));
+    if (comma == std::string::npos) break;
+    begin = comma + 1;
+  }
+  return fields;
+}
+
+std::string list(const std::vector<std::string>& names) {
+  std::string out;
+  for (const auto& n : names) out += (out.empty() ? "" : ", ") + n;
+  return out;
+}
+
+}  // namespace
+
+CsvTable read_csv(const std::string& path) {
+  std::ifstream in(path);
+  if (!in) throw InputError(path + ": cannot read the file (no such file, or not readable)");
+  CsvTable table;
+  table.path = path;
+  std::vector<std::string> lines;
+  for (std::string line; std::getline(in, line);) {
+    if (!line.empty() && line.back() == '\r') line.pop_back();
+    lines.push_back(line);
+  }
+  while (!lines.empty() && trim(lines.back()).empty()) lines.pop_back();  // blank lines at the end
+  if (lines.empty())
+    throw InputError(path + ": the file is empty; expected a header line naming the columns");
+
+  table.header = split_fields(lines[0]);
+  for (std::size_t j = 0; j < table.header.size(); ++j) {
+    const std::string where = path + ":1: column " + std::to_string(j + 1);
+    if (table.header[j].empty()) throw InputError(where + " has no name; expected a column name");
+    for (std::size_t i = 0; i < j; ++i)
+      if (table.header[i] == table.header[j])
+        throw InputError(where + ": '" + table.header[j] + "' repeats column " +
+                         std::to_string(i + 1) + "; expected distinct column names");
+  }
+  const std::size_t width = table.header.size();
+  const std::string expected =
+      std::string("expected ") + std::to_string(width) + " fields (" + list(table.header) + ")";
+  for (std::size_t l = 1; l < lines.size(); ++l) {
+    const int line_number = static_cast<int>(l) + 1;
+    const std::string where = path + ":" + std::to_string(line_number);
+    if (trim(lines[l]).empty()) throw InputError(where + ": empty row; " + expected);
+    const auto fields = split_fields(lines[l]);
+    if (fields.size() != width)
+      throw InputError(where + ": " + expected + ", got " + std::to_string(fields.size()));
+    std::vector<double> row(width);
+    for (std::size_t j = 0; j < width; ++j) {
+      const std::string column =
+          where + ": column '" + table.header[j] + "' (field " + std::to_string(j + 1) + ")";
+      const std::string& f = fields[j];
+      if (f.empty()) throw InputError(column + ": empty field; expected a number");
+      double v = 0.0;
+      const char* first = f.data();
+      const char* last = f.data() + f.size();
+      if (*first == '+') ++first;
+      auto [end, ec] = std::from_chars(first, last, v);
+      if (ec != std::errc() || end != last)
+        throw InputError(column + ": expected a number, got '" + f + "'");
+      if (!std::isfinite(v))
+        throw InputError(column + ": expected a finite number, got '" + f + "'");
+      row[j] = v;
+    }
+    table.rows.push_back(std::move(row));
+    table.lines.push_back(line_number);
+  }
+  if (table.rows.empty())
+    throw InputError(path + ": no rows after the header; expected one row of numbers per sample");
+  return table;
 }
 
 }  // namespace sympathy

@@ -1,5 +1,6 @@
-// A CSV file written row by row and flushed as it goes, so a run that stops early keeps
-// everything computed before it stopped.
+// CSV files. Writing: row by row and flushed as it goes, so a run that stops early keeps
+// everything computed before it stopped. Reading: a header line of column names, then rows of
+// numbers, every mistake reported with the file, line and column.
 #pragma once
 
 #include <cstdio>
@@ -31,5 +32,21 @@ class CsvWriter {
 
 // Shortest representation that reads back to the same double.
 std::string format_double(double v);
+
+// A CSV table of numbers: the header's names and the rows, each with its line in the file.
+struct CsvTable {
+  std::string path;
+  std::vector<std::string> header;
+  std::vector<std::vector<double>> rows;
+  std::vector<int> lines;  // 1-based line of each row in the file
+};
+
+// Reads `path`: a header line naming the columns (distinct, not empty), then one line of finite
+// numbers per row, separated by commas (spaces around fields and CRLF line ends are accepted;
+// blank lines at the end of the file are ignored). Throws InputError naming the file, the line,
+// the column and what was expected: a missing file, an empty file, an unnamed or repeated column,
+// an empty row, a row of the wrong width, an empty field, a field that is not a finite number, no
+// rows at all.
+CsvTable read_csv(const std::string& path);
 
 }  // namespace sympathy

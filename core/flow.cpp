@@ -286,9 +286,16 @@ void Flow::configure_roots() {
   }
 }
 
-void Flow::start(const Eigen::VectorXd& z0, double t0, int sensitivity_columns,
+void Flow::start(const Eigen::VectorXd& z0, double t0, std::span<const int> initial_components,
                  std::span<const int> parameters) {
   const int n = system_.dimension();
+  const int sensitivity_columns = static_cast<int>(initial_components.size() + parameters.size());
+  for (int c : initial_components)
+    if (c < 0 || c >= n)
+      throw std::invalid_argument("flow: no state component " + std::to_string(c));
+  for (int p : parameters)
+    if (p < 0 || p >= static_cast<int>(system_.parameter_names().size()))
+      throw std::invalid_argument("flow: no parameter with index " + std::to_string(p));
   if (z0.size() != n)
     throw std::invalid_argument("initial state has " + std::to_string(z0.size()) +
                                 " entries; the system has " + std::to_string(n));
@@ -326,11 +333,11 @@ void Flow::start(const Eigen::VectorXd& z0, double t0, int sensitivity_columns,
       cv.columns_in.resize(sensitivity_columns);
       cv.columns_out.resize(sensitivity_columns);
     }
-    // Initial sensitivities: identity in the state columns, zero in the parameter columns.
-    const int state_columns = sensitivity_columns - static_cast<int>(parameters.size());
+    // Initial sensitivities: unit vectors in the state columns, zero in the parameter columns.
+    const int state_columns = static_cast<int>(initial_components.size());
     for (int j = 0; j < sensitivity_columns; ++j) {
       N_VConst(0.0, cv.yS[j]);
-      if (j < state_columns) N_VGetArrayPointer(cv.yS[j])[j] = 1.0;
+      if (j < state_columns) N_VGetArrayPointer(cv.yS[j])[initial_components[j]] = 1.0;
     }
     if (!cv.sens_initialized) {
       const bool quotients = options_.derivatives == Derivatives::DifferenceQuotients;
@@ -488,7 +495,7 @@ void Flow::collect_statistics() {
 
 Eigen::VectorXd Flow::advance(const Eigen::VectorXd& z0, double t0, double t1) {
   if (!(t1 >= t0)) throw std::invalid_argument("flow: end time before start time");
-  start(z0, t0, 0, {});
+  start(z0, t0, {}, {});
   integrate_to(t1);
   collect_statistics();
   const int n = system_.dimension();
@@ -509,7 +516,7 @@ bool Flow::sample_until(const Eigen::VectorXd& z0, double t0, std::span<const do
   for (std::size_t i = 0; i < times.size(); ++i)
     if (!(times[i] >= (i == 0 ? t0 : times[i - 1])))
       throw std::invalid_argument("flow: sample times must be increasing and not before t0");
-  start(z0, t0, 0, {});
+  start(z0, t0, {}, {});
   const int n = system_.dimension();
   Eigen::VectorXd z(n);
   std::size_t next = 0;
@@ -543,9 +550,6 @@ FlowDerivatives Flow::advance_with_sensitivities(const Eigen::VectorXd& z0, doub
                                                  bool state, std::span<const int> parameters) {
   if (!(t1 >= t0)) throw std::invalid_argument("flow: end time before start time");
   const int n = system_.dimension();
-  for (int p : parameters)
-    if (p < 0 || p >= static_cast<int>(system_.parameter_names().size()))
-      throw std::invalid_argument("flow: no parameter with index " + std::to_string(p));
   const int state_columns = state ? n : 0;
   const int columns = state_columns + static_cast<int>(parameters.size());
   if (columns == 0) {
@@ -553,7 +557,9 @@ FlowDerivatives Flow::advance_with_sensitivities(const Eigen::VectorXd& z0, doub
     r.state = advance(z0, t0, t1);
     return r;
   }
-  start(z0, t0, columns, parameters);
+  std::vector<int> components(state_columns);
+  for (int j = 0; j < state_columns; ++j) components[j] = j;
+  start(z0, t0, components, parameters);
   integrate_to(t1);
   collect_statistics();
 
@@ -570,6 +576,57 @@ FlowDerivatives Flow::advance_with_sensitivities(const Eigen::VectorXd& z0, doub
     r.parameter_sensitivities.col(k) =
         Eigen::Map<const Eigen::VectorXd>(N_VGetArrayPointer(cv.yS[state_columns + k]), n);
   return r;
+}
+
+void Flow::sample_with_sensitivities(
+    const Eigen::VectorXd& z0, double t0, std::span<const double> times,
+    std::span<const int> initial_components, std::span<const int> parameters,
+    const std::function<void(double, const Eigen::VectorXd&, const Eigen::MatrixXd&)>& observer) {
+  if (times.empty()) return;
+  for (std::size_t i = 0; i < times.size(); ++i)
+    if (!(times[i] >= (i == 0 ? t0 : times[i - 1])))
+      throw std::invalid_argument("flow: sample times must be increasing and not before t0");
+  const int n = system_.dimension();
+  const int columns = static_cast<int>(initial_components.size() + parameters.size());
+  if (columns == 0) {
+    const Eigen::MatrixXd none(n, 0);
+    sample(z0, t0, times, [&](double t, const Eigen::VectorXd& z) { observer(t, z, none); });
+    return;
+  }
+  start(z0, t0, initial_components, parameters);
+  auto& cv = *cv_;
+  Eigen::VectorXd z(n);
+  Eigen::MatrixXd S(n, columns);
+  std::size_t next = 0;
+  // Outputs at t0 itself: the seeds.
+  while (next < times.size() && times[next] <= t0) {
+    z = Eigen::Map<const Eigen::VectorXd>(N_VGetArrayPointer(cv.y), n);
+    for (int j = 0; j < columns; ++j)
+      S.col(j) = Eigen::Map<const Eigen::VectorXd>(N_VGetArrayPointer(cv.yS[j]), n);
+    observer(times[next++], z, S);
+  }
+  N_Vector out = N_VClone(cv.y);
+  N_Vector* out_sens = N_VCloneVectorArray(columns, cv.y);
+  try {
+    require(out != nullptr && out_sens != nullptr, "N_VClone failed");
+    integrate_to(times.back(), [&](double, double t_new) {
+      while (next < times.size() && times[next] <= t_new) {
+        SYMPATHY_CHECK(CVodeGetDky(cv.mem, times[next], 0, out));
+        SYMPATHY_CHECK(CVodeGetSensDky(cv.mem, times[next], 0, out_sens));
+        z = Eigen::Map<const Eigen::VectorXd>(N_VGetArrayPointer(out), n);
+        for (int j = 0; j < columns; ++j)
+          S.col(j) = Eigen::Map<const Eigen::VectorXd>(N_VGetArrayPointer(out_sens[j]), n);
+        observer(times[next++], z, S);
+      }
+    });
+  } catch (...) {
+    if (out) N_VDestroy(out);
+    if (out_sens) N_VDestroyVectorArray(out_sens, columns);
+    throw;
+  }
+  N_VDestroy(out);
+  N_VDestroyVectorArray(out_sens, columns);
+  collect_statistics();
 }
 
 }  // namespace sympathy

@@ -110,6 +110,14 @@ class Flow {
                                              bool state = true,
                                              std::span<const int> parameters = {});
 
+  // Integrates once from z0 at t0 and calls `observer(t, z, S)` at each of `times` (increasing,
+  // >= t0), where S (n x columns) holds dz(t)/dz0[c] for each of `initial_components`, then
+  // dz(t)/dp for each of `parameters`; both interpolated in the step, under error control.
+  void sample_with_sensitivities(
+      const Eigen::VectorXd& z0, double t0, std::span<const double> times,
+      std::span<const int> initial_components, std::span<const int> parameters,
+      const std::function<void(double, const Eigen::VectorXd&, const Eigen::MatrixXd&)>& observer);
+
   const FlowOptions& options() const { return options_; }
   const OdeSystem& system() const { return system_; }
   const FlowStatistics& statistics() const { return statistics_; }
@@ -119,7 +127,9 @@ class Flow {
   struct Cvodes;  // the SUNDIALS objects, owned
   friend struct FlowCallbacks;
 
-  void start(const Eigen::VectorXd& z0, double t0, int sensitivity_columns,
+  // Sensitivity columns: one per initial component (seeded with its unit vector), then one per
+  // parameter (seeded with zero).
+  void start(const Eigen::VectorXd& z0, double t0, std::span<const int> initial_components,
              std::span<const int> parameters);
   // Integrates to t_end one internal step at a time; see flow.cpp.
   void integrate_to(double t_end, const std::function<void(double, double)>& after_step = {});

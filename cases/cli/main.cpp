@@ -21,6 +21,7 @@ void print_usage() {
       "  continue   a branch of orbits in one parameter, with its bifurcations\n"
       "  study      the branches of a figure (cases/figures/*.toml), side by side\n"
       "  bench      error against run time over integrator settings (the accuracy report)\n"
+      "  fit        parameters fitted to a recorded time series (least squares)\n"
       "run 'sympathy COMMAND --help' for the options of a command\n",
       stderr);
 }
@@ -40,6 +41,7 @@ int main(int argc, char** argv) {
     if (command == "continue") return sympathy::cli::run_continue(args);
     if (command == "study") return sympathy::cli::run_study(args);
     if (command == "bench") return sympathy::cli::run_bench(args);
+    if (command == "fit") return sympathy::cli::run_fit(args);
     std::fprintf(stderr, "sympathy: unknown command '%s'\n", command.c_str());
     print_usage();
     return 2;

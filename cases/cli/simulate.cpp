@@ -1,4 +1,5 @@
 // sympathy simulate: a time series from a start, as CSV, with a summary of where it ends.
+#include <algorithm>
 #include <cmath>
 #include <cstdio>
 #include <memory>
@@ -6,6 +7,7 @@
 #include "cases/cli/commands.hpp"
 #include "cases/cli/common.hpp"
 #include "cases/cli/report.hpp"
+#include "cases/platform_model.hpp"
 #include "core/csv.hpp"
 #include "core/oscillation.hpp"
 
@@ -18,6 +20,8 @@ int run_simulate(const std::vector<std::string>& argv) {
                   {"--initial", "VAR=VALUE", true, "initial state value (on top of --start)"},
                   {"--t-end", "SECONDS", false, "end time (default 60)"},
                   {"--dt", "SECONDS", false, "output interval (default 0.01)"},
+                  {"--locked-pendula", "", false,
+                   "pendula fixed to their casings: the platform alone (states x, vx)"},
                   {"--out", "FILE.csv", false, "write the time series here"},
                   {"--verbose", "", false, "the full report of the integration's work"}});
   const auto integrator = integrator_options();
@@ -30,29 +34,52 @@ int run_simulate(const std::vector<std::string>& argv) {
   if (!start && !args.has("--initial"))
     throw InputError("give --start NAME (one of: " + join(c.file.start_names()) +
                      ") or --initial VAR=VALUE");
-  const Eigen::VectorXd z0 = c.file.initial_state(start, args.assignments("--initial"));
+  const bool locked = args.flag("--locked-pendula");
+  const Eigen::VectorXd z_case = c.file.initial_state(start, args.assignments("--initial"));
   const double t_end = args.number("--t-end", 60.0);
   const double dt = args.number("--dt", 0.01);
   if (!(t_end > 0.0)) throw InputError("--t-end: expected a positive number of seconds");
   if (!(dt > 0.0 && dt <= t_end)) throw InputError("--dt: expected a positive interval <= --t-end");
 
-  MetronomeModel model(c.spec);
+  // The full model, or with --locked-pendula the platform alone (the pendula's states dropped).
+  std::unique_ptr<OdeSystem> system;
+  std::vector<int> angles, watched;
+  Eigen::VectorXd z0 = z_case;
+  if (locked) {
+    auto platform = std::make_unique<PlatformModel>(c.spec);
+    const auto case_names = c.file.state_names();
+    const auto names = platform->state_names();
+    for (const auto& a : args.assignments("--initial"))
+      if (std::find(names.begin(), names.end(), a.key) == names.end())
+        throw InputError(a.source + ": the pendula are locked (--locked-pendula); expected a " +
+                         "state of the platform: " + join(names));
+    z0.resize(platform->dimension());
+    for (int i = 0; i < platform->dimension(); ++i)
+      z0[i] =
+          z_case[std::find(case_names.begin(), case_names.end(), names[i]) - case_names.begin()];
+    for (int a = 0; a < platform->platform_directions(); ++a) watched.push_back(a);
+    angles = {0};  // frequency and phases of x
+    system = std::move(platform);
+  } else {
+    auto model = std::make_unique<MetronomeModel>(c.spec);
+    for (int i = 0; i < model->metronome_count(); ++i) angles.push_back(model->angle_index(i));
+    for (int a = 0; a < model->platform_directions(); ++a) watched.push_back(a);
+    watched.insert(watched.end(), angles.begin(), angles.end());
+    system = std::move(model);
+  }
+  const int directions = c.spec.directions;
   FlowOptions defaults;
   defaults.rtol = 1e-8;
   defaults.atol = 1e-10;
-  Flow flow(model, flow_options(args, defaults));
+  Flow flow(*system, flow_options(args, defaults));
 
-  const auto names = model.state_names();
+  const auto names = system->state_names();
   std::unique_ptr<CsvWriter> csv;
   if (auto out = args.value("--out")) {
     std::vector<std::string> header{"t"};
     header.insert(header.end(), names.begin(), names.end());
     csv = std::make_unique<CsvWriter>(*out, header);
   }
-  std::vector<int> angles, watched;
-  for (int i = 0; i < model.metronome_count(); ++i) angles.push_back(model.angle_index(i));
-  for (int a = 0; a < model.platform_directions(); ++a) watched.push_back(a);
-  watched.insert(watched.end(), angles.begin(), angles.end());
   OscillationAnalyzer analyzer(angles, watched, std::min(10.0, 0.5 * t_end));
 
   const long count = static_cast<long>(std::floor(t_end / dt + 1e-9));
@@ -77,9 +104,11 @@ int run_simulate(const std::vector<std::string>& argv) {
   if (csv) csv->flush();
 
   const auto s = analyzer.summary();
-  std::fprintf(stderr, "sympathy simulate %s  params %s  start %s  escapement %s\n",
-               c.file.path().c_str(), c.params.empty() ? "(none)" : c.params.c_str(),
-               start ? start->name.c_str() : "(--initial)", to_string(c.spec.escapement).c_str());
+  std::fprintf(stderr, "sympathy simulate %s  params %s  start %s  %s\n", c.file.path().c_str(),
+               c.params.empty() ? "(none)" : c.params.c_str(),
+               start ? start->name.c_str() : "(--initial)",
+               locked ? "pendula locked (the platform alone)"
+                      : ("escapement " + to_string(c.spec.escapement)).c_str());
   std::fprintf(stderr, "  t = 0 .. %g s, output every %g s%s%s\n", t_end, dt,
                csv ? " -> " : " (no --out: time series not written)",
                csv ? csv->path().c_str() : "");
@@ -89,11 +118,11 @@ int run_simulate(const std::vector<std::string>& argv) {
     std::fprintf(stderr, "    frequency %.6g Hz (period %.6g s, %d cycles)\n", s.frequency,
                  1.0 / s.frequency, s.cycles);
   else
-    std::fprintf(stderr, "    frequency: fewer than two cycles of th1\n");
+    std::fprintf(stderr, "    frequency: fewer than two cycles of %s\n", names[angles[0]].c_str());
   std::fprintf(stderr, "    amplitudes:");
   for (std::size_t k = 0; k < watched.size(); ++k)
     std::fprintf(stderr, " %s %.4g %s", names[watched[k]].c_str(), s.amplitudes[k],
-                 watched[k] < model.platform_directions() ? "m" : "rad");
+                 watched[k] < directions ? "m" : "rad");
   std::fprintf(stderr, "\n");
   if (!s.phase_differences.empty()) {
     std::fprintf(stderr, "    phase differences to th1:");

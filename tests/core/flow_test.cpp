@@ -96,6 +96,39 @@ TEST(Flow, ReusedAcrossCallsWithDifferentRequests) {
   EXPECT_GT(flow.statistics().variational_evaluations, 0);
 }
 
+// One integration, sensitivities interpolated at the sample times. Exact for z' = scale A z at
+// scale = 1: z = expm(A t) z0, dz/dz0[c] = column c of expm(A t), dz/dscale = A t expm(A t) z0.
+TEST(Flow, SampleWithSensitivitiesMatchesMatrixExponential) {
+  const Eigen::MatrixXd a = oscillator_matrix();
+  LinearSystem system(a);
+  Flow flow(system);
+  Eigen::VectorXd z0(3);
+  z0 << 1.0, -0.5, 0.25;
+  const std::vector<double> times{0.0, 0.3, 0.7, 1.9, 3.0};
+  const std::vector<int> components{2, 0};
+  const std::vector<int> parameters{system.parameter_index("scale")};
+  std::vector<double> seen;
+  flow.sample_with_sensitivities(
+      z0, 0.0, times, components, parameters,
+      [&](double t, const Eigen::VectorXd& z, const Eigen::MatrixXd& S) {
+        seen.push_back(t);
+        const Eigen::MatrixXd e = (a * t).exp();
+        ASSERT_EQ(S.cols(), 3);
+        EXPECT_LT((z - e * z0).norm(), 1e-8) << "t = " << t;
+        EXPECT_LT((S.col(0) - e.col(2)).norm(), 1e-8) << "t = " << t;
+        EXPECT_LT((S.col(1) - e.col(0)).norm(), 1e-8) << "t = " << t;
+        const Eigen::VectorXd dz_dscale = a * t * e * z0;
+        EXPECT_LT((S.col(2) - dz_dscale).norm(), 1e-8 * (1.0 + dz_dscale.norm())) << "t = " << t;
+      });
+  EXPECT_EQ(seen, times);
+  EXPECT_THROW(flow.sample_with_sensitivities(z0, 0.0, std::vector<double>{1.0, 0.5}, components,
+                                              parameters, [](double, auto&, auto&) {}),
+               std::invalid_argument);
+  EXPECT_THROW(flow.sample_with_sensitivities(z0, 0.0, times, std::vector<int>{3}, parameters,
+                                              [](double, auto&, auto&) {}),
+               std::invalid_argument);
+}
+
 // The observer sees exactly the requested times, with the exact states.
 TEST(Flow, SampleAtRequestedTimes) {
   Decay system(0.5);

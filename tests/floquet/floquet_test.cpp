@@ -62,7 +62,9 @@ TEST(Floquet, StructuralMultipliersFoundByEigenvector) {
   const auto a = analyze_floquet({with_spectrum(mu, v)}, v.col(0), family);
   EXPECT_EQ(a.structural, 1);
   for (const auto& m : a.multipliers) {
-    if (m.structural) EXPECT_NEAR(m.value.real(), 1.0 + 3e-9, 1e-13);
+    if (m.structural) {
+      EXPECT_NEAR(m.value.real(), 1.0 + 3e-9, 1e-13);
+    }
   }
   EXPECT_NEAR(a.max_modulus, 1.0 + 1e-10, 1e-13);  // the crossing one counts
   EXPECT_EQ(a.stability, Stability::Marginal);

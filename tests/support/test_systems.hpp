@@ -48,6 +48,22 @@ class Decay final : public AutoDiffSystem<Decay> {
   }
 };
 
+// A damped oscillator m x'' + c x' + k x = 0, states x and v = x'. Only c/m and k/m enter its
+// motion, so m, c and k together are not determined by a trajectory.
+class DampedOscillator final : public AutoDiffSystem<DampedOscillator> {
+ public:
+  DampedOscillator(double m, double c, double k) {
+    set_parameter_layout({{"m", {0}}, {"c", {1}}, {"k", {2}}}, {m, c, k});
+  }
+  int dimension() const override { return 2; }
+  std::vector<std::string> state_names() const override { return {"x", "v"}; }
+  template <class T, class P>
+  void evaluate(double, const T* z, const P* p, T* dz) const {
+    dz[0] = z[1];
+    dz[1] = (-p[1] * z[1] - p[2] * z[0]) / p[0];
+  }
+};
+
 // z' = z^2: blows up at t = 1/z0.
 class BlowUp final : public AutoDiffSystem<BlowUp> {
  public:
