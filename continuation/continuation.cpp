@@ -46,6 +46,7 @@ struct Continuation::Corrected {
   ShootingProblem::Evaluation evaluation;  // at y, with sensitivities
   double residual = 0.0;                   // |F|_inf at y
   int iterations = 0;
+  int chord_steps = 0;  // on plain integrations, before the iterations
 };
 
 namespace {
@@ -54,10 +55,13 @@ double inf_norm(const Eigen::VectorXd& v) {
   return v.size() ? v.cwiseAbs().maxCoeff() : 0.0;
 }
 
+// The multipliers that can cross the unit circle: neither the trivial one nor those a family of
+// orbits forces to 1 (the Floquet analysis keeps the two kinds apart, even where one of these
+// crosses 1 among them).
 std::vector<Multiplier> nontrivial(const FloquetAnalysis& f) {
   std::vector<Multiplier> v;
   for (const auto& m : f.multipliers)
-    if (!m.trivial) v.push_back(m);
+    if (!m.trivial && !m.structural) v.push_back(m);
   return v;
 }
 
@@ -216,7 +220,8 @@ Eigen::SparseMatrix<double> bordered(const Eigen::SparseMatrix<double>& jac,
 // take different steps and differ by about the tolerance, which moved located points.)
 Continuation::Corrected Continuation::correct(const Eigen::VectorXd& from,
                                               const Eigen::VectorXd& tangent, double step,
-                                              const Eigen::VectorXd& start_guess) {
+                                              const Eigen::VectorXd& start_guess,
+                                              const Eigen::SparseMatrix<double>* chord) {
   const int N = problem_->unknowns();
   Corrected c;
   Eigen::VectorXd y = start_guess;
@@ -231,6 +236,36 @@ Continuation::Corrected Continuation::correct(const Eigen::VectorXd& from,
     return rhs;
   };
   int iterations = 0;
+  // Chord steps first, on plain integrations with the previous point's Jacobian (a fraction of
+  // the cost of an integration with sensitivities), while they contract well; the Newton
+  // iterations below then start near the solution and finish it with the point's own monodromy.
+  if (chord && options_.max_chord_steps > 0) {
+    const auto matrix = bordered(*chord, row);
+    double last = std::numeric_limits<double>::infinity(), rate = 0.1;
+    Eigen::VectorXd before = y;
+    for (int k = 0; k < options_.max_chord_steps; ++k) {
+      system_.set_parameter(parameter_, y[N]);
+      Eigen::VectorXd residual;
+      try {
+        residual = problem_->evaluate(y.head(N), false).residual;
+      } catch (const IntegrationError&) {
+        break;
+      }
+      const double norm = inf_norm(residual);
+      if (k > 0) rate = norm / last;
+      if (rate > 0.5) {  // not contracting: Newton takes over, from the better of the last two
+        if (norm > last) y = before;
+        break;
+      }
+      const auto dy = solve_linear(matrix, rhs_at(residual), linear);
+      if (!dy.x.allFinite()) break;
+      before = y;
+      y += dy.x;
+      ++c.chord_steps;
+      last = norm;
+      if (rate * norm <= options_.corrector_tolerance) break;  // the next is expected below
+    }
+  }
   double previous = std::numeric_limits<double>::infinity();
   for (int it = 0;; ++it, ++iterations) {
     system_.set_parameter(parameter_, y[N]);
@@ -269,6 +304,34 @@ Continuation::Corrected Continuation::correct(const Eigen::VectorXd& from,
     }
     y += dy.x;
   }
+}
+
+// The predictor: along the tangent at a, or, when the point before a shares a's phase section
+// (the unknowns then lie on one smooth curve), along the cubic through both points with their
+// tangents. Its error is O(ds^3) instead of O(ds^2): one corrector iteration fewer per point.
+Eigen::VectorXd Continuation::predict(const ContinuationPoint* before, const ContinuationPoint& a,
+                                      double ds) const {
+  const int N = problem_->unknowns();
+  Eigen::VectorXd ya(N + 1);
+  ya << a.unknowns, a.parameter;
+  Eigen::VectorXd guess = ya + ds * a.tangent;
+  if (!options_.curved_predictor || !before || before->section.size() != a.section.size() ||
+      before->section != a.section)
+    return guess;
+  Eigen::VectorXd y0(N + 1);
+  y0 << before->unknowns, before->parameter;
+  const double h = std::sqrt(scaled_dot(ya - y0, ya - y0));  // chord length from before to a
+  if (!(h > 0.0) || ds > 3.0 * h) return guess;
+  // Y(s) = ya + s t1 + c2 s^2 + c3 s^3 with Y(-h) = y0, Y'(-h) = t0 (tangents in the current
+  // scaled norm; the previous one renormalized there).
+  const Eigen::VectorXd& t1 = a.tangent;
+  const Eigen::VectorXd t0 =
+      before->tangent / std::sqrt(scaled_dot(before->tangent, before->tangent));
+  if (scaled_dot(t0, t1) < options_.min_tangent_cosine) return guess;
+  const Eigen::VectorXd D = y0 - ya + h * t1, E = t0 - t1;
+  const Eigen::VectorXd c2 = (3.0 * D / h + E) / h;
+  const Eigen::VectorXd c3 = (c2 * h * h - D) / (h * h * h);
+  return guess + ds * ds * (c2 + ds * c3);
 }
 
 // The unit tangent from a shooting Jacobian (with its parameter column), in the problem's current
@@ -354,7 +417,7 @@ Branch Continuation::run(const PeriodicOrbit& start, int direction,
   y0[N] = p0;
   Eigen::VectorXd along_parameter = Eigen::VectorXd::Zero(N + 1);
   along_parameter[N] = 1.0 / weights_[N];  // unit in the scaled norm
-  const Corrected c0 = correct(y0, along_parameter, 0.0, y0);
+  const Corrected c0 = correct(y0, along_parameter, 0.0, y0, nullptr);
   if (!c0.converged) return finish("the starting orbit does not converge: " + c0.reason);
   // A continuum of orbits persists along the branch: its dimension is decided once, here, not
   // at each point (near a branch point the Jacobian is nearly singular too, for other reasons).
@@ -366,6 +429,7 @@ Branch Continuation::run(const PeriodicOrbit& start, int direction,
   } else {
     tau = tangent_of(problem_->jacobian(c0.evaluation, true), c0.y, direction * along_parameter);
   }
+  chord_jacobian_ = problem_->jacobian(c0.evaluation, true);
   branch.points.push_back(make_point(c0, tau, 0, 0.0));
   if (callbacks.on_point) callbacks.on_point(branch.points.back());
 
@@ -382,7 +446,9 @@ Branch Continuation::run(const PeriodicOrbit& start, int direction,
     Eigen::VectorXd ya(N + 1);
     ya << a.unknowns, a.parameter;
     problem_->set_phase_reference(a.section);
-    const Corrected c = correct(ya, a.tangent, ds, ya + ds * a.tangent);
+    const ContinuationPoint* previous =
+        branch.points.size() >= 2 ? &branch.points[branch.points.size() - 2] : nullptr;
+    const Corrected c = correct(ya, a.tangent, ds, predict(previous, a, ds), &chord_jacobian_);
     if (!c.converged) {
       ++branch.rejected.corrector;
       ds *= 0.5;
@@ -396,8 +462,8 @@ Branch Continuation::run(const PeriodicOrbit& start, int direction,
     const double crossing = problem_->phase_normal().normalized().dot(fb.normalized());
     const Eigen::VectorXd section = crossing < 0.9 ? zb : a.section;
     problem_->set_phase_reference(section);
-    const Eigen::VectorXd tau_b =
-        tangent_of(problem_->jacobian(c.evaluation, true), c.y, a.tangent);
+    auto jacobian_b = problem_->jacobian(c.evaluation, true);
+    const Eigen::VectorXd tau_b = tangent_of(jacobian_b, c.y, a.tangent);
     if (orbit_cosine(tau_b, a.tangent, c.y) < options_.min_tangent_cosine &&
         ds > 4 * options_.min_step) {
       ++branch.rejected.turn;
@@ -410,17 +476,22 @@ Branch Continuation::run(const PeriodicOrbit& start, int direction,
     // A multiplier near the circle whose modulus moves far in one step may hide a window of
     // instability; one whose match at b is doubtful (followed with its predicted motion)
     // makes crossings unreliable.
-    const ContinuationPoint* before =
-        branch.points.size() >= 2 ? &branch.points[branch.points.size() - 2] : nullptr;
-    const auto tracked = track(before, a, b);
+    const auto tracked = track(previous, a, b);
     bool too_far = tracked.ambiguity > 0.5;
+    double watched_change = 0.0;  // largest change of |mu| near the circle in this step
     for (const auto& [mx, my] : tracked.pairs) {
-      if (mx.structural && my.structural) continue;
       const auto x = mx.value, y = my.value;
       const bool near =
           std::min(std::abs(std::abs(x) - 1.0), std::abs(std::abs(y) - 1.0)) < options_.watch_band;
-      too_far |= near && std::abs(std::abs(x) - std::abs(y)) > options_.max_modulus_change;
+      if (near) watched_change = std::max(watched_change, std::abs(std::abs(x) - std::abs(y)));
     }
+    too_far |= watched_change > options_.max_modulus_change;
+    // A step whose multipliers could not be matched with confidence, or moved too far, is
+    // rejected after its whole cost: the next step aims below both limits, at the rates just seen
+    // (the modulus change grows like ds, a matching error like ds^2).
+    double aim = std::numeric_limits<double>::infinity();
+    if (watched_change > 0.0) aim = 0.75 * options_.max_modulus_change / watched_change * ds;
+    if (tracked.ambiguity > 0.0) aim = std::min(aim, std::sqrt(0.3 / tracked.ambiguity) * ds);
     if (too_far && ds > 4 * options_.min_step) {
       ++branch.rejected.multipliers;
       ds *= 0.5;
@@ -442,6 +513,7 @@ Branch Continuation::run(const PeriodicOrbit& start, int direction,
     }
     location_retries = 0;
     branch.points.push_back(std::move(b));
+    chord_jacobian_ = std::move(jacobian_b);
     const ContinuationPoint& added = branch.points.back();
     if (callbacks.on_point) callbacks.on_point(added);
     for (auto& e : events) {
@@ -462,6 +534,7 @@ Branch Continuation::run(const PeriodicOrbit& start, int direction,
       ds = std::min(1.5 * ds, options_.max_step);
     else if (c.iterations >= 5)
       ds *= 0.6;
+    ds = std::max(std::min(ds, aim), std::min(ds, 4 * options_.min_step));
   }
 }
 
@@ -488,10 +561,8 @@ std::vector<Bifurcation> Continuation::detect(const Followed& tracked, const Con
   };
   std::vector<Crossing> plus, minus, complex;
   {
-    // Every nontrivial multiplier is followed; only one structural at both ends (a family's
-    // multiplier sitting at 1) is ignored.
+    // Every multiplier that can cross is followed (not the trivial one, nor a family's).
     for (const auto& [mx, my] : tracked.pairs) {
-      if (mx.structural && my.structural) continue;
       const auto x = mx.value, y = my.value;
       if ((std::abs(x) - 1.0) * (std::abs(y) - 1.0) >= 0.0) continue;
       if (is_real(x) && is_real(y)) {
@@ -611,7 +682,7 @@ Bifurcation Continuation::locate(const ContinuationPoint& a, const ContinuationP
     double s = s_hi - f_hi * (s_hi - s_lo) / (f_hi - f_lo);
     const double margin = 1e-3 * (s_hi - s_lo);
     if (!(s > s_lo + margin && s < s_hi - margin)) s = 0.5 * (s_lo + s_hi);
-    const Corrected c = correct(ya, a.tangent, s, ya + s * a.tangent);
+    const Corrected c = correct(ya, a.tangent, s, ya + s * a.tangent, &chord_jacobian_);
     if (!c.converged) {
       e.note = "location stopped: " + c.reason;
       break;

@@ -28,6 +28,7 @@ struct ContinuationOptions {
   double max_parameter_step = 0.0;  // |dp| per step; 0: (upper - lower) / 25
   int max_points = 400;
   int max_corrector_iterations = 7;
+  int max_chord_steps = 6;  // before them, on plain integrations (0: Newton from the start)
   double corrector_tolerance = 1e-9;  // |F|_inf, as NewtonOptions::residual_tolerance
   // Per step, the largest change of the modulus of a multiplier within `watch_band` of the unit
   // circle (only those can cross it and come back between two points).
@@ -39,7 +40,8 @@ struct ContinuationOptions {
   double location_tolerance = 1e-8;  // relative, in the parameter
   double trust_limit = 1e-6;         // trivial-multiplier error above which events are flagged
   bool detect_bifurcations = true;
-  OrbitOptions orbit;  // shooting, rank tolerance, stability tolerance
+  bool curved_predictor = true;  // cubic through the last two points; false: the tangent alone
+  OrbitOptions orbit;            // shooting, rank tolerance, stability tolerance
 };
 
 struct ContinuationCallbacks {
@@ -64,7 +66,9 @@ class Continuation {
  private:
   struct Corrected;
   Corrected correct(const Eigen::VectorXd& from, const Eigen::VectorXd& tangent, double step,
-                    const Eigen::VectorXd& start_guess);
+                    const Eigen::VectorXd& start_guess, const Eigen::SparseMatrix<double>* chord);
+  Eigen::VectorXd predict(const ContinuationPoint* before, const ContinuationPoint& a,
+                          double ds) const;
   Eigen::VectorXd tangent_of(const Eigen::SparseMatrix<double>& jac, const Eigen::VectorXd& y,
                              const Eigen::VectorXd& previous) const;
   ContinuationPoint make_point(const Corrected& c, const Eigen::VectorXd& tangent, int index,
@@ -94,9 +98,13 @@ class Continuation {
   int parameter_;
   ContinuationOptions options_;
   std::unique_ptr<ShootingProblem> problem_;
-  Eigen::VectorXd weights_;   // of (unknowns, parameter): 1 / typical size
-  Eigen::VectorXd sizes_;     // largest |z_i| met on the branch's orbits so far
-  int family_dimension_ = 0;  // of the starting orbit's continuum, kept along the branch
+  Eigen::VectorXd weights_;  // of (unknowns, parameter): 1 / typical size
+  Eigen::VectorXd sizes_;    // largest |z_i| met on the branch's orbits so far
+  int family_dimension_ = 0;
+  // The shooting Jacobian (with its parameter column) at the last accepted point, in its section:
+  // the chord steps' matrix for the next step and for locating events after it.
+  Eigen::SparseMatrix<double>
+      chord_jacobian_;  // of the starting orbit's continuum, kept along the branch
 };
 
 }  // namespace sympathy

@@ -58,6 +58,44 @@ std::pair<int, double> aligned(const std::vector<std::complex<double>>& values,
   return {best, best_own};
 }
 
+// Eigenvalues of the product of `factors` (one factor: its own eigenvalues).
+ProductEigenvalues eigenvalues_of_product(const std::vector<Eigen::MatrixXd>& factors) {
+  if (factors.size() > 1) return product_eigenvalues(factors);
+  ProductEigenvalues p;
+  const Eigen::VectorXcd values = factors.front().eigenvalues();
+  for (int i = 0; i < values.size(); ++i) {
+    p.values.push_back(values[i]);
+    p.log_moduli.push_back(std::log(std::abs(values[i])));
+  }
+  return p;
+}
+
+// A full orthonormal basis whose first columns span those of `a` (n x d, full column rank).
+Eigen::MatrixXd completed_basis(const Eigen::MatrixXd& a) {
+  return Eigen::HouseholderQR<Eigen::MatrixXd>(a).householderQ() *
+         Eigen::MatrixXd::Identity(a.rows(), a.rows());
+}
+
+// The segment matrices acting on the quotient by a subspace V that they carry into itself (f
+// and the family's directions): in bases U_j = [V_j Q_j] at the segment ends, V_{j+1} the image
+// of V_j and back to V_0 at the end of the period, each segment matrix is block upper
+// triangular, and its lower diagonal block is the quotient's.
+std::vector<Eigen::MatrixXd> quotient_segments(const std::vector<Eigen::MatrixXd>& segments,
+                                               const Eigen::MatrixXd& v0) {
+  const int n = static_cast<int>(v0.rows()), d = static_cast<int>(v0.cols());
+  const Eigen::MatrixXd u0 = completed_basis(v0);
+  std::vector<Eigen::MatrixXd> quotient;
+  Eigen::MatrixXd u = u0;
+  for (std::size_t j = 0; j < segments.size(); ++j) {
+    const Eigen::MatrixXd next =
+        j + 1 < segments.size() ? completed_basis(segments[j] * u.leftCols(d)) : u0;
+    quotient.push_back(
+        (next.rightCols(n - d).transpose() * segments[j] * u.rightCols(n - d)).eval());
+    u = next;
+  }
+  return quotient;
+}
+
 }  // namespace
 
 FloquetAnalysis analyze_floquet(const std::vector<Eigen::MatrixXd>& segments,
@@ -65,65 +103,76 @@ FloquetAnalysis analyze_floquet(const std::vector<Eigen::MatrixXd>& segments,
                                 const Eigen::MatrixXd& family, const FloquetOptions& options) {
   if (segments.empty()) throw std::invalid_argument("analyze_floquet: no segment matrices");
   const int n = static_cast<int>(segments.front().rows());
-
-  // The product is formed for eigenvectors only (to find the trivial and structural
-  // multipliers); with one segment it is the monodromy and its eigenvalues are the multipliers.
-  Eigen::MatrixXd monodromy = segments.front();
-  for (std::size_t k = 1; k < segments.size(); ++k) monodromy = segments[k] * monodromy;
-  Eigen::EigenSolver<Eigen::MatrixXd> eig(monodromy,
-                                          flow_direction.size() > 0 || family.cols() > 0);
-
   FloquetAnalysis a;
-  std::vector<std::complex<double>> values;
-  std::vector<double> logs;
-  if (segments.size() == 1) {
-    for (int i = 0; i < n; ++i) {
-      values.push_back(eig.eigenvalues()[i]);
-      logs.push_back(std::log(std::abs(values.back())));
-    }
-  } else {
-    const auto p = product_eigenvalues(segments);
-    values = p.values;
-    logs = p.log_moduli;
-  }
-  for (int i = 0; i < n; ++i) a.multipliers.push_back({values[i], logs[i]});
+  const auto all = eigenvalues_of_product(segments);
 
-  // The trivial multiplier is the one whose eigenvector is f, the structural ones those whose
-  // eigenvectors lie along the family's directions: identified by eigenvectors, not by being
-  // nearest to 1. Eigenvectors come from the formed product, matched to the multipliers by
-  // value (accurate for moduli near 1).
-  std::vector<bool> taken(n, false);
+  // The known invariant subspace V: f and the family's directions (f taken out of each: a null
+  // vector of the shooting equations mixes it in; directions already spanned dropped).
   const bool autonomous = flow_direction.size() == n && flow_direction.norm() > 0.0;
-  if (autonomous || family.cols() > 0) {
+  std::vector<Eigen::VectorXd> known;
+  if (autonomous) known.push_back(flow_direction.normalized());
+  for (int k = 0; k < family.cols() && static_cast<int>(known.size()) < n; ++k) {
+    Eigen::VectorXd v = family.col(k);
+    const double size = v.norm();
+    for (const auto& q : known) v -= q.dot(v) * q;
+    if (v.norm() > 1e-6 * size) known.push_back(v.normalized());
+  }
+  const int d = static_cast<int>(known.size());
+  if (d == 0) {
+    for (int i = 0; i < n; ++i) a.multipliers.push_back({all.values[i], all.log_moduli[i]});
+  } else {
+    // The other multipliers are the eigenvalues on the quotient by V: they never share a cluster
+    // with the multipliers at 1 that f and the family force, so one crossing 1 at a branch point
+    // is not mistaken for those (nor its value for theirs).
+    Eigen::MatrixXd v0(n, d);
+    for (int k = 0; k < d; ++k) v0.col(k) = known[k];
+    const auto others =
+        d < n ? eigenvalues_of_product(quotient_segments(segments, v0)) : ProductEigenvalues{};
+    // The d of all multipliers that the others do not match (nearest pairs first) are the
+    // trivial and structural ones: their values, and the trivial one's error, come from the
+    // whole matrix, as the accuracy figure must.
+    std::vector<bool> used(n, false), matched(n - d, false);
+    for (int k = 0; k < n - d; ++k) {
+      int bi = -1, bj = -1;
+      for (int i = 0; i < n - d; ++i)
+        for (int j = 0; j < n && !matched[i]; ++j)
+          if (!used[j] && (bi < 0 || std::abs(others.values[i] - all.values[j]) <
+                                         std::abs(others.values[bi] - all.values[bj]))) {
+            bi = i;
+            bj = j;
+          }
+      matched[bi] = true;
+      used[bj] = true;
+    }
+    // Among those, the trivial one by its eigenvector (from the formed product).
+    Eigen::MatrixXd monodromy = segments.front();
+    for (std::size_t k = 1; k < segments.size(); ++k) monodromy = segments[k] * monodromy;
+    const Eigen::EigenSolver<Eigen::MatrixXd> eig(monodromy);
     std::vector<Eigen::VectorXcd> vectors;
     for (int i = 0; i < n; ++i) {
       int nearest = 0;
       for (int j = 1; j < n; ++j)
-        if (std::abs(eig.eigenvalues()[j] - values[i]) <
-            std::abs(eig.eigenvalues()[nearest] - values[i]))
+        if (std::abs(eig.eigenvalues()[j] - all.values[i]) <
+            std::abs(eig.eigenvalues()[nearest] - all.values[i]))
           nearest = j;
       vectors.push_back(eig.eigenvectors().col(nearest).normalized());
     }
+    int trivial = -1;
     if (autonomous) {
-      const auto [index, alignment] = aligned(values, vectors, flow_direction, taken);
-      a.trivial = index;
+      const auto [index, alignment] = aligned(all.values, vectors, flow_direction, used);
+      trivial = index;
       a.trivial_alignment = alignment;
-      taken[index] = true;
-      a.multipliers[index].trivial = true;
     }
-    for (int k = 0; k < family.cols() && k + 1 < n; ++k) {
-      // A family direction from a null vector of the shooting equations mixes in f (the phase
-      // condition fixes only the mixture): take f out before aligning.
-      Eigen::VectorXd d = family.col(k);
-      if (autonomous) {
-        const Eigen::VectorXd f = flow_direction.normalized();
-        d -= f.dot(d) * f;
-      }
-      const int index = aligned(values, vectors, d, taken).first;
-      taken[index] = true;
-      a.multipliers[index].structural = true;
-      ++a.structural;
+    for (int i = 0; i < n; ++i) {
+      if (used[i]) continue;
+      Multiplier mu{all.values[i], all.log_moduli[i]};
+      mu.trivial = i == trivial;
+      mu.structural = !mu.trivial;
+      a.structural += mu.structural ? 1 : 0;
+      a.multipliers.push_back(mu);
     }
+    for (int i = 0; i < n - d; ++i)
+      a.multipliers.push_back({others.values[i], others.log_moduli[i]});
   }
 
   // Order by decreasing modulus, keeping track of the trivial one.

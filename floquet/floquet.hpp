@@ -7,6 +7,9 @@
 // the vector field f) is identified by that eigenvector, not by being nearest to 1, and its
 // distance from 1 is the orbit's accuracy figure. Multipliers at 1 that a continuum of orbits
 // forces (a family, found by the shooting Newton as a rank deficiency) are marked structural.
+// All other multipliers are the eigenvalues on the quotient by the span of f and the family's
+// directions (an invariant subspace): one crossing 1 among the trivial and structural ones, as
+// at a branch point on a family, keeps its own value and is never taken for them.
 #pragma once
 
 #include <complex>

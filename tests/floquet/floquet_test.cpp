@@ -88,5 +88,43 @@ TEST(Floquet, ComplexPairsAndForcedSystems) {
   EXPECT_EQ(a.stability, Stability::Stable);
 }
 
+// At a branch point on a family of orbits three multipliers meet at 1: the trivial one, the
+// family's (here coupled to f as when moving along the family shifts the phase: M v1 = v1 +
+// 0.3 f, a Jordan block, whose eigenvalues the whole matrix gives only to ~sqrt(eps)), and the
+// one crossing. The crossing one comes from the quotient by f and the family: its value to
+// 1e-12 and the sign of |mu| - 1 right down to 1e-9 from 1, for one segment and for five
+// (whose product is M). Exact values by construction.
+TEST(Floquet, CrossingMultiplierAmongTheTrivialAndAFamilysOne) {
+  const Eigen::MatrixXd v = random_basis(5, 11);
+  for (double delta : {1e-5, 1e-7, 1e-9, -1e-9, -1e-7}) {
+    Eigen::MatrixXd core = Eigen::VectorXd::Constant(5, 1.0).asDiagonal();
+    core(2, 2) = 1.0 + delta;  // crossing
+    core(3, 3) = 0.8;
+    core(4, 4) = 0.95;
+    core(0, 1) = 0.3;  // M v1 = v1 + 0.3 v0
+    const Eigen::MatrixXd m = v * core * v.inverse();
+    // Five factors whose product is m: m^(1/5) is awkward, so m = A5 ... A1 with A_k = I for k
+    // < 5 except one random invertible pair that cancels.
+    const Eigen::MatrixXd r = random_basis(5, 12);
+    const std::vector<Eigen::MatrixXd> five{r, Eigen::MatrixXd::Identity(5, 5),
+                                            Eigen::MatrixXd::Identity(5, 5), r.inverse(), m};
+    for (const auto& segments : {std::vector<Eigen::MatrixXd>{m}, five}) {
+      const auto a = analyze_floquet(segments, v.col(0), v.col(1));
+      EXPECT_EQ(a.structural, 1);
+      int others = 0;
+      for (const auto& mu : a.multipliers) {
+        if (mu.trivial || mu.structural) continue;
+        ++others;
+        if (std::abs(mu.value - 1.0) < 1e-3) {
+          EXPECT_NEAR(mu.value.real(), 1.0 + delta, 1e-12) << delta;
+          EXPECT_EQ(mu.modulus() > 1.0, delta > 0.0) << delta;
+        }
+      }
+      EXPECT_EQ(others, 3);
+      EXPECT_NEAR(a.max_modulus, std::max(1.0 + delta, 0.95), 1e-12) << delta;
+    }
+  }
+}
+
 }  // namespace
 }  // namespace sympathy
