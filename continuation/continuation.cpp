@@ -235,6 +235,9 @@ Continuation::Corrected Continuation::correct(const Eigen::VectorXd& from,
     rhs[N] = -(row.dot(y - from) - step);
     return rhs;
   };
+  const double tolerance =
+      attainable_tolerance(options_.corrector_tolerance, options_.orbit.newton.rtol_factor,
+                           options_.orbit.shooting.flow);
   int iterations = 0;
   // Chord steps first, on plain integrations with the previous point's Jacobian (a fraction of
   // the cost of an integration with sensitivities), while they contract well; the Newton
@@ -263,7 +266,7 @@ Continuation::Corrected Continuation::correct(const Eigen::VectorXd& from,
       y += dy.x;
       ++c.chord_steps;
       last = norm;
-      if (rate * norm <= options_.corrector_tolerance) break;  // the next is expected below
+      if (rate * norm <= tolerance) break;  // the next is expected below
     }
   }
   double previous = std::numeric_limits<double>::infinity();
@@ -278,9 +281,8 @@ Continuation::Corrected Continuation::correct(const Eigen::VectorXd& from,
     }
     const double norm = inf_norm(e.residual);
     // Converged; or stalled within ten tolerances: the integration's noise floor, not a failure.
-    const bool stalled =
-        it >= 1 && norm > 0.3 * previous && norm <= 10 * options_.corrector_tolerance;
-    if (norm <= options_.corrector_tolerance || stalled) {
+    const bool stalled = it >= 1 && norm > 0.3 * previous && norm <= 10 * tolerance;
+    if (norm <= tolerance || stalled) {
       c.converged = true;
       c.y = std::move(y);
       c.evaluation = std::move(e);

@@ -67,8 +67,10 @@ PeriodicOrbit solve_periodic_orbit(const OdeSystem& system, const Eigen::VectorX
   }
   double norm = inf_norm(e.residual);
   s.residual_norms.push_back(norm);
+  const double tolerance = attainable_tolerance(options.newton.residual_tolerance,
+                                                options.newton.rtol_factor, options.shooting.flow);
   for (;;) {
-    if (norm <= options.newton.residual_tolerance) {
+    if (norm <= tolerance) {
       s.converged = true;
       s.reason = "residual below tolerance";
       break;
@@ -106,7 +108,7 @@ PeriodicOrbit solve_periodic_orbit(const OdeSystem& system, const Eigen::VectorX
     }
     if (!accepted) {
       // Stalled within ten tolerances: the integration's noise floor, as far as it can go.
-      if (norm <= 10 * options.newton.residual_tolerance) {
+      if (norm <= 10 * tolerance) {
         s.converged = true;
         s.reason = "residual at the integration's noise floor (within 10 tolerances)";
       } else {

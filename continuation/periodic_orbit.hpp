@@ -6,6 +6,7 @@
 // its Floquet multipliers and the distance of its trivial multiplier from 1.
 #pragma once
 
+#include <algorithm>
 #include <string>
 #include <vector>
 
@@ -18,11 +19,20 @@
 namespace sympathy {
 
 struct NewtonOptions {
-  double residual_tolerance = 1e-9;  // on |Phi_T(z0) - z0|_inf and the phase condition
+  // On |Phi_T(z0) - z0|_inf and the phase condition; never below `rtol_factor` times the
+  // integration's rtol, which is as far as the residual of an integration can go (the bench
+  // measures residuals of 5-20 rtol at the noise floor).
+  double residual_tolerance = 1e-9;
+  double rtol_factor = 20.0;
   int max_iterations = 20;
   int max_halvings = 8;
   double rank_tolerance = 1e-6;  // see LinearSolveOptions
 };
+
+// The residual tolerance an integration at `flow` settings can meet.
+inline double attainable_tolerance(double tolerance, double rtol_factor, const FlowOptions& flow) {
+  return std::max(tolerance, rtol_factor * flow.rtol);
+}
 
 struct NewtonSummary {
   bool converged = false;

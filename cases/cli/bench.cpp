@@ -6,12 +6,14 @@
 // with the turning-point pulse resolved; the reference's own change from rtol 1e-12 is
 // reported as the level below which errors are not resolved. Orbits start from the same guess
 // (the orbit's state and period moved by 1e-3), so each setting does its own Newton iterations.
+#include <algorithm>
 #include <chrono>
 #include <cmath>
 #include <cstdio>
 #include <filesystem>
 #include <fstream>
 #include <sstream>
+#include <tuple>
 
 #include "cases/cli/commands.hpp"
 #include "cases/cli/common.hpp"
@@ -61,8 +63,9 @@ OrbitOptions orbit_options(const Setting& s) {
   OrbitOptions o;
   o.shooting.flow = s.flow;
   o.shooting.segments = s.segments;
-  // Newton cannot get below the integration's own error: ask for what the tolerance allows.
-  o.newton.residual_tolerance = std::max(1e-10, 20.0 * s.flow.rtol);
+  // Newton cannot get below the integration's own error: the library asks for no less than
+  // 20 rtol (NewtonOptions::rtol_factor), and at the tightest settings for 1e-10.
+  o.newton.residual_tolerance = 1e-10;
   return o;
 }
 
@@ -150,17 +153,129 @@ std::string format(double v, const char* f = "%.2e") {
   return b;
 }
 
+// Median wall time of `repeats` runs of `work`.
+template <class F>
+double median_seconds(int repeats, F&& work) {
+  std::vector<double> t;
+  for (int r = 0; r < repeats; ++r) {
+    const auto start = std::chrono::steady_clock::now();
+    work();
+    t.push_back(std::chrono::duration<double>(std::chrono::steady_clock::now() - start).count());
+  }
+  std::sort(t.begin(), t.end());
+  return t[t.size() / 2];
+}
+
+// (d) A branch at default settings against the floor of a shooting method: one period's
+// integration with the sensitivities a point needs (state and the parameter).
+struct PointCost {
+  std::string name;
+  int points = 0;
+  double seconds = 0.0;
+  long integrations = 0;
+  double period_sensitivities = 0.0;  // s, one period with state and parameter sensitivities
+  double period_plain = 0.0;          // s, one period, state only
+};
+
+PointCost point_cost(const CaseFile& file, const std::string& params, const std::string& start,
+                     double from, double to) {
+  PointCost c;
+  c.name = start + " branch, k " + format(from, "%g") + " to " + format(to, "%g") + " N/m (" +
+           params + ")";
+  MetronomeModel model(file.spec(params));
+  const int k = model.parameter_index("k");
+  model.set_parameter(k, from);
+  const auto& s = file.start(start);
+  const InvariantSubspace subspace = file.invariant_subspace(s, model);
+  const PeriodicOrbit orbit =
+      find_periodic_orbit(model, file.initial_state(&s), subspace, OrbitOptions{});
+  if (!orbit.converged()) return c;
+  ContinuationOptions o;
+  o.lower = from;
+  o.upper = to;
+  const auto started = std::chrono::steady_clock::now();
+  Continuation run(model, k, o);
+  const Branch b = run.run(orbit, +1);
+  c.seconds = std::chrono::duration<double>(std::chrono::steady_clock::now() - started).count();
+  c.points = static_cast<int>(b.points.size()) - 1;  // the first is the start's
+  c.integrations = b.flow.calls;
+  model.set_parameter(k, from);
+  Flow flow(model, o.orbit.shooting.flow);
+  const int parameter[] = {k};
+  c.period_sensitivities = median_seconds(5, [&] {
+    flow.advance_with_sensitivities(orbit.state0, 0.0, orbit.period, true, parameter);
+  });
+  c.period_plain = median_seconds(5, [&] { flow.advance(orbit.state0, 0.0, orbit.period); });
+  return c;
+}
+
+// (e) One period with the monodromy matrix against the number of metronomes: the row setup
+// (2) and cases/many (4 to 64 on a 2-D platform), from a state after a transient.
+struct Scaling {
+  int metronomes = 0, dimension = 0;
+  std::string solver;
+  double period = 0.0;
+  double seconds = 0.0;  // one period with state sensitivities
+  long steps = 0;
+  std::string note;
+};
+
+Scaling scaling(const std::string& path, const std::string& params, LinearSolver solver,
+                double rtol) {
+  Scaling r;
+  const CaseFile file = CaseFile::load(path);
+  MetronomeModel model(params.empty() ? file.spec() : file.spec(params));
+  r.metronomes = model.metronome_count();
+  r.dimension = model.dimension();
+  r.solver = to_string(solver);
+  const auto& start = file.start("in-phase");
+  FlowOptions plain;
+  plain.rtol = 1e-7;
+  plain.atol = 1e-9;
+  Flow transient(model, plain);
+  const Eigen::VectorXd z = transient.advance(file.initial_state(&start), 0.0, 20.0);
+  r.period = estimate_period(transient, z, 2.0, 1e-3);
+  if (!(r.period > 0.0)) {
+    r.note = "no period found after the transient";
+    return r;
+  }
+  FlowOptions o;
+  o.rtol = rtol;
+  o.atol = rtol * 1e-2;
+  o.linear_solver = solver;
+  try {
+    Flow flow(model, o);
+    r.seconds = median_seconds(r.metronomes > 16 ? 1 : 3, [&] {
+      flow.reset_statistics();
+      flow.advance_with_sensitivities(z, 0.0, r.period);
+    });
+    r.steps = flow.statistics().steps;
+  } catch (const std::exception& e) {
+    r.note = e.what();
+  }
+  return r;
+}
+
 }  // namespace
 
 int run_bench(const std::vector<std::string>& argv) {
   Arguments args("bench", argv,
                  {{"--out", "DIR", false, "where bench.csv and bench.md go (default out/bench)"},
-                  {"--quick", "", false, "fewer tolerances (for a smoke run)"}},
+                  {"--quick", "", false, "fewer tolerances (for a smoke run)"},
+                  {"--sections", "LIST", false,
+                   "which parts, e.g. abc (default abcde): (a)-(c) error against run time, "
+                   "(d) cost of a continuation point, (e) cost against the number of metronomes"}},
                  {});
   Stopwatch clock;
   const std::string out = args.text("--out", "out/bench");
   std::filesystem::create_directories(out);
   const bool quick = args.flag("--quick");
+  const std::string sections = args.text("--sections", "abcde");
+  for (char ch : sections)
+    if (ch < 'a' || ch > 'e')
+      throw InputError("--sections: expected letters from a to e (e.g. abc), got '" + sections +
+                       "'");
+  auto want = [&](char section) { return sections.find(section) != std::string::npos; };
   const std::string root =
       std::filesystem::exists("cases/row2.toml") ? "" : SYMPATHY_SOURCE_DIR "/";
   const CaseFile file = CaseFile::load(root + "cases/row2.toml");
@@ -223,6 +338,7 @@ int run_bench(const std::vector<std::string>& argv) {
   };
 
   for (const auto& p : orbits) {
+    if (!want(p.name[1])) continue;
     MetronomeModel model(file.spec(p.params));
     const auto& start = file.start(p.start);
     const InvariantSubspace subspace = file.invariant_subspace(start, model);
@@ -257,7 +373,7 @@ int run_bench(const std::vector<std::string>& argv) {
     md << "\n";
   }
 
-  {
+  if (want('c')) {
     const std::string name = "(c) first stability change of the anti-phase k-branch";
     MetronomeModel model(file.spec("table2"));
     model.set_parameter("k", 44.0);
@@ -283,6 +399,73 @@ int run_bench(const std::vector<std::string>& argv) {
       std::printf("  %-32s rtol %.0e  k %s  %.3f s%s\n", s.name.c_str(), s.flow.rtol,
                   format(ke).c_str(), r.seconds, r.converged ? "" : "  (not located)");
       std::fflush(stdout);
+    }
+  }
+  if (want('d')) {
+    md << "\n## (d) cost of a continuation point\n\nDefault settings (BDF, rtol 1e-11). The floor "
+          "of a shooting method is one period's integration with the sensitivities a point "
+          "needs (state and parameter); the ratio is a point's time over it.\n\n"
+       << "| branch | points | seconds | integrations | s per point | one period with "
+          "sensitivities (s) | one period plain (s) | ratio |\n"
+       << "|---|---|---|---|---|---|---|---|\n";
+    CsvWriter cost(out + "/cost.csv",
+                   {"branch", "points", "seconds", "integrations", "seconds_per_point",
+                    "period_with_sensitivities", "period_plain", "ratio"});
+    std::vector<std::tuple<std::string, std::string, double, double>> branches{
+        {"table2", "anti-phase", 10.0, 100.0}, {"table2", "in-phase", 25.0, 100.0}};
+    if (quick)
+      branches = {{"table2", "anti-phase", 40.0, 60.0}, {"table2", "in-phase", 60.0, 80.0}};
+    for (const auto& [params, start, from, to] : branches) {
+      const PointCost c = point_cost(file, params, start, from, to);
+      const double per_point = c.points > 0 ? c.seconds / c.points : NAN;
+      const double ratio = per_point / c.period_sensitivities;
+      cost.row(std::vector<std::string>{c.name, std::to_string(c.points), format(c.seconds, "%.3f"),
+                                        std::to_string(c.integrations), format(per_point, "%.4f"),
+                                        format(c.period_sensitivities, "%.4f"),
+                                        format(c.period_plain, "%.4f"), format(ratio, "%.2f")});
+      cost.flush();
+      md << "| " << c.name << " | " << c.points << " | " << format(c.seconds, "%.2f") << " | "
+         << c.integrations << " | " << format(per_point, "%.4f") << " | "
+         << format(c.period_sensitivities, "%.4f") << " | " << format(c.period_plain, "%.4f")
+         << " | " << format(ratio, "%.1f") << " |\n";
+      std::printf(
+          "(d) %s: %d points in %.2f s, %.4f s per point; one period with sensitivities "
+          "%.4f s, plain %.4f s; ratio %.1f\n",
+          c.name.c_str(), c.points, c.seconds, per_point, c.period_sensitivities, c.period_plain,
+          ratio);
+      std::fflush(stdout);
+    }
+  }
+
+  if (want('e')) {
+    md << "\n## (e) one period with the monodromy matrix against the number of metronomes\n\n"
+          "The row setup (2) and cases/many (4 to 64 metronomes on a 2-D platform, spread "
+          "directions, every fourth detuned), in-phase start after a 20 s transient; BDF, rtol "
+          "1e-9.\n\n"
+       << "| metronomes | dimension | linear solver | period (s) | steps | seconds | |\n"
+       << "|---|---|---|---|---|---|---|\n";
+    CsvWriter table(out + "/scaling.csv", {"metronomes", "dimension", "linear_solver", "period",
+                                           "steps", "seconds", "note"});
+    std::vector<int> counts{2, 4, 8, 16, 32, 64};
+    if (quick) counts = {2, 4, 8};
+    for (int count : counts) {
+      const std::string path = count == 2
+                                   ? root + "cases/row2.toml"
+                                   : root + "cases/many/many" + std::to_string(count) + ".toml";
+      for (LinearSolver solver : {LinearSolver::Dense}) {
+        const Scaling r = scaling(path, count == 2 ? "table2" : "", solver, 1e-9);
+        table.row(std::vector<std::string>{
+            std::to_string(r.metronomes), std::to_string(r.dimension), r.solver,
+            format(r.period, "%.6f"), std::to_string(r.steps), format(r.seconds, "%.3f"), r.note});
+        table.flush();
+        md << "| " << r.metronomes << " | " << r.dimension << " | " << r.solver << " | "
+           << format(r.period, "%.4f") << " | " << r.steps << " | " << format(r.seconds, "%.3f")
+           << " | " << r.note << " |\n";
+        std::printf("(e) %2d metronomes (n = %3d), %s: period %.4f s, %ld steps, %.3f s %s\n",
+                    r.metronomes, r.dimension, r.solver.c_str(), r.period, r.steps, r.seconds,
+                    r.note.c_str());
+        std::fflush(stdout);
+      }
     }
   }
   std::ofstream(out + "/bench.md") << md.str();

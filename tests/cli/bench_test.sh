@@ -46,6 +46,25 @@ check "difference quotients converge at rtol 1e-7" csv_check \
 check "every row reports seconds and evaluation counts" csv_check \
   "all(float(r['seconds']) >= 0 and int(r['rhs_evaluations']) > 0 for r in rows if r['converged'] == 'yes')"
 
+# (d) and (e): each point needs at least one integration with sensitivities, so a point cannot
+# cost less than about one period with them; a plain period costs less than one with them.
+/usr/bin/python3 - "$work" <<'PY'
+import csv, sys
+work = sys.argv[1]
+cost = list(csv.DictReader(open(f"{work}/cost.csv")))
+scaling = list(csv.DictReader(open(f"{work}/scaling.csv")))
+ok = len(cost) == 2 and all(int(r["points"]) > 5 and float(r["ratio"]) > 0.9 and
+                            float(r["period_plain"]) < float(r["period_with_sensitivities"])
+                            for r in cost)
+ok &= [int(r["metronomes"]) for r in scaling] == [2, 4, 8]
+ok &= all(float(r["seconds"]) > 0 and int(r["steps"]) > 0 and r["note"] == "" for r in scaling)
+sys.exit(0 if ok else 1)
+PY
+check "(d) point costs and (e) scaling rows are complete and sensible" test $? -eq 0
+
 "$bin" bench --bogus > /dev/null 2> "$work/bad.err"
 check "an unknown option exits 2" test $? -eq 2
+"$bin" bench --sections xyz > /dev/null 2> "$work/bad.err"
+check "--sections with an unknown letter exits 2 and says what it expected" \
+  grep -q "expected letters from a to e" "$work/bad.err"
 exit $failures
