@@ -455,6 +455,16 @@ void Flow::on_switching() {
 // changed band sets the step cap at once. `after_step(t_old, t_new)` may interpolate outputs in
 // the step just taken (CVodeGetDky) before anything restarts the integrator.
 void Flow::integrate_to(double t_end, const std::function<void(double, double)>& after_step) {
+  // A failed call's work counts too (the caller collects only after a success).
+  try {
+    step_to(t_end, after_step);
+  } catch (const IntegrationError&) {
+    collect_statistics();
+    throw;
+  }
+}
+
+void Flow::step_to(double t_end, const std::function<void(double, double)>& after_step) {
   auto& cv = *cv_;
   // One step per CVode call, so CVODES's own step limit never triggers: count here.
   for (long steps = 0; t_ < t_end; ++steps) {

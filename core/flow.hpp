@@ -133,6 +133,7 @@ class Flow {
              std::span<const int> parameters);
   // Integrates to t_end one internal step at a time; see flow.cpp.
   void integrate_to(double t_end, const std::function<void(double, double)>& after_step = {});
+  void step_to(double t_end, const std::function<void(double, double)>& after_step);
   void configure_roots();
   int band_of(std::size_t zone, double value) const;
   void update_bands(double t);

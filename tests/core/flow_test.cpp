@@ -161,6 +161,8 @@ TEST(Flow, BlowUpIsReportedWithItsTime) {
     EXPECT_NEAR(e.time(), 1.0, 1e-3);  // z = 1/(1 - t)
     EXPECT_NE(std::string(e.what()).find("CVode"), std::string::npos);
   }
+  // The failed call's work is counted (a failed simulation reports its steps).
+  EXPECT_GT(flow.statistics().steps, 100);
   // The same Flow works again afterwards.
   z0[0] = 0.1;
   EXPECT_NEAR(flow.advance(z0, 0.0, 1.0)[0], 0.1 / 0.9, 1e-9);
