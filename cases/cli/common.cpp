@@ -14,7 +14,8 @@ std::vector<OptionSpec> integrator_options() {
       {"--rtol", "R", false, "relative tolerance of the integrator"},
       {"--atol", "A", false, "absolute tolerance of the integrator"},
       {"--method", "bdf|adams", false, "linear multistep method (default bdf)"},
-      {"--linear-solver", "dense|klu", false, "linear solver of the BDF Newton iteration"},
+      {"--linear-solver", "dense|klu|structured", false,
+       "linear solver of the BDF Newton iteration (structured: sparse plus low rank)"},
   };
 }
 
@@ -45,8 +46,10 @@ FlowOptions flow_options(const Arguments& args, FlowOptions o) {
     o.linear_solver = LinearSolver::Dense;
   else if (solver == "klu")
     o.linear_solver = LinearSolver::KLU;
+  else if (solver == "structured")
+    o.linear_solver = LinearSolver::Structured;
   else
-    throw InputError("--linear-solver " + solver + ": expected dense or klu");
+    throw InputError("--linear-solver " + solver + ": expected dense, klu or structured");
   return o;
 }
 
