@@ -10,6 +10,14 @@
 
 namespace sympathy {
 
+namespace {
+
+// How far KLU's condition estimate (min |U_ii| / max |U_ii|) may fall in a refactorization
+// before the matrix is factored afresh with pivoting.
+constexpr double kRefactorLoss = 0.1;
+
+}  // namespace
+
 // KLU's objects, freed with it.
 struct LowRankSolver::Klu {
   klu_common common;
@@ -64,6 +72,9 @@ LowRankSolver::LowRankSolver(const LowRankJacobian& s)
   Z_.resize(n_, rank_);
   W_.resize(n_, rank_);
   small_.resize(rank_);
+  projected_.resize(rank_);
+  capacitance_.resize(rank_, rank_);
+  capacitance_inverse_.resize(rank_, rank_);
 }
 
 LowRankSolver::~LowRankSolver() = default;
@@ -80,27 +91,39 @@ bool LowRankSolver::factor(const LowRankJacobian& jac, double gamma) {
   for (double v : values_)
     if (!std::isfinite(v)) return false;
 
-  // With pivoting every time: CVODES sets up rarely (every ~20 steps, or after a failure),
-  // and a refactorization in a kept pivot order lost up to 1e-10 in tests as gamma changed.
+  // Refactor in the pivot order of the last factorization with pivoting (no allocation, no
+  // pivot search: CVODES sets up every few steps where steep zones change the step size), unless
+  // KLU's condition estimate fell by more than kRefactorLoss from that factorization's; then
+  // factor afresh with partial pivoting.
   auto& klu = *klu_;
-  if (klu.numeric) klu_free_numeric(&klu.numeric, &klu.common);
-  klu.numeric = klu_factor(column_starts_.data(), row_indices_.data(), values_.data(), klu.symbolic,
-                           &klu.common);
-  ++factorizations_;
-  if (!klu.numeric || klu.common.status != KLU_OK) return false;
-  if (!klu_rcond(klu.symbolic, klu.numeric, &klu.common) ||
-      !(klu.common.rcond > std::numeric_limits<double>::epsilon()))
-    return false;
+  bool done = false;
+  if (klu.numeric && klu_refactor(column_starts_.data(), row_indices_.data(), values_.data(),
+                                  klu.symbolic, klu.numeric, &klu.common)) {
+    done = klu_rcond(klu.symbolic, klu.numeric, &klu.common) &&
+           klu.common.rcond >= kRefactorLoss * pivoted_rcond_;
+    if (done) ++refactorizations_;
+  }
+  if (!done) {
+    if (klu.numeric) klu_free_numeric(&klu.numeric, &klu.common);
+    klu.numeric = klu_factor(column_starts_.data(), row_indices_.data(), values_.data(),
+                             klu.symbolic, &klu.common);
+    ++factorizations_;
+    if (!klu.numeric || klu.common.status != KLU_OK) return false;
+    if (!klu_rcond(klu.symbolic, klu.numeric, &klu.common)) return false;
+    pivoted_rcond_ = klu.common.rcond;
+  }
+  if (!(klu.common.rcond > std::numeric_limits<double>::epsilon())) return false;
 
   if (rank_ > 0) {
     Z_ = jac.U;
     if (!klu_solve(klu.symbolic, klu.numeric, n_, rank_, Z_.data(), &klu.common)) return false;
     W_ = jac.W;
-    const Eigen::MatrixXd capacitance =
-        Eigen::MatrixXd::Identity(rank_, rank_) - gamma * (W_.transpose() * Z_);
-    const Eigen::PartialPivLU<Eigen::MatrixXd> lu(capacitance);
-    if (!(lu.rcond() > std::numeric_limits<double>::epsilon())) return false;
-    capacitance_inverse_ = lu.inverse();
+    // Into members sized once: CVODES sets up often, and the sizes never change.
+    capacitance_.noalias() = -gamma * (W_.transpose() * Z_);
+    capacitance_.diagonal().array() += 1.0;
+    capacitance_lu_.compute(capacitance_);
+    if (!(capacitance_lu_.rcond() > std::numeric_limits<double>::epsilon())) return false;
+    capacitance_inverse_ = capacitance_lu_.inverse();
     Z_ *= gamma;  // solve() needs gamma Z
     if (!Z_.allFinite() || !capacitance_inverse_.allFinite()) return false;
   }
@@ -114,7 +137,8 @@ void LowRankSolver::solve(double* x) {
   klu_solve(klu.symbolic, klu.numeric, n_, 1, x, &klu.common);
   if (rank_ == 0) return;
   Eigen::Map<Eigen::VectorXd> y(x, n_);
-  small_.noalias() = capacitance_inverse_ * (W_.transpose() * y);
+  projected_.noalias() = W_.transpose() * y;  // no temporaries: solve() runs per Newton iteration
+  small_.noalias() = capacitance_inverse_ * projected_;
   y.noalias() += Z_ * small_;
 }
 

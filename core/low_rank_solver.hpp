@@ -2,7 +2,8 @@
 // implicit integrator when the Jacobian is sparse plus a dense part of small rank r.
 //
 // P = I - gamma S is factored sparsely by KLU (SuiteSparse): the pattern is analyzed (ordered)
-// once, and each factor() factors with partial pivoting.
+// once; each factor() refactors in the last pivot order, or factors afresh with partial pivoting
+// when KLU's condition estimate says the old order has become poor.
 // By the Woodbury identity, with Z = P^{-1} U (r sparse solves) and the r x r capacitance
 // matrix K = I_r - gamma W^T Z,
 //   (P - gamma U W^T)^{-1} b = y + gamma Z K^{-1} W^T y,   y = P^{-1} b,
@@ -34,8 +35,10 @@ class LowRankSolver {
   // x := (I - gamma J)^{-1} x, for the last successful factor().
   void solve(double* x);
   bool factored() const { return factored_; }
-  // Numeric factorizations since construction.
+  // Factorizations with pivoting, and refactorizations in a kept pivot order, since
+  // construction.
   long factorizations() const { return factorizations_; }
+  long refactorizations() const { return refactorizations_; }
 
  private:
   struct Klu;
@@ -48,10 +51,13 @@ class LowRankSolver {
   std::vector<int> diagonal_;  // position in P of each diagonal entry
   std::unique_ptr<Klu> klu_;
   Eigen::MatrixXd Z_, W_;
-  Eigen::MatrixXd capacitance_inverse_;
-  Eigen::VectorXd small_;  // r-vector scratch
+  Eigen::MatrixXd capacitance_, capacitance_inverse_;
+  Eigen::PartialPivLU<Eigen::MatrixXd> capacitance_lu_;
+  Eigen::VectorXd projected_, small_;  // r-vector scratch
+  double pivoted_rcond_ = 0.0;         // KLU's estimate at the last factorization with pivoting
   bool factored_ = false;
   long factorizations_ = 0;
+  long refactorizations_ = 0;
 };
 
 }  // namespace sympathy

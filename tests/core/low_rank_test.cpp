@@ -75,8 +75,29 @@ TEST(LowRankSolver, MatchesDenseSolve) {
             << "rank " << rank << " gamma " << gamma << " refill " << refill;
       }
     }
-    EXPECT_EQ(solver.factorizations(), 9);
+    EXPECT_EQ(solver.factorizations() + solver.refactorizations(), 9);
+    EXPECT_GE(solver.factorizations(), 1);
   }
+}
+
+// The pivot order kept from gamma = 0.01 (diagonal pivots) gives a zero pivot at gamma = 0.1,
+// where I - gamma S = [[0, -0.1], [-0.1, 1]]: factored afresh with pivoting, and solved exactly
+// (expected: the 2 x 2 inverse by hand).
+TEST(LowRankSolver, PivotsAfreshWhenTheKeptOrderFails) {
+  LowRankJacobian jac(2, 0, {{0, 0}, {1, 0}, {0, 1}});
+  jac.values = {10.0, 1.0, 1.0};  // S = [[10, 1], [1, 0]]
+  LowRankSolver solver(jac);
+  ASSERT_TRUE(solver.factor(jac, 0.01));
+  ASSERT_TRUE(solver.factor(jac, 0.02));
+  EXPECT_EQ(solver.factorizations(), 1);
+  EXPECT_EQ(solver.refactorizations(), 1);
+  ASSERT_TRUE(solver.factor(jac, 0.1));
+  EXPECT_EQ(solver.factorizations(), 2);
+  Eigen::Vector2d x(1.0, 2.0);
+  solver.solve(x.data());
+  // [[0, -0.1], [-0.1, 1]]^-1 = [[-100, -10], [-10, 0]]
+  EXPECT_NEAR(x[0], -100.0 - 20.0, 1e-12);
+  EXPECT_NEAR(x[1], -10.0, 1e-12);
 }
 
 // A singular I - gamma S, and a regular one whose capacitance matrix I - gamma W^T P^-1 U is
