@@ -15,7 +15,8 @@ std::vector<OptionSpec> integrator_options() {
       {"--atol", "A", false, "absolute tolerance of the integrator"},
       {"--method", "bdf|adams", false, "linear multistep method (default bdf)"},
       {"--linear-solver", "dense|klu|structured", false,
-       "linear solver of the BDF Newton iteration (structured: sparse plus low rank)"},
+       "linear solver of the BDF Newton iteration (default: structured, sparse plus low rank, for "
+       "more than 3 metronomes; else dense)"},
   };
 }
 
@@ -41,7 +42,10 @@ FlowOptions flow_options(const Arguments& args, FlowOptions o) {
   } else {
     throw InputError("--method " + method + ": expected bdf or adams");
   }
-  const std::string solver = args.text("--linear-solver", "dense");
+  const std::string solver =
+      args.text("--linear-solver", o.linear_solver == LinearSolver::Structured ? "structured"
+                                   : o.linear_solver == LinearSolver::KLU      ? "klu"
+                                                                               : "dense");
   if (solver == "dense")
     o.linear_solver = LinearSolver::Dense;
   else if (solver == "klu")
@@ -51,6 +55,13 @@ FlowOptions flow_options(const Arguments& args, FlowOptions o) {
   else
     throw InputError("--linear-solver " + solver + ": expected dense, klu or structured");
   return o;
+}
+
+LinearSolver default_linear_solver(const OdeSystem& system) {
+  const auto* model = dynamic_cast<const MetronomeModel*>(&system);
+  return model && model->metronome_count() > 3 && model->low_rank_structure()
+             ? LinearSolver::Structured
+             : LinearSolver::Dense;
 }
 
 std::string join(const std::vector<std::string>& items, const std::string& separator) {
