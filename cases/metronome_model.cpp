@@ -1,6 +1,7 @@
 #include "cases/metronome_model.hpp"
 
 #include <algorithm>
+#include <array>
 #include <numbers>
 #include <stdexcept>
 
@@ -222,6 +223,7 @@ MetronomeModel::MetronomeModel(ModelSpec spec)
   for (int j = 0; j < static_cast<int>(spec_.springs.size()); ++j)
     named.push_back({"kappa" + std::to_string(j + 1), {spring_offset(j)}});
   set_parameter_layout(std::move(named), std::move(raw));
+  layout_ = low_rank_layout();
 }
 
 std::vector<std::string> MetronomeModel::state_names() const {
@@ -262,6 +264,165 @@ void MetronomeModel::switching_functions(double /*t*/, const double* z, double* 
     gi[3] = th + the;
     gi[4] = th - ths;
   }
+}
+
+std::optional<LowRankJacobian> MetronomeModel::low_rank_structure() const {
+  const int D = directions_, N = n_metronomes_, m = D + N;
+  std::vector<std::pair<int, int>> entries;
+  for (int a = 0; a < D; ++a) entries.emplace_back(a, m + a);
+  for (int i = 0; i < N; ++i) {
+    entries.emplace_back(D + i, m + D + i);
+    entries.emplace_back(m + D + i, D + i);
+    entries.emplace_back(m + D + i, m + D + i);
+  }
+  for (const auto& spring : spec_.springs) {
+    entries.emplace_back(m + D + spring.first, D + spring.second);
+    entries.emplace_back(m + D + spring.second, D + spring.first);
+  }
+  return LowRankJacobian(dimension(), D, std::move(entries));
+}
+
+MetronomeModel::LowRankLayout MetronomeModel::low_rank_layout() const {
+  const int D = directions_, N = n_metronomes_, m = D + N;
+  const LowRankJacobian s = *low_rank_structure();
+  LowRankLayout layout;
+  for (int a = 0; a < D; ++a) layout.platform_velocity.push_back(s.position(a, m + a));
+  for (int i = 0; i < N; ++i) {
+    layout.angular_velocity.push_back(s.position(D + i, m + D + i));
+    layout.own_angle.push_back(s.position(m + D + i, D + i));
+    layout.own_velocity.push_back(s.position(m + D + i, m + D + i));
+  }
+  for (const auto& spring : spec_.springs)
+    layout.spring.emplace_back(s.position(m + D + spring.first, D + spring.second),
+                               s.position(m + D + spring.second, D + spring.first));
+  return layout;
+}
+
+// The same quantities as evaluate(), in doubles, with their derivatives by hand: G_i, b_i and F
+// depend on metronome i's own angle and velocity (G_i also on its spring partners' angles), so
+// every derivative of r'' = Sigma^{-1} (F - R), Sigma = Mt - A, is a sum over metronomes:
+//   d r'' = Sigma^{-1} (dF - dR + dA r'').
+bool MetronomeModel::low_rank_jacobian(double /*t*/, const double* z, LowRankJacobian& out) const {
+  const int D = directions_, N = n_metronomes_, m = D + N, n = dimension();
+  if (out.dimension != n || out.rank() != D ||
+      out.nonzeros() != static_cast<int>(out.values.size()) || out.W.rows() != n ||
+      out.W.cols() != D)
+    throw std::invalid_argument("MetronomeModel::low_rank_jacobian: not the model's structure");
+  const auto& raw = raw_parameters();
+  const double g = raw[5];
+
+  thread_local std::vector<double> torque, G, G_angle, G_velocity, inertia, p, sn, cs;
+  thread_local std::vector<std::array<double, 2>> e;
+  for (auto* v : {&torque, &G, &G_angle, &G_velocity, &inertia, &p, &sn, &cs}) v->assign(N, 0.0);
+  e.assign(N, {0.0, 0.0});
+  for (int j = 0; j < static_cast<int>(spec_.springs.size()); ++j) {
+    const auto& spring = spec_.springs[j];
+    const double q = raw[spring_offset(j)] * (z[D + spring.first] - z[D + spring.second]);
+    torque[spring.first] += q;
+    torque[spring.second] -= q;
+  }
+
+  double Mt = raw[0];
+  double F[2] = {0.0, 0.0}, A[2][2] = {{0.0, 0.0}, {0.0, 0.0}}, R[2] = {0.0, 0.0};
+  for (int a = 0; a < D; ++a) F[a] = -raw[1 + a] * z[m + a] - raw[3 + a] * z[a];
+  for (int i = 0; i < N; ++i) {
+    const double* mi = raw.data() + metronome_offset(i);
+    Mt += mi[0] + mi[1];
+    p[i] = mi[0] * mi[2] - mi[1] * mi[3];
+    inertia[i] = mi[0] * mi[2] * mi[2] + mi[1] * mi[3] * mi[3];
+    e[i] = {std::cos(mi[9]), std::sin(mi[9])};
+    const double th = z[D + i], w = z[m + D + i];
+    sn[i] = std::sin(th);
+    cs[i] = std::cos(th);
+    Dual<2> th_d(th), w_d(w);
+    th_d.d[0] = 1.0;
+    w_d.d[1] = 1.0;
+    const Dual<2> u = escapement(th_d, w_d, mi);
+    G[i] = u.v - mi[4] * w - p[i] * g * sn[i] - torque[i];
+    G_angle[i] = u.d[0] - p[i] * g * cs[i];  // without the springs
+    G_velocity[i] = u.d[1] - mi[4];
+    for (int a = 0; a < D; ++a) {
+      const double ba = p[i] * cs[i] * e[i][a];
+      F[a] += p[i] * w * w * sn[i] * e[i][a];
+      R[a] += ba * G[i] / inertia[i];
+      for (int c = 0; c < D; ++c) A[a][c] += ba * p[i] * cs[i] * e[i][c] / inertia[i];
+    }
+  }
+
+  // Sigma^{-1} and r''.
+  double Si[2][2] = {{0.0, 0.0}, {0.0, 0.0}};
+  if (D == 1) {
+    Si[0][0] = 1.0 / (Mt - A[0][0]);
+  } else {
+    const double s00 = Mt - A[0][0], s01 = -A[0][1], s11 = Mt - A[1][1];
+    const double det = s00 * s11 - s01 * s01;
+    Si[0][0] = s11 / det;
+    Si[0][1] = Si[1][0] = -s01 / det;
+    Si[1][1] = s00 / det;
+  }
+  double acc[2] = {0.0, 0.0};
+  for (int a = 0; a < D; ++a)
+    for (int c = 0; c < D; ++c) acc[a] += Si[a][c] * (F[c] - R[c]);
+
+  // S and U.
+  std::fill(out.values.begin(), out.values.end(), 0.0);
+  out.U.setZero();
+  for (int a = 0; a < D; ++a) {
+    out.values[layout_.platform_velocity[a]] = 1.0;
+    out.U(m + a, a) = 1.0;
+  }
+  for (int i = 0; i < N; ++i) {
+    double e_acc = 0.0;
+    for (int a = 0; a < D; ++a) e_acc += e[i][a] * acc[a];
+    out.values[layout_.angular_velocity[i]] = 1.0;
+    out.values[layout_.own_angle[i]] = (G_angle[i] + p[i] * sn[i] * e_acc) / inertia[i];
+    out.values[layout_.own_velocity[i]] = G_velocity[i] / inertia[i];
+    for (int a = 0; a < D; ++a) out.U(m + D + i, a) = -p[i] * cs[i] * e[i][a] / inertia[i];
+  }
+
+  // Y = dF - dR + dA r'' (D x n, one column per state), then W^T = Sigma^{-1} Y.
+  thread_local Eigen::MatrixXd Y;
+  Y.setZero(D, n);
+  for (int a = 0; a < D; ++a) {
+    Y(a, a) = -raw[3 + a];
+    Y(a, m + a) = -raw[1 + a];
+  }
+  for (int i = 0; i < N; ++i) {
+    const double w = z[m + D + i];
+    double b_acc = 0.0, db_acc = 0.0;  // b_i . r'' and (db_i/dth_i) . r''
+    for (int a = 0; a < D; ++a) {
+      b_acc += p[i] * cs[i] * e[i][a] * acc[a];
+      db_acc -= p[i] * sn[i] * e[i][a] * acc[a];
+    }
+    for (int a = 0; a < D; ++a) {
+      const double b = p[i] * cs[i] * e[i][a], db = -p[i] * sn[i] * e[i][a];
+      Y(a, D + i) = p[i] * w * w * cs[i] * e[i][a] - (db * G[i] + b * G_angle[i]) / inertia[i] +
+                    (db * b_acc + b * db_acc) / inertia[i];
+      Y(a, m + D + i) = 2.0 * p[i] * w * sn[i] * e[i][a] - b * G_velocity[i] / inertia[i];
+    }
+  }
+  for (int j = 0; j < static_cast<int>(spec_.springs.size()); ++j) {
+    const auto& spring = spec_.springs[j];
+    const int f = spring.first, s = spring.second;
+    const double kappa = raw[spring_offset(j)];
+    out.values[layout_.own_angle[f]] -= kappa / inertia[f];
+    out.values[layout_.own_angle[s]] -= kappa / inertia[s];
+    out.values[layout_.spring[j].first] += kappa / inertia[f];
+    out.values[layout_.spring[j].second] += kappa / inertia[s];
+    for (int a = 0; a < D; ++a) {
+      const double bf = p[f] * cs[f] * e[f][a] / inertia[f];
+      const double bs = p[s] * cs[s] * e[s][a] / inertia[s];
+      Y(a, D + f) += kappa * (bf - bs);
+      Y(a, D + s) += kappa * (bs - bf);
+    }
+  }
+  for (int a = 0; a < D; ++a)
+    for (int k = 0; k < n; ++k) {
+      double sum = 0.0;
+      for (int c = 0; c < D; ++c) sum += Si[a][c] * Y(c, k);
+      out.W(k, a) = sum;
+    }
+  return true;
 }
 
 double MetronomeModel::total_mass() const {

@@ -14,6 +14,7 @@
 
 #include <cmath>
 #include <map>
+#include <optional>
 #include <set>
 #include <string>
 #include <vector>
@@ -84,6 +85,15 @@ class MetronomeModel final : public AutoDiffSystem<MetronomeModel> {
   int switching_count() const override;
   void switching_functions(double t, const double* z, double* g) const override;
 
+  // df/dz = S + U W^T (OdeSystem::low_rank_jacobian) with rank = directions: write f(z) =
+  // phi(z, s) with s = r'' the platform acceleration from the Schur complement. S = dphi/dz at
+  // fixed s holds q' = v and each angular acceleration's dependence on its own angle and velocity
+  // and on its spring partners' angles; its platform-acceleration rows are empty. U = dphi/ds is
+  // the identity in the platform-acceleration rows and -b_i^T / I_i in the angular ones;
+  // W^T = d(r'')/dz, by differentiating the Schur-complement solve. O(N) per evaluation.
+  std::optional<LowRankJacobian> low_rank_structure() const override;
+  bool low_rank_jacobian(double t, const double* z, LowRankJacobian& out) const override;
+
   // Total mechanical energy (kinetic + gravity + platform spring + torsion springs), J.
   double mechanical_energy(const Eigen::VectorXd& z) const;
   // Platform mass with the metronomes' masses, Mt.
@@ -102,9 +112,21 @@ class MetronomeModel final : public AutoDiffSystem<MetronomeModel> {
   template <class T, class P>
   T escapement(const T& th, const T& w, const P* m) const;
 
+  // Where low_rank_jacobian() writes in S's values, found once from low_rank_structure().
+  struct LowRankLayout {
+    std::vector<int> platform_velocity;       // row r_a, column v_a (q' = v)
+    std::vector<int> angular_velocity;        // row th_i, column w_i (q' = v)
+    std::vector<int> own_angle;               // row w_i, column th_i
+    std::vector<int> own_velocity;            // row w_i, column w_i
+    std::vector<std::pair<int, int>> spring;  // per spring: (row w_first, column th_second) and
+                                              // (row w_second, column th_first)
+  };
+  LowRankLayout low_rank_layout() const;
+
   ModelSpec spec_;
   int directions_;
   int n_metronomes_;
+  LowRankLayout layout_;
 };
 
 template <class T, class P>

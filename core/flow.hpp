@@ -34,7 +34,12 @@ namespace sympathy {
 
 enum class Method { BDF, Adams };
 enum class NonlinearSolver { Newton, FixedPoint };
-enum class LinearSolver { Dense, KLU };
+// The linear solver of the BDF Newton iteration, for (I - gamma J) x = b. Dense: LAPACK-style LU
+// of the full matrix. KLU: sparse LU on the system's jacobian_pattern(). Structured: for
+// systems whose Jacobian is sparse plus low rank (OdeSystem::low_rank_jacobian): KLU on
+// I - gamma S and the Woodbury identity for the rank-r rest, O(nnz + n r) a solve instead of
+// O(n^2); the Jacobian is evaluated and the matrix factored afresh at each step attempt.
+enum class LinearSolver { Dense, KLU, Structured };
 enum class SensitivityCorrector { Staggered, Simultaneous };
 // Where the Jacobian and the sensitivity right-hand side come from: the system's own
 // derivatives, or CVODES's difference quotients (state sensitivities only; for comparison).
@@ -63,7 +68,7 @@ struct FlowStatistics {
   long rhs_evaluations = 0;
   long jacobian_evaluations = 0;
   long variational_evaluations = 0;  // calls of the sensitivity right-hand side
-  long linear_setups = 0;
+  long linear_setups = 0;            // factorizations of I - gamma J
   long error_test_failures = 0;
   long nonlinear_iterations = 0;
   long steep_roots = 0;  // level crossings of steep zones (band changes)

@@ -6,6 +6,7 @@
 // many columns at once (the variational equations), and df/dp for one named parameter.
 #pragma once
 
+#include <optional>
 #include <span>
 #include <string>
 #include <string_view>
@@ -13,6 +14,8 @@
 #include <vector>
 
 #include <Eigen/Dense>
+
+#include "core/low_rank_jacobian.hpp"
 
 namespace sympathy {
 
@@ -57,6 +60,17 @@ class OdeSystem {
   // Structurally nonzero entries of df/dz as (row, column) pairs, for sparse linear solvers;
   // empty means dense.
   virtual std::vector<std::pair<int, int>> jacobian_pattern() const { return {}; }
+  // df/dz = S + U W^T with S sparse and U W^T of small rank (see LowRankJacobian), for linear
+  // solvers that exploit it. low_rank_structure() gives S's pattern and the rank, values zero;
+  // nullopt when the system does not provide the form. low_rank_jacobian() fills the values of
+  // a structure obtained from low_rank_structure() at (t, z) and returns true; false when not
+  // provided. Between switching surfaces (switching_functions) it is the Jacobian of the piece
+  // that z lies in.
+  virtual std::optional<LowRankJacobian> low_rank_structure() const { return std::nullopt; }
+  virtual bool low_rank_jacobian(double /*t*/, const double* /*z*/,
+                                 LowRankJacobian& /*out*/) const {
+    return false;
+  }
   // df/dp for one parameter.
   virtual void parameter_derivative(double t, const double* z, int parameter,
                                     double* dfdp) const = 0;

@@ -14,7 +14,9 @@ std::vector<OptionSpec> integrator_options() {
       {"--rtol", "R", false, "relative tolerance of the integrator"},
       {"--atol", "A", false, "absolute tolerance of the integrator"},
       {"--method", "bdf|adams", false, "linear multistep method (default bdf)"},
-      {"--linear-solver", "dense|klu", false, "linear solver of the BDF Newton iteration"},
+      {"--linear-solver", "dense|klu|structured", false,
+       "linear solver of the BDF Newton iteration (default: structured, sparse plus low rank, for "
+       "more than 3 metronomes; else dense)"},
   };
 }
 
@@ -40,14 +42,26 @@ FlowOptions flow_options(const Arguments& args, FlowOptions o) {
   } else {
     throw InputError("--method " + method + ": expected bdf or adams");
   }
-  const std::string solver = args.text("--linear-solver", "dense");
+  const std::string solver =
+      args.text("--linear-solver", o.linear_solver == LinearSolver::Structured ? "structured"
+                                   : o.linear_solver == LinearSolver::KLU      ? "klu"
+                                                                               : "dense");
   if (solver == "dense")
     o.linear_solver = LinearSolver::Dense;
   else if (solver == "klu")
     o.linear_solver = LinearSolver::KLU;
+  else if (solver == "structured")
+    o.linear_solver = LinearSolver::Structured;
   else
-    throw InputError("--linear-solver " + solver + ": expected dense or klu");
+    throw InputError("--linear-solver " + solver + ": expected dense, klu or structured");
   return o;
+}
+
+LinearSolver default_linear_solver(const OdeSystem& system) {
+  const auto* model = dynamic_cast<const MetronomeModel*>(&system);
+  return model && model->metronome_count() > 3 && model->low_rank_structure()
+             ? LinearSolver::Structured
+             : LinearSolver::Dense;
 }
 
 std::string join(const std::vector<std::string>& items, const std::string& separator) {

@@ -4,6 +4,8 @@
 #include <cmath>
 #include <numbers>
 
+#include "cases/cli/common.hpp"
+
 namespace sympathy::cli {
 
 OrbitReport describe_orbit(const MetronomeModel& model, const PeriodicOrbit& orbit) {
@@ -16,6 +18,7 @@ OrbitReport describe_orbit(const MetronomeModel& model, const PeriodicOrbit& orb
   FlowOptions o;
   o.rtol = 1e-9;
   o.atol = 1e-12;
+  o.linear_solver = default_linear_solver(model);
   Flow flow(model, o);
   const int samples = 800;
   std::vector<double> times;
@@ -92,13 +95,17 @@ void print_orbit(std::FILE* out, const MetronomeModel& model, const PeriodicOrbi
   for (double r : s.residual_norms) std::fprintf(out, " %.1e", r);
   std::fprintf(out, "\n");
   const auto& st = orbit.flow;
-  std::fprintf(out,
-               "  work         %d segment%s, %s rtol %g: %ld integrations, %ld steps, %ld rhs and "
-               "%ld sensitivity-rhs evaluations, %ld Jacobians\n",
-               orbit.segments, orbit.segments > 1 ? "s" : "",
-               to_string(options.shooting.flow.method).c_str(), options.shooting.flow.rtol,
-               st.calls, st.steps, st.rhs_evaluations, st.variational_evaluations,
-               st.jacobian_evaluations);
+  const auto& flow = options.shooting.flow;
+  const std::string solver = flow.nonlinear_solver == NonlinearSolver::Newton
+                                 ? " (" + to_string(flow.linear_solver) + " linear solver)"
+                                 : "";
+  std::fprintf(
+      out,
+      "  work         %d segment%s, %s%s rtol %g: %ld integrations, %ld steps, %ld rhs and "
+      "%ld sensitivity-rhs evaluations, %ld Jacobians\n",
+      orbit.segments, orbit.segments > 1 ? "s" : "", to_string(flow.method).c_str(), solver.c_str(),
+      flow.rtol, st.calls, st.steps, st.rhs_evaluations, st.variational_evaluations,
+      st.jacobian_evaluations);
 }
 
 void print_flow_statistics(std::FILE* out, const FlowStatistics& s) {

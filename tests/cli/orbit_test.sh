@@ -29,10 +29,20 @@ check "JSON: trivial multiplier within 1e-8 of 1" test "$(json_value "$work/anti
 check "JSON: state names" test "$(json_value "$work/anti.json" "','.join(j['state_names'])")" = "x,th1,th2,vx,vth1,vth2"
 check "JSON: parameters of the case" test "$(json_value "$work/anti.json" "j['params']['k']")" = 14.7467
 
-"$bin" orbit "$src/cases/cross4.toml" --start in-in --segments 4 > "$work/cross.out"
+"$bin" orbit "$src/cases/cross4.toml" --start in-in --segments 4 --verbose > "$work/cross.out"
 check "cross in-in with 4 segments exits 0" test $? -eq 0
+check "4 metronomes: the structured linear solver by default" grep -q 'BDF (structured linear solver)' "$work/cross.out"
 check "cross in-in is reported as not isolated" grep -q 'not isolated' "$work/cross.out"
 check "cross in-in has a structural multiplier" grep -q 'structural$' "$work/cross.out"
+
+"$bin" orbit "$src/cases/row2.toml" --start anti-phase --linear-solver structured --verbose > "$work/structured.out"
+check "--linear-solver structured exits 0" test $? -eq 0
+check "structured: anti-phase still unstable" grep -q '^  stability    unstable' "$work/structured.out"
+check "the report names the linear solver" grep -q 'BDF (structured linear solver)' "$work/structured.out"
+check "2 metronomes: dense by default" grep -q 'BDF (dense linear solver)' <("$bin" orbit "$src/cases/row2.toml" --start anti-phase --verbose)
+"$bin" orbit "$src/cases/row2.toml" --start anti-phase --linear-solver lu 2> "$work/bad.err"
+check "--linear-solver lu exits 2" test $? -eq 2
+check "and lists the solvers" grep -q "expected dense, klu or structured" "$work/bad.err"
 
 "$bin" orbit "$src/cases/row2.toml" > "$work/bad.out" 2> "$work/bad.err"
 check "missing --start exits 2" test $? -eq 2

@@ -1,0 +1,114 @@
+// The flow's structured linear solver (LinearSolver::Structured) on the metronome model against
+// the dense solver: states, transition matrices, orbits.
+#include <gtest/gtest.h>
+
+#include <algorithm>
+#include <complex>
+
+#include "cases/case_file.hpp"
+#include "cases/metronome_model.hpp"
+#include "continuation/periodic_orbit.hpp"
+#include "core/flow.hpp"
+
+namespace sympathy {
+namespace {
+
+std::string case_path(const std::string& name) {
+  return std::string(SYMPATHY_SOURCE_DIR) + "/cases/" + name + ".toml";
+}
+
+FlowOptions options(LinearSolver solver) {
+  FlowOptions o;
+  o.rtol = 1e-10;
+  o.atol = 1e-12;
+  o.linear_solver = solver;
+  return o;
+}
+
+// Expected: the same integration with the dense solver. Both solve the Newton systems to
+// rounding, so they differ by the integration's own error control only (~rtol).
+void expect_same_flow(const MetronomeModel& model, const Eigen::VectorXd& z0, double t1) {
+  Flow dense(model, options(LinearSolver::Dense));
+  Flow structured(model, options(LinearSolver::Structured));
+  const FlowDerivatives a = dense.advance_with_sensitivities(z0, 0.0, t1);
+  const FlowDerivatives b = structured.advance_with_sensitivities(z0, 0.0, t1);
+  EXPECT_LE((a.state - b.state).cwiseAbs().maxCoeff(), 1e-8 * a.state.cwiseAbs().maxCoeff());
+  EXPECT_LE((a.transition - b.transition).cwiseAbs().maxCoeff(),
+            1e-8 * a.transition.cwiseAbs().maxCoeff());
+  // CVODES decides the setups and Jacobian evaluations alike for both.
+  EXPECT_GT(structured.statistics().linear_setups, 0);
+  EXPECT_GT(structured.statistics().jacobian_evaluations, 0);
+  EXPECT_NEAR(static_cast<double>(structured.statistics().steps),
+              static_cast<double>(dense.statistics().steps), 0.05 * dense.statistics().steps);
+}
+
+TEST(StructuredFlow, SameStateAndTransitionAsDenseOnRow2) {
+  const auto file = CaseFile::load(case_path("row2"));
+  const MetronomeModel model(file.spec("table2"));
+  const auto& start = file.start("anti-phase");
+  expect_same_flow(model, file.initial_state(&start), 0.6);
+}
+
+TEST(StructuredFlow, SameStateAndTransitionAsDenseOnMany16) {
+  const auto file = CaseFile::load(case_path("many/many16"));
+  const MetronomeModel model(file.spec(file.default_parameter_set()));
+  const auto& start = file.start("in-phase");
+  expect_same_flow(model, file.initial_state(&start), 0.15);
+}
+
+// The impulsive escapement: no sensitivities (not differentiable), the dense solver on CVODES's
+// difference quotients, the structured one on the piecewise Jacobian; restarts at switchings.
+TEST(StructuredFlow, SameStateAsDenseWithImpulsiveEscapement) {
+  const auto file = CaseFile::load(case_path("cross4_spring"));
+  ModelSpec spec = file.spec("");
+  spec.escapement = Escapement::Impulsive;
+  const MetronomeModel model(spec);
+  const auto& start = file.start("in-in");
+  const Eigen::VectorXd z0 = file.initial_state(&start);
+  Flow dense(model, options(LinearSolver::Dense));
+  Flow structured(model, options(LinearSolver::Structured));
+  const Eigen::VectorXd a = dense.advance(z0, 0.0, 1.5);
+  const Eigen::VectorXd b = structured.advance(z0, 0.0, 1.5);
+  EXPECT_GT(structured.statistics().switchings, 0);
+  EXPECT_LE((a - b).cwiseAbs().maxCoeff(), 1e-7 * a.cwiseAbs().maxCoeff());
+}
+
+TEST(StructuredFlow, RefusesDifferenceQuotients) {
+  const MetronomeModel model(CaseFile::load(case_path("row2")).spec("table2"));
+  FlowOptions o = options(LinearSolver::Structured);
+  o.derivatives = Derivatives::DifferenceQuotients;
+  EXPECT_THROW(Flow(model, o), std::invalid_argument);
+}
+
+// Expected: the same orbit found with the dense solver (multipliers matched nearest first).
+TEST(StructuredFlow, OrbitMultipliersAgreeWithDense) {
+  const auto file = CaseFile::load(case_path("row2"));
+  const MetronomeModel model(file.spec("table2"));
+  const auto& start = file.start("anti-phase");
+  std::vector<std::vector<std::complex<double>>> multipliers;
+  std::vector<double> periods;
+  for (auto solver : {LinearSolver::Dense, LinearSolver::Structured}) {
+    OrbitOptions o;
+    o.shooting.flow.linear_solver = solver;
+    o.transient_flow.linear_solver = solver;
+    const PeriodicOrbit orbit = find_periodic_orbit(model, file.initial_state(&start),
+                                                    file.invariant_subspace(start, model), o);
+    ASSERT_TRUE(orbit.converged()) << to_string(solver) << ": " << orbit.newton.reason;
+    std::vector<std::complex<double>> m;
+    for (const auto& mu : orbit.floquet.multipliers) m.push_back(mu.value);
+    multipliers.push_back(m);
+    periods.push_back(orbit.period);
+  }
+  EXPECT_NEAR(periods[0], periods[1], 1e-9);
+  auto a = multipliers[0], b = multipliers[1];
+  ASSERT_EQ(a.size(), b.size());
+  for (const auto& mu : a) {
+    auto nearest = std::min_element(
+        b.begin(), b.end(), [&](auto p, auto q) { return std::abs(p - mu) < std::abs(q - mu); });
+    EXPECT_LT(std::abs(*nearest - mu), 1e-8) << mu;
+    b.erase(nearest);
+  }
+}
+
+}  // namespace
+}  // namespace sympathy
