@@ -56,7 +56,7 @@ scaling = list(csv.DictReader(open(f"{work}/scaling.csv")))
 ok = len(cost) == 2 and all(int(r["points"]) > 5 and float(r["ratio"]) > 0.9 and
                             float(r["period_plain"]) < float(r["period_with_sensitivities"])
                             for r in cost)
-ok &= [int(r["metronomes"]) for r in scaling] == [2, 4, 8]
+ok &= [(int(r["metronomes"]), r["linear_solver"]) for r in scaling] == [(2, "dense"), (2, "structured"), (4, "dense"), (4, "structured"), (8, "dense"), (8, "structured")]
 ok &= all(float(r["seconds"]) > 0 and int(r["steps"]) > 0 and r["note"] == "" for r in scaling)
 sys.exit(0 if ok else 1)
 PY

@@ -1,34 +1,33 @@
 #!/usr/bin/env bash
 # Many metronomes on one 2-D platform (cases/many, spread directions, every fourth detuned): the
 # splay orbit, its multipliers and its accuracy, or a failure that says why.
-# Usage: many_test.sh SYMPATHY_BINARY SOURCE_DIR WORK_DIR N [SOLVER]
+# Usage: many_test.sh SYMPATHY_BINARY SOURCE_DIR WORK_DIR N [RTOL [TRANSIENT]]
 set -u
-bin=$1 src=$2 work=$3 n=$4 solver=${5:-}
+bin=$1 src=$2 work=$3 n=$4 rtol=${5:-1e-9} transient=${6:-20}
 mkdir -p "$work"
 failures=0
 check() {  # check DESCRIPTION COMMAND...
   local what=$1; shift
   if "$@"; then echo "ok: $what"; else echo "FAILED: $what"; failures=$((failures + 1)); fi
 }
-extra=()
-[ -n "$solver" ] && extra=(--linear-solver "$solver")
-"$bin" orbit "$src/cases/many/many$n.toml" --start splay --transient 20 --rtol 1e-9 \
-  --atol 1e-11 "${extra[@]}" --json "$work/orbit$n.json" 2> "$work/orbit$n.err"
+atol=$(/usr/bin/python3 -c "print($rtol * 1e-2)")
+"$bin" orbit "$src/cases/many/many$n.toml" --start splay --transient "$transient" --rtol "$rtol" \
+  --atol "$atol" --json "$work/orbit$n.json" 2> "$work/orbit$n.err"
 code=$?
 grep -v '^    [0-9]' "$work/orbit$n.err"
 check "many$n: the orbit converges (exit 0)" test $code -eq 0
-# Expected values: at rtol 1e-9 the Newton tolerance is 20 rtol and the trivial multiplier's
-# error about 250 rtol (NUMERICS.md: 200-500 rtol). The case turns into itself when rotated by
+# Expected values: the Newton tolerance is 20 rtol and the trivial multiplier's error about
+# 200-500 rtol (NUMERICS.md; 250 rtol measured on many16 and many64): below 1000 rtol. The case turns into itself when rotated by
 # 4 metronomes (180 * 4 / n degrees, same detuning pattern) and the platform is isotropic, so
 # metronome 1 + 4 j repeats metronome 1's swing delayed by j 4 / n half periods: its phase
 # to th1 is -4 pi j / n exactly, and its amplitude is th1's.
-/usr/bin/python3 - "$work/orbit$n.json" "$n" <<'PY'
+/usr/bin/python3 - "$work/orbit$n.json" "$n" "$rtol" <<'PY'
 import json, math, sys
-d = json.load(open(sys.argv[1])); n = int(sys.argv[2])
+d = json.load(open(sys.argv[1])); n = int(sys.argv[2]); rtol = float(sys.argv[3])
 bad = []
 if not d["converged"]: bad.append("not converged: " + d["newton"]["reason"])
-if not d["residual"] < 2e-8: bad.append("residual %g" % d["residual"])
-if not d["trivial_multiplier_error"] < 1e-6: bad.append("trivial error %g" % d["trivial_multiplier_error"])
+if not d["residual"] < 20 * rtol: bad.append("residual %g" % d["residual"])
+if not d["trivial_multiplier_error"] < 1000 * rtol: bad.append("trivial error %g" % d["trivial_multiplier_error"])
 if d["stability"] != "stable": bad.append("stability " + d["stability"])
 names = d["state_names"]; amp = d["amplitudes"]
 a1 = amp["th1"] if isinstance(amp, dict) else amp[names.index("th1")]
