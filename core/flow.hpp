@@ -38,7 +38,8 @@ enum class NonlinearSolver { Newton, FixedPoint };
 // of the full matrix. KLU: sparse LU on the system's jacobian_pattern(). Structured: for
 // systems whose Jacobian is sparse plus low rank (OdeSystem::low_rank_jacobian): KLU on
 // I - gamma S and the Woodbury identity for the rank-r rest, O(nnz + n r) a solve instead of
-// O(n^2); the Jacobian is evaluated and the matrix factored afresh at each step attempt.
+// O(n^2), a factorization one sparse LU and r solves instead of O(n^3). CVODES decides when to
+// evaluate the Jacobian and factor, as for the other two.
 enum class LinearSolver { Dense, KLU, Structured };
 enum class SensitivityCorrector { Staggered, Simultaneous };
 // Where the Jacobian and the sensitivity right-hand side come from: the system's own
