@@ -104,7 +104,6 @@ FloquetAnalysis analyze_floquet(const std::vector<Eigen::MatrixXd>& segments,
   if (segments.empty()) throw std::invalid_argument("analyze_floquet: no segment matrices");
   const int n = static_cast<int>(segments.front().rows());
   FloquetAnalysis a;
-  const auto all = eigenvalues_of_product(segments);
 
   // The known invariant subspace V: f and the family's directions (f taken out of each: a null
   // vector of the shooting equations mixes it in; directions already spanned dropped).
@@ -119,8 +118,23 @@ FloquetAnalysis analyze_floquet(const std::vector<Eigen::MatrixXd>& segments,
   }
   const int d = static_cast<int>(known.size());
   if (d == 0) {
+    const auto all = eigenvalues_of_product(segments);
     for (int i = 0; i < n; ++i) a.multipliers.push_back({all.values[i], all.log_moduli[i]});
   } else {
+    // Eigenvectors (to tell the trivial multiplier) come from the formed product; with one
+    // segment its eigenvalues are the multipliers too, so one decomposition serves both.
+    Eigen::MatrixXd monodromy = segments.front();
+    for (std::size_t k = 1; k < segments.size(); ++k) monodromy = segments[k] * monodromy;
+    const Eigen::EigenSolver<Eigen::MatrixXd> eig(monodromy);
+    ProductEigenvalues all;
+    if (segments.size() > 1) {
+      all = product_eigenvalues(segments);
+    } else {
+      for (int i = 0; i < n; ++i) {
+        all.values.push_back(eig.eigenvalues()[i]);
+        all.log_moduli.push_back(std::log(std::abs(eig.eigenvalues()[i])));
+      }
+    }
     // The other multipliers are the eigenvalues on the quotient by V: they never share a cluster
     // with the multipliers at 1 that f and the family force, so one crossing 1 at a branch point
     // is not mistaken for those (nor its value for theirs).
@@ -144,10 +158,7 @@ FloquetAnalysis analyze_floquet(const std::vector<Eigen::MatrixXd>& segments,
       matched[bi] = true;
       used[bj] = true;
     }
-    // Among those, the trivial one by its eigenvector (from the formed product).
-    Eigen::MatrixXd monodromy = segments.front();
-    for (std::size_t k = 1; k < segments.size(); ++k) monodromy = segments[k] * monodromy;
-    const Eigen::EigenSolver<Eigen::MatrixXd> eig(monodromy);
+    // Among those, the trivial one by its eigenvector.
     std::vector<Eigen::VectorXcd> vectors;
     for (int i = 0; i < n; ++i) {
       int nearest = 0;
