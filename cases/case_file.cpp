@@ -1,4 +1,5 @@
 #include "cases/case_file.hpp"
+#include "cases/names.hpp"
 
 #include <toml++/toml.h>
 
@@ -13,12 +14,6 @@
 namespace sympathy {
 
 namespace {
-
-std::string join(const std::vector<std::string>& items) {
-  std::string out;
-  for (const auto& s : items) out += (out.empty() ? "" : ", ") + s;
-  return out;
-}
 
 std::string format_number(double v) {
   std::ostringstream s;

@@ -1,4 +1,5 @@
 #include "cases/case_writer.hpp"
+#include "cases/names.hpp"
 
 #include <toml++/toml.h>
 
@@ -149,14 +150,6 @@ int last_line(const toml::table& table) {
 
 std::string quoted(const std::string& s) {
   return "\"" + s + "\"";
-}
-
-// Splits "d12" into ("d", 12); index 0 without a numeric suffix.
-std::pair<std::string, int> split_index(const std::string& name) {
-  std::size_t k = name.size();
-  while (k > 0 && std::isdigit(static_cast<unsigned char>(name[k - 1]))) --k;
-  if (k == name.size() || k == 0 || name[k] == '0') return {name, 0};
-  return {name.substr(0, k), std::stoi(name.substr(k))};
 }
 
 }  // namespace

@@ -1,4 +1,5 @@
 #include "cases/metronome_model.hpp"
+#include "cases/names.hpp"
 
 #include <algorithm>
 #include <array>
@@ -28,15 +29,23 @@ bool is_metronome_key(const std::string& key) {
   return std::find(keys.begin(), keys.end(), key) != keys.end();
 }
 
-// Splits "d12" into ("d", 12); returns index 0 when there is no numeric suffix.
-std::pair<std::string, int> split_index(const std::string& name) {
-  std::size_t k = name.size();
-  while (k > 0 && std::isdigit(static_cast<unsigned char>(name[k - 1]))) --k;
-  if (k == name.size() || k == 0 || name[k] == '0') return {name, 0};
-  return {name.substr(0, k), std::stoi(name.substr(k))};
-}
-
 }  // namespace
+
+std::vector<NamedParameter> platform_parameters(int directions) {
+  std::vector<NamedParameter> named{{"M", {0}}};
+  if (directions == 1) {
+    named.push_back({"c", {1}});
+    named.push_back({"k", {3}});
+  } else {
+    named.push_back({"c", {1, 2}});
+    named.push_back({"k", {3, 4}});
+    named.push_back({"cx", {1}});
+    named.push_back({"cy", {2}});
+    named.push_back({"kx", {3}});
+    named.push_back({"ky", {4}});
+  }
+  return named;
+}
 
 std::vector<std::string> ModelSpec::parameter_names() const {
   std::vector<std::string> names{"M", "c", "k"};
@@ -189,18 +198,7 @@ MetronomeModel::MetronomeModel(ModelSpec spec)
       raw.push_back(key == "angle" ? m.values.at(key) * kDegree : m.values.at(key));
   for (const auto& s : spec_.springs) raw.push_back(s.kappa);
 
-  std::vector<NamedParameter> named{{"M", {0}}};
-  if (directions_ == 1) {
-    named.push_back({"c", {1}});
-    named.push_back({"k", {3}});
-  } else {
-    named.push_back({"c", {1, 2}});
-    named.push_back({"k", {3, 4}});
-    named.push_back({"cx", {1}});
-    named.push_back({"cy", {2}});
-    named.push_back({"kx", {3}});
-    named.push_back({"ky", {4}});
-  }
+  std::vector<NamedParameter> named = platform_parameters(directions_);
   named.push_back({"g", {5}});
   const auto& keys = metronome_keys();
   for (int k = 0; k < kMetronomeRaw; ++k) {

@@ -27,6 +27,10 @@ namespace sympathy {
 enum class Escapement { Half, Double, Impulsive };
 std::string to_string(Escapement e);
 
+// The platform's named parameters over a raw layout that starts M, cx, cy, kx, ky: M, c and k
+// (both directions at once on a 2-D platform), and cx, cy, kx, ky on a 2-D platform.
+std::vector<NamedParameter> platform_parameters(int directions);
+
 // The per-metronome parameters of Table I, in the order of the raw layout.
 inline const std::vector<std::string>& metronome_keys() {
   static const std::vector<std::string> keys{"mp", "mb",  "lp",  "lb",  "d",

@@ -1,4 +1,5 @@
 #include "cases/parameter_fit.hpp"
+#include "cases/names.hpp"
 
 #include <algorithm>
 #include <cmath>
@@ -11,12 +12,6 @@
 namespace sympathy {
 
 namespace {
-
-std::string join(const std::vector<std::string>& items) {
-  std::string out;
-  for (const auto& s : items) out += (out.empty() ? "" : ", ") + s;
-  return out;
-}
 
 int index_of(const std::vector<std::string>& names, const std::string& name) {
   const auto it = std::find(names.begin(), names.end(), name);

@@ -15,18 +15,7 @@ PlatformModel::PlatformModel(const ModelSpec& spec)
     raw.push_back(m.values.at("mp"));
     raw.push_back(m.values.at("mb"));
   }
-  std::vector<NamedParameter> named{{"M", {0}}};
-  if (directions_ == 1) {
-    named.push_back({"c", {1}});
-    named.push_back({"k", {3}});
-  } else {
-    named.push_back({"c", {1, 2}});
-    named.push_back({"k", {3, 4}});
-    named.push_back({"cx", {1}});
-    named.push_back({"cy", {2}});
-    named.push_back({"kx", {3}});
-    named.push_back({"ky", {4}});
-  }
+  std::vector<NamedParameter> named = platform_parameters(directions_);
   // Shared masses cover the metronomes that do not override them, as in the full model.
   for (int k = 0; k < 2; ++k) {
     const std::string key = k == 0 ? "mp" : "mb";

@@ -64,10 +64,4 @@ LinearSolver default_linear_solver(const OdeSystem& system) {
              : LinearSolver::Dense;
 }
 
-std::string join(const std::vector<std::string>& items, const std::string& separator) {
-  std::string out;
-  for (const auto& s : items) out += (out.empty() ? "" : separator) + s;
-  return out;
-}
-
 }  // namespace sympathy::cli

@@ -9,6 +9,7 @@
 #include "cases/case_file.hpp"
 #include "cases/cli/arguments.hpp"
 #include "cases/metronome_model.hpp"
+#include "cases/names.hpp"
 #include "core/flow.hpp"
 
 namespace sympathy::cli {
@@ -41,7 +42,5 @@ class Stopwatch {
  private:
   std::chrono::steady_clock::time_point start_ = std::chrono::steady_clock::now();
 };
-
-std::string join(const std::vector<std::string>& items, const std::string& separator = ", ");
 
 }  // namespace sympathy::cli
