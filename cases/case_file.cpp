@@ -134,16 +134,19 @@ Assignment parse_assignment(const std::string& text, const std::string& option) 
   return a;
 }
 
-CaseFile CaseFile::load(const std::string& path) {
+toml::table read_toml(const std::string& path, const std::string& what) {
   if (!std::filesystem::is_regular_file(path))
-    throw InputError(path + ": cannot read the case file (no such file)");
-  toml::table root;
+    throw InputError(path + ": cannot read the " + what + " (no such file)");
   try {
-    root = toml::parse_file(path);
+    return toml::parse_file(path);
   } catch (const toml::parse_error& e) {
     throw InputError(path + ":" + std::to_string(e.source().begin.line) +
                      ": not valid TOML: " + std::string(e.description()));
   }
+}
+
+CaseFile CaseFile::load(const std::string& path) {
+  const toml::table root = read_toml(path, "case file");
   Reader in(path);
   CaseFile c;
   c.path_ = path;

@@ -9,6 +9,7 @@
 #include <string>
 #include <vector>
 
+#include <toml++/toml.h>
 #include <Eigen/Dense>
 
 #include "cases/metronome_model.hpp"
@@ -50,6 +51,10 @@ struct ParameterSet {
   std::vector<Entry> entries;
   int line = 0;
 };
+
+// A TOML file's table; InputError naming the file (and the line) when it is missing or not
+// valid TOML. `what` says what the file is, e.g. "case file".
+toml::table read_toml(const std::string& path, const std::string& what);
 
 class CaseFile {
  public:

@@ -158,12 +158,7 @@ std::vector<std::string> write_case_with_values(const CaseFile& file, const std:
                                                 const std::vector<NewValue>& values,
                                                 const std::vector<std::string>& header,
                                                 const std::string& out_path) {
-  toml::table root;
-  try {
-    root = toml::parse_file(file.path());
-  } catch (const toml::parse_error& e) {
-    throw InputError(file.path() + ": not valid TOML: " + std::string(e.description()));
-  }
+  const toml::table root = read_toml(file.path(), "case file");
   Editor editor(file.path());
   for (const auto& h : header) editor.insert_after(0, h.empty() ? "#" : "# " + h);
   std::vector<std::string> edits;

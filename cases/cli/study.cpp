@@ -54,15 +54,7 @@ void only(const std::string& path, const toml::table& t, const std::string& pref
 }
 
 Study load_study(const std::string& path) {
-  if (!std::filesystem::is_regular_file(path))
-    throw InputError(path + ": cannot read the study file (no such file)");
-  toml::table root;
-  try {
-    root = toml::parse_file(path);
-  } catch (const toml::parse_error& e) {
-    throw InputError(path + ":" + std::to_string(e.source().begin.line) +
-                     ": not valid TOML: " + std::string(e.description()));
-  }
+  const toml::table root = read_toml(path, "study file");
   only(path, root, "", {"title", "case", "params", "parameter", "axis", "branches"});
   Study s;
   s.path = path;
