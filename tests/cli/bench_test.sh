@@ -4,11 +4,7 @@
 set -u
 bin=$1 src=$2 work=$3
 mkdir -p "$work"
-failures=0
-check() {  # check DESCRIPTION COMMAND...
-  local what=$1; shift
-  if "$@"; then echo "ok: $what"; else echo "FAILED: $what"; failures=$((failures + 1)); fi
-}
+. "$(dirname "$0")/check.sh"
 csv_check() {  # csv_check PYTHON_EXPRESSION: evaluated with `rows`, the CSV's rows as dicts
   /usr/bin/python3 -c "
 import csv, sys

@@ -6,11 +6,7 @@
 set -u
 bin=$1 src=$2 work=$3
 mkdir -p "$work"
-failures=0
-check() {  # check DESCRIPTION COMMAND...
-  local what=$1; shift
-  if "$@"; then echo "ok: $what"; else echo "FAILED: $what"; failures=$((failures + 1)); fi
-}
+. "$(dirname "$0")/check.sh"
 json() { /usr/bin/python3 -c "import json,sys; j=json.load(open(sys.argv[1])); print($2)" "$1"; }
 # noisy IN OUT COLUMN SIGMA SEED: a recording of one column with Gaussian noise (scripts/add_noise).
 noisy() { "$src/scripts/add_noise" "$1" "$2" --columns "$3" --sigma "$4" --seed "$5"; }

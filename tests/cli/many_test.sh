@@ -5,11 +5,7 @@
 set -u
 bin=$1 src=$2 work=$3 n=$4 rtol=${5:-1e-9} transient=${6:-20}
 mkdir -p "$work"
-failures=0
-check() {  # check DESCRIPTION COMMAND...
-  local what=$1; shift
-  if "$@"; then echo "ok: $what"; else echo "FAILED: $what"; failures=$((failures + 1)); fi
-}
+. "$(dirname "$0")/check.sh"
 atol=$(/usr/bin/python3 -c "print($rtol * 1e-2)")
 "$bin" orbit "$src/cases/many/many$n.toml" --start splay --transient "$transient" --rtol "$rtol" \
   --atol "$atol" --json "$work/orbit$n.json" 2> "$work/orbit$n.err"

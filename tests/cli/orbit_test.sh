@@ -4,11 +4,7 @@
 set -u
 bin=$1 src=$2 work=$3
 mkdir -p "$work"
-failures=0
-check() {  # check DESCRIPTION COMMAND...
-  local what=$1; shift
-  if "$@"; then echo "ok: $what"; else echo "FAILED: $what"; failures=$((failures + 1)); fi
-}
+. "$(dirname "$0")/check.sh"
 json_value() {  # json_value FILE EXPRESSION: evaluates a Python expression on the parsed JSON `j`
   /usr/bin/python3 -c "import json,sys; j=json.load(open(sys.argv[1])); print($2)" "$1"
 }

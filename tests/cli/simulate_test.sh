@@ -4,11 +4,7 @@
 set -u
 bin=$1 src=$2 work=$3
 mkdir -p "$work"
-failures=0
-check() {  # check DESCRIPTION CONDITION...
-  local what=$1; shift
-  if "$@"; then echo "ok: $what"; else echo "FAILED: $what"; failures=$((failures + 1)); fi
-}
+. "$(dirname "$0")/check.sh"
 
 csv="$work/sim.csv"
 "$bin" simulate "$src/cases/row2.toml" --start anti-phase --initial th2=-0.25 --t-end 5 \
