@@ -63,6 +63,34 @@ TEST(Continuation, FoldOfCyclesLocated) {
   EXPECT_TRUE(events_of(branch, BifurcationType::BranchPoint).empty());
 }
 
+// The cubic predictor and the chord steps on plain integrations save integrations with
+// sensitivities (the expensive ones) and change no result: the same fold at mu = -1/4 (exact)
+// to 1e-8 either way, with fewer Newton iterations per point with them than with the tangent
+// predictor and Newton alone.
+TEST(Continuation, CurvedPredictorAndChordStepsSaveWork) {
+  auto run = [](bool curved, int chord_steps) {
+    NormalForm system(Kind::Fold, -0.05);
+    const auto start = circle(system);
+    auto o = options(-0.5, -0.02);
+    o.curved_predictor = curved;
+    o.max_chord_steps = chord_steps;
+    Continuation c(system, 0, o);
+    return c.run(start, -1);
+  };
+  const Branch plain = run(false, 0), fast = run(true, 6);
+  auto per_point = [](const Branch& b) {
+    int it = 0;
+    for (const auto& p : b.points) it += p.iterations;
+    return static_cast<double>(it) / static_cast<double>(b.points.size());
+  };
+  for (const Branch* b : {&plain, &fast}) {
+    const auto folds = events_of(*b, BifurcationType::Fold);
+    ASSERT_EQ(folds.size(), 1u) << b->stop_reason;
+    EXPECT_NEAR(folds[0].parameter, -0.25, 1e-8);
+  }
+  EXPECT_LT(per_point(fast), per_point(plain));  // measured: 1.17 against 2.5
+}
+
 // A transverse pitchfork: the multiplier exp(2 pi mu) crosses +1 at mu = 0 without a fold.
 TEST(Continuation, BranchPointLocated) {
   NormalForm system(Kind::Pitchfork, -0.4);
