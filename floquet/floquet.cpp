@@ -174,11 +174,23 @@ FloquetAnalysis analyze_floquet(const std::vector<Eigen::MatrixXd>& segments,
       trivial = index;
       a.trivial_alignment = alignment;
     }
+    // With a family, its multipliers and the trivial one are a defective cluster at 1 (moving
+    // along the family changes the period: M v = v + alpha f), whose eigenvalues split like the
+    // square root of the monodromy's error (1e-15 puts them 3e-8 apart). Their values then come
+    // from the compression of the monodromy onto V (f first), which is triangular with them on
+    // its diagonal and first-order accurate, as an accuracy figure must be.
+    const Eigen::MatrixXd compressed = v0.transpose() * monodromy * v0;
+    int next_structural = autonomous ? 1 : 0;  // V's columns: f (if autonomous), then the family
     for (int i = 0; i < n; ++i) {
       if (used[i]) continue;
       Multiplier mu{all.values[i], all.log_moduli[i]};
       mu.trivial = i == trivial;
       mu.structural = !mu.trivial;
+      if (d > 1) {
+        const int k = std::min(mu.trivial ? 0 : next_structural++, d - 1);
+        mu.value = compressed(k, k);
+        mu.log_modulus = std::log(std::abs(mu.value));
+      }
       a.structural += mu.structural ? 1 : 0;
       a.multipliers.push_back(mu);
     }

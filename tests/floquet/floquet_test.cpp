@@ -126,5 +126,35 @@ TEST(Floquet, CrossingMultiplierAmongTheTrivialAndAFamilysOne) {
   }
 }
 
+// A family's multiplier and the trivial one form a Jordan block at 1 (M v1 = v1 + 0.3 f): an
+// error of 1e-14 in the monodromy splits its eigenvalues by about sqrt(1e-14 * 0.3 * |V|) ~ 1e-7,
+// but their values from the compression onto span(f, v1) move by O(1e-14) only. Expected values
+// exact by construction; the split is checked too, so that the test cannot pass vacuously.
+TEST(Floquet, TrivialAndFamilyMultipliersFirstOrderAccurateInAJordanBlock) {
+  const Eigen::MatrixXd v = random_basis(5, 13);
+  Eigen::MatrixXd core = Eigen::MatrixXd::Identity(5, 5);
+  core(0, 1) = 0.3;
+  core(3, 3) = 0.8;
+  core(4, 4) = 0.95;
+  core(2, 2) = 0.5;
+  std::srand(14);
+  const Eigen::MatrixXd m = v * core * v.inverse() + 1e-14 * Eigen::MatrixXd::Random(5, 5);
+  const Eigen::EigenSolver<Eigen::MatrixXd> eig(m);
+  double split = 0.0;
+  for (int i = 0; i < 5; ++i)
+    if (std::abs(eig.eigenvalues()[i] - 1.0) < 1e-3)
+      split = std::max(split, std::abs(eig.eigenvalues()[i] - 1.0));
+  EXPECT_GT(split, 1e-9);  // the eigenvalues are this far off
+  const auto a = analyze_floquet({m}, v.col(0), v.col(1));
+  EXPECT_EQ(a.structural, 1);
+  EXPECT_LT(a.trivial_error, 1e-12);
+  for (const auto& mu : a.multipliers) {
+    if (mu.structural) {
+      EXPECT_NEAR(std::abs(mu.value - 1.0), 0.0, 1e-12);
+    }
+  }
+  EXPECT_NEAR(a.max_modulus, 0.95, 1e-12);
+}
+
 }  // namespace
 }  // namespace sympathy
