@@ -5,8 +5,8 @@
 #include <cmath>
 #include <limits>
 #include <sstream>
-#include <type_traits>
 
+#include "continuation/assignment.hpp"
 #include "core/linear_solve.hpp"
 
 namespace sympathy {
@@ -65,31 +65,17 @@ std::vector<Multiplier> nontrivial(const FloquetAnalysis& f) {
   return v;
 }
 
-// Pairs (a_i, b_j) matched greedily by distance.
-template <class T>
-std::vector<std::pair<T, T>> match(std::vector<T> a, std::vector<T> b) {
-  auto value = [](const auto& x) {
-    if constexpr (std::is_same_v<T, Multiplier>) {
-      return x.value;
-    } else {
-      return x;
-    }
-  };
-  std::vector<std::pair<T, T>> pairs;
-  while (!a.empty() && !b.empty()) {
-    std::size_t bi = 0, bj = 0;
-    double best = std::abs(value(a[0]) - value(b[0]));
-    for (std::size_t i = 0; i < a.size(); ++i)
-      for (std::size_t j = 0; j < b.size(); ++j)
-        if (std::abs(value(a[i]) - value(b[j])) < best) {
-          best = std::abs(value(a[i]) - value(b[j]));
-          bi = i;
-          bj = j;
-        }
-    pairs.emplace_back(a[bi], b[bj]);
-    a.erase(a.begin() + bi);
-    b.erase(b.begin() + bj);
-  }
+// Pairs (a_i, b_j) with the least total squared distance (the longer list's extra ones unpaired).
+std::vector<std::pair<Multiplier, Multiplier>> match(const std::vector<Multiplier>& a,
+                                                     const std::vector<Multiplier>& b) {
+  const int n = static_cast<int>(std::max(a.size(), b.size()));
+  Eigen::MatrixXd cost = Eigen::MatrixXd::Zero(n, n);  // a row or column past the end: unpaired
+  for (std::size_t i = 0; i < a.size(); ++i)
+    for (std::size_t j = 0; j < b.size(); ++j) cost(i, j) = std::norm(a[i].value - b[j].value);
+  const std::vector<int> column = least_cost_assignment(cost);
+  std::vector<std::pair<Multiplier, Multiplier>> pairs;
+  for (std::size_t i = 0; i < a.size(); ++i)
+    if (column[i] < static_cast<int>(b.size())) pairs.emplace_back(a[i], b[column[i]]);
   return pairs;
 }
 
@@ -114,19 +100,33 @@ Tracked follow(const std::vector<Multiplier>& a, const std::vector<Multiplier>* 
     for (const auto& [x, y] : match(*before, a))
       for (std::size_t i = 0; i < a.size(); ++i)
         if (a[i].value == y.value) predicted[i].value = y.value + ratio * (y.value - x.value);
-  Tracked t;
+  struct Link {
+    Multiplier origin, predicted, match;
+  };
+  std::vector<Link> links;
   for (const auto& [p, y] : match(predicted, b)) {
     Multiplier origin = p;  // back from the prediction to a's own multiplier
     for (std::size_t i = 0; i < predicted.size(); ++i)
       if (predicted[i].value == p.value) origin = a[i];
+    links.push_back({origin, p, y});
+  }
+  Tracked t;
+  for (const auto& l : links) {
+    // The gap to the nearest other match whose swap with this one could change a modulus: not
+    // this one's complex conjugate, nor the match of its origin's conjugate (where two real
+    // multipliers collide into a pair, or a pair splits, the two have one modulus either way).
     double gap = std::numeric_limits<double>::infinity();
-    for (const auto& z : b)
-      if (z.value != y.value) gap = std::min(gap, std::abs(z.value - y.value));
+    for (const auto& o : links) {
+      const bool same = o.match.value == l.match.value;
+      const bool conjugates =
+          o.match.value == std::conj(l.match.value) || o.origin.value == std::conj(l.origin.value);
+      if (!same && !conjugates) gap = std::min(gap, std::abs(o.match.value - l.match.value));
+    }
     const double from_circle =
-        std::min(std::abs(origin.modulus() - 1.0), std::abs(y.modulus() - 1.0));
+        std::min(std::abs(l.origin.modulus() - 1.0), std::abs(l.match.modulus() - 1.0));
     if (gap > 0.01 && from_circle < 0.1)
-      t.ambiguity = std::max(t.ambiguity, std::abs(p.value - y.value) / gap);
-    t.pairs.emplace_back(origin, y);
+      t.ambiguity = std::max(t.ambiguity, std::abs(l.predicted.value - l.match.value) / gap);
+    t.pairs.emplace_back(l.origin, l.match);
   }
   return t;
 }
@@ -142,6 +142,16 @@ Continuation::Continuation(OdeSystem& system, int parameter, ContinuationOptions
   if (options_.max_parameter_step <= 0.0)
     options_.max_parameter_step = (options_.upper - options_.lower) / 25.0;
   problem_ = std::make_unique<ShootingProblem>(system_, options_.orbit.shooting);
+}
+
+// Normal to the flow at z in the scaled norm: in units of the orbits' sizes an oscillation is
+// nearly circular, and a section normal to the flow there contains the directions in which its
+// amplitude changes, so that the points do not slide along the orbits as the branch goes on (in
+// raw units the normal is dominated by the large rates of the velocities, and the section is
+// nearly a level of one velocity, which a shrinking swing leaves).
+Eigen::VectorXd Continuation::section_normal(const Eigen::VectorXd& z) const {
+  const Eigen::VectorXd w = weights_.head(problem_->dimension());
+  return w.array().square() * system_.rhs(0.0, z).array();
 }
 
 double Continuation::scaled_dot(const Eigen::VectorXd& u, const Eigen::VectorXd& v) const {
@@ -216,8 +226,8 @@ Eigen::SparseMatrix<double> bordered(const Eigen::SparseMatrix<double>& jac,
 
 // Newton on the bordered system (shooting equations and arclength), each iteration with the
 // flow's sensitivities: the converged point's monodromy is the stability's and the next
-// tangent's. (A chord iteration on plain integrations was tried: plain and sensitivity runs
-// take different steps and differ by about the tolerance, which moved located points.)
+// tangent's. Before it, quasi-Newton steps on plain residuals as accurate as those runs
+// (ShootingProblem::residual) do most of the work.
 Continuation::Corrected Continuation::correct(const Eigen::VectorXd& from,
                                               const Eigen::VectorXd& tangent, double step,
                                               const Eigen::VectorXd& start_guess,
@@ -239,34 +249,45 @@ Continuation::Corrected Continuation::correct(const Eigen::VectorXd& from,
       attainable_tolerance(options_.corrector_tolerance, options_.orbit.newton.rtol_factor,
                            options_.orbit.shooting.flow);
   int iterations = 0;
-  // Chord steps first, on plain integrations with the previous point's Jacobian (a fraction of
-  // the cost of an integration with sensitivities), while they contract well; the Newton
-  // iterations below then start near the solution and finish it with the point's own monodromy.
+  // Quasi-Newton steps first, on plain integrations (about a tenth of the cost of one with
+  // sensitivities): Broyden's updates of the previous point's Jacobian, applied through the steps
+  // taken (Kelley's form: solves with that Jacobian alone), while they contract. They aim well
+  // below the tolerance, so that one integration with sensitivities at their end usually both
+  // confirms the point and gives its monodromy.
   if (chord && options_.max_chord_steps > 0) {
     const auto matrix = bordered(*chord, row);
-    double last = std::numeric_limits<double>::infinity(), rate = 0.1;
+    std::vector<Eigen::VectorXd> steps;
+    double last = std::numeric_limits<double>::infinity();
     Eigen::VectorXd before = y;
     for (int k = 0; k < options_.max_chord_steps; ++k) {
       system_.set_parameter(parameter_, y[N]);
       Eigen::VectorXd residual;
       try {
-        residual = problem_->evaluate(y.head(N), false).residual;
+        residual = problem_->residual(y.head(N));
       } catch (const IntegrationError&) {
+        y = before;
         break;
       }
       const double norm = inf_norm(residual);
-      // Plain and sensitivity runs take different steps and their residuals differ by about
-      // 1e-9 at rtol 1e-11: below 100 tolerances a chord step corrects noise, not the point.
-      if (norm <= 100.0 * tolerance) break;
-      if (k > 0) rate = norm / last;
-      if (rate > 0.5) {  // not contracting: Newton takes over, from the better of the last two
+      if (norm <= 0.25 * tolerance) break;
+      // Not contracting: Newton takes over, from the better of the last two.
+      if (norm > 0.5 * last) {
         if (norm > last) y = before;
         break;
       }
-      const auto dy = solve_linear(matrix, rhs_at(residual), linear);
-      if (!dy.x.allFinite()) break;
+      Eigen::VectorXd z = solve_linear(matrix, rhs_at(residual), linear).x;
+      for (std::size_t j = 0; j + 1 < steps.size(); ++j)
+        z += scaled_dot(steps[j], z) / scaled_dot(steps[j], steps[j]) * steps[j + 1];
+      if (!steps.empty()) {
+        const double denominator =
+            1.0 - scaled_dot(steps.back(), z) / scaled_dot(steps.back(), steps.back());
+        if (!(std::abs(denominator) > 0.1)) break;  // the update would blow the step up
+        z /= denominator;
+      }
+      if (!z.allFinite()) break;
+      steps.push_back(z);
       before = y;
-      y += dy.x;
+      y += z;
       ++c.chord_steps;
       last = norm;
     }
@@ -365,6 +386,7 @@ ContinuationPoint Continuation::make_point(const Corrected& c, const Eigen::Vect
   p.unknowns = c.y.head(N);
   p.tangent = tangent;
   p.section = problem_->phase_reference();
+  p.section_normal = problem_->phase_normal();
   p.step = step;
   p.iterations = c.iterations;
   PeriodicOrbit& o = p.orbit;
@@ -394,10 +416,10 @@ Branch Continuation::run(const PeriodicOrbit& start, int direction,
   const auto started = std::chrono::steady_clock::now();
   Branch branch;
   branch.parameter_name = system_.parameter_names()[parameter_];
-  problem_->flow().reset_statistics();
+  problem_->reset_statistics();
   auto finish = [&](const std::string& reason) {
     branch.stop_reason = reason;
-    branch.flow = problem_->flow().statistics();
+    branch.flow = problem_->statistics();
     branch.seconds =
         std::chrono::duration<double>(std::chrono::steady_clock::now() - started).count();
     return branch;
@@ -411,7 +433,7 @@ Branch Continuation::run(const PeriodicOrbit& start, int direction,
 
   // The starting point, corrected at its parameter value.
   const double p0 = system_.parameter(parameter_);
-  problem_->set_phase_reference(start.state0);
+  problem_->set_phase_section(start.state0, section_normal(start.state0));
   Eigen::VectorXd y0(N + 1);
   try {
     y0.head(N) = problem_->unknowns_from(start.state0, start.period);
@@ -449,23 +471,31 @@ Branch Continuation::run(const PeriodicOrbit& start, int direction,
       ds = std::max(options_.max_parameter_step / dp_per_ds, options_.min_step);
     Eigen::VectorXd ya(N + 1);
     ya << a.unknowns, a.parameter;
-    problem_->set_phase_reference(a.section);
+    problem_->set_phase_section(a.section, a.section_normal);
     const ContinuationPoint* previous =
         branch.points.size() >= 2 ? &branch.points[branch.points.size() - 2] : nullptr;
-    const Corrected c = correct(ya, a.tangent, ds, predict(previous, a, ds), &chord_jacobian_);
+    // The quasi-Newton steps start from the Jacobian extrapolated along the branch from the last
+    // two points (when they share a's section): its error is then O(ds^2), not O(ds).
+    Eigen::SparseMatrix<double> chord = chord_jacobian_;
+    if (previous && previous->section == a.section && a.step > 0.0 &&
+        jacobian_before_.rows() == chord.rows() && jacobian_before_.cols() == chord.cols())
+      chord = chord_jacobian_ + (ds / a.step) * (chord_jacobian_ - jacobian_before_);
+    const Corrected c = correct(ya, a.tangent, ds, predict(previous, a, ds), &chord);
     if (!c.converged) {
       ++branch.rejected.corrector;
       ds *= 0.5;
       if (ds < options_.min_step) return finish("step size below the minimum: " + c.reason);
       continue;
     }
-    // The section stays while the flow crosses it well: moved every step, it would let the
-    // points drift along the orbits, which turns the tangents and shortens the steps.
-    const Eigen::VectorXd zb = c.y.head(problem_->dimension());
-    const Eigen::VectorXd fb = system_.rhs(0.0, zb);
-    const double crossing = problem_->phase_normal().normalized().dot(fb.normalized());
-    const Eigen::VectorXd section = crossing < 0.9 ? zb : a.section;
-    problem_->set_phase_reference(section);
+    // The section stays while the flow crosses it well (the angle in the scaled norm): kept, the
+    // points lie on one smooth curve, which the predictor and the extrapolated Jacobian follow.
+    const int n = problem_->dimension();
+    const Eigen::VectorXd zb = c.y.head(n);
+    const Eigen::VectorXd w = weights_.head(n);
+    const Eigen::VectorXd flow_b = w.asDiagonal() * system_.rhs(0.0, zb);
+    const Eigen::VectorXd flow_ref = w.cwiseInverse().asDiagonal() * problem_->phase_normal();
+    const double crossing = flow_ref.normalized().dot(flow_b.normalized());
+    if (crossing < 0.9) problem_->set_phase_section(zb, section_normal(zb));
     auto jacobian_b = problem_->jacobian(c.evaluation, true);
     const Eigen::VectorXd tau_b = tangent_of(jacobian_b, c.y, a.tangent);
     if (orbit_cosine(tau_b, a.tangent, c.y) < options_.min_tangent_cosine &&
@@ -491,14 +521,15 @@ Branch Continuation::run(const PeriodicOrbit& start, int direction,
     }
     too_far |= watched_change > options_.max_modulus_change;
     // A step whose multipliers could not be matched with confidence, or moved too far, is
-    // rejected after its whole cost: the next step aims below both limits, at the rates just seen
-    // (the modulus change grows like ds, a matching error like ds^2).
+    // rejected after its whole cost: the retry, and the step after an accepted one, aim below
+    // both limits at the rates just seen (the modulus change grows like ds, a matching error like
+    // ds^2).
     double aim = std::numeric_limits<double>::infinity();
     if (watched_change > 0.0) aim = 0.75 * options_.max_modulus_change / watched_change * ds;
     if (tracked.ambiguity > 0.0) aim = std::min(aim, std::sqrt(0.3 / tracked.ambiguity) * ds);
     if (too_far && ds > 4 * options_.min_step) {
       ++branch.rejected.multipliers;
-      ds *= 0.5;
+      ds = std::max(std::min(0.5 * ds, aim), 4 * options_.min_step);
       continue;
     }
     std::vector<Bifurcation> events;
@@ -517,6 +548,7 @@ Branch Continuation::run(const PeriodicOrbit& start, int direction,
     }
     location_retries = 0;
     branch.points.push_back(std::move(b));
+    jacobian_before_ = std::move(chord_jacobian_);
     chord_jacobian_ = std::move(jacobian_b);
     const ContinuationPoint& added = branch.points.back();
     if (callbacks.on_point) callbacks.on_point(added);
@@ -673,7 +705,7 @@ Bifurcation Continuation::locate(const ContinuationPoint& a, const ContinuationP
   std::complex<double> mu_best = std::abs(f_lo) < std::abs(f_hi) ? mu_a : mu_b;
   double s_best = std::abs(f_lo) < std::abs(f_hi) ? 0.0 : sb;
   int side = 0;  // Illinois: which end was kept last time
-  problem_->set_phase_reference(a.section);
+  problem_->set_phase_section(a.section, a.section_normal);
   for (int iteration = 0; iteration < 30; ++iteration) {
     const double scale = std::max(std::abs(best.parameter), 1.0);
     const bool narrow =
@@ -684,8 +716,16 @@ Bifurcation Continuation::locate(const ContinuationPoint& a, const ContinuationP
       break;
     }
     double s = s_hi - f_hi * (s_hi - s_lo) / (f_hi - f_lo);
-    const double margin = 1e-3 * (s_hi - s_lo);
-    if (!(s > s_lo + margin && s < s_hi - margin)) s = 0.5 * (s_lo + s_hi);
+    if (!(s > s_lo && s < s_hi)) s = 0.5 * (s_lo + s_hi);
+    // At least half the tolerance (in arclength) inside each end: when the root lies next to
+    // one end, a probe just past it closes the bracket at once, where the secant would creep up
+    // on it from one side.
+    const double dp_ds = std::abs(hi.parameter - lo.parameter) / (s_hi - s_lo);
+    const double half_tolerance = type == BifurcationType::Fold || !(dp_ds > 0.0)
+                                      ? 0.5e-7 * sb
+                                      : 0.5 * options_.location_tolerance * scale / dp_ds;
+    const double inset = std::min(half_tolerance, 0.25 * (s_hi - s_lo));
+    s = std::clamp(s, s_lo + inset, s_hi - inset);
     const Corrected c = correct(ya, a.tangent, s, ya + s * a.tangent, &chord_jacobian_);
     if (!c.converged) {
       e.note = "location stopped: " + c.reason;

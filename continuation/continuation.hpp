@@ -87,6 +87,7 @@ class Continuation {
   Bifurcation locate(const ContinuationPoint& a, const ContinuationPoint& b, BifurcationType guess,
                      int multiplicity, std::complex<double> mu_a, std::complex<double> mu_b);
   double scaled_dot(const Eigen::VectorXd& u, const Eigen::VectorXd& v) const;
+  Eigen::VectorXd section_normal(const Eigen::VectorXd& z) const;
   Eigen::VectorXd time_shift(const Eigen::VectorXd& y) const;
   // Cosine between two tangents with shifts in time along the orbits left out.
   double orbit_cosine(const Eigen::VectorXd& u, const Eigen::VectorXd& v,
@@ -103,8 +104,8 @@ class Continuation {
   int family_dimension_ = 0;
   // The shooting Jacobian (with its parameter column) at the last accepted point, in its section:
   // the chord steps' matrix for the next step and for locating events after it.
-  Eigen::SparseMatrix<double>
-      chord_jacobian_;  // of the starting orbit's continuum, kept along the branch
+  Eigen::SparseMatrix<double> chord_jacobian_;
+  Eigen::SparseMatrix<double> jacobian_before_;  // the same at the point before it
 };
 
 }  // namespace sympathy

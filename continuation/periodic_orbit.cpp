@@ -61,7 +61,7 @@ PeriodicOrbit solve_periodic_orbit(const OdeSystem& system, const Eigen::VectorX
     s.reason = std::string("integration failed at the initial guess: ") + error.what();
     orbit.state0 = z;
     orbit.period = period;
-    orbit.flow = problem.flow().statistics();
+    orbit.flow = problem.statistics();
     orbit.seconds = seconds_since(started);
     return orbit;
   }
@@ -131,7 +131,7 @@ PeriodicOrbit solve_periodic_orbit(const OdeSystem& system, const Eigen::VectorX
           ? Eigen::MatrixXd(null_vectors(jac, orbit.family_dimension).topRows(n))
           : Eigen::MatrixXd();
   orbit.floquet = analyze_floquet(e.transitions, f, family, options.floquet);
-  orbit.flow = problem.flow().statistics();
+  orbit.flow = problem.statistics();
   orbit.seconds = seconds_since(started);
   return orbit;
 }

@@ -1,5 +1,6 @@
 #include "continuation/shooting.hpp"
 
+#include <algorithm>
 #include <stdexcept>
 
 namespace sympathy {
@@ -20,8 +21,13 @@ ShootingProblem::ShootingProblem(const OdeSystem& system, ShootingOptions option
 }
 
 void ShootingProblem::set_phase_reference(const Eigen::VectorXd& z_ref) {
+  set_phase_section(z_ref, system_.rhs(0.0, z_ref));
+}
+
+void ShootingProblem::set_phase_section(const Eigen::VectorXd& z_ref,
+                                        const Eigen::VectorXd& normal) {
   z_ref_ = z_ref;
-  f_ref_ = system_.rhs(0.0, z_ref);
+  f_ref_ = normal;
 }
 
 double ShootingProblem::period(const Eigen::VectorXd& x) const {
@@ -41,8 +47,35 @@ Eigen::VectorXd ShootingProblem::unknowns_from(const Eigen::VectorXd& z0, double
   return x;
 }
 
+FlowStatistics ShootingProblem::statistics() const {
+  FlowStatistics s = flow_.statistics();
+  if (plain_flow_) s += plain_flow_->statistics();
+  return s;
+}
+
+void ShootingProblem::reset_statistics() {
+  flow_.reset_statistics();
+  if (plain_flow_) plain_flow_->reset_statistics();
+}
+
+Eigen::VectorXd ShootingProblem::residual(const Eigen::VectorXd& x) {
+  if (!plain_flow_) {
+    FlowOptions tight = options_.flow;
+    // Not below 1e-13: CVODES reports tolerances near the unit roundoff as too much accuracy.
+    tight.rtol = std::max(options_.flow.rtol / 100.0, std::min(options_.flow.rtol, 1e-13));
+    tight.atol = options_.flow.atol / 10.0;
+    plain_flow_ = std::make_unique<Flow>(system_, tight);
+  }
+  return evaluate(x, false, -1, *plain_flow_).residual;
+}
+
 ShootingProblem::Evaluation ShootingProblem::evaluate(const Eigen::VectorXd& x, bool derivatives,
                                                       int parameter) {
+  return evaluate(x, derivatives, parameter, flow_);
+}
+
+ShootingProblem::Evaluation ShootingProblem::evaluate(const Eigen::VectorXd& x, bool derivatives,
+                                                      int parameter, Flow& flow) {
   const int m = options_.segments;
   const double T = period(x);
   if (!(T > 0.0)) throw IntegrationError("shooting: the period is not positive", 0.0);
@@ -60,13 +93,13 @@ ShootingProblem::Evaluation ShootingProblem::evaluate(const Eigen::VectorXd& x, 
     const double t1 = autonomous_ ? T / m : (j + 1) * T / m;
     Eigen::VectorXd end;
     if (derivatives) {
-      auto d = flow_.advance_with_sensitivities(zj, t0, t1, true, parameters);
+      auto d = flow.advance_with_sensitivities(zj, t0, t1, true, parameters);
       end = std::move(d.state);
       e.transitions.push_back(std::move(d.transition));
       if (parameter >= 0) e.parameter_sensitivities.col(j) = d.parameter_sensitivities.col(0);
       e.end_rates.push_back(system_.rhs(t1, end));
     } else {
-      end = flow_.advance(zj, t0, t1);
+      end = flow.advance(zj, t0, t1);
     }
     e.residual.segment(j * n_, n_) = end - x.segment(((j + 1) % m) * n_, n_);
   }

@@ -6,6 +6,7 @@
 
 #include "cases/case_file.hpp"
 #include "continuation/periodic_orbit.hpp"
+#include "continuation/shooting.hpp"
 
 namespace sympathy {
 namespace {
@@ -151,6 +152,34 @@ TEST(Orbits, MonodromyMatchesFiniteDifferences) {
   }
   for (int j = 0; j < n; ++j)
     EXPECT_LT((monodromy.col(j) - fd.col(j)).norm(), 5e-7 * monodromy.norm()) << "column " << j;
+}
+
+// A plain residual (ShootingProblem::residual, tightened) is as accurate as that of a run with
+// sensitivities at the same point, so that quasi-Newton steps on plain runs can finish a
+// continuation point that one run with sensitivities then accepts. Reference: a run at rtol
+// 1e-13. Measured at the default rtol 1e-11: plain 2.5e-10 and 4.9e-10, with sensitivities 1.5e-9
+// and 6.1e-10 (in-phase, anti-phase); a plain run at the flow's own settings is off by 3.7e-9 and
+// 4.1e-8.
+TEST(Orbits, PlainResidualAsAccurateAsTheSensitivityRuns) {
+  for (const char* start : {"in-phase", "anti-phase"}) {
+    const Found f = find("row2", "table2", start);
+    ASSERT_TRUE(f.orbit.converged());
+    ShootingProblem problem(*f.model, ShootingOptions{});
+    problem.set_phase_reference(f.orbit.state0);
+    const Eigen::VectorXd x = problem.unknowns_from(f.orbit.state0, f.orbit.period);
+    ShootingOptions tight;
+    tight.flow.rtol = 1e-13;
+    tight.flow.atol = 1e-15;
+    ShootingProblem reference(*f.model, tight);
+    reference.set_phase_reference(f.orbit.state0);
+    const Eigen::VectorXd exact = reference.evaluate(x, false).residual;
+    const double plain = (problem.residual(x) - exact).cwiseAbs().maxCoeff();
+    const double with_derivatives =
+        (problem.evaluate(x, true).residual - exact).cwiseAbs().maxCoeff();
+    EXPECT_LT(plain, 1e-9) << start;
+    EXPECT_LT(with_derivatives, 3e-9) << start;
+    EXPECT_LT(plain, 2.0 * with_derivatives + 1e-10) << start;
+  }
 }
 
 // The same orbit computed with 1, 3, 5, 10 and 50 shooting segments: the same multipliers to
