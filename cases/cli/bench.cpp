@@ -175,6 +175,9 @@ struct PointCost {
   long integrations = 0;
   double period_sensitivities = 0.0;  // s, one period with state and parameter sensitivities
   double period_plain = 0.0;          // s, one period, state only
+  int events = 0;                     // bifurcations located
+  int points_stepping = 0;            // the same branch without detecting bifurcations
+  double seconds_stepping = 0.0;
 };
 
 PointCost point_cost(const CaseFile& file, const std::string& params, const std::string& start,
@@ -199,6 +202,14 @@ PointCost point_cost(const CaseFile& file, const std::string& params, const std:
   c.seconds = std::chrono::duration<double>(std::chrono::steady_clock::now() - started).count();
   c.points = static_cast<int>(b.points.size()) - 1;  // the first is the start's
   c.integrations = b.flow.calls;
+  c.events = static_cast<int>(b.events.size());
+  // Stepping alone: the same branch with no bifurcation detected, hence none located.
+  model.set_parameter(k, from);
+  o.detect_bifurcations = false;
+  Continuation stepping(model, k, o);
+  const Branch undetected = stepping.run(orbit, +1);
+  c.points_stepping = static_cast<int>(undetected.points.size()) - 1;
+  c.seconds_stepping = undetected.seconds;
   model.set_parameter(k, from);
   Flow flow(model, o.orbit.shooting.flow);
   const int parameter[] = {k};
@@ -406,13 +417,16 @@ int run_bench(const std::vector<std::string>& argv) {
   if (want('d')) {
     md << "\n## (d) cost of a continuation point\n\nDefault settings (BDF, rtol 1e-11). The floor "
           "of a shooting method is one period's integration with the sensitivities a point "
-          "needs (state and parameter); the ratio is a point's time over it.\n\n"
+          "needs (state and parameter); the ratio is a point's time over it, with the bifurcations "
+          "located and without (the same branch, nothing detected).\n\n"
        << "| branch | points | seconds | integrations | s per point | one period with "
-          "sensitivities (s) | one period plain (s) | ratio |\n"
-       << "|---|---|---|---|---|---|---|---|\n";
-    CsvWriter cost(out + "/cost.csv",
-                   {"branch", "points", "seconds", "integrations", "seconds_per_point",
-                    "period_with_sensitivities", "period_plain", "ratio"});
+          "sensitivities (s) | one period plain (s) | ratio | events located | ratio without "
+          "locating |\n"
+       << "|---|---|---|---|---|---|---|---|---|---|\n";
+    CsvWriter cost(
+        out + "/cost.csv",
+        {"branch", "points", "seconds", "integrations", "seconds_per_point",
+         "period_with_sensitivities", "period_plain", "ratio", "events", "ratio_without_locating"});
     std::vector<std::tuple<std::string, std::string, double, double>> branches{
         {"table2", "anti-phase", 10.0, 100.0}, {"table2", "in-phase", 25.0, 100.0}};
     if (quick)
@@ -421,20 +435,25 @@ int run_bench(const std::vector<std::string>& argv) {
       const PointCost c = point_cost(file, params, start, from, to);
       const double per_point = c.points > 0 ? c.seconds / c.points : NAN;
       const double ratio = per_point / c.period_sensitivities;
+      const double stepping = c.points_stepping > 0
+                                  ? c.seconds_stepping / c.points_stepping / c.period_sensitivities
+                                  : NAN;
       cost.row(std::vector<std::string>{c.name, std::to_string(c.points), format(c.seconds, "%.3f"),
                                         std::to_string(c.integrations), format(per_point, "%.4f"),
                                         format(c.period_sensitivities, "%.4f"),
-                                        format(c.period_plain, "%.4f"), format(ratio, "%.2f")});
+                                        format(c.period_plain, "%.4f"), format(ratio, "%.2f"),
+                                        std::to_string(c.events), format(stepping, "%.2f")});
       cost.flush();
       md << "| " << c.name << " | " << c.points << " | " << format(c.seconds, "%.2f") << " | "
          << c.integrations << " | " << format(per_point, "%.4f") << " | "
          << format(c.period_sensitivities, "%.4f") << " | " << format(c.period_plain, "%.4f")
-         << " | " << format(ratio, "%.1f") << " |\n";
+         << " | " << format(ratio, "%.1f") << " | " << c.events << " | " << format(stepping, "%.1f")
+         << " |\n";
       std::printf(
           "(d) %s: %d points in %.2f s, %.4f s per point; one period with sensitivities "
-          "%.4f s, plain %.4f s; ratio %.1f\n",
+          "%.4f s, plain %.4f s; ratio %.1f (%d events located; without locating %.1f)\n",
           c.name.c_str(), c.points, c.seconds, per_point, c.period_sensitivities, c.period_plain,
-          ratio);
+          ratio, c.events, stepping);
       std::fflush(stdout);
     }
   }

@@ -50,6 +50,7 @@ work = sys.argv[1]
 cost = list(csv.DictReader(open(f"{work}/cost.csv")))
 scaling = list(csv.DictReader(open(f"{work}/scaling.csv")))
 ok = len(cost) == 2 and all(int(r["points"]) > 5 and float(r["ratio"]) > 0.9 and
+                            float(r["ratio_without_locating"]) > 0.9 and int(r["events"]) >= 0 and
                             float(r["period_plain"]) < float(r["period_with_sensitivities"])
                             for r in cost)
 ok &= [(int(r["metronomes"]), r["linear_solver"]) for r in scaling] == [(2, "dense"), (2, "structured"), (4, "dense"), (4, "structured"), (8, "dense"), (8, "structured")]
