@@ -7,6 +7,7 @@
 #include <sstream>
 
 #include "continuation/assignment.hpp"
+#include "continuation/broyden.hpp"
 #include "core/linear_solve.hpp"
 
 namespace sympathy {
@@ -250,10 +251,10 @@ Continuation::Corrected Continuation::correct(const Eigen::VectorXd& from,
                            options_.orbit.shooting.flow);
   int iterations = 0;
   // Quasi-Newton steps first, on plain integrations (about a tenth of the cost of one with
-  // sensitivities): Broyden's updates of the previous point's Jacobian, applied through the steps
-  // taken (Kelley's form: solves with that Jacobian alone), while they contract. They aim well
-  // below the tolerance, so that one integration with sensitivities at their end usually both
-  // confirms the point and gives its monodromy.
+  // sensitivities): Broyden's updates of `chord` (the Jacobian extrapolated from the last points),
+  // in the scaled norm, while they contract. They aim well below the tolerance, so that one
+  // integration with sensitivities at their end usually both confirms the point and gives its
+  // monodromy.
   if (chord && options_.max_chord_steps > 0) {
     const auto matrix = bordered(*chord, row);
     std::vector<Eigen::VectorXd> steps;
@@ -275,19 +276,12 @@ Continuation::Corrected Continuation::correct(const Eigen::VectorXd& from,
         if (norm > last) y = before;
         break;
       }
-      Eigen::VectorXd z = solve_linear(matrix, rhs_at(residual), linear).x;
-      for (std::size_t j = 0; j + 1 < steps.size(); ++j)
-        z += scaled_dot(steps[j], z) / scaled_dot(steps[j], steps[j]) * steps[j + 1];
-      if (!steps.empty()) {
-        const double denominator =
-            1.0 - scaled_dot(steps.back(), z) / scaled_dot(steps.back(), steps.back());
-        if (!(std::abs(denominator) > 0.1)) break;  // the update would blow the step up
-        z /= denominator;
-      }
-      if (!z.allFinite()) break;
-      steps.push_back(z);
+      const auto z = broyden_step(solve_linear(matrix, rhs_at(residual), linear).x, steps,
+                                  [&](const auto& u, const auto& v) { return scaled_dot(u, v); });
+      if (!z || !z->allFinite()) break;
+      steps.push_back(*z);
       before = y;
-      y += z;
+      y += *z;
       ++c.chord_steps;
       last = norm;
     }
