@@ -6,7 +6,7 @@
 #include <limits>
 #include <sstream>
 
-#include "continuation/assignment.hpp"
+#include "core/assignment.hpp"
 #include "continuation/broyden.hpp"
 #include "core/linear_solve.hpp"
 

@@ -5,6 +5,7 @@
 #include <numeric>
 #include <stdexcept>
 
+#include "core/assignment.hpp"
 #include "floquet/periodic_schur.hpp"
 
 namespace sympathy {
@@ -142,22 +143,14 @@ FloquetAnalysis analyze_floquet(const std::vector<Eigen::MatrixXd>& segments,
     for (int k = 0; k < d; ++k) v0.col(k) = known[k];
     const auto others =
         d < n ? eigenvalues_of_product(quotient_segments(segments, v0)) : ProductEigenvalues{};
-    // The d of all multipliers that the others do not match (nearest pairs first) are the
-    // trivial and structural ones: their values, and the trivial one's error, come from the
-    // whole matrix, as the accuracy figure must.
-    std::vector<bool> used(n, false), matched(n - d, false);
-    for (int k = 0; k < n - d; ++k) {
-      int bi = -1, bj = -1;
-      for (int i = 0; i < n - d; ++i)
-        for (int j = 0; j < n && !matched[i]; ++j)
-          if (!used[j] && (bi < 0 || std::abs(others.values[i] - all.values[j]) <
-                                         std::abs(others.values[bi] - all.values[bj]))) {
-            bi = i;
-            bj = j;
-          }
-      matched[bi] = true;
-      used[bj] = true;
-    }
+    // The d of all multipliers that the others do not match (least total squared distance; d
+    // empty rows take the rest) are the trivial and structural ones.
+    Eigen::MatrixXd cost = Eigen::MatrixXd::Zero(n, n);
+    for (int i = 0; i < n - d; ++i)
+      for (int j = 0; j < n; ++j) cost(i, j) = std::norm(others.values[i] - all.values[j]);
+    const std::vector<int> column = least_cost_assignment(cost);
+    std::vector<bool> used(n, false);
+    for (int i = 0; i < n - d; ++i) used[column[i]] = true;
     // Among those, the trivial one by its eigenvector.
     std::vector<Eigen::VectorXcd> vectors;
     for (int i = 0; i < n; ++i) {

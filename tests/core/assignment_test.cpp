@@ -1,4 +1,4 @@
-#include "continuation/assignment.hpp"
+#include "core/assignment.hpp"
 
 #include <algorithm>
 #include <numeric>

@@ -1,8 +1,9 @@
 // The assignment problem: pair each row with one column at the least total cost.
 //
-// Following multipliers from one continuation point to the next pairs them by least total
-// squared distance, not greedily: two complex pairs that move side by side by more than half
-// their gap are matched crosswise by nearest neighbours, but kept apart by the total.
+// Multipliers are paired by least total squared distance, not greedily (from one continuation
+// point to the next; the quotient's to the whole matrix's): two complex pairs that move side by
+// side by more than half their gap are matched crosswise by nearest neighbours, but kept apart by
+// the total.
 #pragma once
 
 #include <vector>

@@ -1,4 +1,4 @@
-#include "continuation/assignment.hpp"
+#include "core/assignment.hpp"
 
 #include <limits>
 #include <stdexcept>
