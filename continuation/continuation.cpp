@@ -6,8 +6,8 @@
 #include <limits>
 #include <sstream>
 
-#include "core/assignment.hpp"
 #include "continuation/broyden.hpp"
+#include "core/assignment.hpp"
 #include "core/linear_solve.hpp"
 
 namespace sympathy {
@@ -390,14 +390,8 @@ ContinuationPoint Continuation::make_point(const Corrected& c, const Eigen::Vect
   o.residual = c.residual;
   o.family_dimension = family_dimension_;
   system_.set_parameter(parameter_, p.parameter);
-  // A continuum's directions: the null vectors of the shooting Jacobian, at the first segment.
-  const Eigen::MatrixXd family =
-      family_dimension_ > 0
-          ? Eigen::MatrixXd(null_vectors(problem_->jacobian(c.evaluation), family_dimension_)
-                                .topRows(problem_->dimension()))
-          : Eigen::MatrixXd();
-  o.floquet = analyze_floquet(c.evaluation.transitions, system_.rhs(0.0, o.state0), family,
-                              options_.orbit.floquet);
+  o.floquet = shooting_floquet(*problem_, c.evaluation, o.state0, family_dimension_,
+                               options_.orbit.floquet);
   o.newton.converged = true;
   o.newton.iterations = c.iterations;
   o.newton.reason = "corrector converged";

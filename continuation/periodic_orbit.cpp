@@ -36,6 +36,19 @@ double seconds_since(std::chrono::steady_clock::time_point start) {
 
 }  // namespace
 
+FloquetAnalysis shooting_floquet(const ShootingProblem& problem,
+                                 const ShootingProblem::Evaluation& e, const Eigen::VectorXd& z0,
+                                 int family_dimension, const FloquetOptions& options) {
+  const Eigen::VectorXd f =
+      problem.autonomous() ? problem.system().rhs(0.0, z0) : Eigen::VectorXd();
+  const Eigen::MatrixXd family =
+      family_dimension > 0
+          ? Eigen::MatrixXd(
+                null_vectors(problem.jacobian(e), family_dimension).topRows(problem.dimension()))
+          : Eigen::MatrixXd();
+  return analyze_floquet(e.transitions, f, family, options);
+}
+
 PeriodicOrbit solve_periodic_orbit(const OdeSystem& system, const Eigen::VectorXd& z0,
                                    double period, const InvariantSubspace& subspace,
                                    const OrbitOptions& options) {
@@ -124,13 +137,8 @@ PeriodicOrbit solve_periodic_orbit(const OdeSystem& system, const Eigen::VectorX
   orbit.residual = inf_norm(e.residual.head(n * m));
   const auto jac = problem.jacobian(e);
   orbit.family_dimension = rank_deficiency(jac, options.newton.rank_tolerance);
-  const Eigen::VectorXd f =
-      problem.autonomous() ? system.rhs(0.0, orbit.state0) : Eigen::VectorXd();
-  const Eigen::MatrixXd family =
-      orbit.family_dimension > 0
-          ? Eigen::MatrixXd(null_vectors(jac, orbit.family_dimension).topRows(n))
-          : Eigen::MatrixXd();
-  orbit.floquet = analyze_floquet(e.transitions, f, family, options.floquet);
+  orbit.floquet =
+      shooting_floquet(problem, e, orbit.state0, orbit.family_dimension, options.floquet);
   orbit.flow = problem.statistics();
   orbit.seconds = seconds_since(started);
   return orbit;

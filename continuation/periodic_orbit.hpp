@@ -68,6 +68,13 @@ struct PeriodicOrbit {
   bool converged() const { return newton.converged; }
 };
 
+// The multipliers of the orbit at the shooting unknowns' first state z0, from an evaluation with
+// derivatives there: f at z0 (if autonomous) and the `family_dimension` directions of a continuum
+// (null vectors of the shooting Jacobian) are what the analysis sets apart.
+FloquetAnalysis shooting_floquet(const ShootingProblem& problem,
+                                 const ShootingProblem::Evaluation& e, const Eigen::VectorXd& z0,
+                                 int family_dimension, const FloquetOptions& options);
+
 // Newton from a guess (z0, T). Keeps every iterate in `subspace`.
 PeriodicOrbit solve_periodic_orbit(const OdeSystem& system, const Eigen::VectorXd& z0,
                                    double period, const InvariantSubspace& subspace,
