@@ -253,12 +253,18 @@ struct LocalOutcome {
 // Levenberg-Marquardt with Marquardt's diagonal scaling and Nielsen's damping update. Every
 // trial point is evaluated with its Jacobian (one integration), so an accepted step needs no
 // second one.
+// `at_u`: the residuals and Jacobian at u when already integrated (nothing to integrate again).
 LocalOutcome levenberg_marquardt(Evaluator& ev, Eigen::VectorXd u, const Bounds& bounds,
-                                 const TrajectoryFitOptions& o) {
+                                 const TrajectoryFitOptions& o,
+                                 const LocalOutcome* at_u = nullptr) {
   LocalOutcome out;
   const int first = ev.evaluations();
-  if (!ev.evaluate(u, out.r, &out.J))
+  if (at_u) {
+    out.r = at_u->r;
+    out.J = at_u->J;
+  } else if (!ev.evaluate(u, out.r, &out.J)) {
     throw IntegrationError("the trajectory cannot be integrated at the starting values", 0.0);
+  }
   double rss = out.r.squaredNorm();
   double lambda = 1e-3;
   double nu = 2.0;
@@ -503,10 +509,15 @@ TrajectoryFitResult fit_trajectory(OdeSystem& system, const TrajectoryFitProblem
   Eigen::VectorXd u = Eigen::VectorXd::Zero(p);
   result.start = ev.physical(u);
 
-  Eigen::VectorXd r0;
-  if (!ev.evaluate(u, r0, nullptr))
+  // The start's residuals, with the Jacobian when Levenberg-Marquardt starts right there (no
+  // global stage): it then takes over this integration instead of repeating it.
+  const bool local_from_start =
+      o.global == GlobalMethod::None && o.local == LocalMethod::LevenbergMarquardt;
+  LocalOutcome at_start;
+  const int before_start = ev.evaluations();
+  if (!ev.evaluate(u, at_start.r, local_from_start ? &at_start.J : nullptr))
     throw IntegrationError("the trajectory cannot be integrated at the starting values", 0.0);
-  result.rss_start = r0.squaredNorm();
+  result.rss_start = at_start.r.squaredNorm();
   const double reference = std::max(result.rss_start, 1e-300);
   double rss_now = result.rss_start;
 
@@ -558,10 +569,11 @@ TrajectoryFitResult fit_trajectory(OdeSystem& system, const TrajectoryFitProblem
   LocalOutcome final;
   {
     const auto t0 = Clock::now();
-    const int before = ev.evaluations();
+    // The start's integration is the local stage's first when it takes it over.
+    const int before = local_from_start ? before_start : ev.evaluations();
     const double rss_before = rss_now;
     if (o.local == LocalMethod::LevenbergMarquardt) {
-      final = levenberg_marquardt(ev, u, bounds, o);
+      final = levenberg_marquardt(ev, u, bounds, o, local_from_start ? &at_start : nullptr);
       result.stages.push_back({"local", to_string(o.local), ev.evaluations() - before, rss_before,
                                final.r.squaredNorm(), final.reason, seconds_since(t0)});
     } else {
