@@ -24,6 +24,8 @@ std::string to_string(Method m) {
 }
 std::string to_string(LinearSolver s) {
   switch (s) {
+    case LinearSolver::Automatic:
+      return "automatic";
     case LinearSolver::Dense:
       return "dense";
     case LinearSolver::KLU:
@@ -32,6 +34,14 @@ std::string to_string(LinearSolver s) {
       return "structured";
   }
   return "?";
+}
+
+LinearSolver resolved_linear_solver(const OdeSystem& system, const FlowOptions& options) {
+  if (options.linear_solver != LinearSolver::Automatic) return options.linear_solver;
+  if (options.derivatives != Derivatives::Model) return LinearSolver::Dense;
+  const auto structure = system.low_rank_structure();
+  return structure && structure->dimension > 2 * (structure->rank() + 3) ? LinearSolver::Structured
+                                                                         : LinearSolver::Dense;
 }
 
 FlowStatistics& FlowStatistics::operator+=(const FlowStatistics& o) {
@@ -380,6 +390,7 @@ void Flow::fail(int flag, const char* function) {
 
 Flow::Flow(const OdeSystem& system, FlowOptions options)
     : system_(system), options_(options), cv_(std::make_unique<Cvodes>()) {
+  options_.linear_solver = resolved_linear_solver(system_, options_);
   if (!(options_.rtol > 0.0) || !(options_.atol > 0.0))
     throw std::invalid_argument("flow tolerances must be positive");
   const int n = system_.dimension();

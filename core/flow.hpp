@@ -39,8 +39,10 @@ enum class NonlinearSolver { Newton, FixedPoint };
 // systems whose Jacobian is sparse plus low rank (OdeSystem::low_rank_jacobian): KLU on
 // I - gamma S and the Woodbury identity for the rank-r rest, O(nnz + n r) a solve instead of
 // O(n^2), a factorization one sparse LU and r solves instead of O(n^3). CVODES decides when to
-// evaluate the Jacobian and factor, as for the other two.
-enum class LinearSolver { Dense, KLU, Structured };
+// evaluate the Jacobian and factor, as for the other two. Automatic: structured where the system
+// offers that form and its sparse part is large against the rank (n > 2 (r + 3): for metronomes,
+// more than three of them, where bench section (e) measured it faster), dense otherwise.
+enum class LinearSolver { Automatic, Dense, KLU, Structured };
 enum class SensitivityCorrector { Staggered, Simultaneous };
 // Where the Jacobian and the sensitivity right-hand side come from: the system's own
 // derivatives, or CVODES's difference quotients (state sensitivities only; for comparison).
@@ -51,7 +53,7 @@ struct FlowOptions {
   double atol = 1e-12;
   Method method = Method::BDF;
   NonlinearSolver nonlinear_solver = NonlinearSolver::Newton;
-  LinearSolver linear_solver = LinearSolver::Dense;
+  LinearSolver linear_solver = LinearSolver::Automatic;
   SensitivityCorrector corrector = SensitivityCorrector::Staggered;
   Derivatives derivatives = Derivatives::Model;
   long max_steps = 1000000;  // per call
@@ -59,6 +61,10 @@ struct FlowOptions {
   bool resolve_steep_zones = true;
   double steep_step_fraction = 0.5;
 };
+
+// The linear solver a flow of `system` with `options` uses: Automatic resolved (dense with
+// difference quotients, which the structured solver cannot use), the others as asked.
+LinearSolver resolved_linear_solver(const OdeSystem& system, const FlowOptions& options);
 
 std::string to_string(Method m);
 std::string to_string(LinearSolver s);

@@ -42,10 +42,8 @@ FlowOptions flow_options(const Arguments& args, FlowOptions o) {
   } else {
     throw InputError("--method " + method + ": expected bdf or adams");
   }
-  const std::string solver =
-      args.text("--linear-solver", o.linear_solver == LinearSolver::Structured ? "structured"
-                                   : o.linear_solver == LinearSolver::KLU      ? "klu"
-                                                                               : "dense");
+  if (!args.has("--linear-solver")) return o;  // as given (by default the flow's own choice)
+  const std::string solver = args.text("--linear-solver", "");
   if (solver == "dense")
     o.linear_solver = LinearSolver::Dense;
   else if (solver == "klu")
@@ -55,13 +53,6 @@ FlowOptions flow_options(const Arguments& args, FlowOptions o) {
   else
     throw InputError("--linear-solver " + solver + ": expected dense, klu or structured");
   return o;
-}
-
-LinearSolver default_linear_solver(const OdeSystem& system) {
-  const auto* model = dynamic_cast<const MetronomeModel*>(&system);
-  return model && model->metronome_count() > 3 && model->low_rank_structure()
-             ? LinearSolver::Structured
-             : LinearSolver::Dense;
 }
 
 }  // namespace sympathy::cli

@@ -26,12 +26,9 @@ std::vector<OptionSpec> case_options();
 std::vector<OptionSpec> integrator_options();
 
 LoadedCase load_case(const Arguments& args);
-// The integrator options on top of `defaults`; without --linear-solver, defaults.linear_solver.
+// The integrator options on top of `defaults`; without --linear-solver, defaults.linear_solver
+// (by default Automatic: the flow chooses, see LinearSolver).
 FlowOptions flow_options(const Arguments& args, FlowOptions defaults);
-// The linear solver when --linear-solver is not given: structured for metronome models with more
-// than three metronomes (measured never slower there: equal at 2 metronomes, 1.05x faster at 4,
-// 3x at 64 for a period with the monodromy), dense otherwise.
-LinearSolver default_linear_solver(const OdeSystem& system);
 
 class Stopwatch {
  public:

@@ -60,7 +60,6 @@ int run_continue(const std::vector<std::string>& argv) {
   if (!(o.initial_step > 0.0) || !(o.max_step >= o.initial_step))
     throw InputError("--step, --max-step: expected 0 < step <= max-step");
   if (o.max_points < 2) throw InputError("--max-points: expected at least 2");
-  o.orbit.shooting.flow.linear_solver = default_linear_solver(MetronomeModel(c.spec));
   o.orbit.shooting.flow = flow_options(args, o.orbit.shooting.flow);
   o.orbit.transient_flow.linear_solver = o.orbit.shooting.flow.linear_solver;
   std::ofstream json_out;

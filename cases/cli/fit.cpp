@@ -127,7 +127,6 @@ int run_fit(const std::vector<std::string>& argv) {
   o.seed = static_cast<unsigned>(seed);
 
   PreparedFit fit = prepare_fit(c.file, c.spec, request);
-  if (!args.has("--linear-solver")) o.flow.linear_solver = default_linear_solver(*fit.model);
   const Recording& rec = fit.recording;
   const auto states = fit.model->state_names();
 

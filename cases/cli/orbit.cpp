@@ -41,7 +41,6 @@ int run_orbit(const std::vector<std::string>& argv) {
     throw InputError("--segments: expected an integer from 1 to 1000");
   o.transient = args.number("--transient", o.transient);
   if (!(o.transient >= 0.0)) throw InputError("--transient: expected a non-negative number");
-  o.shooting.flow.linear_solver = default_linear_solver(model);
   o.shooting.flow = flow_options(args, o.shooting.flow);
   o.transient_flow.linear_solver = o.shooting.flow.linear_solver;
 

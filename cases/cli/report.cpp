@@ -18,7 +18,6 @@ OrbitReport describe_orbit(const MetronomeModel& model, const PeriodicOrbit& orb
   FlowOptions o;
   o.rtol = 1e-9;
   o.atol = 1e-12;
-  o.linear_solver = default_linear_solver(model);
   Flow flow(model, o);
   const int samples = 800;
   std::vector<double> times;
@@ -96,9 +95,10 @@ void print_orbit(std::FILE* out, const MetronomeModel& model, const PeriodicOrbi
   std::fprintf(out, "\n");
   const auto& st = orbit.flow;
   const auto& flow = options.shooting.flow;
-  const std::string solver = flow.nonlinear_solver == NonlinearSolver::Newton
-                                 ? " (" + to_string(flow.linear_solver) + " linear solver)"
-                                 : "";
+  const std::string solver =
+      flow.nonlinear_solver == NonlinearSolver::Newton
+          ? " (" + to_string(resolved_linear_solver(model, flow)) + " linear solver)"
+          : "";
   std::fprintf(
       out,
       "  work         %d segment%s, %s%s rtol %g: %ld integrations, %ld steps, %ld rhs and "

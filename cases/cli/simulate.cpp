@@ -71,7 +71,6 @@ int run_simulate(const std::vector<std::string>& argv) {
   FlowOptions defaults;
   defaults.rtol = 1e-8;
   defaults.atol = 1e-10;
-  defaults.linear_solver = default_linear_solver(*system);
   Flow flow(*system, flow_options(args, defaults));
 
   const auto names = system->state_names();

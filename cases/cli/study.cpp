@@ -153,10 +153,6 @@ int run_study(const std::vector<std::string>& argv) {
   for (std::size_t i = 0; i < study.branches.size(); ++i) {
     const auto& b = study.branches[i];
     BranchRequest r = b.request;
-    // The linear solver the CLI chooses for the case (structured above three metronomes).
-    auto& flows = r.continuation.orbit;
-    flows.shooting.flow.linear_solver = default_linear_solver(MetronomeModel(cases[i].spec));
-    flows.transient_flow.linear_solver = flows.shooting.flow.linear_solver;
     r.csv_path = out + "/" + study.name + "-" + b.name + ".csv";
     r.progress = nullptr;
     requests.push_back(r);
