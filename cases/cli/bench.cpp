@@ -7,7 +7,6 @@
 // reported as the level below which errors are not resolved. Orbits start from the same guess
 // (the orbit's state and period moved by 1e-3), so each setting does its own Newton iterations.
 #include <algorithm>
-#include <chrono>
 #include <cmath>
 #include <cstdio>
 #include <filesystem>
@@ -18,6 +17,7 @@
 #include "cases/cli/commands.hpp"
 #include "cases/cli/common.hpp"
 #include "continuation/continuation.hpp"
+#include "core/assignment.hpp"
 #include "core/csv.hpp"
 
 namespace sympathy::cli {
@@ -76,29 +76,25 @@ std::vector<std::complex<double>> nontrivial(const FloquetAnalysis& f) {
   return v;
 }
 
-// Largest distance between the multipliers and the reference's, matched nearest first.
-double multiplier_error(std::vector<std::complex<double>> a, std::vector<std::complex<double>> b) {
+// Largest distance between the multipliers and the reference's, paired by least total squared
+// distance.
+double multiplier_error(const std::vector<std::complex<double>>& a,
+                        const std::vector<std::complex<double>>& b) {
   if (a.size() != b.size()) return INFINITY;
+  const int n = static_cast<int>(a.size());
+  Eigen::MatrixXd cost(n, n);
+  for (int i = 0; i < n; ++i)
+    for (int j = 0; j < n; ++j) cost(i, j) = std::norm(a[i] - b[j]);
+  const std::vector<int> column = least_cost_assignment(cost);
   double worst = 0.0;
-  while (!a.empty()) {
-    std::size_t bi = 0, bj = 0;
-    for (std::size_t i = 0; i < a.size(); ++i)
-      for (std::size_t j = 0; j < b.size(); ++j)
-        if (std::abs(a[i] - b[j]) < std::abs(a[bi] - b[bj])) {
-          bi = i;
-          bj = j;
-        }
-    worst = std::max(worst, std::abs(a[bi] - b[bj]));
-    a.erase(a.begin() + bi);
-    b.erase(b.begin() + bj);
-  }
+  for (int i = 0; i < n; ++i) worst = std::max(worst, std::abs(a[i] - b[column[i]]));
   return worst;
 }
 
 Result solve_orbit(const MetronomeModel& model, const PeriodicOrbit& guess,
                    const InvariantSubspace& subspace, const Setting& s) {
   Result r;
-  const auto start = std::chrono::steady_clock::now();
+  const Stopwatch clock;
   try {
     const auto orbit =
         solve_periodic_orbit(model, guess.state0, guess.period, subspace, orbit_options(s));
@@ -112,14 +108,14 @@ Result solve_orbit(const MetronomeModel& model, const PeriodicOrbit& guess,
   } catch (const std::exception& e) {
     r.note = e.what();
   }
-  r.seconds = std::chrono::duration<double>(std::chrono::steady_clock::now() - start).count();
+  r.seconds = clock.seconds();
   return r;
 }
 
 // The first stability change of the anti-phase branch between k = 44 and 50 N/m.
 Result locate_branch_point(MetronomeModel& model, const PeriodicOrbit& at44, const Setting& s) {
   Result r;
-  const auto start = std::chrono::steady_clock::now();
+  const Stopwatch clock;
   try {
     ContinuationOptions o;
     o.lower = 44.0;
@@ -142,7 +138,7 @@ Result locate_branch_point(MetronomeModel& model, const PeriodicOrbit& at44, con
   } catch (const std::exception& e) {
     r.note = e.what();
   }
-  r.seconds = std::chrono::duration<double>(std::chrono::steady_clock::now() - start).count();
+  r.seconds = clock.seconds();
   return r;
 }
 
@@ -158,9 +154,9 @@ template <class F>
 double median_seconds(int repeats, F&& work) {
   std::vector<double> t;
   for (int r = 0; r < repeats; ++r) {
-    const auto start = std::chrono::steady_clock::now();
+    const Stopwatch clock;
     work();
-    t.push_back(std::chrono::duration<double>(std::chrono::steady_clock::now() - start).count());
+    t.push_back(clock.seconds());
   }
   std::sort(t.begin(), t.end());
   return t[t.size() / 2];
@@ -196,10 +192,9 @@ PointCost point_cost(const CaseFile& file, const std::string& params, const std:
   ContinuationOptions o;
   o.lower = from;
   o.upper = to;
-  const auto started = std::chrono::steady_clock::now();
   Continuation run(model, k, o);
   const Branch b = run.run(orbit, +1);
-  c.seconds = std::chrono::duration<double>(std::chrono::steady_clock::now() - started).count();
+  c.seconds = b.seconds;
   c.points = static_cast<int>(b.points.size()) - 1;  // the first is the start's
   c.integrations = b.flow.calls;
   c.events = static_cast<int>(b.events.size());
@@ -231,14 +226,15 @@ struct Scaling {
   std::string note;
 };
 
-Scaling scaling(const std::string& path, const std::string& params, LinearSolver solver,
-                double rtol) {
-  Scaling r;
+// One transient and period estimate per case (the flow's own linear solver), then one period
+// with the monodromy timed for each of `solvers` from the same state.
+std::vector<Scaling> scaling(const std::string& path, const std::string& params,
+                             const std::vector<LinearSolver>& solvers, double rtol) {
   const CaseFile file = CaseFile::load(path);
   MetronomeModel model(params.empty() ? file.spec() : file.spec(params));
-  r.metronomes = model.metronome_count();
-  r.dimension = model.dimension();
-  r.solver = to_string(solver);
+  Scaling common;
+  common.metronomes = model.metronome_count();
+  common.dimension = model.dimension();
   const auto names = file.start_names();
   const bool splay = std::find(names.begin(), names.end(), "splay") != names.end();
   const auto& start = file.start(splay ? "splay" : "in-phase");
@@ -247,26 +243,30 @@ Scaling scaling(const std::string& path, const std::string& params, LinearSolver
   plain.atol = 1e-9;
   Flow transient(model, plain);
   const Eigen::VectorXd z = transient.advance(file.initial_state(&start), 0.0, 20.0);
-  r.period = estimate_period(transient, z, 2.0, 1e-3);
-  if (!(r.period > 0.0)) {
-    r.note = "no period found after the transient";
-    return r;
+  common.period = estimate_period(transient, z, 2.0, 1e-3);
+  if (!(common.period > 0.0)) common.note = "no period found after the transient";
+  std::vector<Scaling> rows;
+  for (LinearSolver solver : solvers) {
+    Scaling r = common;
+    r.solver = to_string(solver);
+    rows.push_back(r);
+    if (!r.note.empty()) continue;
+    FlowOptions o;
+    o.rtol = rtol;
+    o.atol = rtol * 1e-2;
+    o.linear_solver = solver;
+    try {
+      Flow flow(model, o);
+      rows.back().seconds = median_seconds(r.metronomes > 16 ? 1 : 3, [&] {
+        flow.reset_statistics();
+        flow.advance_with_sensitivities(z, 0.0, r.period);
+      });
+      rows.back().steps = flow.statistics().steps;
+    } catch (const std::exception& e) {
+      rows.back().note = e.what();
+    }
   }
-  FlowOptions o;
-  o.rtol = rtol;
-  o.atol = rtol * 1e-2;
-  o.linear_solver = solver;
-  try {
-    Flow flow(model, o);
-    r.seconds = median_seconds(r.metronomes > 16 ? 1 : 3, [&] {
-      flow.reset_statistics();
-      flow.advance_with_sensitivities(z, 0.0, r.period);
-    });
-    r.steps = flow.statistics().steps;
-  } catch (const std::exception& e) {
-    r.note = e.what();
-  }
-  return r;
+  return rows;
 }
 
 }  // namespace
@@ -477,8 +477,7 @@ int run_bench(const std::vector<std::string>& argv) {
       // O(n^2) per column solved, n + 1 columns per step.
       std::vector<LinearSolver> solvers{LinearSolver::Structured};
       if (count <= 16) solvers.insert(solvers.begin(), LinearSolver::Dense);
-      for (LinearSolver solver : solvers) {
-        const Scaling r = scaling(path, count == 2 ? "table2" : "", solver, 1e-9);
+      for (const Scaling& r : scaling(path, count == 2 ? "table2" : "", solvers, 1e-9)) {
         table.row(std::vector<std::string>{
             std::to_string(r.metronomes), std::to_string(r.dimension), r.solver,
             format(r.period, "%.6f"), std::to_string(r.steps), format(r.seconds, "%.3f"), r.note});
