@@ -1,5 +1,6 @@
 #include "cases/case_file.hpp"
 #include "cases/names.hpp"
+#include "cases/toml_reader.hpp"
 
 #include <toml++/toml.h>
 
@@ -14,77 +15,6 @@
 namespace sympathy {
 
 namespace {
-
-std::string format_number(double v) {
-  std::ostringstream s;
-  s.precision(12);
-  s << v;
-  return s.str();
-}
-
-// Locations and errors inside one file.
-class Reader {
- public:
-  explicit Reader(std::string path) : path_(std::move(path)) {}
-
-  std::string where(int line) const { return path_ + ":" + std::to_string(line); }
-  std::string where(const toml::node& node) const {
-    return where(static_cast<int>(node.source().begin.line));
-  }
-
-  [[noreturn]] void fail(int line, const std::string& key, const std::string& expected,
-                         const std::string& got = "") const {
-    std::string msg = where(line) + ": key '" + key + "': expected " + expected;
-    if (!got.empty()) msg += ", got " + got;
-    throw InputError(msg);
-  }
-  [[noreturn]] void fail(const toml::node& node, const std::string& key,
-                         const std::string& expected) const {
-    fail(static_cast<int>(node.source().begin.line), key, expected, describe(node));
-  }
-
-  static std::string describe(const toml::node& node) {
-    if (node.is_string()) return "\"" + std::string(*node.value<std::string_view>()) + "\"";
-    if (node.is_number()) return format_number(*node.value<double>());
-    if (node.is_boolean()) return *node.value<bool>() ? "true" : "false";
-    if (node.is_table()) return "a table";
-    if (node.is_array()) return "an array";
-    return "a value of another type";
-  }
-
-  // Rejects any key of `table` not in `allowed`.
-  void only(const toml::table& table, const std::string& prefix,
-            const std::vector<std::string>& allowed) const {
-    for (auto&& [key, node] : table) {
-      const std::string k(key.str());
-      if (std::find(allowed.begin(), allowed.end(), k) == allowed.end())
-        fail(static_cast<int>(key.source().begin.line), prefix + k,
-             "one of the keys " + join(allowed) + " (unknown key)");
-    }
-  }
-
-  double number(const toml::node& node, const std::string& key) const {
-    if (!node.is_number()) fail(node, key, "a number");
-    const double v = *node.value<double>();
-    if (!std::isfinite(v)) fail(node, key, "a finite number");
-    return v;
-  }
-
-  const toml::table& table(const toml::node& node, const std::string& key) const {
-    if (!node.is_table()) fail(node, key, "a table");
-    return *node.as_table();
-  }
-
-  std::string string(const toml::node& node, const std::string& key) const {
-    if (!node.is_string()) fail(node, key, "a string");
-    return std::string(*node.value<std::string_view>());
-  }
-
-  const std::string& path() const { return path_; }
-
- private:
-  std::string path_;
-};
 
 Relation parse_relation(const std::string& text, const std::vector<std::string>& positions,
                         const std::function<void(const std::string&)>& fail) {
@@ -134,20 +64,9 @@ Assignment parse_assignment(const std::string& text, const std::string& option) 
   return a;
 }
 
-toml::table read_toml(const std::string& path, const std::string& what) {
-  if (!std::filesystem::is_regular_file(path))
-    throw InputError(path + ": cannot read the " + what + " (no such file)");
-  try {
-    return toml::parse_file(path);
-  } catch (const toml::parse_error& e) {
-    throw InputError(path + ":" + std::to_string(e.source().begin.line) +
-                     ": not valid TOML: " + std::string(e.description()));
-  }
-}
-
 CaseFile CaseFile::load(const std::string& path) {
   const toml::table root = read_toml(path, "case file");
-  Reader in(path);
+  TomlReader in(path);
   CaseFile c;
   c.path_ = path;
   c.name_ = std::filesystem::path(path).stem().string();

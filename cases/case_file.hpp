@@ -13,6 +13,7 @@
 #include <Eigen/Dense>
 
 #include "cases/metronome_model.hpp"
+#include "cases/toml_reader.hpp"
 #include "core/errors.hpp"
 #include "core/invariant_subspace.hpp"
 
@@ -51,10 +52,6 @@ struct ParameterSet {
   std::vector<Entry> entries;
   int line = 0;
 };
-
-// A TOML file's table; InputError naming the file (and the line) when it is missing or not
-// valid TOML. `what` says what the file is, e.g. "case file".
-toml::table read_toml(const std::string& path, const std::string& what);
 
 class CaseFile {
  public:

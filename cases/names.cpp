@@ -1,5 +1,7 @@
 #include "cases/names.hpp"
 
+#include <sstream>
+
 #include <cctype>
 
 namespace sympathy {
@@ -15,6 +17,13 @@ std::pair<std::string, int> split_index(const std::string& name) {
   while (k > 0 && std::isdigit(static_cast<unsigned char>(name[k - 1]))) --k;
   if (k == name.size() || k == 0 || name[k] == '0') return {name, 0};
   return {name.substr(0, k), std::stoi(name.substr(k))};
+}
+
+std::string format_number(double v) {
+  std::ostringstream s;
+  s.precision(12);
+  s << v;
+  return s.str();
 }
 
 }  // namespace sympathy

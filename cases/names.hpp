@@ -14,4 +14,7 @@ std::string join(const std::vector<std::string>& items, const std::string& separ
 // one with a leading zero, which no index has).
 std::pair<std::string, int> split_index(const std::string& name);
 
+// A number for a message: 12 significant digits, no trailing zeros.
+std::string format_number(double v);
+
 }  // namespace sympathy

@@ -26,36 +26,10 @@ struct Study {
   std::vector<StudyBranch> branches;
 };
 
-[[noreturn]] void fail(const std::string& path, const toml::node& node, const std::string& key,
-                       const std::string& expected) {
-  throw InputError(path + ":" + std::to_string(node.source().begin.line) + ": key '" + key +
-                   "': expected " + expected);
-}
-
-double number(const std::string& path, const toml::node& node, const std::string& key) {
-  if (!node.is_number() || !std::isfinite(*node.value<double>()))
-    fail(path, node, key, "a finite number");
-  return *node.value<double>();
-}
-
-std::string text(const std::string& path, const toml::node& node, const std::string& key) {
-  if (!node.is_string()) fail(path, node, key, "a string");
-  return std::string(*node.value<std::string_view>());
-}
-
-void only(const std::string& path, const toml::table& t, const std::string& prefix,
-          const std::vector<std::string>& allowed) {
-  for (auto&& [k, v] : t) {
-    const std::string key(k.str());
-    if (std::find(allowed.begin(), allowed.end(), key) == allowed.end())
-      throw InputError(path + ":" + std::to_string(k.source().begin.line) + ": key '" + prefix +
-                       key + "': expected one of the keys " + join(allowed) + " (unknown key)");
-  }
-}
-
 Study load_study(const std::string& path) {
   const toml::table root = read_toml(path, "study file");
-  only(path, root, "", {"title", "case", "params", "parameter", "axis", "branches"});
+  const TomlReader in(path);
+  in.only(root, "", {"title", "case", "params", "parameter", "axis", "branches"});
   Study s;
   s.path = path;
   s.name = std::filesystem::path(path).stem().string();
@@ -64,50 +38,48 @@ Study load_study(const std::string& path) {
     if (!n) throw InputError(path + ": key '" + key + "' is missing");
     return *n;
   };
-  s.title = root.get("title") ? text(path, *root.get("title"), "title") : s.name;
-  const std::string case_file = text(path, required("case"), "case");
+  s.title = root.get("title") ? in.string(*root.get("title"), "title") : s.name;
+  const std::string case_file = in.string(required("case"), "case");
   s.case_path = (std::filesystem::path(path).parent_path() / case_file).lexically_normal().string();
-  if (root.get("params")) s.params = text(path, *root.get("params"), "params");
-  s.parameter = text(path, required("parameter"), "parameter");
-  s.axis = root.get("axis") ? text(path, *root.get("axis"), "axis") : "phase";
+  if (root.get("params")) s.params = in.string(*root.get("params"), "params");
+  s.parameter = in.string(required("parameter"), "parameter");
+  s.axis = root.get("axis") ? in.string(*root.get("axis"), "axis") : "phase";
   if (s.axis != "phase" && s.axis != "frequency")
-    fail(path, *root.get("axis"), "axis", "\"phase\" or \"frequency\"");
+    in.fail(*root.get("axis"), "axis", "\"phase\" or \"frequency\"");
   const toml::node& list = required("branches");
   if (!list.is_array_of_tables() || list.as_array()->empty())
-    fail(path, list, "branches", "one or more [[branches]] tables");
+    in.fail(list, "branches", "one or more [[branches]] tables");
   int index = 0;
   for (const auto& entry : *list.as_array()) {
     ++index;
     const std::string prefix = "branches[" + std::to_string(index) + "].";
     const auto& t = *entry.as_table();
-    only(path, t, prefix,
-         {"name", "start", "from", "to", "at", "set", "initial", "max_points", "step", "max_step",
-          "transient"});
+    in.only(t, prefix,
+            {"name", "start", "from", "to", "at", "set", "initial", "max_points", "step",
+             "max_step", "transient"});
     StudyBranch b;
     for (const char* key : {"name", "start", "from", "to"})
       if (!t.get(key))
         throw InputError(path + ":" + std::to_string(entry.source().begin.line) + ": key '" +
                          prefix + key + "' is missing");
-    b.name = text(path, *t.get("name"), prefix + "name");
-    b.request.start = text(path, *t.get("start"), prefix + "start");
+    b.name = in.string(*t.get("name"), prefix + "name");
+    b.request.start = in.string(*t.get("start"), prefix + "start");
     b.request.parameter = s.parameter;
-    b.request.from = number(path, *t.get("from"), prefix + "from");
-    b.request.to = number(path, *t.get("to"), prefix + "to");
-    if (auto* n = t.get("at")) b.request.at = number(path, *n, prefix + "at");
-    if (auto* n = t.get("transient")) b.request.transient = number(path, *n, prefix + "transient");
+    b.request.from = in.number(*t.get("from"), prefix + "from");
+    b.request.to = in.number(*t.get("to"), prefix + "to");
+    if (auto* n = t.get("at")) b.request.at = in.number(*n, prefix + "at");
+    if (auto* n = t.get("transient")) b.request.transient = in.number(*n, prefix + "transient");
     auto& o = b.request.continuation;
-    if (auto* n = t.get("max_points"))
-      o.max_points = static_cast<int>(number(path, *n, prefix + "max_points"));
-    if (auto* n = t.get("step")) o.initial_step = number(path, *n, prefix + "step");
-    if (auto* n = t.get("max_step")) o.max_step = number(path, *n, prefix + "max_step");
+    if (auto* n = t.get("max_points")) o.max_points = in.integer(*n, prefix + "max_points");
+    if (auto* n = t.get("step")) o.initial_step = in.number(*n, prefix + "step");
+    if (auto* n = t.get("max_step")) o.max_step = in.number(*n, prefix + "max_step");
     for (const char* group : {"set", "initial"}) {
       const toml::node* n = t.get(group);
       if (!n) continue;
-      if (!n->is_table()) fail(path, *n, prefix + group, "a table of NAME = VALUE");
+      if (!n->is_table()) in.fail(*n, prefix + group, "a table of NAME = VALUE");
       for (auto&& [k, v] : *n->as_table()) {
         Assignment a{std::string(k.str()),
-                     number(path, v, prefix + group + "." + std::string(k.str())),
-                     path + ":" + std::to_string(v.source().begin.line)};
+                     in.number(v, prefix + group + "." + std::string(k.str())), in.where(v)};
         (std::string(group) == "set" ? b.sets : b.request.initial).push_back(a);
       }
     }

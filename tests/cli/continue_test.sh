@@ -49,5 +49,9 @@ printf 'case = "../row2.toml"\nparameter = "k"\ncolour = 3\n' > "$work/bad.toml"
 "$bin" study "$work/bad.toml" --out "$work" 2> "$work/bad.err"
 check "study with an unknown key exits 2" test $? -eq 2
 check "study error names file, line and key" grep -q "bad.toml:3: key 'colour'" "$work/bad.err"
+printf 'case = "%s"\nparameter = "k"\n[[branches]]\nname = "a"\nstart = "anti-phase"\nfrom = 1.0\nto = 2.0\nmax_points = 2.5\n' "$src/cases/row2.toml" > "$work/bad.toml"
+"$bin" study "$work/bad.toml" --out "$work" 2> "$work/bad.err"
+check "study refuses a fractional max_points, saying what it got" \
+  grep -q "bad.toml:8: key 'branches\[1\].max_points': expected an integer, got 2.5" "$work/bad.err"
 
 exit $failures

@@ -1,0 +1,89 @@
+#include "cases/toml_reader.hpp"
+
+#include <algorithm>
+#include <cmath>
+#include <filesystem>
+
+#include "cases/names.hpp"
+#include "core/errors.hpp"
+
+namespace sympathy {
+
+toml::table read_toml(const std::string& path, const std::string& what) {
+  if (!std::filesystem::is_regular_file(path))
+    throw InputError(path + ": cannot read the " + what + " (no such file)");
+  try {
+    return toml::parse_file(path);
+  } catch (const toml::parse_error& e) {
+    throw InputError(path + ":" + std::to_string(e.source().begin.line) +
+                     ": not valid TOML: " + std::string(e.description()));
+  }
+}
+
+std::string TomlReader::where(int line) const {
+  return path_ + ":" + std::to_string(line);
+}
+
+std::string TomlReader::where(const toml::node& node) const {
+  return where(static_cast<int>(node.source().begin.line));
+}
+
+void TomlReader::fail(int line, const std::string& key, const std::string& expected,
+                      const std::string& got) const {
+  std::string msg = where(line) + ": key '" + key + "': expected " + expected;
+  if (!got.empty()) msg += ", got " + got;
+  throw InputError(msg);
+}
+
+void TomlReader::fail(const toml::node& node, const std::string& key,
+                      const std::string& expected) const {
+  fail(static_cast<int>(node.source().begin.line), key, expected, describe(node));
+}
+
+std::string TomlReader::describe(const toml::node& node) {
+  if (node.is_string()) {
+    std::string quoted = "\"";
+    quoted += *node.value<std::string_view>();
+    quoted += '"';
+    return quoted;
+  }
+  if (node.is_number()) return format_number(*node.value<double>());
+  if (node.is_boolean()) return *node.value<bool>() ? "true" : "false";
+  if (node.is_table()) return "a table";
+  if (node.is_array()) return "an array";
+  return "a value of another type";
+}
+
+void TomlReader::only(const toml::table& table, const std::string& prefix,
+                      const std::vector<std::string>& allowed) const {
+  for (auto&& [key, node] : table) {
+    const std::string k(key.str());
+    if (std::find(allowed.begin(), allowed.end(), k) == allowed.end())
+      fail(static_cast<int>(key.source().begin.line), prefix + k,
+           "one of the keys " + join(allowed) + " (unknown key)");
+  }
+}
+
+double TomlReader::number(const toml::node& node, const std::string& key) const {
+  if (!node.is_number()) fail(node, key, "a number");
+  const double v = *node.value<double>();
+  if (!std::isfinite(v)) fail(node, key, "a finite number");
+  return v;
+}
+
+int TomlReader::integer(const toml::node& node, const std::string& key) const {
+  if (!node.is_integer()) fail(node, key, "an integer");
+  return static_cast<int>(*node.value<int64_t>());
+}
+
+const toml::table& TomlReader::table(const toml::node& node, const std::string& key) const {
+  if (!node.is_table()) fail(node, key, "a table");
+  return *node.as_table();
+}
+
+std::string TomlReader::string(const toml::node& node, const std::string& key) const {
+  if (!node.is_string()) fail(node, key, "a string");
+  return std::string(*node.value<std::string_view>());
+}
+
+}  // namespace sympathy
