@@ -18,16 +18,9 @@ int index_of(const std::vector<std::string>& names, const std::string& name) {
   return it == names.end() ? -1 : static_cast<int>(it - names.begin());
 }
 
-// Splits "d12" into ("d", "12").
-std::string base_name(const std::string& name) {
-  std::size_t k = name.size();
-  while (k > 0 && std::isdigit(static_cast<unsigned char>(name[k - 1]))) --k;
-  return name.substr(0, k);
-}
-
 // A parameter that may take either sign (the rest are physically positive or non-negative).
 bool signed_parameter(const std::string& name) {
-  return base_name(name) == "angle";
+  return split_index(name).first == "angle";
 }
 
 double rms(const Eigen::VectorXd& v) {

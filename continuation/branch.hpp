@@ -58,6 +58,13 @@ struct StepRejections {
   int turn = 0;         // the tangent turned too far
   int multipliers = 0;  // multipliers near the circle moved too far, or ambiguously
   int location = 0;     // a bifurcation in the step could not be located
+  StepRejections& operator+=(const StepRejections& o) {
+    corrector += o.corrector;
+    turn += o.turn;
+    multipliers += o.multipliers;
+    location += o.location;
+    return *this;
+  }
 };
 
 struct Branch {

@@ -149,20 +149,14 @@ BranchResult run_branch(const LoadedCase& c, const BranchRequest& request,
     for (auto& e : backward.events) branch.events.push_back(std::move(e));
     branch.stop_reason = "backward: " + backward.stop_reason + "; forward: " + forward.stop_reason;
     branch.flow += backward.flow;
-    branch.rejected.corrector += backward.rejected.corrector;
-    branch.rejected.turn += backward.rejected.turn;
-    branch.rejected.multipliers += backward.rejected.multipliers;
-    branch.rejected.location += backward.rejected.location;
+    branch.rejected += backward.rejected;
   } else {
     branch.stop_reason = forward.stop_reason;
   }
   for (auto& p : forward.points) branch.points.push_back(std::move(p));
   for (auto& e : forward.events) branch.events.push_back(std::move(e));
   branch.flow += forward.flow;
-  branch.rejected.corrector += forward.rejected.corrector;
-  branch.rejected.turn += forward.rejected.turn;
-  branch.rejected.multipliers += forward.rejected.multipliers;
-  branch.rejected.location += forward.rejected.location;
+  branch.rejected += forward.rejected;
   // Along the branch: by the point before each event, then by arclength from it (the backward
   // part's indices are negative and its arclength runs the other way).
   std::stable_sort(branch.events.begin(), branch.events.end(), [](const auto& a, const auto& b) {
