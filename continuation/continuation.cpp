@@ -1,7 +1,6 @@
 #include "continuation/continuation.hpp"
 
 #include <algorithm>
-#include <chrono>
 #include <cmath>
 #include <limits>
 #include <sstream>
@@ -9,6 +8,7 @@
 #include "continuation/broyden.hpp"
 #include "core/assignment.hpp"
 #include "core/linear_solve.hpp"
+#include "core/text.hpp"
 
 namespace sympathy {
 
@@ -401,15 +401,14 @@ ContinuationPoint Continuation::make_point(const Corrected& c, const Eigen::Vect
 Branch Continuation::run(const PeriodicOrbit& start, int direction,
                          const ContinuationCallbacks& callbacks,
                          const Eigen::VectorXd& initial_tangent) {
-  const auto started = std::chrono::steady_clock::now();
+  const Stopwatch started;
   Branch branch;
   branch.parameter_name = system_.parameter_names()[parameter_];
   problem_->reset_statistics();
   auto finish = [&](const std::string& reason) {
     branch.stop_reason = reason;
     branch.flow = problem_->statistics();
-    branch.seconds =
-        std::chrono::duration<double>(std::chrono::steady_clock::now() - started).count();
+    branch.seconds = started.seconds();
     return branch;
   };
   const int N = problem_->unknowns();

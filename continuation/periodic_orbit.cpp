@@ -1,10 +1,10 @@
 #include "continuation/periodic_orbit.hpp"
 
-#include <chrono>
 #include <cmath>
 #include <sstream>
 
 #include "core/linear_solve.hpp"
+#include "core/text.hpp"
 
 namespace sympathy {
 
@@ -30,10 +30,6 @@ Eigen::VectorXd project_unknowns(const InvariantSubspace& subspace, Eigen::Vecto
   return x;
 }
 
-double seconds_since(std::chrono::steady_clock::time_point start) {
-  return std::chrono::duration<double>(std::chrono::steady_clock::now() - start).count();
-}
-
 }  // namespace
 
 FloquetAnalysis shooting_floquet(const ShootingProblem& problem,
@@ -52,7 +48,7 @@ FloquetAnalysis shooting_floquet(const ShootingProblem& problem,
 PeriodicOrbit solve_periodic_orbit(const OdeSystem& system, const Eigen::VectorXd& z0,
                                    double period, const InvariantSubspace& subspace,
                                    const OrbitOptions& options) {
-  const auto started = std::chrono::steady_clock::now();
+  const Stopwatch started;
   ShootingProblem problem(system, options.shooting, period);
   const int n = problem.dimension(), m = problem.segments();
   PeriodicOrbit orbit;
@@ -75,7 +71,7 @@ PeriodicOrbit solve_periodic_orbit(const OdeSystem& system, const Eigen::VectorX
     orbit.state0 = z;
     orbit.period = period;
     orbit.flow = problem.statistics();
-    orbit.seconds = seconds_since(started);
+    orbit.seconds = started.seconds();
     return orbit;
   }
   double norm = inf_norm(e.residual);
@@ -140,7 +136,7 @@ PeriodicOrbit solve_periodic_orbit(const OdeSystem& system, const Eigen::VectorX
   orbit.floquet =
       shooting_floquet(problem, e, orbit.state0, orbit.family_dimension, options.floquet);
   orbit.flow = problem.statistics();
-  orbit.seconds = seconds_since(started);
+  orbit.seconds = started.seconds();
   return orbit;
 }
 
@@ -168,7 +164,7 @@ double estimate_period(Flow& flow, const Eigen::VectorXd& z, double max_period, 
 
 PeriodicOrbit find_periodic_orbit(const OdeSystem& system, const Eigen::VectorXd& start,
                                   const InvariantSubspace& subspace, const OrbitOptions& options) {
-  const auto started = std::chrono::steady_clock::now();
+  const Stopwatch started;
   if (!system.autonomous())
     throw std::invalid_argument("find_periodic_orbit: for autonomous systems; give the period");
   Flow flow(system, options.transient_flow);
@@ -192,7 +188,7 @@ PeriodicOrbit find_periodic_orbit(const OdeSystem& system, const Eigen::VectorXd
                            " s after the transient (an equilibrium, or a longer period?)";
     failed.state0 = z;
     failed.flow = flow.statistics();
-    failed.seconds = seconds_since(started);
+    failed.seconds = started.seconds();
     return failed;
   }
   PeriodicOrbit orbit = solve_periodic_orbit(system, z, period, subspace, options);
@@ -215,7 +211,7 @@ PeriodicOrbit find_periodic_orbit(const OdeSystem& system, const Eigen::VectorXd
     }
   }
   orbit.flow += flow.statistics();
-  orbit.seconds = seconds_since(started);
+  orbit.seconds = started.seconds();
   return orbit;
 }
 

@@ -1,5 +1,7 @@
 #include "core/csv.hpp"
 
+#include "core/text.hpp"
+
 #include <charconv>
 #include <cmath>
 #include <fstream>
@@ -78,12 +80,6 @@ std::vector<std::string> split_fields(const std::string& line) {
   return fields;
 }
 
-std::string list(const std::vector<std::string>& names) {
-  std::string out;
-  for (const auto& n : names) out += (out.empty() ? "" : ", ") + n;
-  return out;
-}
-
 }  // namespace
 
 CsvTable read_csv(const std::string& path) {
@@ -111,7 +107,7 @@ CsvTable read_csv(const std::string& path) {
   }
   const std::size_t width = table.header.size();
   const std::string expected =
-      std::string("expected ") + std::to_string(width) + " fields (" + list(table.header) + ")";
+      std::string("expected ") + std::to_string(width) + " fields (" + join(table.header) + ")";
   for (std::size_t l = 1; l < lines.size(); ++l) {
     const int line_number = static_cast<int>(l) + 1;
     const std::string where = path + ":" + std::to_string(line_number);

@@ -2,6 +2,8 @@
 
 #include <stdexcept>
 
+#include "core/text.hpp"
+
 namespace sympathy {
 
 int OdeSystem::parameter_index(std::string_view name) const {
@@ -9,8 +11,7 @@ int OdeSystem::parameter_index(std::string_view name) const {
   for (int i = 0; i < static_cast<int>(names.size()); ++i) {
     if (names[i] == name) return i;
   }
-  std::string known;
-  for (const auto& n : names) known += (known.empty() ? "" : ", ") + n;
+  const std::string known = join(names);
   throw std::invalid_argument("unknown parameter '" + std::string(name) +
                               "'; expected one of: " + known);
 }

@@ -4,14 +4,14 @@
 
 #include "core/csv.hpp"
 #include "core/errors.hpp"
+#include "core/text.hpp"
 
 namespace sympathy {
 
 Recording read_recording(const std::string& path, const std::vector<std::string>& state_names,
                          const std::string& system) {
   const CsvTable table = read_csv(path);
-  std::string known;
-  for (const auto& n : state_names) known += (known.empty() ? "" : ", ") + n;
+  const std::string known = join(state_names);
   if (table.header[0] != "t")
     throw InputError(path + ":1: column 1 is '" + table.header[0] +
                      "'; expected 't' (time in s) first, then state columns of " + system + " (" +

@@ -3,10 +3,11 @@
 #include <nlopt.hpp>
 
 #include <algorithm>
-#include <chrono>
 #include <cmath>
 #include <cstdio>
 #include <stdexcept>
+
+#include "core/text.hpp"
 
 namespace sympathy {
 
@@ -45,12 +46,6 @@ std::string to_string(GlobalMethod m) {
 }
 
 namespace {
-
-using Clock = std::chrono::steady_clock;
-
-double seconds_since(Clock::time_point t) {
-  return std::chrono::duration<double>(Clock::now() - t).count();
-}
 
 // Rows of the residual vector: (sample, column) pairs, the initial time's fixed ones left out.
 struct ResidualLayout {
@@ -446,7 +441,7 @@ int residual_count(const TrajectoryFitProblem& problem) {
 
 TrajectoryFitResult fit_trajectory(OdeSystem& system, const TrajectoryFitProblem& pb,
                                    const TrajectoryFitOptions& o) {
-  const auto t_start = Clock::now();
+  const Stopwatch t_start;
   // Check the problem.
   const int n = system.dimension();
   const int samples = static_cast<int>(pb.times.size());
@@ -523,7 +518,7 @@ TrajectoryFitResult fit_trajectory(OdeSystem& system, const TrajectoryFitProblem
 
   // Global stage.
   if (o.global != GlobalMethod::None) {
-    const auto t0 = Clock::now();
+    const Stopwatch t0;
     const int before = ev.evaluations();
     Bounds box{Eigen::VectorXd(p), Eigen::VectorXd(p)};
     for (int j = 0; j < p; ++j) {
@@ -562,20 +557,20 @@ TrajectoryFitResult fit_trajectory(OdeSystem& system, const TrajectoryFitProblem
       rss_now = ev.best_rss();
     }
     result.stages.push_back({"global", to_string(o.global), ev.evaluations() - before,
-                             result.rss_start, rss_now, reason, seconds_since(t0)});
+                             result.rss_start, rss_now, reason, t0.seconds()});
   }
 
   // Local stage, and the polish.
   LocalOutcome final;
   {
-    const auto t0 = Clock::now();
+    const Stopwatch t0;
     // The start's integration is the local stage's first when it takes it over.
     const int before = local_from_start ? before_start : ev.evaluations();
     const double rss_before = rss_now;
     if (o.local == LocalMethod::LevenbergMarquardt) {
       final = levenberg_marquardt(ev, u, bounds, o, local_from_start ? &at_start : nullptr);
       result.stages.push_back({"local", to_string(o.local), ev.evaluations() - before, rss_before,
-                               final.r.squaredNorm(), final.reason, seconds_since(t0)});
+                               final.r.squaredNorm(), final.reason, t0.seconds()});
     } else {
       nlopt::opt opt(nlopt_local(o.local), static_cast<unsigned>(p));
       auto finite_or = [](double v, double inf) { return std::isfinite(v) ? v : inf; };
@@ -596,14 +591,14 @@ TrajectoryFitResult fit_trajectory(OdeSystem& system, const TrajectoryFitProblem
       u = best;
       rss_now = ev.best_rss();
       result.stages.push_back({"local", to_string(o.local), ev.evaluations() - before, rss_before,
-                               rss_now, reason, seconds_since(t0)});
-      const auto t1 = Clock::now();
+                               rss_now, reason, t0.seconds()});
+      const Stopwatch t1;
       const int before_polish = ev.evaluations();
       if (o.polish) {
         final = levenberg_marquardt(ev, u, bounds, o);
         result.stages.push_back({"polish", "Gauss-Newton (Levenberg-Marquardt)",
                                  ev.evaluations() - before_polish, rss_now, final.r.squaredNorm(),
-                                 final.reason, seconds_since(t1)});
+                                 final.reason, t1.seconds()});
       } else {
         final.u = u;
         final.converged = converged;
@@ -673,7 +668,7 @@ TrajectoryFitResult fit_trajectory(OdeSystem& system, const TrajectoryFitProblem
   result.evaluations = ev.evaluations();
   result.jacobian_evaluations = ev.jacobian_evaluations();
   result.statistics = ev.flow().statistics();
-  result.seconds = seconds_since(t_start);
+  result.seconds = t_start.seconds();
   return result;
 }
 

@@ -2,7 +2,6 @@
 // integrator options from the command line, and timing.
 #pragma once
 
-#include <chrono>
 #include <string>
 #include <vector>
 
@@ -29,15 +28,5 @@ LoadedCase load_case(const Arguments& args);
 // The integrator options on top of `defaults`; without --linear-solver, defaults.linear_solver
 // (by default Automatic: the flow chooses, see LinearSolver).
 FlowOptions flow_options(const Arguments& args, FlowOptions defaults);
-
-class Stopwatch {
- public:
-  double seconds() const {
-    return std::chrono::duration<double>(std::chrono::steady_clock::now() - start_).count();
-  }
-
- private:
-  std::chrono::steady_clock::time_point start_ = std::chrono::steady_clock::now();
-};
 
 }  // namespace sympathy::cli
