@@ -1,4 +1,6 @@
 #include "cases/case_file.hpp"
+#include "tests/support/cases.hpp"
+#include "tests/support/errors.hpp"
 
 #include <gtest/gtest.h>
 
@@ -8,9 +10,10 @@
 namespace sympathy {
 namespace {
 
-std::string case_path(const std::string& name) {
-  return std::string(SYMPATHY_SOURCE_DIR) + "/cases/" + name + ".toml";
-}
+using testing::case_path;
+using testing::expect_mentions;
+using testing::load_spec;
+using testing::random_state;
 
 // A small valid row case; tests replace one line to make one mistake.
 const std::string kValid = R"(name = "tiny"
@@ -66,20 +69,9 @@ class CaseFileErrors : public ::testing::Test {
     text.replace(at, from.size(), to);
     return write(text);
   }
-  // The message of the InputError thrown by f; fails the test if none is thrown.
   template <class F>
   std::string error_of(F&& f) {
-    try {
-      f();
-    } catch (const InputError& e) {
-      return e.what();
-    }
-    ADD_FAILURE() << "no InputError thrown";
-    return "";
-  }
-  void expect_mentions(const std::string& message, std::initializer_list<std::string> parts) {
-    for (const auto& p : parts)
-      EXPECT_NE(message.find(p), std::string::npos) << "'" << p << "' not in: " << message;
+    return testing::input_error_of(f);
   }
   std::string path_;
 };

@@ -15,9 +15,12 @@
 #include "cases/metronome_model.hpp"
 #include "cases/platform_model.hpp"
 #include "core/csv.hpp"
+#include "tests/support/errors.hpp"
 
 namespace sympathy {
 namespace {
+
+using testing::expect_mentions;
 
 std::string source(const std::string& path) {
   return std::string(SYMPATHY_SOURCE_DIR) + "/" + path;
@@ -231,17 +234,7 @@ class FitRequestErrors : public ::testing::Test {
     std::ofstream(data_) << "t,x\n0,0.01\n0.1,0.008\n0.2,0.004\n0.3,-0.001\n";
   }
   std::string error_of(const FitRequest& request) {
-    try {
-      prepare_fit(file_, spec_, request);
-    } catch (const InputError& e) {
-      return e.what();
-    }
-    ADD_FAILURE() << "no InputError thrown";
-    return "";
-  }
-  void expect_mentions(const std::string& message, std::initializer_list<std::string> parts) {
-    for (const auto& p : parts)
-      EXPECT_NE(message.find(p), std::string::npos) << "'" << p << "' not in: " << message;
+    return testing::input_error_of([&] { prepare_fit(file_, spec_, request); });
   }
   FitRequest request(std::vector<std::string> free, bool locked = true) {
     FitRequest r;
@@ -301,12 +294,8 @@ TEST_F(FitRequestErrors, InitialValueOfARecordedState) {
 TEST_F(FitRequestErrors, FreeParameterStartingAtZero) {
   ModelSpec spec = spec_;
   spec.set("c", 0.0);
-  try {
-    prepare_fit(file_, spec, request({"c"}));
-    ADD_FAILURE() << "no InputError thrown";
-  } catch (const InputError& e) {
-    expect_mentions(e.what(), {"--free c", "starting value is 0", "positive start", "--set c="});
-  }
+  expect_mentions(testing::input_error_of([&] { prepare_fit(file_, spec, request({"c"})); }),
+                  {"--free c", "starting value is 0", "positive start", "--set c="});
 }
 
 TEST_F(FitRequestErrors, RangeOfAnUnfittedName) {

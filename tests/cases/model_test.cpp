@@ -8,38 +8,14 @@
 
 #include "cases/case_file.hpp"
 #include "core/flow.hpp"
+#include "tests/support/cases.hpp"
 
 namespace sympathy {
 namespace {
 
-std::string case_path(const std::string& name) {
-  return std::string(SYMPATHY_SOURCE_DIR) + "/cases/" + name + ".toml";
-}
-
-ModelSpec load_spec(const std::string& name, const std::string& params = "",
-                    Escapement escapement = Escapement::Half) {
-  ModelSpec spec = CaseFile::load(case_path(name)).spec(params);
-  spec.escapement = escapement;
-  return spec;
-}
-
-// Random states of the size of real swings: angles up to 0.8 rad, velocities up to 4 rad/s,
-// platform displacements of millimetres.
-Eigen::VectorXd random_state(const MetronomeModel& model, std::mt19937& rng) {
-  std::uniform_real_distribution<double> u(-1.0, 1.0);
-  Eigen::VectorXd z(model.dimension());
-  const int D = model.platform_directions();
-  const int m = D + model.metronome_count();
-  for (int a = 0; a < D; ++a) {
-    z[a] = 2e-3 * u(rng);
-    z[m + a] = 2e-2 * u(rng);
-  }
-  for (int i = 0; i < model.metronome_count(); ++i) {
-    z[D + i] = 0.8 * u(rng);
-    z[m + D + i] = 4.0 * u(rng);
-  }
-  return z;
-}
+using testing::case_path;
+using testing::load_spec;
+using testing::random_state;
 
 Eigen::MatrixXd finite_difference_jacobian(const OdeSystem& s, const Eigen::VectorXd& z) {
   const int n = s.dimension();

@@ -7,13 +7,14 @@
 #include "cases/case_file.hpp"
 #include "continuation/periodic_orbit.hpp"
 #include "continuation/shooting.hpp"
+#include "tests/support/cases.hpp"
 
 namespace sympathy {
 namespace {
 
-std::string case_path(const std::string& name) {
-  return std::string(SYMPATHY_SOURCE_DIR) + "/cases/" + name + ".toml";
-}
+using testing::case_path;
+using testing::load_spec;
+using testing::random_state;
 
 struct Found {
   std::unique_ptr<MetronomeModel> model;

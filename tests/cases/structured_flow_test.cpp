@@ -9,13 +9,14 @@
 #include "cases/metronome_model.hpp"
 #include "continuation/periodic_orbit.hpp"
 #include "core/flow.hpp"
+#include "tests/support/cases.hpp"
 
 namespace sympathy {
 namespace {
 
-std::string case_path(const std::string& name) {
-  return std::string(SYMPATHY_SOURCE_DIR) + "/cases/" + name + ".toml";
-}
+using testing::case_path;
+using testing::load_spec;
+using testing::random_state;
 
 FlowOptions options(LinearSolver solver) {
   FlowOptions o;
@@ -73,11 +74,27 @@ TEST(StructuredFlow, SameStateAsDenseWithImpulsiveEscapement) {
   EXPECT_LE((a - b).cwiseAbs().maxCoeff(), 1e-7 * a.cwiseAbs().maxCoeff());
 }
 
-TEST(StructuredFlow, RefusesDifferenceQuotients) {
-  const MetronomeModel model(CaseFile::load(case_path("row2")).spec("table2"));
-  FlowOptions o = options(LinearSolver::Structured);
-  o.derivatives = Derivatives::DifferenceQuotients;
-  EXPECT_THROW(Flow(model, o), std::invalid_argument);
+// The automatic choice: structured above three metronomes (where bench section (e) measured it
+// faster), dense at two and three, and dense with difference quotients; an explicit choice stands.
+TEST(StructuredFlow, AutomaticChoiceOfTheLinearSolver) {
+  auto resolved = [](const std::string& name, const std::string& params, FlowOptions o) {
+    return resolved_linear_solver(MetronomeModel(load_spec(name, params)), o);
+  };
+  const FlowOptions automatic;
+  EXPECT_EQ(automatic.linear_solver, LinearSolver::Automatic);
+  EXPECT_EQ(resolved("row2", "table2", automatic), LinearSolver::Dense);
+  EXPECT_EQ(resolved("cross4", "table4", automatic), LinearSolver::Structured);
+  EXPECT_EQ(resolved("cross4_spring", "table4", automatic), LinearSolver::Structured);
+  EXPECT_EQ(resolved("many/many16", "", automatic), LinearSolver::Structured);
+  ModelSpec three = load_spec("cross4", "table4");
+  three.metronomes.pop_back();
+  EXPECT_EQ(resolved_linear_solver(MetronomeModel(three), automatic), LinearSolver::Dense);
+  FlowOptions quotients;
+  quotients.derivatives = Derivatives::DifferenceQuotients;
+  EXPECT_EQ(resolved("many/many16", "", quotients), LinearSolver::Dense);
+  EXPECT_EQ(resolved("many/many16", "", options(LinearSolver::KLU)), LinearSolver::KLU);
+  EXPECT_EQ(resolved("row2", "table2", options(LinearSolver::Structured)),
+            LinearSolver::Structured);
 }
 
 // Expected: the same orbit found with the dense solver (multipliers matched nearest first).

@@ -9,9 +9,12 @@
 
 #include "core/csv.hpp"
 #include "core/errors.hpp"
+#include "tests/support/errors.hpp"
 
 namespace sympathy {
 namespace {
+
+using testing::expect_mentions;
 
 const std::vector<std::string> kStates{"x", "th1", "vx", "vth1"};
 
@@ -29,17 +32,7 @@ class RecordingErrors : public ::testing::Test {
   // The message of the InputError reading `text` gives; fails the test if there is none.
   std::string error_of(const std::string& text) {
     const std::string path = write(text);
-    try {
-      read_recording(path, kStates, "the case");
-    } catch (const InputError& e) {
-      return e.what();
-    }
-    ADD_FAILURE() << "no InputError thrown";
-    return "";
-  }
-  void expect_mentions(const std::string& message, std::initializer_list<std::string> parts) {
-    for (const auto& p : parts)
-      EXPECT_NE(message.find(p), std::string::npos) << "'" << p << "' not in: " << message;
+    return testing::input_error_of([&] { read_recording(path, kStates, "the case"); });
   }
   std::string path_;
 };
