@@ -360,9 +360,6 @@ struct FlowCallbacks {
 
 namespace {
 
-// Unwinds a sampling run whose observer is done.
-struct Stop {};
-
 void require(bool ok, const std::string& what) {
   if (!ok) throw std::runtime_error("SUNDIALS: " + what);
 }
@@ -674,8 +671,8 @@ void Flow::on_switching() {
 
 // One internal step at a time: after each, the steep zones' bands are read off the state, and a
 // changed band sets the step cap at once. `after_step(t_old, t_new)` may interpolate outputs in
-// the step just taken (CVodeGetDky) before anything restarts the integrator.
-void Flow::integrate_to(double t_end, const std::function<void(double, double)>& after_step) {
+// the step just taken (CVodeGetDky) before anything restarts the integrator; true stops there.
+void Flow::integrate_to(double t_end, const std::function<bool(double, double)>& after_step) {
   // A failed call's work counts too (the caller collects only after a success).
   try {
     step_to(t_end, after_step);
@@ -685,7 +682,7 @@ void Flow::integrate_to(double t_end, const std::function<void(double, double)>&
   }
 }
 
-void Flow::step_to(double t_end, const std::function<void(double, double)>& after_step) {
+void Flow::step_to(double t_end, const std::function<bool(double, double)>& after_step) {
   auto& cv = *cv_;
   // One step per CVode call, so CVODES's own step limit never triggers: count here.
   for (long steps = 0; t_ < t_end; ++steps) {
@@ -700,7 +697,7 @@ void Flow::step_to(double t_end, const std::function<void(double, double)>& afte
     const double t_old = t_;
     const int flag = CVode(cv.mem, t_end, cv.y, &t_, CV_ONE_STEP);
     if (flag < 0 || callback_error_) fail(flag, "CVode");
-    if (after_step) after_step(t_old, t_);
+    if (after_step && after_step(t_old, t_)) return;
     if (flag == CV_ROOT_RETURN) {
       on_switching();
       continue;
@@ -743,38 +740,9 @@ void Flow::sample(const Eigen::VectorXd& z0, double t0, std::span<const double> 
 
 bool Flow::sample_until(const Eigen::VectorXd& z0, double t0, std::span<const double> times,
                         const std::function<bool(double, const Eigen::VectorXd&)>& done) {
-  if (times.empty()) return false;
-  for (std::size_t i = 0; i < times.size(); ++i)
-    if (!(times[i] >= (i == 0 ? t0 : times[i - 1])))
-      throw std::invalid_argument("flow: sample times must be increasing and not before t0");
-  start(z0, t0, {}, {});
-  const int n = system_.dimension();
-  Eigen::VectorXd z(n);
-  std::size_t next = 0;
-  bool stopped = false;
-  // Outputs at t0 itself, then those inside each step, from the step's interpolant.
-  while (next < times.size() && times[next] <= t0) {
-    z = Eigen::Map<const Eigen::VectorXd>(N_VGetArrayPointer(cv_->y), n);
-    if (done(times[next++], z)) return true;
-  }
-  N_Vector out = N_VClone(cv_->y);
-  try {
-    integrate_to(times.back(), [&](double, double t_new) {
-      while (!stopped && next < times.size() && times[next] <= t_new) {
-        SYMPATHY_CHECK(CVodeGetDky(cv_->mem, times[next], 0, out));
-        z = Eigen::Map<const Eigen::VectorXd>(N_VGetArrayPointer(out), n);
-        stopped = done(times[next++], z);
-      }
-      if (stopped) throw Stop{};
-    });
-  } catch (const Stop&) {
-  } catch (...) {
-    N_VDestroy(out);
-    throw;
-  }
-  N_VDestroy(out);
-  collect_statistics();
-  return stopped;
+  return sample_run(
+      z0, t0, times, {}, {},
+      [&](double t, const Eigen::VectorXd& z, const Eigen::MatrixXd&) { return done(t, z); });
 }
 
 FlowDerivatives Flow::advance_with_sensitivities(const Eigen::VectorXd& z0, double t0, double t1,
@@ -813,51 +781,58 @@ void Flow::sample_with_sensitivities(
     const Eigen::VectorXd& z0, double t0, std::span<const double> times,
     std::span<const int> initial_components, std::span<const int> parameters,
     const std::function<void(double, const Eigen::VectorXd&, const Eigen::MatrixXd&)>& observer) {
-  if (times.empty()) return;
+  sample_run(z0, t0, times, initial_components, parameters,
+             [&](double t, const Eigen::VectorXd& z, const Eigen::MatrixXd& S) {
+               observer(t, z, S);
+               return false;
+             });
+}
+
+// Outputs at t0 itself (the seeds), then those inside each step, from the step's interpolant.
+bool Flow::sample_run(
+    const Eigen::VectorXd& z0, double t0, std::span<const double> times,
+    std::span<const int> initial_components, std::span<const int> parameters,
+    const std::function<bool(double, const Eigen::VectorXd&, const Eigen::MatrixXd&)>& observer) {
+  if (times.empty()) return false;
   for (std::size_t i = 0; i < times.size(); ++i)
     if (!(times[i] >= (i == 0 ? t0 : times[i - 1])))
       throw std::invalid_argument("flow: sample times must be increasing and not before t0");
   const int n = system_.dimension();
   const int columns = static_cast<int>(initial_components.size() + parameters.size());
-  if (columns == 0) {
-    const Eigen::MatrixXd none(n, 0);
-    sample(z0, t0, times, [&](double t, const Eigen::VectorXd& z) { observer(t, z, none); });
-    return;
-  }
   start(z0, t0, initial_components, parameters);
   auto& cv = *cv_;
   Eigen::VectorXd z(n);
   Eigen::MatrixXd S(n, columns);
   std::size_t next = 0;
-  // Outputs at t0 itself: the seeds.
   while (next < times.size() && times[next] <= t0) {
     z = Eigen::Map<const Eigen::VectorXd>(N_VGetArrayPointer(cv.y), n);
     for (int j = 0; j < columns; ++j)
       S.col(j) = Eigen::Map<const Eigen::VectorXd>(N_VGetArrayPointer(cv.yS[j]), n);
-    observer(times[next++], z, S);
+    if (observer(times[next++], z, S)) return true;
   }
-  N_Vector out = N_VClone(cv.y);
-  N_Vector* out_sens = N_VCloneVectorArray(columns, cv.y);
-  try {
-    require(out != nullptr && out_sens != nullptr, "N_VClone failed");
-    integrate_to(times.back(), [&](double, double t_new) {
-      while (next < times.size() && times[next] <= t_new) {
-        SYMPATHY_CHECK(CVodeGetDky(cv.mem, times[next], 0, out));
-        SYMPATHY_CHECK(CVodeGetSensDky(cv.mem, times[next], 0, out_sens));
-        z = Eigen::Map<const Eigen::VectorXd>(N_VGetArrayPointer(out), n);
-        for (int j = 0; j < columns; ++j)
-          S.col(j) = Eigen::Map<const Eigen::VectorXd>(N_VGetArrayPointer(out_sens[j]), n);
-        observer(times[next++], z, S);
-      }
-    });
-  } catch (...) {
-    if (out) N_VDestroy(out);
-    if (out_sens) N_VDestroyVectorArray(out_sens, columns);
-    throw;
-  }
-  N_VDestroy(out);
-  N_VDestroyVectorArray(out_sens, columns);
+  // Scratch vectors for the interpolated outputs, freed however the run ends.
+  const std::unique_ptr<std::remove_pointer_t<N_Vector>, void (*)(N_Vector)> out(N_VClone(cv.y),
+                                                                                 N_VDestroy);
+  const auto destroy_array = [columns](N_Vector* v) {
+    if (v) N_VDestroyVectorArray(v, columns);
+  };
+  const std::unique_ptr<N_Vector, decltype(destroy_array)> out_sens(
+      columns > 0 ? N_VCloneVectorArray(columns, cv.y) : nullptr, destroy_array);
+  require(out != nullptr && (columns == 0 || out_sens != nullptr), "N_VClone failed");
+  bool stopped = false;
+  integrate_to(times.back(), [&](double, double t_new) {
+    while (!stopped && next < times.size() && times[next] <= t_new) {
+      SYMPATHY_CHECK(CVodeGetDky(cv.mem, times[next], 0, out.get()));
+      if (columns > 0) SYMPATHY_CHECK(CVodeGetSensDky(cv.mem, times[next], 0, out_sens.get()));
+      z = Eigen::Map<const Eigen::VectorXd>(N_VGetArrayPointer(out.get()), n);
+      for (int j = 0; j < columns; ++j)
+        S.col(j) = Eigen::Map<const Eigen::VectorXd>(N_VGetArrayPointer(out_sens.get()[j]), n);
+      stopped = observer(times[next++], z, S);
+    }
+    return stopped;
+  });
   collect_statistics();
+  return stopped;
 }
 
 }  // namespace sympathy

@@ -24,6 +24,7 @@
 #include <span>
 #include <stdexcept>
 #include <string>
+#include <type_traits>
 #include <vector>
 
 #include <Eigen/Dense>
@@ -144,8 +145,14 @@ class Flow {
   void start(const Eigen::VectorXd& z0, double t0, std::span<const int> initial_components,
              std::span<const int> parameters);
   // Integrates to t_end one internal step at a time; see flow.cpp.
-  void integrate_to(double t_end, const std::function<void(double, double)>& after_step = {});
-  void step_to(double t_end, const std::function<void(double, double)>& after_step);
+  void integrate_to(double t_end, const std::function<bool(double, double)>& after_step = {});
+  void step_to(double t_end, const std::function<bool(double, double)>& after_step);
+  // The sampling behind sample_until and sample_with_sensitivities: `observer(t, z, S)` at each
+  // of `times` (S with no columns when there are no sensitivities); true from it stops the run.
+  bool sample_run(
+      const Eigen::VectorXd& z0, double t0, std::span<const double> times,
+      std::span<const int> initial_components, std::span<const int> parameters,
+      const std::function<bool(double, const Eigen::VectorXd&, const Eigen::MatrixXd&)>& observer);
   void configure_roots();
   int band_of(std::size_t zone, double value) const;
   void update_bands(double t);
