@@ -79,22 +79,41 @@ class BlowUp final : public AutoDiffSystem<BlowUp> {
 // u' = -1 and q' = exp(-(u/w)^2) / (w sqrt(pi)): a pulse of unit area, width w, as u crosses 0.
 // From u = 1 to u = -1, q gains erf(1/w) = 1 to machine precision. Error control alone steps
 // over the pulse; the flow must resolve it through the steep zone on u.
+// With `copies` > 1, that many identical (u, q) pairs side by side: from equal starts their
+// zones are crossed at the same instants.
 class Pulse final : public AutoDiffSystem<Pulse> {
  public:
-  explicit Pulse(double width) : width_(width) { set_parameter_layout({}, {}); }
-  int dimension() const override { return 2; }
-  std::vector<std::string> state_names() const override { return {"u", "q"}; }
-  std::vector<SteepZone> steep_zones() const override { return {{0, width_, 1.0}}; }
+  explicit Pulse(double width, int copies = 1) : width_(width), copies_(copies) {
+    set_parameter_layout({}, {});
+  }
+  int dimension() const override { return 2 * copies_; }
+  std::vector<std::string> state_names() const override {
+    std::vector<std::string> names;
+    for (int c = 0; c < copies_; ++c) {
+      const std::string suffix = copies_ > 1 ? std::to_string(c + 1) : "";
+      names.push_back("u" + suffix);
+      names.push_back("q" + suffix);
+    }
+    return names;
+  }
+  std::vector<SteepZone> steep_zones() const override {
+    std::vector<SteepZone> zones;
+    for (int c = 0; c < copies_; ++c) zones.push_back({2 * c, width_, 1.0});
+    return zones;
+  }
   template <class T, class P>
   void evaluate(double, const T* z, const P*, T* dz) const {
     using std::exp;
-    const T s = z[0] / width_;
-    dz[0] = T(-1.0);
-    dz[1] = exp(-s * s) / (width_ * std::sqrt(M_PI));
+    for (int c = 0; c < copies_; ++c) {
+      const T s = z[2 * c] / width_;
+      dz[2 * c] = T(-1.0);
+      dz[2 * c + 1] = exp(-s * s) / (width_ * std::sqrt(M_PI));
+    }
   }
 
  private:
   double width_;
+  int copies_;
 };
 
 // The Hopf normal form x' = -y + x(1 - r^2), y' = x + y(1 - r^2): the unit circle is a limit
