@@ -415,21 +415,18 @@ Flow::Flow(const OdeSystem& system, FlowOptions options)
     if (options_.linear_solver == LinearSolver::KLU) {
       if (!system_.differentiable() || options_.derivatives != Derivatives::Model)
         throw std::invalid_argument("the KLU linear solver needs the system's Jacobian");
-      auto pattern = system_.jacobian_pattern();
-      if (pattern.empty())
+      auto entries = system_.jacobian_pattern();
+      if (entries.empty())
         for (int j = 0; j < n; ++j)
-          for (int i = 0; i < n; ++i) pattern.emplace_back(i, j);
-      std::sort(pattern.begin(), pattern.end(), [](auto a, auto b) {
-        return a.second != b.second ? a.second < b.second : a.first < b.first;
-      });
-      cv.column_starts.assign(n + 1, 0);
-      for (auto [i, j] : pattern) {
-        cv.row_indices.push_back(i);
-        cv.dense_positions.push_back(i + j * n);
-        ++cv.column_starts[j + 1];
-      }
-      for (int j = 0; j < n; ++j) cv.column_starts[j + 1] += cv.column_starts[j];
-      cv.matrix = SUNSparseMatrix(n, n, static_cast<sunindextype>(pattern.size()), CSC_MAT, cv.ctx);
+          for (int i = 0; i < n; ++i) entries.emplace_back(i, j);
+      // Compressed sparse columns, entries checked and repeats merged (a sparse part of rank 0).
+      const LowRankJacobian pattern(n, 0, std::move(entries));
+      cv.column_starts.assign(pattern.column_starts.begin(), pattern.column_starts.end());
+      cv.row_indices.assign(pattern.row_indices.begin(), pattern.row_indices.end());
+      for (int j = 0; j < n; ++j)
+        for (int k = pattern.column_starts[j]; k < pattern.column_starts[j + 1]; ++k)
+          cv.dense_positions.push_back(pattern.row_indices[k] + j * n);
+      cv.matrix = SUNSparseMatrix(n, n, pattern.nonzeros(), CSC_MAT, cv.ctx);
       require(cv.matrix != nullptr, "SUNSparseMatrix failed");
       cv.linear_solver = SUNLinSol_KLU(cv.y, cv.matrix, cv.ctx);
       require(cv.linear_solver != nullptr, "SUNLinSol_KLU failed");
