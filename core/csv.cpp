@@ -86,7 +86,6 @@ CsvTable read_csv(const std::string& path) {
   std::ifstream in(path);
   if (!in) throw InputError(path + ": cannot read the file (no such file, or not readable)");
   CsvTable table;
-  table.path = path;
   std::vector<std::string> lines;
   for (std::string line; std::getline(in, line);) {
     if (!line.empty() && line.back() == '\r') line.pop_back();

@@ -35,7 +35,6 @@ std::string format_double(double v);
 
 // A CSV table of numbers: the header's names and the rows, each with its line in the file.
 struct CsvTable {
-  std::string path;
   std::vector<std::string> header;
   std::vector<std::vector<double>> rows;
   std::vector<int> lines;  // 1-based line of each row in the file
