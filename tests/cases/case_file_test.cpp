@@ -53,13 +53,7 @@ invariant = ["th2 = th1"]
 class CaseFileErrors : public ::testing::Test {
  protected:
   std::string write(const std::string& text) {
-    const auto dir = std::filesystem::temp_directory_path() / "sympathy_case_tests";
-    std::filesystem::create_directories(dir);
-    path_ = (dir / (std::string(::testing::UnitTest::GetInstance()->current_test_info()->name()) +
-                    ".toml"))
-                .string();
-    std::ofstream(path_) << text;
-    return path_;
+    return path_ = testing::write_test_file("sympathy_case_tests", ".toml", text);
   }
   // kValid with `from` replaced by `to` (which must occur).
   std::string write_changed(const std::string& from, const std::string& to) {

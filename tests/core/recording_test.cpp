@@ -21,13 +21,7 @@ const std::vector<std::string> kStates{"x", "th1", "vx", "vth1"};
 class RecordingErrors : public ::testing::Test {
  protected:
   std::string write(const std::string& text) {
-    const auto dir = std::filesystem::temp_directory_path() / "sympathy_recording_tests";
-    std::filesystem::create_directories(dir);
-    path_ = (dir / (std::string(::testing::UnitTest::GetInstance()->current_test_info()->name()) +
-                    ".csv"))
-                .string();
-    std::ofstream(path_) << text;
-    return path_;
+    return path_ = testing::write_test_file("sympathy_recording_tests", ".csv", text);
   }
   // The message of the InputError reading `text` gives; fails the test if there is none.
   std::string error_of(const std::string& text) {

@@ -1,6 +1,8 @@
 // Checks of the errors that bad input must give.
 #pragma once
 
+#include <filesystem>
+#include <fstream>
 #include <initializer_list>
 #include <string>
 
@@ -20,6 +22,20 @@ std::string input_error_of(F&& f) {
   }
   ADD_FAILURE() << "no InputError thrown";
   return "";
+}
+
+// Writes `text` to FOLDER/TEST.EXTENSION in the temporary directory (TEST: the running test's
+// name) and returns the path: an input file for one test.
+inline std::string write_test_file(const std::string& folder, const std::string& extension,
+                                   const std::string& text) {
+  const auto dir = std::filesystem::temp_directory_path() / folder;
+  std::filesystem::create_directories(dir);
+  const std::string path =
+      (dir /
+       (std::string(::testing::UnitTest::GetInstance()->current_test_info()->name()) + extension))
+          .string();
+  std::ofstream(path) << text;
+  return path;
 }
 
 // Each of `parts` occurs in `message`.
