@@ -1,6 +1,6 @@
-#include "cases/case_file.hpp"
-#include "cases/names.hpp"
-#include "cases/toml_reader.hpp"
+#include "sympathy/cases/case_file.hpp"
+#include "sympathy/cases/names.hpp"
+#include "sympathy/cases/toml_reader.hpp"
 
 #include <toml++/toml.h>
 

@@ -1,5 +1,5 @@
-#include "cases/case_writer.hpp"
-#include "cases/names.hpp"
+#include "sympathy/cases/case_writer.hpp"
+#include "sympathy/cases/names.hpp"
 
 #include <toml++/toml.h>
 
@@ -9,7 +9,7 @@
 #include <sstream>
 #include <stdexcept>
 
-#include "core/csv.hpp"
+#include "sympathy/core/csv.hpp"
 
 namespace sympathy {
 

@@ -1,5 +1,5 @@
-#include "cases/metronome_model.hpp"
-#include "cases/names.hpp"
+#include "sympathy/cases/metronome_model.hpp"
+#include "sympathy/cases/names.hpp"
 
 #include <algorithm>
 #include <array>

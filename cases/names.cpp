@@ -1,4 +1,4 @@
-#include "cases/names.hpp"
+#include "sympathy/cases/names.hpp"
 
 #include <sstream>
 

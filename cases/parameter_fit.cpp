@@ -1,13 +1,13 @@
-#include "cases/parameter_fit.hpp"
-#include "cases/names.hpp"
+#include "sympathy/cases/parameter_fit.hpp"
+#include "sympathy/cases/names.hpp"
 
 #include <algorithm>
 #include <cmath>
 #include <sstream>
 
-#include "cases/metronome_model.hpp"
-#include "cases/platform_model.hpp"
-#include "core/csv.hpp"
+#include "sympathy/cases/metronome_model.hpp"
+#include "sympathy/cases/platform_model.hpp"
+#include "sympathy/core/csv.hpp"
 
 namespace sympathy {
 

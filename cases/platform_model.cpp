@@ -1,4 +1,4 @@
-#include "cases/platform_model.hpp"
+#include "sympathy/cases/platform_model.hpp"
 
 #include <stdexcept>
 

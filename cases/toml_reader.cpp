@@ -1,11 +1,11 @@
-#include "cases/toml_reader.hpp"
+#include "sympathy/cases/toml_reader.hpp"
 
 #include <algorithm>
 #include <cmath>
 #include <filesystem>
 
-#include "cases/names.hpp"
-#include "core/errors.hpp"
+#include "sympathy/cases/names.hpp"
+#include "sympathy/core/errors.hpp"
 
 namespace sympathy {
 

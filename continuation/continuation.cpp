@@ -1,14 +1,14 @@
-#include "continuation/continuation.hpp"
+#include "sympathy/continuation/continuation.hpp"
 
 #include <algorithm>
 #include <cmath>
 #include <limits>
 #include <sstream>
 
-#include "continuation/broyden.hpp"
-#include "core/assignment.hpp"
-#include "core/linear_solve.hpp"
-#include "core/text.hpp"
+#include "sympathy/continuation/broyden.hpp"
+#include "sympathy/core/assignment.hpp"
+#include "sympathy/core/linear_solve.hpp"
+#include "sympathy/core/text.hpp"
 
 namespace sympathy {
 

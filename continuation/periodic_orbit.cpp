@@ -1,10 +1,10 @@
-#include "continuation/periodic_orbit.hpp"
+#include "sympathy/continuation/periodic_orbit.hpp"
 
 #include <cmath>
 #include <sstream>
 
-#include "core/linear_solve.hpp"
-#include "core/text.hpp"
+#include "sympathy/core/linear_solve.hpp"
+#include "sympathy/core/text.hpp"
 
 namespace sympathy {
 

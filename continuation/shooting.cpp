@@ -1,4 +1,4 @@
-#include "continuation/shooting.hpp"
+#include "sympathy/continuation/shooting.hpp"
 
 #include <algorithm>
 #include <stdexcept>

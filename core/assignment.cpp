@@ -1,4 +1,4 @@
-#include "core/assignment.hpp"
+#include "sympathy/core/assignment.hpp"
 
 #include <limits>
 #include <stdexcept>

@@ -1,13 +1,13 @@
-#include "core/csv.hpp"
+#include "sympathy/core/csv.hpp"
 
-#include "core/text.hpp"
+#include "sympathy/core/text.hpp"
 
 #include <charconv>
 #include <cmath>
 #include <fstream>
 #include <stdexcept>
 
-#include "core/errors.hpp"
+#include "sympathy/core/errors.hpp"
 
 namespace sympathy {
 

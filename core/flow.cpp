@@ -1,4 +1,4 @@
-#include "core/flow.hpp"
+#include "sympathy/core/flow.hpp"
 
 #include <cvodes/cvodes.h>
 #include <nvector/nvector_serial.h>
@@ -15,7 +15,7 @@
 #include <limits>
 #include <sstream>
 
-#include "core/low_rank_solver.hpp"
+#include "sympathy/core/low_rank_solver.hpp"
 
 namespace sympathy {
 

@@ -1,9 +1,9 @@
-#include "core/linear_solve.hpp"
+#include "sympathy/core/linear_solve.hpp"
 
 #include <cmath>
 #include <stdexcept>
 
-#include "core/sparse_lu.hpp"
+#include "sympathy/core/sparse_lu.hpp"
 
 namespace sympathy {
 

@@ -1,4 +1,4 @@
-#include "core/low_rank_jacobian.hpp"
+#include "sympathy/core/low_rank_jacobian.hpp"
 
 #include <algorithm>
 #include <stdexcept>

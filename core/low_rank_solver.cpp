@@ -1,4 +1,4 @@
-#include "core/low_rank_solver.hpp"
+#include "sympathy/core/low_rank_solver.hpp"
 
 #include <klu.h>
 

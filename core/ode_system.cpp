@@ -1,8 +1,8 @@
-#include "core/ode_system.hpp"
+#include "sympathy/core/ode_system.hpp"
 
 #include <stdexcept>
 
-#include "core/text.hpp"
+#include "sympathy/core/text.hpp"
 
 namespace sympathy {
 

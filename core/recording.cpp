@@ -1,10 +1,10 @@
-#include "core/recording.hpp"
+#include "sympathy/core/recording.hpp"
 
 #include <algorithm>
 
-#include "core/csv.hpp"
-#include "core/errors.hpp"
-#include "core/text.hpp"
+#include "sympathy/core/csv.hpp"
+#include "sympathy/core/errors.hpp"
+#include "sympathy/core/text.hpp"
 
 namespace sympathy {
 

@@ -1,4 +1,4 @@
-#include "core/sparse_lu.hpp"
+#include "sympathy/core/sparse_lu.hpp"
 
 #include <umfpack.h>
 

@@ -1,4 +1,4 @@
-#include "core/text.hpp"
+#include "sympathy/core/text.hpp"
 
 #include <sstream>
 

@@ -1,4 +1,4 @@
-#include "core/trajectory_fit.hpp"
+#include "sympathy/core/trajectory_fit.hpp"
 
 #include <nlopt.hpp>
 
@@ -7,7 +7,7 @@
 #include <cstdio>
 #include <stdexcept>
 
-#include "core/text.hpp"
+#include "sympathy/core/text.hpp"
 
 namespace sympathy {
 

@@ -1,12 +1,12 @@
-#include "floquet/floquet.hpp"
+#include "sympathy/floquet/floquet.hpp"
 
 #include <algorithm>
 #include <cmath>
 #include <numeric>
 #include <stdexcept>
 
-#include "core/assignment.hpp"
-#include "floquet/periodic_schur.hpp"
+#include "sympathy/core/assignment.hpp"
+#include "sympathy/floquet/periodic_schur.hpp"
 
 namespace sympathy {
 

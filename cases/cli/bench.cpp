@@ -16,9 +16,9 @@
 
 #include "cases/cli/commands.hpp"
 #include "cases/cli/common.hpp"
-#include "continuation/continuation.hpp"
-#include "core/assignment.hpp"
-#include "core/csv.hpp"
+#include "sympathy/continuation/continuation.hpp"
+#include "sympathy/core/assignment.hpp"
+#include "sympathy/core/csv.hpp"
 
 namespace sympathy::cli {
 

@@ -5,7 +5,7 @@
 #include <csignal>
 #include <memory>
 
-#include "core/csv.hpp"
+#include "sympathy/core/csv.hpp"
 
 namespace sympathy::cli {
 

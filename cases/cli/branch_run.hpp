@@ -13,7 +13,7 @@
 
 #include "cases/cli/common.hpp"
 #include "cases/cli/report.hpp"
-#include "continuation/continuation.hpp"
+#include "sympathy/continuation/continuation.hpp"
 
 namespace sympathy::cli {
 

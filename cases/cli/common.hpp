@@ -5,11 +5,11 @@
 #include <string>
 #include <vector>
 
-#include "cases/case_file.hpp"
+#include "sympathy/cases/case_file.hpp"
 #include "cases/cli/arguments.hpp"
-#include "cases/metronome_model.hpp"
-#include "cases/names.hpp"
-#include "core/flow.hpp"
+#include "sympathy/cases/metronome_model.hpp"
+#include "sympathy/cases/names.hpp"
+#include "sympathy/core/flow.hpp"
 
 namespace sympathy::cli {
 

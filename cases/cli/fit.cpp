@@ -7,12 +7,12 @@
 
 #include <nlohmann/json.hpp>
 
-#include "cases/case_writer.hpp"
+#include "sympathy/cases/case_writer.hpp"
 #include "cases/cli/commands.hpp"
 #include "cases/cli/common.hpp"
 #include "cases/cli/report.hpp"
-#include "cases/parameter_fit.hpp"
-#include "core/csv.hpp"
+#include "sympathy/cases/parameter_fit.hpp"
+#include "sympathy/core/csv.hpp"
 
 namespace sympathy::cli {
 

@@ -7,8 +7,8 @@
 
 #include "cases/cli/arguments.hpp"
 #include "cases/cli/commands.hpp"
-#include "core/errors.hpp"
-#include "core/flow.hpp"
+#include "sympathy/core/errors.hpp"
+#include "sympathy/core/flow.hpp"
 
 namespace {
 

@@ -9,7 +9,7 @@
 #include "cases/cli/commands.hpp"
 #include "cases/cli/common.hpp"
 #include "cases/cli/report.hpp"
-#include "continuation/periodic_orbit.hpp"
+#include "sympathy/continuation/periodic_orbit.hpp"
 
 namespace sympathy::cli {
 

@@ -6,9 +6,9 @@
 
 #include <nlohmann/json.hpp>
 
-#include "cases/metronome_model.hpp"
-#include "continuation/periodic_orbit.hpp"
-#include "core/ode_system.hpp"
+#include "sympathy/cases/metronome_model.hpp"
+#include "sympathy/continuation/periodic_orbit.hpp"
+#include "sympathy/core/ode_system.hpp"
 
 namespace sympathy::cli {
 

@@ -7,9 +7,9 @@
 #include "cases/cli/commands.hpp"
 #include "cases/cli/common.hpp"
 #include "cases/cli/report.hpp"
-#include "cases/platform_model.hpp"
-#include "core/csv.hpp"
-#include "core/oscillation.hpp"
+#include "sympathy/cases/platform_model.hpp"
+#include "sympathy/core/csv.hpp"
+#include "sympathy/core/oscillation.hpp"
 
 namespace sympathy::cli {
 

@@ -1,4 +1,4 @@
-#include "cases/case_file.hpp"
+#include "sympathy/cases/case_file.hpp"
 #include "tests/support/cases.hpp"
 #include "tests/support/errors.hpp"
 

@@ -6,8 +6,8 @@
 
 #include <algorithm>
 
-#include "cases/case_file.hpp"
-#include "continuation/periodic_orbit.hpp"
+#include "sympathy/cases/case_file.hpp"
+#include "sympathy/continuation/periodic_orbit.hpp"
 
 namespace sympathy {
 namespace {

@@ -3,7 +3,7 @@
 // pendula locked) on synthetic recordings made by integrating the model with known parameters,
 // with Gaussian noise of known level (fixed seed); the checks of bad input; the fitted copy of a
 // case file.
-#include "cases/parameter_fit.hpp"
+#include "sympathy/cases/parameter_fit.hpp"
 
 #include <gtest/gtest.h>
 
@@ -11,10 +11,10 @@
 #include <fstream>
 #include <random>
 
-#include "cases/case_writer.hpp"
-#include "cases/metronome_model.hpp"
-#include "cases/platform_model.hpp"
-#include "core/csv.hpp"
+#include "sympathy/cases/case_writer.hpp"
+#include "sympathy/cases/metronome_model.hpp"
+#include "sympathy/cases/platform_model.hpp"
+#include "sympathy/core/csv.hpp"
 #include "tests/support/errors.hpp"
 
 namespace sympathy {

@@ -5,9 +5,9 @@
 #include <algorithm>
 #include <random>
 
-#include "cases/case_file.hpp"
-#include "cases/metronome_model.hpp"
-#include "core/low_rank_solver.hpp"
+#include "sympathy/cases/case_file.hpp"
+#include "sympathy/cases/metronome_model.hpp"
+#include "sympathy/core/low_rank_solver.hpp"
 #include "tests/support/cases.hpp"
 
 namespace sympathy {

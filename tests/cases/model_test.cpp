@@ -1,4 +1,4 @@
-#include "cases/metronome_model.hpp"
+#include "sympathy/cases/metronome_model.hpp"
 
 #include <gtest/gtest.h>
 
@@ -6,8 +6,8 @@
 #include <random>
 #include <unsupported/Eigen/MatrixFunctions>
 
-#include "cases/case_file.hpp"
-#include "core/flow.hpp"
+#include "sympathy/cases/case_file.hpp"
+#include "sympathy/core/flow.hpp"
 #include "tests/support/cases.hpp"
 
 namespace sympathy {

@@ -4,9 +4,9 @@
 
 #include <algorithm>
 
-#include "cases/case_file.hpp"
-#include "continuation/periodic_orbit.hpp"
-#include "continuation/shooting.hpp"
+#include "sympathy/cases/case_file.hpp"
+#include "sympathy/continuation/periodic_orbit.hpp"
+#include "sympathy/continuation/shooting.hpp"
 #include "tests/support/cases.hpp"
 
 namespace sympathy {

@@ -4,9 +4,9 @@
 
 #include <numbers>
 
-#include "cases/case_file.hpp"
-#include "core/flow.hpp"
-#include "core/oscillation.hpp"
+#include "sympathy/cases/case_file.hpp"
+#include "sympathy/core/flow.hpp"
+#include "sympathy/core/oscillation.hpp"
 
 namespace sympathy {
 namespace {

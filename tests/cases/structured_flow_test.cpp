@@ -5,10 +5,10 @@
 #include <algorithm>
 #include <complex>
 
-#include "cases/case_file.hpp"
-#include "cases/metronome_model.hpp"
-#include "continuation/periodic_orbit.hpp"
-#include "core/flow.hpp"
+#include "sympathy/cases/case_file.hpp"
+#include "sympathy/cases/metronome_model.hpp"
+#include "sympathy/continuation/periodic_orbit.hpp"
+#include "sympathy/core/flow.hpp"
 #include "tests/support/cases.hpp"
 
 namespace sympathy {

@@ -1,4 +1,4 @@
-#include "continuation/broyden.hpp"
+#include "sympathy/continuation/broyden.hpp"
 
 #include <gtest/gtest.h>
 

@@ -1,4 +1,4 @@
-#include "continuation/continuation.hpp"
+#include "sympathy/continuation/continuation.hpp"
 
 #include <gtest/gtest.h>
 

@@ -1,4 +1,4 @@
-#include "continuation/periodic_orbit.hpp"
+#include "sympathy/continuation/periodic_orbit.hpp"
 
 #include <gtest/gtest.h>
 

@@ -1,4 +1,4 @@
-#include "core/csv.hpp"
+#include "sympathy/core/csv.hpp"
 
 #include <gtest/gtest.h>
 

@@ -1,4 +1,4 @@
-#include "core/dual.hpp"
+#include "sympathy/core/dual.hpp"
 
 #include <gtest/gtest.h>
 

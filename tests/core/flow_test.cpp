@@ -1,4 +1,4 @@
-#include "core/flow.hpp"
+#include "sympathy/core/flow.hpp"
 
 #include <gtest/gtest.h>
 

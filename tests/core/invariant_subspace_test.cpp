@@ -1,4 +1,4 @@
-#include "core/invariant_subspace.hpp"
+#include "sympathy/core/invariant_subspace.hpp"
 
 #include <gtest/gtest.h>
 

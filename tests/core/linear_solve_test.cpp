@@ -1,4 +1,4 @@
-#include "core/linear_solve.hpp"
+#include "sympathy/core/linear_solve.hpp"
 
 #include <gtest/gtest.h>
 

@@ -4,8 +4,8 @@
 #include <random>
 #include <stdexcept>
 
-#include "core/low_rank_jacobian.hpp"
-#include "core/low_rank_solver.hpp"
+#include "sympathy/core/low_rank_jacobian.hpp"
+#include "sympathy/core/low_rank_solver.hpp"
 
 namespace sympathy {
 namespace {

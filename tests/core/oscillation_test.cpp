@@ -1,4 +1,4 @@
-#include "core/oscillation.hpp"
+#include "sympathy/core/oscillation.hpp"
 
 #include <gtest/gtest.h>
 

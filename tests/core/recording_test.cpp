@@ -1,14 +1,14 @@
 // Reading recordings: every kind of bad data is rejected with the file, the line, the column and
 // what was expected.
-#include "core/recording.hpp"
+#include "sympathy/core/recording.hpp"
 
 #include <gtest/gtest.h>
 
 #include <filesystem>
 #include <fstream>
 
-#include "core/csv.hpp"
-#include "core/errors.hpp"
+#include "sympathy/core/csv.hpp"
+#include "sympathy/core/errors.hpp"
 #include "tests/support/errors.hpp"
 
 namespace sympathy {

@@ -5,8 +5,8 @@
 #include <stdexcept>
 #include <unsupported/Eigen/MatrixFunctions>
 
-#include "core/flow.hpp"
-#include "core/low_rank_jacobian.hpp"
+#include "sympathy/core/flow.hpp"
+#include "sympathy/core/low_rank_jacobian.hpp"
 #include "tests/support/test_systems.hpp"
 
 namespace sympathy {

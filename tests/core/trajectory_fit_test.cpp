@@ -1,7 +1,7 @@
 // The trajectory fit on a damped oscillator m x'' + c x' + k x = 0 (tests/support): recordings
 // made by integrating it with known parameters, with Gaussian noise of known level added (fixed
 // seed), fitted back.
-#include "core/trajectory_fit.hpp"
+#include "sympathy/core/trajectory_fit.hpp"
 
 #include <gtest/gtest.h>
 

@@ -1,4 +1,4 @@
-#include "floquet/floquet.hpp"
+#include "sympathy/floquet/floquet.hpp"
 
 #include <gtest/gtest.h>
 

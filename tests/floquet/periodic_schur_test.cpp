@@ -1,4 +1,4 @@
-#include "floquet/periodic_schur.hpp"
+#include "sympathy/floquet/periodic_schur.hpp"
 
 #include <gtest/gtest.h>
 

@@ -6,8 +6,8 @@
 
 #include <Eigen/Dense>
 
-#include "cases/case_file.hpp"
-#include "cases/metronome_model.hpp"
+#include "sympathy/cases/case_file.hpp"
+#include "sympathy/cases/metronome_model.hpp"
 
 namespace sympathy::testing {
 

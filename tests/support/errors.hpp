@@ -8,7 +8,7 @@
 
 #include <gtest/gtest.h>
 
-#include "core/errors.hpp"
+#include "sympathy/core/errors.hpp"
 
 namespace sympathy::testing {
 

@@ -5,7 +5,7 @@
 #include <string>
 #include <vector>
 
-#include "core/autodiff_system.hpp"
+#include "sympathy/core/autodiff_system.hpp"
 
 namespace sympathy::testing {
 

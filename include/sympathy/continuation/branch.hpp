@@ -7,7 +7,7 @@
 
 #include <Eigen/Dense>
 
-#include "continuation/periodic_orbit.hpp"
+#include "sympathy/continuation/periodic_orbit.hpp"
 
 namespace sympathy {
 

@@ -29,7 +29,7 @@
 
 #include <Eigen/Dense>
 
-#include "core/ode_system.hpp"
+#include "sympathy/core/ode_system.hpp"
 
 namespace sympathy {
 

@@ -15,7 +15,7 @@
 
 #include <Eigen/Dense>
 
-#include "core/low_rank_jacobian.hpp"
+#include "sympathy/core/low_rank_jacobian.hpp"
 
 namespace sympathy {
 

@@ -19,8 +19,8 @@
 #include <string>
 #include <vector>
 
-#include "core/autodiff_system.hpp"
-#include "core/dual.hpp"
+#include "sympathy/core/autodiff_system.hpp"
+#include "sympathy/core/dual.hpp"
 
 namespace sympathy {
 

@@ -5,7 +5,7 @@
 #include <utility>
 #include <vector>
 
-#include "core/text.hpp"  // join, format_number
+#include "sympathy/core/text.hpp"  // join, format_number
 
 namespace sympathy {
 

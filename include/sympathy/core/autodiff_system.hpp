@@ -15,8 +15,8 @@
 #include <utility>
 #include <vector>
 
-#include "core/dual.hpp"
-#include "core/ode_system.hpp"
+#include "sympathy/core/dual.hpp"
+#include "sympathy/core/ode_system.hpp"
 
 namespace sympathy {
 

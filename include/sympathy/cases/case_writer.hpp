@@ -13,7 +13,7 @@
 #include <string>
 #include <vector>
 
-#include "cases/case_file.hpp"
+#include "sympathy/cases/case_file.hpp"
 
 namespace sympathy {
 

@@ -24,8 +24,8 @@
 #include <Eigen/Dense>
 #include <Eigen/SparseCore>
 
-#include "core/flow.hpp"
-#include "core/ode_system.hpp"
+#include "sympathy/core/flow.hpp"
+#include "sympathy/core/ode_system.hpp"
 
 namespace sympathy {
 

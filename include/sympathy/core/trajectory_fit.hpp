@@ -30,8 +30,8 @@
 
 #include <Eigen/Dense>
 
-#include "core/flow.hpp"
-#include "core/ode_system.hpp"
+#include "sympathy/core/flow.hpp"
+#include "sympathy/core/ode_system.hpp"
 
 namespace sympathy {
 

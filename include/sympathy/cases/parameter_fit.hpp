@@ -11,9 +11,9 @@
 #include <string>
 #include <vector>
 
-#include "cases/case_file.hpp"
-#include "core/recording.hpp"
-#include "core/trajectory_fit.hpp"
+#include "sympathy/cases/case_file.hpp"
+#include "sympathy/core/recording.hpp"
+#include "sympathy/core/trajectory_fit.hpp"
 
 namespace sympathy {
 

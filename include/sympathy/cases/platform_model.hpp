@@ -11,8 +11,8 @@
 #include <string>
 #include <vector>
 
-#include "cases/metronome_model.hpp"
-#include "core/autodiff_system.hpp"
+#include "sympathy/cases/metronome_model.hpp"
+#include "sympathy/core/autodiff_system.hpp"
 
 namespace sympathy {
 

@@ -12,9 +12,9 @@
 
 #include <Eigen/Dense>
 
-#include "continuation/shooting.hpp"
-#include "core/invariant_subspace.hpp"
-#include "floquet/floquet.hpp"
+#include "sympathy/continuation/shooting.hpp"
+#include "sympathy/core/invariant_subspace.hpp"
+#include "sympathy/floquet/floquet.hpp"
 
 namespace sympathy {
 

@@ -16,7 +16,7 @@
 
 #include <functional>
 
-#include "continuation/branch.hpp"
+#include "sympathy/continuation/branch.hpp"
 
 namespace sympathy {
 

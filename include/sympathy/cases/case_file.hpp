@@ -12,10 +12,10 @@
 #include <toml++/toml.h>
 #include <Eigen/Dense>
 
-#include "cases/metronome_model.hpp"
-#include "cases/toml_reader.hpp"
-#include "core/errors.hpp"
-#include "core/invariant_subspace.hpp"
+#include "sympathy/cases/metronome_model.hpp"
+#include "sympathy/cases/toml_reader.hpp"
+#include "sympathy/core/errors.hpp"
+#include "sympathy/core/invariant_subspace.hpp"
 
 namespace sympathy {
 
