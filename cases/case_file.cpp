@@ -363,7 +363,8 @@ InvariantSubspace CaseFile::invariant_subspace(const StartSpec& start,
             (r.other.empty() ? "0" : (r.sign < 0 ? "-" : "") + r.other);
   }
   InvariantSubspace subspace(n, relations);
-  const double defect = subspace.invariance_defect(system, Eigen::VectorXd::Constant(n, 0.5));
+  const double defect = subspace.invariance_defect(system, system.default_parameters(),
+                                                   Eigen::VectorXd::Constant(n, 0.5));
   if (defect > 1e-12)
     throw InputError(start.source + ": start '" + start.name +
                      "': the model does not keep the "

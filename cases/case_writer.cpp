@@ -1,5 +1,6 @@
 #include "sympathy/cases/case_writer.hpp"
 #include "sympathy/cases/names.hpp"
+#include "sympathy/core/output_file.hpp"
 
 #include <toml++/toml.h>
 
@@ -284,12 +285,7 @@ std::vector<std::string> write_case_with_values(const CaseFile& file, const std:
       edits.push_back("default_params (added): " + quoted(new_default));
     }
   }
-  {
-    std::ofstream out(out_path);
-    if (!out) throw InputError(out_path + ": cannot open for writing");
-    out << editor.text();
-    if (!out) throw InputError(out_path + ": writing failed");
-  }
+  write_file_atomically(out_path, editor.text());
 
   // The copy must load and give the values (a set entry such as cx can hide a value of c
   // written in place: the file's own layering, which this check catches).

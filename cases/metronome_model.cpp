@@ -233,10 +233,9 @@ std::vector<std::string> MetronomeModel::state_names() const {
   return names;
 }
 
-std::vector<SteepZone> MetronomeModel::steep_zones() const {
+std::vector<SteepZone> MetronomeModel::steep_zones(const double* raw) const {
   if (spec_.escapement == Escapement::Impulsive) return {};
   std::vector<SteepZone> zones;
-  const auto& raw = raw_parameters();
   for (int i = 0; i < n_metronomes_; ++i) {
     // sigma = tanh(50 th'/eps) switches within |th'| < eps/50 of a turning point.
     const double width = raw[metronome_offset(i) + 8] / 50.0;
@@ -249,8 +248,8 @@ int MetronomeModel::switching_count() const {
   return spec_.escapement == Escapement::Impulsive ? 5 * n_metronomes_ : 0;
 }
 
-void MetronomeModel::switching_functions(double /*t*/, const double* z, double* g) const {
-  const auto& raw = raw_parameters();
+void MetronomeModel::switching_functions(double /*t*/, const double* z, const double* raw,
+                                         double* g) const {
   for (int i = 0; i < n_metronomes_; ++i) {
     const double ths = raw[metronome_offset(i) + 6];
     const double the = raw[metronome_offset(i) + 7];
@@ -300,13 +299,13 @@ MetronomeModel::LowRankLayout MetronomeModel::low_rank_layout() const {
 // depend on metronome i's own angle and velocity (G_i also on its spring partners' angles), so
 // every derivative of r'' = Sigma^{-1} (F - R), Sigma = Mt - A, is a sum over metronomes:
 //   d r'' = Sigma^{-1} (dF - dR + dA r'').
-bool MetronomeModel::low_rank_jacobian(double /*t*/, const double* z, LowRankJacobian& out) const {
+bool MetronomeModel::low_rank_jacobian(double /*t*/, const double* z, const double* raw,
+                                       LowRankJacobian& out) const {
   const int D = directions_, N = n_metronomes_, m = D + N, n = dimension();
   if (out.dimension != n || out.rank() != D ||
       out.nonzeros() != static_cast<int>(out.values.size()) || out.W.rows() != n ||
       out.W.cols() != D)
     throw std::invalid_argument("MetronomeModel::low_rank_jacobian: not the model's structure");
-  const auto& raw = raw_parameters();
   const double g = raw[5];
 
   thread_local std::vector<double> torque, G, G_angle, G_velocity, inertia, p, sn, cs;
@@ -324,7 +323,7 @@ bool MetronomeModel::low_rank_jacobian(double /*t*/, const double* z, LowRankJac
   double F[2] = {0.0, 0.0}, A[2][2] = {{0.0, 0.0}, {0.0, 0.0}}, R[2] = {0.0, 0.0};
   for (int a = 0; a < D; ++a) F[a] = -raw[1 + a] * z[m + a] - raw[3 + a] * z[a];
   for (int i = 0; i < N; ++i) {
-    const double* mi = raw.data() + metronome_offset(i);
+    const double* mi = raw + metronome_offset(i);
     Mt += mi[0] + mi[1];
     p[i] = mi[0] * mi[2] - mi[1] * mi[3];
     inertia[i] = mi[0] * mi[2] * mi[2] + mi[1] * mi[3] * mi[3];
@@ -423,16 +422,15 @@ bool MetronomeModel::low_rank_jacobian(double /*t*/, const double* z, LowRankJac
   return true;
 }
 
-double MetronomeModel::total_mass() const {
-  const auto& raw = raw_parameters();
+double MetronomeModel::total_mass(const ParameterValues& raw) const {
   double Mt = raw[0];
   for (int i = 0; i < n_metronomes_; ++i)
     Mt += raw[metronome_offset(i)] + raw[metronome_offset(i) + 1];
   return Mt;
 }
 
-double MetronomeModel::mechanical_energy(const Eigen::VectorXd& z) const {
-  const auto& raw = raw_parameters();
+double MetronomeModel::mechanical_energy(const Eigen::VectorXd& z,
+                                         const ParameterValues& raw) const {
   const int D = directions_;
   const int m = D + n_metronomes_;
   double energy = 0.0;
@@ -441,7 +439,7 @@ double MetronomeModel::mechanical_energy(const Eigen::VectorXd& z) const {
     v2 += z[m + a] * z[m + a];
     energy += 0.5 * raw[3 + a] * z[a] * z[a];
   }
-  energy += 0.5 * total_mass() * v2;
+  energy += 0.5 * total_mass(raw) * v2;
   for (int i = 0; i < n_metronomes_; ++i) {
     const double* mi = raw.data() + metronome_offset(i);
     const double p = mi[0] * mi[2] - mi[1] * mi[3];

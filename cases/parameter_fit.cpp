@@ -180,10 +180,11 @@ PreparedFit prepare_fit(const CaseFile& file, const ModelSpec& spec, const FitRe
   pb.values = rec.values;
   pb.column_scale = scale;
   pb.initial_state = z0;
+  pb.parameter_values = model.default_parameters();
   for (const auto& name : request.free) {
     FreeParameter f;
     f.index = model.parameter_index(name);
-    const double start = model.parameter(f.index);
+    const double start = model.parameter(pb.parameter_values, f.index);
     const Range* range = range_of(name);
     if (signed_parameter(name)) {
       f.logarithmic = false;

@@ -36,8 +36,7 @@ std::vector<std::string> PlatformModel::state_names() const {
   return {"x", "y", "vx", "vy"};
 }
 
-double PlatformModel::total_mass() const {
-  const auto& raw = raw_parameters();
+double PlatformModel::total_mass(const ParameterValues& raw) const {
   double Mt = raw[0];
   for (int i = 0; i < metronomes_; ++i) Mt += raw[5 + 2 * i] + raw[6 + 2 * i];
   return Mt;

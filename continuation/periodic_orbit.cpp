@@ -9,11 +9,56 @@
 namespace sympathy {
 
 OrbitOptions::OrbitOptions() {
-  // Measured on the row setup: the trivial multiplier's error is about 200-500 rtol.
   shooting.flow.rtol = 1e-11;
   shooting.flow.atol = 1e-13;
   transient_flow.rtol = 1e-8;
   transient_flow.atol = 1e-10;
+}
+
+OptionCheck NewtonOptions::validate() const {
+  if (!positive(residual_tolerance))
+    return OptionProblem{"residual_tolerance", "a positive number"};
+  if (!(rtol_factor >= 1.0 && std::isfinite(rtol_factor)))
+    return OptionProblem{"rtol_factor", "a number of at least 1"};
+  if (max_iterations < 1) return OptionProblem{"max_iterations", "a positive integer"};
+  if (max_halvings < 0) return OptionProblem{"max_halvings", "a non-negative integer"};
+  if (!(positive(rank_tolerance) && rank_tolerance < 1.0))
+    return OptionProblem{"rank_tolerance", "a number in (0, 1)"};
+  return std::nullopt;
+}
+
+OptionCheck OrbitOptions::validate() const {
+  if (!non_negative(transient))
+    return OptionProblem{"transient", "a non-negative number of seconds"};
+  if (!positive(max_period)) return OptionProblem{"max_period", "a positive number of seconds"};
+  if (auto p = nested("shooting.", shooting.validate())) return p;
+  if (auto p = nested("newton.", newton.validate())) return p;
+  if (auto p = nested("floquet.", floquet.validate())) return p;
+  return nested("transient_flow.", transient_flow.validate());
+}
+
+std::string to_string(NewtonOutcome o) {
+  switch (o) {
+    case NewtonOutcome::Converged:
+      return "converged";
+    case NewtonOutcome::NoiseFloor:
+      return "noise floor";
+    case NewtonOutcome::NotRun:
+      return "not run";
+    case NewtonOutcome::IterationLimit:
+      return "iteration limit";
+    case NewtonOutcome::NoDescent:
+      return "no descent";
+    case NewtonOutcome::NonFiniteStep:
+      return "non-finite step";
+    case NewtonOutcome::GuessNotIntegrable:
+      return "guess not integrable";
+    case NewtonOutcome::TransientFailed:
+      return "transient failed";
+    case NewtonOutcome::NoPeriod:
+      return "no period";
+  }
+  return "?";
 }
 
 namespace {
@@ -36,7 +81,7 @@ FloquetAnalysis shooting_floquet(const ShootingProblem& problem,
                                  const ShootingProblem::Evaluation& e, const Eigen::VectorXd& z0,
                                  int family_dimension, const FloquetOptions& options) {
   const Eigen::VectorXd f =
-      problem.autonomous() ? problem.system().rhs(0.0, z0) : Eigen::VectorXd();
+      problem.autonomous() ? problem.system().rhs(0.0, z0, e.parameters) : Eigen::VectorXd();
   const Eigen::MatrixXd family =
       family_dimension > 0
           ? Eigen::MatrixXd(
@@ -45,17 +90,21 @@ FloquetAnalysis shooting_floquet(const ShootingProblem& problem,
   return analyze_floquet(e.transitions, f, family, options);
 }
 
-PeriodicOrbit solve_periodic_orbit(const OdeSystem& system, const Eigen::VectorXd& z0,
-                                   double period, const InvariantSubspace& subspace,
-                                   const OrbitOptions& options) {
+PeriodicOrbit solve_periodic_orbit(const OdeSystem& system, const ParameterValues& p,
+                                   const Eigen::VectorXd& z0, double period,
+                                   const InvariantSubspace& subspace, const OrbitOptions& options) {
   const Stopwatch started;
+  system.check_parameters(p);
+  if (const auto problem = options.validate())
+    throw std::invalid_argument("orbit options: " + problem->message());
   ShootingProblem problem(system, options.shooting, period);
   const int n = problem.dimension(), m = problem.segments();
   PeriodicOrbit orbit;
   orbit.segments = m;
+  orbit.parameters = p;
   NewtonSummary& s = orbit.newton;
   const Eigen::VectorXd z = subspace.project(z0);
-  problem.set_phase_reference(z);
+  problem.set_phase_reference(z, p);
 
   LinearSolveOptions linear;
   linear.prefer_sparse = m > 1;
@@ -64,9 +113,10 @@ PeriodicOrbit solve_periodic_orbit(const OdeSystem& system, const Eigen::VectorX
   Eigen::VectorXd x;
   ShootingProblem::Evaluation e;
   try {
-    x = project_unknowns(subspace, problem.unknowns_from(z, period), n, m);
-    e = problem.evaluate(x, true);
+    x = project_unknowns(subspace, problem.unknowns_from(z, p, period), n, m);
+    e = problem.evaluate(x, p, true);
   } catch (const IntegrationError& error) {
+    s.outcome = NewtonOutcome::GuessNotIntegrable;
     s.reason = std::string("integration failed at the initial guess: ") + error.what();
     orbit.state0 = z;
     orbit.period = period;
@@ -81,15 +131,18 @@ PeriodicOrbit solve_periodic_orbit(const OdeSystem& system, const Eigen::VectorX
   for (;;) {
     if (norm <= tolerance) {
       s.converged = true;
+      s.outcome = NewtonOutcome::Converged;
       s.reason = "residual below tolerance";
       break;
     }
     if (s.iterations >= options.newton.max_iterations) {
+      s.outcome = NewtonOutcome::IterationLimit;
       s.reason = "no convergence in " + std::to_string(s.iterations) + " iterations";
       break;
     }
     const auto step = solve_linear(problem.jacobian(e), -e.residual, linear);
     if (!step.x.allFinite()) {
+      s.outcome = NewtonOutcome::NonFiniteStep;
       s.reason = "the Newton step is not finite (a Jacobian with non-finite entries?)";
       break;
     }
@@ -101,7 +154,7 @@ PeriodicOrbit solve_periodic_orbit(const OdeSystem& system, const Eigen::VectorX
     for (int h = 0; h <= options.newton.max_halvings && !accepted; ++h, alpha *= 0.5) {
       const Eigen::VectorXd trial = project_unknowns(subspace, x + alpha * step.x, n, m);
       try {
-        auto et = problem.evaluate(trial, true);
+        auto et = problem.evaluate(trial, p, true);
         const double trial_norm = inf_norm(et.residual);
         if (trial_norm < norm) {
           accepted = true;
@@ -119,8 +172,10 @@ PeriodicOrbit solve_periodic_orbit(const OdeSystem& system, const Eigen::VectorX
       // Stalled within ten tolerances: the integration's noise floor, as far as it can go.
       if (norm <= 10 * tolerance) {
         s.converged = true;
+        s.outcome = NewtonOutcome::NoiseFloor;
         s.reason = "residual at the integration's noise floor (within 10 tolerances)";
       } else {
+        s.outcome = NewtonOutcome::NoDescent;
         s.reason = "no step reduced the residual below " + std::to_string(norm);
       }
       break;
@@ -140,12 +195,13 @@ PeriodicOrbit solve_periodic_orbit(const OdeSystem& system, const Eigen::VectorX
   return orbit;
 }
 
-double estimate_period(Flow& flow, const Eigen::VectorXd& z, double max_period, double dt) {
-  const Eigen::VectorXd f = flow.system().rhs(0.0, z);
+double estimate_period(Flow& flow, const ParameterValues& p, const Eigen::VectorXd& z,
+                       double max_period, double dt) {
+  const Eigen::VectorXd f = flow.system().rhs(0.0, z, p);
   std::vector<double> times;
   for (double t = dt; t <= max_period; t += dt) times.push_back(t);
   double previous_g = 0.0, previous_t = 0.0, farthest = 0.0, period = 0.0;
-  flow.sample_until(z, 0.0, times, [&](double t, const Eigen::VectorXd& y) {
+  flow.sample_until(z, p, 0.0, times, [&](double t, const Eigen::VectorXd& y) {
     const double g = f.dot(y - z);
     const double distance = (y - z).cwiseAbs().maxCoeff();
     farthest = std::max(farthest, distance);
@@ -162,28 +218,35 @@ double estimate_period(Flow& flow, const Eigen::VectorXd& z, double max_period, 
   return period;
 }
 
-PeriodicOrbit find_periodic_orbit(const OdeSystem& system, const Eigen::VectorXd& start,
-                                  const InvariantSubspace& subspace, const OrbitOptions& options) {
+PeriodicOrbit find_periodic_orbit(const OdeSystem& system, const ParameterValues& p,
+                                  const Eigen::VectorXd& start, const InvariantSubspace& subspace,
+                                  const OrbitOptions& options) {
   const Stopwatch started;
   if (!system.autonomous())
     throw std::invalid_argument("find_periodic_orbit: for autonomous systems; give the period");
   Flow flow(system, options.transient_flow);
   Eigen::VectorXd z = subspace.project(start);
+  system.check_parameters(p);
+  if (const auto problem = options.validate())
+    throw std::invalid_argument("orbit options: " + problem->message());
   PeriodicOrbit failed;
   failed.segments = options.shooting.segments;
+  failed.parameters = p;
   try {
     for (double t = 0.0; t < options.transient;) {
       const double dt = std::min(1.0, options.transient - t);
-      z = subspace.project(flow.advance(z, 0.0, dt));
+      z = subspace.project(flow.advance(z, p, 0.0, dt));
       t += dt;
     }
   } catch (const IntegrationError& e) {
+    failed.newton.outcome = NewtonOutcome::TransientFailed;
     failed.newton.reason = std::string("transient integration failed: ") + e.what();
     failed.state0 = z;
     return failed;
   }
-  const double period = estimate_period(flow, z, options.max_period, options.max_period / 1e4);
+  const double period = estimate_period(flow, p, z, options.max_period, options.max_period / 1e4);
   if (!(period > 0.0)) {
+    failed.newton.outcome = NewtonOutcome::NoPeriod;
     failed.newton.reason = "no return to the section within " + std::to_string(options.max_period) +
                            " s after the transient (an equilibrium, or a longer period?)";
     failed.state0 = z;
@@ -191,11 +254,11 @@ PeriodicOrbit find_periodic_orbit(const OdeSystem& system, const Eigen::VectorXd
     failed.seconds = started.seconds();
     return failed;
   }
-  PeriodicOrbit orbit = solve_periodic_orbit(system, z, period, subspace, options);
+  PeriodicOrbit orbit = solve_periodic_orbit(system, p, z, period, subspace, options);
   if (!orbit.converged()) {
     // Say whether the transient had settled: how far the motion still moved in one period.
     try {
-      const Eigen::VectorXd later = subspace.project(flow.advance(z, 0.0, period));
+      const Eigen::VectorXd later = subspace.project(flow.advance(z, p, 0.0, period));
       const double moved = (later - z).cwiseAbs().maxCoeff();
       const double size = std::max(z.cwiseAbs().maxCoeff(), 1e-300);
       std::ostringstream note;

@@ -20,8 +20,8 @@ ShootingProblem::ShootingProblem(const OdeSystem& system, ShootingOptions option
   f_ref_ = Eigen::VectorXd::Zero(n_);
 }
 
-void ShootingProblem::set_phase_reference(const Eigen::VectorXd& z_ref) {
-  set_phase_section(z_ref, system_.rhs(0.0, z_ref));
+void ShootingProblem::set_phase_reference(const Eigen::VectorXd& z_ref, const ParameterValues& p) {
+  set_phase_section(z_ref, system_.rhs(0.0, z_ref, p));
 }
 
 void ShootingProblem::set_phase_section(const Eigen::VectorXd& z_ref,
@@ -34,14 +34,15 @@ double ShootingProblem::period(const Eigen::VectorXd& x) const {
   return autonomous_ ? x[n_ * options_.segments] : forced_period_;
 }
 
-Eigen::VectorXd ShootingProblem::unknowns_from(const Eigen::VectorXd& z0, double period) {
+Eigen::VectorXd ShootingProblem::unknowns_from(const Eigen::VectorXd& z0, const ParameterValues& p,
+                                               double period) {
   const int m = options_.segments;
   Eigen::VectorXd x(unknowns());
   const double T = autonomous_ ? period : forced_period_;
   Eigen::VectorXd z = z0;
   for (int j = 0; j < m; ++j) {
     x.segment(j * n_, n_) = z;
-    if (j + 1 < m) z = flow_.advance(z, j * T / m, (j + 1) * T / m);
+    if (j + 1 < m) z = flow_.advance(z, p, j * T / m, (j + 1) * T / m);
   }
   if (autonomous_) x[n_ * m] = period;
   return x;
@@ -58,7 +59,7 @@ void ShootingProblem::reset_statistics() {
   if (plain_flow_) plain_flow_->reset_statistics();
 }
 
-Eigen::VectorXd ShootingProblem::residual(const Eigen::VectorXd& x) {
+Eigen::VectorXd ShootingProblem::residual(const Eigen::VectorXd& x, const ParameterValues& p) {
   if (!plain_flow_) {
     FlowOptions tight = options_.flow;
     // Not below 1e-13: CVODES reports tolerances near the unit roundoff as too much accuracy.
@@ -66,20 +67,23 @@ Eigen::VectorXd ShootingProblem::residual(const Eigen::VectorXd& x) {
     tight.atol = options_.flow.atol / 10.0;
     plain_flow_ = std::make_unique<Flow>(system_, tight);
   }
-  return evaluate(x, false, -1, *plain_flow_).residual;
+  return evaluate(x, p, false, -1, *plain_flow_).residual;
 }
 
-ShootingProblem::Evaluation ShootingProblem::evaluate(const Eigen::VectorXd& x, bool derivatives,
+ShootingProblem::Evaluation ShootingProblem::evaluate(const Eigen::VectorXd& x,
+                                                      const ParameterValues& p, bool derivatives,
                                                       int parameter) {
-  return evaluate(x, derivatives, parameter, flow_);
+  return evaluate(x, p, derivatives, parameter, flow_);
 }
 
-ShootingProblem::Evaluation ShootingProblem::evaluate(const Eigen::VectorXd& x, bool derivatives,
+ShootingProblem::Evaluation ShootingProblem::evaluate(const Eigen::VectorXd& x,
+                                                      const ParameterValues& p, bool derivatives,
                                                       int parameter, Flow& flow) {
   const int m = options_.segments;
   const double T = period(x);
   if (!(T > 0.0)) throw IntegrationError("shooting: the period is not positive", 0.0);
   Evaluation e;
+  e.parameters = p;
   e.derivatives = derivatives;
   e.parameter = parameter;
   e.residual.resize(unknowns());
@@ -93,13 +97,13 @@ ShootingProblem::Evaluation ShootingProblem::evaluate(const Eigen::VectorXd& x, 
     const double t1 = autonomous_ ? T / m : (j + 1) * T / m;
     Eigen::VectorXd end;
     if (derivatives) {
-      auto d = flow.advance_with_sensitivities(zj, t0, t1, true, parameters);
+      auto d = flow.advance_with_sensitivities(zj, p, t0, t1, true, parameters);
       end = std::move(d.state);
       e.transitions.push_back(std::move(d.transition));
       if (parameter >= 0) e.parameter_sensitivities.col(j) = d.parameter_sensitivities.col(0);
-      e.end_rates.push_back(system_.rhs(t1, end));
+      e.end_rates.push_back(system_.rhs(t1, end, p));
     } else {
-      end = flow.advance(zj, t0, t1);
+      end = flow.advance(zj, p, t0, t1);
     }
     e.residual.segment(j * n_, n_) = end - x.segment(((j + 1) % m) * n_, n_);
   }

@@ -19,14 +19,8 @@ std::string format_double(double v) {
 }
 
 CsvWriter::CsvWriter(const std::string& path, const std::vector<std::string>& header)
-    : path_(path), columns_(header.size()) {
-  file_ = std::fopen(path.c_str(), "w");
-  if (!file_) throw InputError(path + ": cannot open for writing");
+    : file_(path), columns_(header.size()) {
   row(header);
-}
-
-CsvWriter::~CsvWriter() {
-  if (file_) std::fclose(file_);
 }
 
 void CsvWriter::row(const std::vector<std::string>& fields) {
@@ -44,7 +38,7 @@ void CsvWriter::row(const std::vector<std::string>& fields) {
     }
   }
   line += '\n';
-  std::fputs(line.c_str(), file_);
+  file_.write_line(line);
 }
 
 void CsvWriter::row(const std::vector<double>& values) {
@@ -52,10 +46,6 @@ void CsvWriter::row(const std::vector<double>& values) {
   fields.reserve(values.size());
   for (double v : values) fields.push_back(format_double(v));
   row(fields);
-}
-
-void CsvWriter::flush() {
-  std::fflush(file_);
 }
 
 namespace {

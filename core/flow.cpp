@@ -1,3 +1,7 @@
+// The CVODES wrapper (see flow.hpp). About 850 lines in one file on purpose: the C callbacks, the
+// structured linear solver's SUNDIALS operations and the step loop share the private state of one
+// integrator (its SUNDIALS objects, bands and stored exception), which a split would have to
+// expose in a header of its own for no reader's benefit.
 #include "sympathy/core/flow.hpp"
 
 #include <cvodes/cvodes.h>
@@ -42,6 +46,18 @@ LinearSolver resolved_linear_solver(const OdeSystem& system, const FlowOptions& 
   const auto structure = system.low_rank_structure();
   return structure && structure->dimension > 2 * (structure->rank() + 3) ? LinearSolver::Structured
                                                                          : LinearSolver::Dense;
+}
+
+OptionCheck FlowOptions::validate() const {
+  // CVODES itself refuses tolerances near the unit roundoff ("too much accuracy requested").
+  if (!(rtol >= 1e-14 && rtol < 1.0)) return OptionProblem{"rtol", "a number in [1e-14, 1)"};
+  if (!positive(atol)) return OptionProblem{"atol", "a positive number"};
+  if (max_steps < 1) return OptionProblem{"max_steps", "a positive integer"};
+  if (!non_negative(max_step))
+    return OptionProblem{"max_step", "0 (no limit) or a positive number"};
+  if (!(steep_step_fraction > 0.0 && steep_step_fraction < 2.0 / 3.0))
+    return OptionProblem{"steep_step_fraction", "a number in (0, 2/3)"};
+  return std::nullopt;
 }
 
 FlowStatistics& FlowStatistics::operator+=(const FlowStatistics& o) {
@@ -232,7 +248,7 @@ struct FlowCallbacks {
     try {
       const int n = flow->system_.dimension();
       double* dz = N_VGetArrayPointer(ydot);
-      flow->system_.rhs(t, N_VGetArrayPointer(y), dz);
+      flow->system_.rhs(t, N_VGetArrayPointer(y), flow->values_.data(), dz);
       for (int i = 0; i < n; ++i)
         if (!std::isfinite(dz[i])) return 1;  // recoverable: CVODES retries a smaller step
       return 0;
@@ -248,7 +264,7 @@ struct FlowCallbacks {
     try {
       const int n = flow->system_.dimension();
       Eigen::Map<Eigen::MatrixXd> out(SM_DATA_D(jac), n, n);
-      flow->system_.jacobian(t, N_VGetArrayPointer(y), flow->cv_->jacobian);
+      flow->system_.jacobian(t, N_VGetArrayPointer(y), flow->values_.data(), flow->cv_->jacobian);
       out = flow->cv_->jacobian;
       return 0;
     } catch (...) {
@@ -262,7 +278,7 @@ struct FlowCallbacks {
     auto* flow = static_cast<Flow*>(user);
     try {
       auto& cv = *flow->cv_;
-      flow->system_.jacobian(t, N_VGetArrayPointer(y), cv.jacobian);
+      flow->system_.jacobian(t, N_VGetArrayPointer(y), flow->values_.data(), cv.jacobian);
       std::copy(cv.column_starts.begin(), cv.column_starts.end(), SM_INDEXPTRS_S(jac));
       std::copy(cv.row_indices.begin(), cv.row_indices.end(), SM_INDEXVALS_S(jac));
       double* values = SM_DATA_S(jac);
@@ -285,8 +301,8 @@ struct FlowCallbacks {
         cv.columns_in[j] = N_VGetArrayPointer(yS[j]);
         cv.columns_out[j] = N_VGetArrayPointer(ySdot[j]);
       }
-      flow->system_.variational_rhs(t, N_VGetArrayPointer(y), columns, cv.columns_in.data(),
-                                    cv.columns_out.data(), flow->parameters_);
+      flow->system_.variational_rhs(t, N_VGetArrayPointer(y), flow->values_.data(), columns,
+                                    cv.columns_in.data(), cv.columns_out.data(), flow->parameters_);
       return 0;
     } catch (...) {
       flow->callback_error_ = std::current_exception();
@@ -297,7 +313,7 @@ struct FlowCallbacks {
   static int roots(sunrealtype t, N_Vector y, sunrealtype* g, void* user) {
     auto* flow = static_cast<Flow*>(user);
     try {
-      flow->system_.switching_functions(t, N_VGetArrayPointer(y), g);
+      flow->system_.switching_functions(t, N_VGetArrayPointer(y), flow->values_.data(), g);
       return 0;
     } catch (...) {
       flow->callback_error_ = std::current_exception();
@@ -311,7 +327,8 @@ struct FlowCallbacks {
     auto* flow = static_cast<Flow*>(user);
     try {
       auto& m = *static_cast<LowRankMatrix*>(jac->content);
-      if (!flow->system_.low_rank_jacobian(t, N_VGetArrayPointer(y), m.jacobian))
+      if (!flow->system_.low_rank_jacobian(t, N_VGetArrayPointer(y), flow->values_.data(),
+                                           m.jacobian))
         throw std::logic_error("the system stopped providing its low-rank Jacobian");
       m.identity = 0.0;
       m.scale = 1.0;
@@ -388,8 +405,8 @@ void Flow::fail(int flag, const char* function) {
 Flow::Flow(const OdeSystem& system, FlowOptions options)
     : system_(system), options_(options), cv_(std::make_unique<Cvodes>()) {
   options_.linear_solver = resolved_linear_solver(system_, options_);
-  if (!(options_.rtol > 0.0) || !(options_.atol > 0.0))
-    throw std::invalid_argument("flow tolerances must be positive");
+  if (const auto problem = options_.validate())
+    throw std::invalid_argument("flow options: " + problem->message());
   const int n = system_.dimension();
   auto& cv = *cv_;
   require(SUNContext_Create(nullptr, &cv.ctx) == 0, "SUNContext_Create failed");
@@ -471,18 +488,19 @@ Flow::Flow(const OdeSystem& system, FlowOptions options)
     }
   }
 
-  configure_roots();
+  // Steep zones and switching surfaces are set up by each call (start), from its parameter values.
   dz_scratch_.resize(n);
   cv.initialized = true;
 }
 
 Flow::~Flow() = default;
 
-// Zones and switching surfaces follow the system's current parameters (a zone's width may
-// depend on them).
+// Zones and switching surfaces follow the call's parameter values (a zone's width may depend on
+// them).
 void Flow::configure_roots() {
   const int n = system_.dimension();
-  zones_ = options_.resolve_steep_zones ? system_.steep_zones() : std::vector<SteepZone>{};
+  zones_ =
+      options_.resolve_steep_zones ? system_.steep_zones(values_.data()) : std::vector<SteepZone>{};
   levels_.clear();
   for (const auto& zone : zones_) {
     if (zone.component < 0 || zone.component >= n || !(zone.width > 0.0) ||
@@ -501,16 +519,17 @@ void Flow::configure_roots() {
   }
 }
 
-void Flow::start(const Eigen::VectorXd& z0, double t0, std::span<const int> initial_components,
-                 std::span<const int> parameters) {
+void Flow::start(const Eigen::VectorXd& z0, const ParameterValues& p, double t0,
+                 std::span<const int> initial_components, std::span<const int> parameters) {
   const int n = system_.dimension();
   const int sensitivity_columns = static_cast<int>(initial_components.size() + parameters.size());
   for (int c : initial_components)
     if (c < 0 || c >= n)
       throw std::invalid_argument("flow: no state component " + std::to_string(c));
-  for (int p : parameters)
-    if (p < 0 || p >= static_cast<int>(system_.parameter_names().size()))
-      throw std::invalid_argument("flow: no parameter with index " + std::to_string(p));
+  for (int k : parameters)
+    if (k < 0 || k >= system_.parameter_count())
+      throw std::invalid_argument("flow: no parameter with index " + std::to_string(k));
+  system_.check_parameters(p);
   if (z0.size() != n)
     throw std::invalid_argument("initial state has " + std::to_string(z0.size()) +
                                 " entries; the system has " + std::to_string(n));
@@ -519,6 +538,7 @@ void Flow::start(const Eigen::VectorXd& z0, double t0, std::span<const int> init
   t_ = t0;
   callback_error_ = nullptr;
   last_error_.clear();
+  values_ = p;
   std::copy(z0.data(), z0.data() + n, N_VGetArrayPointer(cv.y));
   SYMPATHY_CHECK(CVodeReInit(cv.mem, t0, cv.y));
   configure_roots();
@@ -606,7 +626,7 @@ void Flow::update_max_step(double t) {
   double hmax = options_.max_step > 0.0 ? options_.max_step : 0.0;
   if (!zones_.empty()) {
     const double* z = N_VGetArrayPointer(cv_->y);
-    system_.rhs(t, z, dz_scratch_.data());
+    system_.rhs(t, z, values_.data(), dz_scratch_.data());
     ++statistics_.rhs_evaluations;
     for (std::size_t i = 0; i < zones_.size(); ++i) {
       const double rate = std::abs(dz_scratch_[zones_[i].component]);
@@ -718,31 +738,35 @@ void Flow::collect_statistics() {
     statistics_.variational_evaluations += v;
 }
 
-Eigen::VectorXd Flow::advance(const Eigen::VectorXd& z0, double t0, double t1) {
+Eigen::VectorXd Flow::advance(const Eigen::VectorXd& z0, const ParameterValues& p, double t0,
+                              double t1) {
   if (!(t1 >= t0)) throw std::invalid_argument("flow: end time before start time");
-  start(z0, t0, {}, {});
+  start(z0, p, t0, {}, {});
   integrate_to(t1);
   collect_statistics();
   const int n = system_.dimension();
   return Eigen::Map<const Eigen::VectorXd>(N_VGetArrayPointer(cv_->y), n);
 }
 
-void Flow::sample(const Eigen::VectorXd& z0, double t0, std::span<const double> times,
+void Flow::sample(const Eigen::VectorXd& z0, const ParameterValues& p, double t0,
+                  std::span<const double> times,
                   const std::function<void(double, const Eigen::VectorXd&)>& observer) {
-  sample_until(z0, t0, times, [&](double t, const Eigen::VectorXd& z) {
+  sample_until(z0, p, t0, times, [&](double t, const Eigen::VectorXd& z) {
     observer(t, z);
     return false;
   });
 }
 
-bool Flow::sample_until(const Eigen::VectorXd& z0, double t0, std::span<const double> times,
+bool Flow::sample_until(const Eigen::VectorXd& z0, const ParameterValues& p, double t0,
+                        std::span<const double> times,
                         const std::function<bool(double, const Eigen::VectorXd&)>& done) {
   return sample_run(
-      z0, t0, times, {}, {},
+      z0, p, t0, times, {}, {},
       [&](double t, const Eigen::VectorXd& z, const Eigen::MatrixXd&) { return done(t, z); });
 }
 
-FlowDerivatives Flow::advance_with_sensitivities(const Eigen::VectorXd& z0, double t0, double t1,
+FlowDerivatives Flow::advance_with_sensitivities(const Eigen::VectorXd& z0,
+                                                 const ParameterValues& p, double t0, double t1,
                                                  bool state, std::span<const int> parameters) {
   if (!(t1 >= t0)) throw std::invalid_argument("flow: end time before start time");
   const int n = system_.dimension();
@@ -750,12 +774,12 @@ FlowDerivatives Flow::advance_with_sensitivities(const Eigen::VectorXd& z0, doub
   const int columns = state_columns + static_cast<int>(parameters.size());
   if (columns == 0) {
     FlowDerivatives r;
-    r.state = advance(z0, t0, t1);
+    r.state = advance(z0, p, t0, t1);
     return r;
   }
   std::vector<int> components(state_columns);
   for (int j = 0; j < state_columns; ++j) components[j] = j;
-  start(z0, t0, components, parameters);
+  start(z0, p, t0, components, parameters);
   integrate_to(t1);
   collect_statistics();
 
@@ -775,10 +799,10 @@ FlowDerivatives Flow::advance_with_sensitivities(const Eigen::VectorXd& z0, doub
 }
 
 void Flow::sample_with_sensitivities(
-    const Eigen::VectorXd& z0, double t0, std::span<const double> times,
+    const Eigen::VectorXd& z0, const ParameterValues& p, double t0, std::span<const double> times,
     std::span<const int> initial_components, std::span<const int> parameters,
     const std::function<void(double, const Eigen::VectorXd&, const Eigen::MatrixXd&)>& observer) {
-  sample_run(z0, t0, times, initial_components, parameters,
+  sample_run(z0, p, t0, times, initial_components, parameters,
              [&](double t, const Eigen::VectorXd& z, const Eigen::MatrixXd& S) {
                observer(t, z, S);
                return false;
@@ -787,7 +811,7 @@ void Flow::sample_with_sensitivities(
 
 // Outputs at t0 itself (the seeds), then those inside each step, from the step's interpolant.
 bool Flow::sample_run(
-    const Eigen::VectorXd& z0, double t0, std::span<const double> times,
+    const Eigen::VectorXd& z0, const ParameterValues& p, double t0, std::span<const double> times,
     std::span<const int> initial_components, std::span<const int> parameters,
     const std::function<bool(double, const Eigen::VectorXd&, const Eigen::MatrixXd&)>& observer) {
   if (times.empty()) return false;
@@ -796,7 +820,7 @@ bool Flow::sample_run(
       throw std::invalid_argument("flow: sample times must be increasing and not before t0");
   const int n = system_.dimension();
   const int columns = static_cast<int>(initial_components.size() + parameters.size());
-  start(z0, t0, initial_components, parameters);
+  start(z0, p, t0, initial_components, parameters);
   auto& cv = *cv_;
   Eigen::VectorXd z(n);
   Eigen::MatrixXd S(n, columns);

@@ -77,7 +77,7 @@ Eigen::VectorXd InvariantSubspace::project(const Eigen::VectorXd& z) const {
   return p;
 }
 
-double InvariantSubspace::invariance_defect(const OdeSystem& system,
+double InvariantSubspace::invariance_defect(const OdeSystem& system, const ParameterValues& p,
                                             const Eigen::VectorXd& scale) const {
   std::mt19937 rng(1);
   std::uniform_real_distribution<double> u(-1.0, 1.0);
@@ -86,7 +86,7 @@ double InvariantSubspace::invariance_defect(const OdeSystem& system,
     Eigen::VectorXd z(system.dimension());
     for (int i = 0; i < z.size(); ++i) z[i] = scale[i] * u(rng);
     z = project(z);
-    const Eigen::VectorXd f = system.rhs(0.0, z);
+    const Eigen::VectorXd f = system.rhs(0.0, z, p);
     const double norm = f.cwiseAbs().maxCoeff();
     if (norm > 0.0) worst = std::max(worst, (f - project(f)).cwiseAbs().maxCoeff() / norm);
   }

@@ -1,3 +1,6 @@
+// The trajectory fit (see trajectory_fit.hpp). About 680 lines in one file: the residual evaluator,
+// the NLopt stages, the Levenberg-Marquardt polish and the statistics at the optimum all work on
+// one Evaluator and its scaled unknowns; each is a section below, in the order a fit runs them.
 #include "sympathy/core/trajectory_fit.hpp"
 
 #include <nlopt.hpp>
@@ -72,11 +75,11 @@ ResidualLayout layout(const TrajectoryFitProblem& pb) {
 // The residuals and their Jacobian as functions of the scaled unknowns u.
 class Evaluator {
  public:
-  Evaluator(OdeSystem& system, const TrajectoryFitProblem& pb, const FlowOptions& flow)
+  Evaluator(const OdeSystem& system, const TrajectoryFitProblem& pb, const FlowOptions& flow)
       : system_(system), pb_(pb), flow_(system, flow), layout_(layout(pb)) {
     for (const auto& f : pb.parameters) {
       parameter_indices_.push_back(f.index);
-      start_.push_back(system.parameter(f.index));
+      start_.push_back(system.parameter(pb.parameter_values, f.index));
     }
     for (const auto& f : pb.initial) {
       initial_components_.push_back(f.component);
@@ -131,7 +134,7 @@ class Evaluator {
     if (jacobian) ++jacobian_evaluations_;
     const Eigen::VectorXd v = physical(u);
     if (!v.allFinite()) return false;
-    for (int j = 0; j < parameter_count(); ++j) system_.set_parameter(parameter_indices_[j], v[j]);
+    const ParameterValues p = parameter_values(u);
     Eigen::VectorXd z0 = pb_.initial_state;
     for (std::size_t l = 0; l < initial_components_.size(); ++l)
       z0[initial_components_[l]] = v[parameter_count() + static_cast<int>(l)];
@@ -147,7 +150,7 @@ class Evaluator {
     try {
       if (jacobian) {
         flow_.sample_with_sensitivities(
-            z0, pb_.times.front(), pb_.times, initial_components_, parameter_indices_,
+            z0, p, pb_.times.front(), pb_.times, initial_components_, parameter_indices_,
             [&](double, const Eigen::VectorXd& z, const Eigen::MatrixXd& S) {
               for (int k = 0; k < m; ++k) {
                 const int row = layout_.row_of[i * m + k];
@@ -163,7 +166,7 @@ class Evaluator {
               ++i;
             });
       } else {
-        flow_.sample(z0, pb_.times.front(), pb_.times, [&](double, const Eigen::VectorXd& z) {
+        flow_.sample(z0, p, pb_.times.front(), pb_.times, [&](double, const Eigen::VectorXd& z) {
           for (int k = 0; k < m; ++k) {
             const int row = layout_.row_of[i * m + k];
             if (row >= 0)
@@ -196,9 +199,13 @@ class Evaluator {
     return f;
   }
 
-  void set_parameters(const Eigen::VectorXd& u) {
+  // The problem's parameter values with the free ones at u.
+  ParameterValues parameter_values(const Eigen::VectorXd& u) const {
     const Eigen::VectorXd v = physical(u);
-    for (int j = 0; j < parameter_count(); ++j) system_.set_parameter(parameter_indices_[j], v[j]);
+    ParameterValues p = pb_.parameter_values;
+    for (int j = 0; j < parameter_count(); ++j)
+      system_.set_parameter(p, parameter_indices_[j], v[j]);
+    return p;
   }
 
   double best_rss() const { return best_rss_; }
@@ -210,7 +217,7 @@ class Evaluator {
   const Flow& flow() const { return flow_; }
 
  private:
-  OdeSystem& system_;
+  const OdeSystem& system_;
   const TrajectoryFitProblem& pb_;
   Flow flow_;
   ResidualLayout layout_;
@@ -439,14 +446,14 @@ int residual_count(const TrajectoryFitProblem& problem) {
   return layout(problem).rows;
 }
 
-TrajectoryFitResult fit_trajectory(OdeSystem& system, const TrajectoryFitProblem& pb,
+TrajectoryFitResult fit_trajectory(const OdeSystem& system, const TrajectoryFitProblem& pb,
                                    const TrajectoryFitOptions& o) {
   const Stopwatch t_start;
   // Check the problem.
   const int n = system.dimension();
   const int samples = static_cast<int>(pb.times.size());
   const int m = static_cast<int>(pb.observed.size());
-  const int parameter_count = static_cast<int>(system.parameter_names().size());
+  const int parameter_count = system.parameter_count();
   auto fail = [](const std::string& what) {
     throw std::invalid_argument(std::string("trajectory fit: ").append(what));
   };
@@ -465,12 +472,15 @@ TrajectoryFitResult fit_trajectory(OdeSystem& system, const TrajectoryFitProblem
   if (pb.initial_state.size() != n || !pb.initial_state.allFinite())
     fail("the initial state must be finite, with one entry per state component");
   if (pb.parameters.empty() && pb.initial.empty()) fail("nothing to fit");
+  if (pb.parameter_values.size() != system.parameter_values_size() ||
+      !pb.parameter_values.allFinite())
+    fail("the parameter values must be finite, as many as the system has");
   for (std::size_t j = 0; j < pb.parameters.size(); ++j) {
     const auto& f = pb.parameters[j];
     if (f.index < 0 || f.index >= parameter_count) fail("parameter index out of range");
     for (std::size_t i = 0; i < j; ++i)
       if (pb.parameters[i].index == f.index) fail("a parameter is free twice");
-    const double v = system.parameter(f.index);
+    const double v = system.parameter(pb.parameter_values, f.index);
     if (f.logarithmic && !(v > 0.0))
       fail(std::string("the logarithmically scaled parameter ") +
            system.parameter_names()[f.index] + " needs a positive starting value");
@@ -608,7 +618,7 @@ TrajectoryFitResult fit_trajectory(OdeSystem& system, const TrajectoryFitProblem
       }
     }
   }
-  ev.set_parameters(final.u);
+  result.fitted_parameters = ev.parameter_values(final.u);
 
   // Statistics at the optimum.
   result.values = ev.physical(final.u);

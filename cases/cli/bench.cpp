@@ -96,8 +96,8 @@ Result solve_orbit(const MetronomeModel& model, const PeriodicOrbit& guess,
   Result r;
   const Stopwatch clock;
   try {
-    const auto orbit =
-        solve_periodic_orbit(model, guess.state0, guess.period, subspace, orbit_options(s));
+    const auto orbit = solve_periodic_orbit(model, guess.parameters, guess.state0, guess.period,
+                                            subspace, orbit_options(s));
     r.converged = orbit.converged();
     r.period = orbit.period;
     r.multipliers = nontrivial(orbit.floquet);
@@ -113,7 +113,8 @@ Result solve_orbit(const MetronomeModel& model, const PeriodicOrbit& guess,
 }
 
 // The first stability change of the anti-phase branch between k = 44 and 50 N/m.
-Result locate_branch_point(MetronomeModel& model, const PeriodicOrbit& at44, const Setting& s) {
+Result locate_branch_point(const MetronomeModel& model, const PeriodicOrbit& at44,
+                           const Setting& s) {
   Result r;
   const Stopwatch clock;
   try {
@@ -122,9 +123,7 @@ Result locate_branch_point(MetronomeModel& model, const PeriodicOrbit& at44, con
     o.upper = 50.0;
     o.orbit = orbit_options(s);
     o.corrector_tolerance = o.orbit.newton.residual_tolerance;
-    const int k = model.parameter_index("k");
-    model.set_parameter(k, 44.0);
-    Continuation c(model, k, o);
+    Continuation c(model, model.parameter_index("k"), o);
     const Branch b = c.run(at44, +1);
     for (const auto& e : b.events)
       if (e.type == BifurcationType::BranchPoint) {
@@ -183,11 +182,11 @@ PointCost point_cost(const CaseFile& file, const std::string& params, const std:
            params + ")";
   MetronomeModel model(file.spec(params));
   const int k = model.parameter_index("k");
-  model.set_parameter(k, from);
+  const ParameterValues values = model.with_parameter(model.default_parameters(), k, from);
   const auto& s = file.start(start);
   const InvariantSubspace subspace = file.invariant_subspace(s, model);
   const PeriodicOrbit orbit =
-      find_periodic_orbit(model, file.initial_state(&s), subspace, OrbitOptions{});
+      find_periodic_orbit(model, values, file.initial_state(&s), subspace, OrbitOptions{});
   if (!orbit.converged()) return c;
   ContinuationOptions o;
   o.lower = from;
@@ -199,19 +198,18 @@ PointCost point_cost(const CaseFile& file, const std::string& params, const std:
   c.integrations = b.flow.calls;
   c.events = static_cast<int>(b.events.size());
   // Stepping alone: the same branch with no bifurcation detected, hence none located.
-  model.set_parameter(k, from);
   o.detect_bifurcations = false;
   Continuation stepping(model, k, o);
   const Branch undetected = stepping.run(orbit, +1);
   c.points_stepping = static_cast<int>(undetected.points.size()) - 1;
   c.seconds_stepping = undetected.seconds;
-  model.set_parameter(k, from);
   Flow flow(model, o.orbit.shooting.flow);
   const int parameter[] = {k};
   c.period_sensitivities = median_seconds(5, [&] {
-    flow.advance_with_sensitivities(orbit.state0, 0.0, orbit.period, true, parameter);
+    flow.advance_with_sensitivities(orbit.state0, values, 0.0, orbit.period, true, parameter);
   });
-  c.period_plain = median_seconds(5, [&] { flow.advance(orbit.state0, 0.0, orbit.period); });
+  c.period_plain =
+      median_seconds(5, [&] { flow.advance(orbit.state0, values, 0.0, orbit.period); });
   return c;
 }
 
@@ -242,8 +240,9 @@ std::vector<Scaling> scaling(const std::string& path, const std::string& params,
   plain.rtol = 1e-7;
   plain.atol = 1e-9;
   Flow transient(model, plain);
-  const Eigen::VectorXd z = transient.advance(file.initial_state(&start), 0.0, 20.0);
-  common.period = estimate_period(transient, z, 2.0, 1e-3);
+  const ParameterValues values = model.default_parameters();
+  const Eigen::VectorXd z = transient.advance(file.initial_state(&start), values, 0.0, 20.0);
+  common.period = estimate_period(transient, values, z, 2.0, 1e-3);
   if (!(common.period > 0.0)) common.note = "no period found after the transient";
   std::vector<Scaling> rows;
   for (LinearSolver solver : solvers) {
@@ -259,7 +258,7 @@ std::vector<Scaling> scaling(const std::string& path, const std::string& params,
       Flow flow(model, o);
       rows.back().seconds = median_seconds(r.metronomes > 16 ? 1 : 3, [&] {
         flow.reset_statistics();
-        flow.advance_with_sensitivities(z, 0.0, r.period);
+        flow.advance_with_sensitivities(z, values, 0.0, r.period);
       });
       rows.back().steps = flow.statistics().steps;
     } catch (const std::exception& e) {
@@ -340,7 +339,6 @@ int run_bench(const std::vector<std::string>& argv) {
         std::to_string(r.flow.rhs_evaluations), std::to_string(r.flow.variational_evaluations),
         std::to_string(r.flow.jacobian_evaluations), std::to_string(r.iterations),
         r.converged ? "yes" : "no", r.note});
-    csv.flush();
     md << "| " << s.name << " | " << format(s.flow.rtol, "%.0e") << " | "
        << (std::isnan(period_error) ? format(k_error) : format(period_error)) << " | "
        << (std::isnan(mu_error) ? std::string("-") : format(mu_error)) << " | "
@@ -355,8 +353,8 @@ int run_bench(const std::vector<std::string>& argv) {
     MetronomeModel model(file.spec(p.params));
     const auto& start = file.start(p.start);
     const InvariantSubspace subspace = file.invariant_subspace(start, model);
-    PeriodicOrbit guess =
-        find_periodic_orbit(model, file.initial_state(&start), subspace, OrbitOptions{});
+    PeriodicOrbit guess = find_periodic_orbit(model, model.default_parameters(),
+                                              file.initial_state(&start), subspace, OrbitOptions{});
     // Every setting converges by itself from the same guess: the orbit moved by 1e-3.
     guess.state0 = subspace.project(guess.state0 * (1.0 + 1e-3));
     guess.period *= 1.0 + 1e-3;
@@ -389,11 +387,12 @@ int run_bench(const std::vector<std::string>& argv) {
   if (want('c')) {
     const std::string name = "(c) first stability change of the anti-phase k-branch";
     MetronomeModel model(file.spec("table2"));
-    model.set_parameter("k", 44.0);
+    const ParameterValues at_k44 =
+        model.with_parameter(model.default_parameters(), model.parameter_index("k"), 44.0);
     const auto& start = file.start("anti-phase");
     const InvariantSubspace subspace = file.invariant_subspace(start, model);
     const PeriodicOrbit at44 =
-        find_periodic_orbit(model, file.initial_state(&start), subspace, OrbitOptions{});
+        find_periodic_orbit(model, at_k44, file.initial_state(&start), subspace, OrbitOptions{});
     const Result ref = locate_branch_point(model, at44, reference);
     const Result chk = locate_branch_point(model, at44, check);
     const double ref_k = std::abs(chk.parameter - ref.parameter) / ref.parameter;
@@ -443,7 +442,6 @@ int run_bench(const std::vector<std::string>& argv) {
                                         format(c.period_sensitivities, "%.4f"),
                                         format(c.period_plain, "%.4f"), format(ratio, "%.2f"),
                                         std::to_string(c.events), format(stepping, "%.2f")});
-      cost.flush();
       md << "| " << c.name << " | " << c.points << " | " << format(c.seconds, "%.2f") << " | "
          << c.integrations << " | " << format(per_point, "%.4f") << " | "
          << format(c.period_sensitivities, "%.4f") << " | " << format(c.period_plain, "%.4f")
@@ -481,7 +479,6 @@ int run_bench(const std::vector<std::string>& argv) {
         table.row(std::vector<std::string>{
             std::to_string(r.metronomes), std::to_string(r.dimension), r.solver,
             format(r.period, "%.6f"), std::to_string(r.steps), format(r.seconds, "%.3f"), r.note});
-        table.flush();
         md << "| " << r.metronomes << " | " << r.dimension << " | " << r.solver << " | "
            << format(r.period, "%.4f") << " | " << r.steps << " | " << format(r.seconds, "%.3f")
            << " | " << r.note << " |\n";

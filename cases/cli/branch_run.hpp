@@ -1,6 +1,6 @@
-// One branch of periodic orbits from a case's named start, as `continue` and `study` run it:
-// the orbit at the first parameter value, then pseudo-arclength continuation one way (or both
-// ways from --at), every point streamed to CSV as it is found, events printed as located.
+// A branch of a case, as `continue` and `study` ask for it: the case's named start and parameter
+// turned into the engine's BranchProblem, progress lines and the streamed CSV hooked to the
+// engine's callbacks, and the events table. The work is the engine's (continue_branch).
 #pragma once
 
 #include <atomic>
@@ -12,8 +12,7 @@
 #include <nlohmann/json.hpp>
 
 #include "cases/cli/common.hpp"
-#include "cases/cli/report.hpp"
-#include "sympathy/continuation/continuation.hpp"
+#include "sympathy/continuation/branch_run.hpp"
 
 namespace sympathy::cli {
 
@@ -25,24 +24,18 @@ struct BranchRequest {
   std::vector<Assignment> initial;   // state values on top of the start
   std::string csv_path;              // "" for none
   ContinuationOptions continuation;  // bounds are set from from/to
-  double transient = 60.0;
-  std::FILE* progress = stderr;  // nullptr: quiet
-  bool verbose = false;          // multipliers on each progress line
+  std::FILE* progress = stderr;      // nullptr: quiet
+  bool verbose = false;              // multipliers on each progress line
 };
 
-struct BranchResult {
-  bool started = false;  // the starting orbit converged
-  std::string start_failure;
-  Branch branch;  // along the branch: the backward part first when two-way
-  std::vector<OrbitReport> reports;
-  double seconds = 0.0;
-};
+// Runs the branch; the model must be built from `c.spec`. Throws InputError for a request that
+// does not fit the case, OutputError when the CSV cannot be written.
+Branch run_branch(const LoadedCase& c, const MetronomeModel& model, const BranchRequest& request,
+                  const std::atomic<bool>* stop);
 
-BranchResult run_branch(const LoadedCase& c, const BranchRequest& request,
-                        const std::atomic<bool>* stop);
-
-void print_events(std::FILE* out, const BranchResult& r, const std::string& parameter);
-nlohmann::json branch_json(const BranchResult& r, const BranchRequest& request,
+void print_events(std::FILE* out, const Branch& branch);
+// The engine's branch JSON with the request's start and bounds.
+nlohmann::json branch_json(const Branch& branch, const BranchRequest& request,
                            const MetronomeModel& model);
 
 // Installs a SIGINT handler that sets the returned flag (the run then stops after the current

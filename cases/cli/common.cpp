@@ -1,5 +1,8 @@
 #include "cases/cli/common.hpp"
 
+#include <algorithm>
+#include <utility>
+
 namespace sympathy::cli {
 
 std::vector<OptionSpec> case_options() {
@@ -30,8 +33,7 @@ LoadedCase load_case(const Arguments& args) {
 FlowOptions flow_options(const Arguments& args, FlowOptions o) {
   o.rtol = args.number("--rtol", o.rtol);
   o.atol = args.number("--atol", o.atol);
-  if (!(o.rtol > 0.0 && o.rtol < 1.0)) throw InputError("--rtol: expected a number in (0, 1)");
-  if (!(o.atol > 0.0)) throw InputError("--atol: expected a positive number");
+  check_options(o.validate(), "");
   const std::string method = args.text("--method", o.method == Method::BDF ? "bdf" : "adams");
   if (method == "bdf") {
     o.method = Method::BDF;
@@ -53,6 +55,37 @@ FlowOptions flow_options(const Arguments& args, FlowOptions o) {
   else
     throw InputError("--linear-solver " + solver + ": expected dense, klu or structured");
   return o;
+}
+
+void check_options(const OptionCheck& problem, const std::string& where) {
+  if (!problem) return;
+  // The command line's names of the options fields it sets (the study file's keys are the same
+  // without the dashes, where = "FILE: branches[i]."); a field it does not set keeps its own name.
+  static const std::pair<const char*, const char*> names[] = {
+      {"initial_step", "step"},
+      {"max_step", "max-step"},
+      {"max_points", "max-points"},
+      {"orbit.transient", "transient"},
+      {"transient", "transient"},
+      {"orbit.shooting.segments", "segments"},
+      {"shooting.segments", "segments"},
+      {"rtol", "rtol"},
+      {"atol", "atol"},
+      {"orbit.shooting.flow.rtol", "rtol"},
+      {"orbit.shooting.flow.atol", "atol"},
+      {"shooting.flow.rtol", "rtol"},
+      {"shooting.flow.atol", "atol"}};
+  std::string name = problem->field;
+  for (const auto& [field, option] : names)
+    if (name == field) {
+      name = option;
+      break;
+    }
+  if (where.empty()) {
+    throw InputError("--" + name + ": expected " + problem->expected);
+  }
+  std::replace(name.begin(), name.end(), '-', '_');
+  throw InputError(where + name + ": expected " + problem->expected);
 }
 
 }  // namespace sympathy::cli

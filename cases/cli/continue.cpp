@@ -1,9 +1,11 @@
 // sympathy continue: a branch of periodic orbits in one parameter, with its bifurcations.
 #include <cstdio>
-#include <fstream>
 
 #include "cases/cli/branch_run.hpp"
 #include "cases/cli/commands.hpp"
+#include "cases/cli/report.hpp"
+#include "sympathy/continuation/branch_output.hpp"
+#include "sympathy/core/output_file.hpp"
 
 namespace sympathy::cli {
 
@@ -47,54 +49,49 @@ int run_continue(const std::vector<std::string>& argv) {
   if (args.has("--at")) request.at = args.number("--at", 0.0);
   request.initial = args.assignments("--initial");
   request.csv_path = args.text("--csv", "");
-  request.transient = args.number("--transient", 60.0);
+
   if (args.flag("--quiet")) request.progress = nullptr;
   request.verbose = args.flag("--verbose");
   auto& o = request.continuation;
+  o.orbit.transient = args.number("--transient", o.orbit.transient);
   o.orbit.shooting.segments = args.integer("--segments", 1);
-  if (o.orbit.shooting.segments < 1 || o.orbit.shooting.segments > 1000)
-    throw InputError("--segments: expected an integer from 1 to 1000");
   o.initial_step = args.number("--step", o.initial_step);
   o.max_step = args.number("--max-step", o.max_step);
   o.max_points = args.integer("--max-points", o.max_points);
-  if (!(o.initial_step > 0.0) || !(o.max_step >= o.initial_step))
-    throw InputError("--step, --max-step: expected 0 < step <= max-step");
-  if (o.max_points < 2) throw InputError("--max-points: expected at least 2");
   o.orbit.shooting.flow = flow_options(args, o.orbit.shooting.flow);
   o.orbit.transient_flow.linear_solver = o.orbit.shooting.flow.linear_solver;
-  std::ofstream json_out;
-  if (auto path = args.value("--json")) {
-    json_out.open(*path);
-    if (!json_out) throw InputError(*path + ": cannot open for writing");
-  }
+  check_options(o.validate(), "");
+  const auto json_path = args.value("--json");
+  if (json_path) check_writable(*json_path, "--json");
+  if (!request.csv_path.empty()) check_writable(request.csv_path, "--csv");
 
   std::printf("sympathy continue %s  params %s  start %s  %s from %g to %g\n",
               c.file.path().c_str(), c.params.empty() ? "(none)" : c.params.c_str(),
               request.start.c_str(), request.parameter.c_str(), request.from, request.to);
   std::fflush(stdout);
-  const BranchResult r = run_branch(c, request, interrupt_flag());
-  if (!r.started) {
-    std::printf("  %s\n  run time %.3f s\n", r.start_failure.c_str(), clock.seconds());
+  const MetronomeModel model(c.spec);
+  const Branch branch = run_branch(c, model, request, interrupt_flag());
+  if (!branch.started()) {
+    std::printf("  %s\n  run time %.3f s\n", branch.stop_reason.c_str(), clock.seconds());
     return 4;
   }
-  const auto& rj = r.branch.rejected;
+  const auto& rj = branch.rejected;
   std::printf(
       "  %zu points; stopped: %s\n  steps retried shorter: %d corrector, %d turn, %d "
       "multipliers, %d location\n",
-      r.branch.points.size(), r.branch.stop_reason.c_str(), rj.corrector, rj.turn, rj.multipliers,
+      branch.points.size(), branch.stop_reason.c_str(), rj.corrector, rj.turn, rj.multipliers,
       rj.location);
   std::printf("bifurcations:\n");
-  print_events(stdout, r, request.parameter);
-  if (request.verbose) print_flow_statistics(stdout, r.branch.flow);
+  print_events(stdout, branch);
+  if (request.verbose) print_flow_statistics(stdout, branch.flow);
   std::printf("  run time %.3f s (%ld integrations, %ld steps)\n", clock.seconds(),
-              r.branch.flow.calls, r.branch.flow.steps);
-  if (json_out.is_open()) {
-    MetronomeModel model(c.spec);
-    nlohmann::json j = branch_json(r, request, model);
+              branch.flow.calls, branch.flow.steps);
+  if (json_path) {
+    nlohmann::json j = branch_json(branch, request, model);
     j["case"] = c.file.path();
     j["params_set"] = c.params;
     j["seconds"] = clock.seconds();
-    json_out << j.dump(1) << "\n";
+    write_json(*json_path, j);
   }
   return 0;
 }

@@ -7,12 +7,14 @@
 
 #include <nlohmann/json.hpp>
 
-#include "sympathy/cases/case_writer.hpp"
 #include "cases/cli/commands.hpp"
 #include "cases/cli/common.hpp"
 #include "cases/cli/report.hpp"
+#include "sympathy/cases/case_writer.hpp"
 #include "sympathy/cases/parameter_fit.hpp"
+#include "sympathy/continuation/branch_output.hpp"
 #include "sympathy/core/csv.hpp"
+#include "sympathy/core/output_file.hpp"
 
 namespace sympathy::cli {
 
@@ -230,11 +232,12 @@ int run_fit(const std::vector<std::string>& argv) {
       z0[fit.problem.initial[l].component] = r.values[np + static_cast<int>(l)];
     Flow flow(*fit.model, o.flow);
     std::vector<double> row(states.size() + 1);
-    flow.sample(z0, rec.times.front(), rec.times, [&](double t, const Eigen::VectorXd& z) {
-      row[0] = t;
-      for (int i = 0; i < z.size(); ++i) row[i + 1] = z[i];
-      csv.row(row);
-    });
+    flow.sample(z0, r.fitted_parameters, rec.times.front(), rec.times,
+                [&](double t, const Eigen::VectorXd& z) {
+                  row[0] = t;
+                  for (int i = 0; i < z.size(); ++i) row[i + 1] = z[i];
+                  csv.row(row);
+                });
   }
 
   // The fitted case file.
@@ -353,7 +356,7 @@ int run_fit(const std::vector<std::string>& argv) {
     j["jacobian_evaluations"] = r.jacobian_evaluations;
     j["converged"] = r.converged;
     j["stop_reason"] = r.stop_reason;
-    j["params"] = parameters_json(*fit.model);
+    j["params"] = parameters_json(*fit.model, r.fitted_parameters);
     j["integrator"] = {{"method", to_string(o.flow.method)},
                        {"rtol", o.flow.rtol},
                        {"atol", o.flow.atol},
@@ -361,9 +364,7 @@ int run_fit(const std::vector<std::string>& argv) {
     j["csv"] = args.text("--csv", "");
     j["out"] = written;
     j["seconds"] = seconds;
-    std::ofstream out(*path);
-    if (!out) throw InputError(*path + ": cannot open for writing");
-    out << j.dump(2) << "\n";
+    write_file_atomically(*path, j.dump(2) + "\n");
   }
   return r.converged && determined ? 0 : 4;
 }

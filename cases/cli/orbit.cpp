@@ -9,7 +9,9 @@
 #include "cases/cli/commands.hpp"
 #include "cases/cli/common.hpp"
 #include "cases/cli/report.hpp"
+#include "sympathy/continuation/branch_output.hpp"
 #include "sympathy/continuation/periodic_orbit.hpp"
+#include "sympathy/core/output_file.hpp"
 
 namespace sympathy::cli {
 
@@ -37,16 +39,16 @@ int run_orbit(const std::vector<std::string>& argv) {
 
   OrbitOptions o;
   o.shooting.segments = args.integer("--segments", 1);
-  if (o.shooting.segments < 1 || o.shooting.segments > 1000)
-    throw InputError("--segments: expected an integer from 1 to 1000");
   o.transient = args.number("--transient", o.transient);
-  if (!(o.transient >= 0.0)) throw InputError("--transient: expected a non-negative number");
   o.shooting.flow = flow_options(args, o.shooting.flow);
   o.transient_flow.linear_solver = o.shooting.flow.linear_solver;
+  check_options(o.validate(), "");
 
-  const PeriodicOrbit orbit = find_periodic_orbit(model, z0, subspace, o);
+  const PeriodicOrbit orbit =
+      find_periodic_orbit(model, model.default_parameters(), z0, subspace, o);
   const double seconds = clock.seconds();
-  OrbitReport report = describe_orbit(model, orbit);
+  const MetronomeDescriber describer(model);
+  const MetronomeDescriber::Report report = describer.report(orbit);
 
   std::printf("sympathy orbit %s  params %s  start %s\n", c.file.path().c_str(),
               c.params.empty() ? "(none)" : c.params.c_str(), start.name.c_str());
@@ -61,14 +63,12 @@ int run_orbit(const std::vector<std::string>& argv) {
   std::printf("  run time     %.3f s\n", seconds);
 
   if (auto path = args.value("--json")) {
-    nlohmann::json j = orbit_json(model, orbit, report);
+    nlohmann::json j = orbit_json(model, orbit, &describer);
     j["case"] = c.file.path();
     j["params_set"] = c.params;
     j["start"] = start.name;
     j["seconds"] = seconds;
-    std::ofstream out(*path);
-    if (!out) throw InputError(*path + ": cannot open for writing");
-    out << j.dump(2) << "\n";
+    write_file_atomically(*path, j.dump(2) + "\n");
   }
   return orbit.converged() ? 0 : 4;
 }

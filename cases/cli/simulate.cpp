@@ -90,18 +90,19 @@ int run_simulate(const std::vector<std::string>& argv) {
   std::vector<double> row(names.size() + 1);
   std::string failure;
   try {
-    flow.sample(z0, 0.0, times, [&](double t, const Eigen::VectorXd& z) {
-      analyzer.add(t, z);
-      if (csv) {
-        row[0] = t;
-        for (int i = 0; i < z.size(); ++i) row[i + 1] = z[i];
-        csv->row(row);
-      }
-    });
+    flow.sample(z0, system->default_parameters(), 0.0, times,
+                [&](double t, const Eigen::VectorXd& z) {
+                  analyzer.add(t, z);
+                  if (csv) {
+                    row[0] = t;
+                    for (int i = 0; i < z.size(); ++i) row[i + 1] = z[i];
+                    csv->row(row);
+                  }
+                });
   } catch (const IntegrationError& e) {
     failure = e.what();  // keep what was computed; report below
   }
-  if (csv) csv->flush();
+  if (csv) csv->close();
 
   const auto s = analyzer.summary();
   std::fprintf(stderr, "sympathy simulate %s  params %s  start %s  %s\n", c.file.path().c_str(),

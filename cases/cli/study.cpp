@@ -5,11 +5,13 @@
 #include <cstdio>
 #include <filesystem>
 #include <fstream>
+#include <memory>
 #include <mutex>
 #include <thread>
 
 #include "cases/cli/branch_run.hpp"
 #include "cases/cli/commands.hpp"
+#include "sympathy/continuation/branch_output.hpp"
 
 namespace sympathy::cli {
 
@@ -68,11 +70,20 @@ Study load_study(const std::string& path) {
     b.request.from = in.number(*t.get("from"), prefix + "from");
     b.request.to = in.number(*t.get("to"), prefix + "to");
     if (auto* n = t.get("at")) b.request.at = in.number(*n, prefix + "at");
-    if (auto* n = t.get("transient")) b.request.transient = in.number(*n, prefix + "transient");
     auto& o = b.request.continuation;
+    if (auto* n = t.get("transient")) o.orbit.transient = in.number(*n, prefix + "transient");
     if (auto* n = t.get("max_points")) o.max_points = in.integer(*n, prefix + "max_points");
     if (auto* n = t.get("step")) o.initial_step = in.number(*n, prefix + "step");
     if (auto* n = t.get("max_step")) o.max_step = in.number(*n, prefix + "max_step");
+    // The engine's own validation, as the command line's (the same domains, named by key).
+    const std::string where =
+        path + ":" + std::to_string(entry.source().begin.line) + ": " + prefix;
+    check_options(o.validate(), where);
+    if (b.request.from == b.request.to)
+      throw InputError(where + "from, " + prefix + "to: expected different values");
+    if (b.request.at && !(*b.request.at > std::min(b.request.from, b.request.to) &&
+                          *b.request.at < std::max(b.request.from, b.request.to)))
+      throw InputError(where + "at: expected a value between from and to");
     for (const char* group : {"set", "initial"}) {
       const toml::node* n = t.get(group);
       if (!n) continue;
@@ -120,7 +131,9 @@ int run_study(const std::vector<std::string>& argv) {
               study.parameter.c_str());
   std::fflush(stdout);
   const auto* stop = interrupt_flag();
-  std::vector<BranchResult> results(study.branches.size());
+  std::vector<Branch> results(study.branches.size());
+  std::vector<std::unique_ptr<MetronomeModel>> models;
+  for (const auto& c : cases) models.push_back(std::make_unique<MetronomeModel>(c.spec));
   std::vector<BranchRequest> requests;
   for (std::size_t i = 0; i < study.branches.size(); ++i) {
     const auto& b = study.branches[i];
@@ -141,16 +154,14 @@ int run_study(const std::vector<std::string>& argv) {
         i = next++;
       }
       try {
-        results[i] = run_branch(cases[i], requests[i], stop);
+        results[i] = run_branch(cases[i], *models[i], requests[i], stop);
       } catch (const std::exception& e) {
         errors[i] = e.what();
       }
       std::lock_guard<std::mutex> lock(print);
       std::printf("  branch %-14s %zu points in %.1f s; %s\n", study.branches[i].name.c_str(),
-                  results[i].branch.points.size(), results[i].seconds,
-                  !errors[i].empty()   ? errors[i].c_str()
-                  : results[i].started ? results[i].branch.stop_reason.c_str()
-                                       : results[i].start_failure.c_str());
+                  results[i].points.size(), results[i].seconds,
+                  !errors[i].empty() ? errors[i].c_str() : results[i].stop_reason.c_str());
       std::fflush(stdout);
     }
   };
@@ -169,19 +180,18 @@ int run_study(const std::vector<std::string>& argv) {
   j["branches"] = nlohmann::json::array();
   bool ok = true;
   for (std::size_t i = 0; i < study.branches.size(); ++i) {
-    MetronomeModel model(cases[i].spec);
-    nlohmann::json b = branch_json(results[i], requests[i], model);
+    nlohmann::json b = branch_json(results[i], requests[i], *models[i]);
     b["name"] = study.branches[i].name;
     b["csv"] = std::filesystem::path(requests[i].csv_path).filename().string();
     if (!errors[i].empty()) b["error"] = errors[i];
     j["branches"].push_back(b);
-    ok = ok && errors[i].empty() && results[i].started;
+    ok = ok && errors[i].empty() && results[i].started();
     std::printf("bifurcations on %s:\n", study.branches[i].name.c_str());
-    print_events(stdout, results[i], study.parameter);
+    print_events(stdout, results[i]);
   }
   j["seconds"] = clock.seconds();
   const std::string json_path = out + "/" + study.name + ".json";
-  std::ofstream(json_path) << j.dump(1) << "\n";
+  write_json(json_path, j);
   std::printf("  wrote %s and %zu CSV files; run time %.2f s\n", json_path.c_str(),
               study.branches.size(), clock.seconds());
   return ok ? 0 : 4;

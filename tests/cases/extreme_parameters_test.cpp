@@ -25,8 +25,8 @@ PeriodicOrbit row_orbit(const std::string& start, const std::vector<Assignment>&
   const auto file = CaseFile::load(std::string(SYMPATHY_SOURCE_DIR) + "/cases/row2.toml");
   const MetronomeModel model(file.spec("table2", sets));
   const auto& s = file.start(start);
-  return find_periodic_orbit(model, file.initial_state(&s), file.invariant_subspace(s, model),
-                             OrbitOptions{});
+  return find_periodic_orbit(model, model.default_parameters(), file.initial_state(&s),
+                             file.invariant_subspace(s, model), OrbitOptions{});
 }
 
 class ExtremeParameters : public ::testing::TestWithParam<Extreme> {};

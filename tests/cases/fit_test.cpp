@@ -56,11 +56,12 @@ std::string write_recording(const OdeSystem& system, const Eigen::VectorXd& z0,
   std::vector<std::string> header{"t"};
   header.insert(header.end(), columns.begin(), columns.end());
   CsvWriter csv(path, header);
-  flow.sample(z0, times.front(), times, [&](double t, const Eigen::VectorXd& z) {
-    std::vector<double> row{t};
-    for (int c : index) row.push_back(z[c] + (sigma > 0.0 ? normal(generator) : 0.0));
-    csv.row(row);
-  });
+  flow.sample(z0, system.default_parameters(), times.front(), times,
+              [&](double t, const Eigen::VectorXd& z) {
+                std::vector<double> row{t};
+                for (int c : index) row.push_back(z[c] + (sigma > 0.0 ? normal(generator) : 0.0));
+                csv.row(row);
+              });
   return path;
 }
 
@@ -132,7 +133,8 @@ TEST(MetronomeFit, NoiseFreeWithTheInitialStateFree) {
   tight.rtol = 1e-12;
   tight.atol = 1e-14;
   Flow flow(truth, tight);
-  const Eigen::VectorXd z23 = flow.advance(m.file.initial_state(&m.file.start("swing")), 0.0, 2.3);
+  const Eigen::VectorXd z23 = flow.advance(m.file.initial_state(&m.file.start("swing")),
+                                           truth.default_parameters(), 0.0, 2.3);
   const std::string data =
       write_recording(truth, z23, uniform_times(2.3, 10.3, 0.02), {"th1"}, 0.0, 0, test_name());
   FitRequest request;
@@ -156,18 +158,20 @@ TEST(MetronomeFit, NoiseFreeWithTheInitialStateFree) {
 TEST(PlatformModel, LockedPendulaMakeADampedOscillator) {
   const auto file = CaseFile::load(source("cases/row2.toml"));
   const ModelSpec spec = file.spec("table2");
-  PlatformModel platform(spec);
+  const PlatformModel platform(spec);
+  const ParameterValues values = platform.default_parameters();
   EXPECT_EQ(platform.state_names(), (std::vector<std::string>{"x", "vx"}));
   const double Mt = 0.3778 + 2.0 * (0.0185 + 0.0086);
-  EXPECT_DOUBLE_EQ(platform.total_mass(), Mt);
-  EXPECT_DOUBLE_EQ(platform.total_mass(), MetronomeModel(spec).total_mass());
+  EXPECT_DOUBLE_EQ(platform.total_mass(values), Mt);
+  const MetronomeModel full(spec);
+  EXPECT_DOUBLE_EQ(platform.total_mass(values), full.total_mass(full.default_parameters()));
   const double w = std::sqrt(14.7467 / Mt), z = 0.0185 / (2.0 * std::sqrt(14.7467 * Mt));
   const double wd = w * std::sqrt(1.0 - z * z);
   FlowOptions o;
   o.rtol = 1e-11;
   o.atol = 1e-14;
   Flow flow(platform, o);
-  flow.sample(Eigen::Vector2d(0.01, 0.0), 0.0, uniform_times(0.0, 20.0, 0.5),
+  flow.sample(Eigen::Vector2d(0.01, 0.0), values, 0.0, uniform_times(0.0, 20.0, 0.5),
               [&](double t, const Eigen::VectorXd& x) {
                 const double exact = 0.01 * std::exp(-z * w * t) *
                                      (std::cos(wd * t) + z * w / wd * std::sin(wd * t));
@@ -182,12 +186,12 @@ TEST(PlatformModel, LockedPendulaMakeADampedOscillator) {
   const Eigen::Vector2d x(0.004, -0.03);
   for (int p = 0; p < static_cast<int>(names.size()); ++p) {
     Eigen::Vector2d dfdp;
-    platform.parameter_derivative(0.0, x.data(), p, dfdp.data());
-    PlatformModel plus(spec), minus(spec);
-    const double v = platform.parameter(p), h = 1e-6 * v;
-    plus.set_parameter(p, v + h);
-    minus.set_parameter(p, v - h);
-    const Eigen::VectorXd fd = (plus.rhs(0.0, x) - minus.rhs(0.0, x)) / (2.0 * h);
+    platform.parameter_derivative(0.0, x.data(), values.data(), p, dfdp.data());
+    const double v = platform.parameter(values, p), h = 1e-6 * v;
+    const ParameterValues plus = platform.with_parameter(values, p, v + h);
+    const ParameterValues minus = platform.with_parameter(values, p, v - h);
+    const Eigen::VectorXd fd =
+        (platform.rhs(0.0, x, plus) - platform.rhs(0.0, x, minus)) / (2.0 * h);
     EXPECT_NEAR((dfdp - fd).norm(), 0.0, 1e-6 * (1.0 + fd.norm())) << names[p];
   }
 }

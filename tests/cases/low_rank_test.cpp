@@ -40,14 +40,15 @@ TEST_P(LowRankSetups, SparsePlusLowRankIsTheJacobian) {
   EXPECT_EQ(jac->rank(), D);
   // q' = v (D + N), each angular acceleration's own angle and velocity (2N), two per spring.
   EXPECT_EQ(jac->nonzeros(), D + 3 * N + 2 * static_cast<int>(model.spec().springs.size()));
+  const ParameterValues values = model.default_parameters();
   std::mt19937 rng(5);
   for (int trial = 0; trial < 6; ++trial) {
     Eigen::VectorXd z = random_state(model, rng);
     if (trial >= 4)
       for (int i = 0; i < N; ++i)
         z[model.angular_velocity_index(i)] = 2e-4 * (i + 1) * (trial == 4 ? 1 : -1);
-    ASSERT_TRUE(model.low_rank_jacobian(0.0, z.data(), *jac));
-    const Eigen::MatrixXd dense = model.jacobian(0.0, z);
+    ASSERT_TRUE(model.low_rank_jacobian(0.0, z.data(), values.data(), *jac));
+    const Eigen::MatrixXd dense = model.jacobian(0.0, z, values);
     EXPECT_LE((jac->dense() - dense).cwiseAbs().maxCoeff(), 1e-12 * dense.cwiseAbs().maxCoeff())
         << "trial " << trial;
     // S has no platform-acceleration rows: those are U W^T alone.
@@ -62,12 +63,14 @@ TEST_P(LowRankSetups, StructuredSolveMatchesDenseSolve) {
   const int n = model.dimension();
   auto jac = *model.low_rank_structure();
   LowRankSolver solver(jac);
+  const ParameterValues values = model.default_parameters();
   std::mt19937 rng(9);
   for (double gamma : {1e-5, 1e-3, 2e-2}) {
     const Eigen::VectorXd z = random_state(model, rng);
-    ASSERT_TRUE(model.low_rank_jacobian(0.0, z.data(), jac));
+    ASSERT_TRUE(model.low_rank_jacobian(0.0, z.data(), values.data(), jac));
     ASSERT_TRUE(solver.factor(jac, gamma));
-    const Eigen::MatrixXd m = Eigen::MatrixXd::Identity(n, n) - gamma * model.jacobian(0.0, z);
+    const Eigen::MatrixXd m =
+        Eigen::MatrixXd::Identity(n, n) - gamma * model.jacobian(0.0, z, values);
     const Eigen::VectorXd b = Eigen::VectorXd::Random(n);
     const Eigen::VectorXd expected = m.partialPivLu().solve(b);
     Eigen::VectorXd x = b;

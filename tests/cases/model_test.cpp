@@ -17,7 +17,8 @@ using testing::case_path;
 using testing::load_spec;
 using testing::random_state;
 
-Eigen::MatrixXd finite_difference_jacobian(const OdeSystem& s, const Eigen::VectorXd& z) {
+Eigen::MatrixXd finite_difference_jacobian(const OdeSystem& s, const Eigen::VectorXd& z,
+                                           const ParameterValues& p) {
   const int n = s.dimension();
   Eigen::MatrixXd j(n, n);
   for (int c = 0; c < n; ++c) {
@@ -25,7 +26,7 @@ Eigen::MatrixXd finite_difference_jacobian(const OdeSystem& s, const Eigen::Vect
     Eigen::VectorXd zp = z, zm = z;
     zp[c] += h;
     zm[c] -= h;
-    j.col(c) = (s.rhs(0.0, zp) - s.rhs(0.0, zm)) / (2 * h);
+    j.col(c) = (s.rhs(0.0, zp, p) - s.rhs(0.0, zm, p)) / (2 * h);
   }
   return j;
 }
@@ -44,15 +45,16 @@ class EverySetup : public ::testing::TestWithParam<Setup> {};
 // df/dz from dual numbers against central differences, at random states and at states inside
 // the escapement's switching band (|th'| < eps/50), where f is steepest.
 TEST_P(EverySetup, JacobianMatchesFiniteDifferences) {
-  MetronomeModel model(load_spec(GetParam().name, "", GetParam().escapement));
+  const MetronomeModel model(load_spec(GetParam().name, "", GetParam().escapement));
+  const ParameterValues values = model.default_parameters();
   std::mt19937 rng(7);
   for (int trial = 0; trial < 6; ++trial) {
     Eigen::VectorXd z = random_state(model, rng);
     if (trial >= 4)  // inside the band: sigma = tanh(1000 th') is mid-switch
       for (int i = 0; i < model.metronome_count(); ++i)
         z[model.angular_velocity_index(i)] = 2e-4 * (i + 1) * (trial == 4 ? 1 : -1);
-    const Eigen::MatrixXd exact = model.jacobian(0.0, z);
-    const Eigen::MatrixXd fd = finite_difference_jacobian(model, z);
+    const Eigen::MatrixXd exact = model.jacobian(0.0, z, values);
+    const Eigen::MatrixXd fd = finite_difference_jacobian(model, z, values);
     EXPECT_LT((exact - fd).cwiseAbs().maxCoeff(), 1e-6 * exact.cwiseAbs().maxCoeff())
         << GetParam().name << " trial " << trial;
   }
@@ -60,21 +62,19 @@ TEST_P(EverySetup, JacobianMatchesFiniteDifferences) {
 
 // df/dp for every named parameter against central differences in that parameter.
 TEST_P(EverySetup, ParameterDerivativesMatchFiniteDifferences) {
-  MetronomeModel model(load_spec(GetParam().name, "", GetParam().escapement));
+  const MetronomeModel model(load_spec(GetParam().name, "", GetParam().escapement));
+  const ParameterValues values = model.default_parameters();
   std::mt19937 rng(11);
   const Eigen::VectorXd z = random_state(model, rng);
   const auto names = model.parameter_names();
   for (int p = 0; p < static_cast<int>(names.size()); ++p) {
-    const double v = model.parameter(p);
+    const double v = model.parameter(values, p);
     const double h = 1e-4 * std::max(std::abs(v), 1e-3);
-    model.set_parameter(p, v + h);
-    const Eigen::VectorXd fp = model.rhs(0.0, z);
-    model.set_parameter(p, v - h);
-    const Eigen::VectorXd fm = model.rhs(0.0, z);
-    model.set_parameter(p, v);
+    const Eigen::VectorXd fp = model.rhs(0.0, z, model.with_parameter(values, p, v + h));
+    const Eigen::VectorXd fm = model.rhs(0.0, z, model.with_parameter(values, p, v - h));
     const Eigen::VectorXd fd = (fp - fm) / (2 * h);
     Eigen::VectorXd exact(model.dimension());
-    model.parameter_derivative(0.0, z.data(), p, exact.data());
+    model.parameter_derivative(0.0, z.data(), values.data(), p, exact.data());
     // Truncation error ~ (h/p)^2 relative; roundoff ~ 1e-15 |f| / h.
     const double roundoff = 1e-15 * fp.cwiseAbs().maxCoeff() / h;
     EXPECT_LE((exact - fd).cwiseAbs().maxCoeff(), 1e-6 * exact.cwiseAbs().maxCoeff() + roundoff)
@@ -84,7 +84,8 @@ TEST_P(EverySetup, ParameterDerivativesMatchFiniteDifferences) {
 
 // The sensitivity right-hand side: J*S for state columns, J*s + df/dp for parameter columns.
 TEST_P(EverySetup, VariationalRhsIsJacobianTimesColumns) {
-  MetronomeModel model(load_spec(GetParam().name, "", GetParam().escapement));
+  const MetronomeModel model(load_spec(GetParam().name, "", GetParam().escapement));
+  const ParameterValues values = model.default_parameters();
   std::mt19937 rng(3);
   const Eigen::VectorXd z = random_state(model, rng);
   const int n = model.dimension();
@@ -97,12 +98,13 @@ TEST_P(EverySetup, VariationalRhsIsJacobianTimesColumns) {
     in_ptr[j] = S.col(j).data();
     out_ptr[j] = out.col(j).data();
   }
-  model.variational_rhs(0.0, z.data(), columns, in_ptr.data(), out_ptr.data(), params);
-  const Eigen::MatrixXd J = model.jacobian(0.0, z);
+  model.variational_rhs(0.0, z.data(), values.data(), columns, in_ptr.data(), out_ptr.data(),
+                        params);
+  const Eigen::MatrixXd J = model.jacobian(0.0, z, values);
   Eigen::MatrixXd expected = J * S;
   for (int k = 0; k < 2; ++k) {
     Eigen::VectorXd dfdp(n);
-    model.parameter_derivative(0.0, z.data(), params[k], dfdp.data());
+    model.parameter_derivative(0.0, z.data(), values.data(), params[k], dfdp.data());
     expected.col(n + k) += dfdp;
   }
   EXPECT_LT((out - expected).cwiseAbs().maxCoeff(), 1e-12 * expected.cwiseAbs().maxCoeff());
@@ -168,7 +170,7 @@ TEST(MetronomeModel, AccelerationsMatchPaperEquations) {
                  m.at("d") * w - p * spec.g * std::sin(th) - spring;
     }
     const Eigen::VectorXd acc = A.partialPivLu().solve(b);
-    const Eigen::VectorXd f = model.rhs(0.0, z);
+    const Eigen::VectorXd f = model.rhs(0.0, z, model.default_parameters());
     EXPECT_LT((f.tail(q) - acc).cwiseAbs().maxCoeff(), 1e-12 * acc.cwiseAbs().maxCoeff()) << name;
     EXPECT_EQ(f.head(q), z.tail(q)) << name;
   }
@@ -190,7 +192,8 @@ TEST(MetronomeModel, EscapementForms) {
     auto torque = [&](double th, double w) {
       Eigen::VectorXd z(4);
       z << 0.0, th, 0.0, w;
-      return model.rhs(0.0, z)[3] * I + d * w + p * spec.g * std::sin(th);
+      return model.rhs(0.0, z, model.default_parameters())[3] * I + d * w +
+             p * spec.g * std::sin(th);
     };
     struct Point {
       double th, w;
@@ -234,7 +237,8 @@ TEST(MetronomeModel, EnergyIsConservedWithoutDampingOrDrive) {
     MetronomeModel model(spec);
     Eigen::VectorXd z0 = Eigen::VectorXd::Zero(model.dimension());
     for (int i = 0; i < model.metronome_count(); ++i) z0[model.angle_index(i)] = 0.5 - 0.3 * i;
-    const double e0 = model.mechanical_energy(z0);
+    const ParameterValues values = model.default_parameters();
+    const double e0 = model.mechanical_energy(z0, values);
     for (Method method : {Method::Adams, Method::BDF}) {
       FlowOptions o;
       o.method = method;
@@ -243,9 +247,9 @@ TEST(MetronomeModel, EnergyIsConservedWithoutDampingOrDrive) {
       o.rtol = 1e-11;
       o.atol = 1e-13;
       Flow flow(model, o);
-      const Eigen::VectorXd z = flow.advance(z0, 0.0, 20.0);
+      const Eigen::VectorXd z = flow.advance(z0, values, 0.0, 20.0);
       const double bound = method == Method::Adams ? 1e-8 : 1e-6;
-      EXPECT_LT(std::abs(model.mechanical_energy(z) - e0), bound * e0)
+      EXPECT_LT(std::abs(model.mechanical_energy(z, values) - e0), bound * e0)
           << name << " " << to_string(method);
       EXPECT_GT((z - z0).norm(), 0.1) << name;  // it did move
     }
@@ -262,7 +266,8 @@ TEST(MetronomeModel, SmallAnglesFollowLinearizedAnalyticSolution) {
   const auto& m = spec.metronomes[0].values;
   const double p = m.at("mp") * m.at("lp") - m.at("mb") * m.at("lb");
   const double I = m.at("mp") * m.at("lp") * m.at("lp") + m.at("mb") * m.at("lb") * m.at("lb");
-  const double Mt = model.total_mass();
+  const ParameterValues values = model.default_parameters();
+  const double Mt = model.total_mass(values);
   Eigen::Matrix3d M, C, K;
   M << Mt, p, p, p, I, 0, p, 0, I;
   C = Eigen::Vector3d(spec.cx, m.at("d"), m.at("d")).asDiagonal();
@@ -279,7 +284,7 @@ TEST(MetronomeModel, SmallAnglesFollowLinearizedAnalyticSolution) {
   Flow flow(model, o);
   for (double t : {0.3, 2.0, 7.5}) {
     const Eigen::VectorXd exact = (A * t).exp() * z0;
-    const Eigen::VectorXd z = flow.advance(z0, 0.0, t);
+    const Eigen::VectorXd z = flow.advance(z0, values, 0.0, t);
     for (int i = 0; i < 6; ++i)
       EXPECT_LT(std::abs(z[i] - exact[i]),
                 1e-6 * exact.segment(3 * (i / 3), 3).cwiseAbs().maxCoeff())
@@ -292,20 +297,22 @@ TEST(MetronomeModel, SmallAnglesFollowLinearizedAnalyticSolution) {
 TEST(MetronomeModel, NamedParameters) {
   ModelSpec spec = load_spec("cross4");
   spec.set("d3", 5e-6);  // metronome 3 detuned in damping
-  MetronomeModel model(spec);
+  const MetronomeModel model(spec);
   const auto names = model.parameter_names();
   EXPECT_NE(std::find(names.begin(), names.end(), "d"), names.end());
   EXPECT_NE(std::find(names.begin(), names.end(), "angle4"), names.end());
-  EXPECT_NEAR(model.parameter("angle3"), -45.0, 1e-12);
-  model.set_parameter("d", 1e-6);
-  EXPECT_EQ(model.parameter("d1"), 1e-6);
-  EXPECT_EQ(model.parameter("d3"), 5e-6);
+  auto index = [&](const char* name) { return model.parameter_index(name); };
+  ParameterValues values = model.default_parameters();
+  EXPECT_NEAR(model.parameter(values, index("angle3")), -45.0, 1e-12);
+  model.set_parameter(values, index("d"), 1e-6);
+  EXPECT_EQ(model.parameter(values, index("d1")), 1e-6);
+  EXPECT_EQ(model.parameter(values, index("d3")), 5e-6);
   std::mt19937 rng(2);
   const Eigen::VectorXd z = random_state(model, rng);
   Eigen::VectorXd dc(model.dimension()), dcx(model.dimension()), dcy(model.dimension());
-  model.parameter_derivative(0.0, z.data(), model.parameter_index("c"), dc.data());
-  model.parameter_derivative(0.0, z.data(), model.parameter_index("cx"), dcx.data());
-  model.parameter_derivative(0.0, z.data(), model.parameter_index("cy"), dcy.data());
+  model.parameter_derivative(0.0, z.data(), values.data(), index("c"), dc.data());
+  model.parameter_derivative(0.0, z.data(), values.data(), index("cx"), dcx.data());
+  model.parameter_derivative(0.0, z.data(), values.data(), index("cy"), dcy.data());
   EXPECT_LT((dc - dcx - dcy).cwiseAbs().maxCoeff(), 1e-14 * dc.cwiseAbs().maxCoeff());
   EXPECT_THROW(model.parameter_index("nonsense"), std::invalid_argument);
   const auto states = model.state_names();
@@ -328,7 +335,7 @@ TEST(MetronomeModel, TurningPointPulseIsResolved) {
     o.max_step = max_step;
     o.resolve_steep_zones = resolve;
     Flow flow(model, o);
-    return flow.advance(z0, 0.0, 1.2);
+    return flow.advance(z0, model.default_parameters(), 0.0, 1.2);
   };
   const Eigen::VectorXd exact = run(1e-12, 1e-5, true);
   EXPECT_LT((run(1e-12, 2e-5, true) - exact).cwiseAbs().maxCoeff(), 1e-10);

@@ -27,7 +27,7 @@ Found find(const std::string& name, const std::string& params, const std::string
   Found f;
   f.model = std::make_unique<MetronomeModel>(file.spec(params, sets));
   const auto& s = file.start(start);
-  f.orbit = find_periodic_orbit(*f.model, file.initial_state(&s),
+  f.orbit = find_periodic_orbit(*f.model, f.model->default_parameters(), file.initial_state(&s),
                                 file.invariant_subspace(s, *f.model), OrbitOptions{});
   return f;
 }
@@ -141,7 +141,8 @@ TEST(Orbits, MonodromyMatchesFiniteDifferences) {
   Flow flow(*f.model, o);
   const auto& z = f.orbit.state0;
   const double T = f.orbit.period;
-  const Eigen::MatrixXd monodromy = flow.advance_with_sensitivities(z, 0.0, T).transition;
+  const ParameterValues& p = f.orbit.parameters;
+  const Eigen::MatrixXd monodromy = flow.advance_with_sensitivities(z, p, 0.0, T).transition;
   const int n = static_cast<int>(z.size());
   Eigen::MatrixXd fd(n, n);
   for (int j = 0; j < n; ++j) {
@@ -149,7 +150,7 @@ TEST(Orbits, MonodromyMatchesFiniteDifferences) {
     Eigen::VectorXd zp = z, zm = z;
     zp[j] += h;
     zm[j] -= h;
-    fd.col(j) = (flow.advance(zp, 0.0, T) - flow.advance(zm, 0.0, T)) / (2 * h);
+    fd.col(j) = (flow.advance(zp, p, 0.0, T) - flow.advance(zm, p, 0.0, T)) / (2 * h);
   }
   for (int j = 0; j < n; ++j)
     EXPECT_LT((monodromy.col(j) - fd.col(j)).norm(), 5e-7 * monodromy.norm()) << "column " << j;
@@ -165,18 +166,19 @@ TEST(Orbits, PlainResidualAsAccurateAsTheSensitivityRuns) {
   for (const char* start : {"in-phase", "anti-phase"}) {
     const Found f = find("row2", "table2", start);
     ASSERT_TRUE(f.orbit.converged());
+    const ParameterValues& p = f.orbit.parameters;
     ShootingProblem problem(*f.model, ShootingOptions{});
-    problem.set_phase_reference(f.orbit.state0);
-    const Eigen::VectorXd x = problem.unknowns_from(f.orbit.state0, f.orbit.period);
+    problem.set_phase_reference(f.orbit.state0, p);
+    const Eigen::VectorXd x = problem.unknowns_from(f.orbit.state0, p, f.orbit.period);
     ShootingOptions tight;
     tight.flow.rtol = 1e-13;
     tight.flow.atol = 1e-15;
     ShootingProblem reference(*f.model, tight);
-    reference.set_phase_reference(f.orbit.state0);
-    const Eigen::VectorXd exact = reference.evaluate(x, false).residual;
-    const double plain = (problem.residual(x) - exact).cwiseAbs().maxCoeff();
+    reference.set_phase_reference(f.orbit.state0, p);
+    const Eigen::VectorXd exact = reference.evaluate(x, p, false).residual;
+    const double plain = (problem.residual(x, p) - exact).cwiseAbs().maxCoeff();
     const double with_derivatives =
-        (problem.evaluate(x, true).residual - exact).cwiseAbs().maxCoeff();
+        (problem.evaluate(x, p, true).residual - exact).cwiseAbs().maxCoeff();
     EXPECT_LT(plain, 1e-9) << start;
     EXPECT_LT(with_derivatives, 3e-9) << start;
     EXPECT_LT(plain, 2.0 * with_derivatives + 1e-10) << start;
@@ -192,7 +194,8 @@ TEST(Orbits, SegmentCountGivesSameMultipliers) {
   for (int m : {1, 3, 5, 10, 50}) {
     OrbitOptions o;
     o.shooting.segments = m;
-    const auto orbit = solve_periodic_orbit(*f.model, f.orbit.state0, f.orbit.period, {}, o);
+    const auto orbit =
+        solve_periodic_orbit(*f.model, f.orbit.parameters, f.orbit.state0, f.orbit.period, {}, o);
     ASSERT_TRUE(orbit.converged()) << m << ": " << orbit.newton.reason;
     ASSERT_EQ(orbit.floquet.multipliers.size(), reference.size());
     for (std::size_t k = 0; k < reference.size(); ++k)

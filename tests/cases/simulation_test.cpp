@@ -42,7 +42,7 @@ SimulationRun simulate(const std::string& name, const std::string& params,
   std::vector<double> times;
   for (int k = 0; k <= static_cast<int>(t_end * 200); ++k) times.push_back(k / 200.0);
   SimulationRun run;
-  flow.sample(z0, 0.0, times, [&](double t, const Eigen::VectorXd& z) {
+  flow.sample(z0, model.default_parameters(), 0.0, times, [&](double t, const Eigen::VectorXd& z) {
     analyzer.add(t, z);
     run.state = z;
   });

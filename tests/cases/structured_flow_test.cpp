@@ -31,8 +31,9 @@ FlowOptions options(LinearSolver solver) {
 void expect_same_flow(const MetronomeModel& model, const Eigen::VectorXd& z0, double t1) {
   Flow dense(model, options(LinearSolver::Dense));
   Flow structured(model, options(LinearSolver::Structured));
-  const FlowDerivatives a = dense.advance_with_sensitivities(z0, 0.0, t1);
-  const FlowDerivatives b = structured.advance_with_sensitivities(z0, 0.0, t1);
+  const ParameterValues p = model.default_parameters();
+  const FlowDerivatives a = dense.advance_with_sensitivities(z0, p, 0.0, t1);
+  const FlowDerivatives b = structured.advance_with_sensitivities(z0, p, 0.0, t1);
   EXPECT_LE((a.state - b.state).cwiseAbs().maxCoeff(), 1e-8 * a.state.cwiseAbs().maxCoeff());
   EXPECT_LE((a.transition - b.transition).cwiseAbs().maxCoeff(),
             1e-8 * a.transition.cwiseAbs().maxCoeff());
@@ -68,8 +69,9 @@ TEST(StructuredFlow, SameStateAsDenseWithImpulsiveEscapement) {
   const Eigen::VectorXd z0 = file.initial_state(&start);
   Flow dense(model, options(LinearSolver::Dense));
   Flow structured(model, options(LinearSolver::Structured));
-  const Eigen::VectorXd a = dense.advance(z0, 0.0, 1.5);
-  const Eigen::VectorXd b = structured.advance(z0, 0.0, 1.5);
+  const ParameterValues p = model.default_parameters();
+  const Eigen::VectorXd a = dense.advance(z0, p, 0.0, 1.5);
+  const Eigen::VectorXd b = structured.advance(z0, p, 0.0, 1.5);
   EXPECT_GT(structured.statistics().switchings, 0);
   EXPECT_LE((a - b).cwiseAbs().maxCoeff(), 1e-7 * a.cwiseAbs().maxCoeff());
 }
@@ -108,8 +110,9 @@ TEST(StructuredFlow, OrbitMultipliersAgreeWithDense) {
     OrbitOptions o;
     o.shooting.flow.linear_solver = solver;
     o.transient_flow.linear_solver = solver;
-    const PeriodicOrbit orbit = find_periodic_orbit(model, file.initial_state(&start),
-                                                    file.invariant_subspace(start, model), o);
+    const PeriodicOrbit orbit =
+        find_periodic_orbit(model, model.default_parameters(), file.initial_state(&start),
+                            file.invariant_subspace(start, model), o);
     ASSERT_TRUE(orbit.converged()) << to_string(solver) << ": " << orbit.newton.reason;
     std::vector<std::complex<double>> m;
     for (const auto& mu : orbit.floquet.multipliers) m.push_back(mu.value);

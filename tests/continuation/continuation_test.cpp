@@ -26,7 +26,8 @@ ContinuationOptions options(double lower, double upper) {
 PeriodicOrbit circle(const OdeSystem& system, double radius = 1.0) {
   Eigen::VectorXd z = Eigen::VectorXd::Zero(system.dimension());
   z[0] = radius;
-  const auto orbit = solve_periodic_orbit(system, z, 2 * kPi, {}, OrbitOptions{});
+  const auto orbit =
+      solve_periodic_orbit(system, system.default_parameters(), z, 2 * kPi, {}, OrbitOptions{});
   EXPECT_TRUE(orbit.converged()) << orbit.newton.reason;
   return orbit;
 }

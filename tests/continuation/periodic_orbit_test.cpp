@@ -32,7 +32,8 @@ TEST(PeriodicOrbit, HopfCycleToTenDigits) {
     Eigen::VectorXd guess = Eigen::VectorXd::Zero(system.dimension());
     guess[0] = 1.2;
     guess[1] = 0.1;
-    const auto orbit = solve_periodic_orbit(system, guess, 6.0, {}, tight());
+    const auto orbit =
+        solve_periodic_orbit(system, system.default_parameters(), guess, 6.0, {}, tight());
     ASSERT_TRUE(orbit.converged()) << orbit.newton.reason;
     EXPECT_NEAR(orbit.period, 2 * kPi, 1e-10);
     EXPECT_NEAR(orbit.state0.head(2).norm(), 1.0, 1e-10);
@@ -68,7 +69,8 @@ TEST(PeriodicOrbit, SegmentCountDoesNotChangeMultipliers) {
   Eigen::VectorXd guess(3);
   guess << 1.1, 0.0, 0.05;
   for (int m : {1, 3, 5, 10, 50}) {
-    const auto orbit = solve_periodic_orbit(system, guess, 6.2, {}, tight(m));
+    const auto orbit =
+        solve_periodic_orbit(system, system.default_parameters(), guess, 6.2, {}, tight(m));
     ASSERT_TRUE(orbit.converged()) << m << ": " << orbit.newton.reason;
     EXPECT_EQ(orbit.newton.sparse, m > 1) << m;
     const auto& mu = orbit.floquet.multipliers;  // by decreasing modulus
@@ -88,7 +90,8 @@ TEST(PeriodicOrbit, ForcedFloquetExponentsNeedPeriodicSchur) {
   auto exponents = [&](int segments) {
     OrbitOptions o = tight(segments);
     o.shooting.flow.atol = 1e-20;  // relative accuracy for the fast-decaying column
-    const auto orbit = solve_periodic_orbit(system, zero, 2 * kPi, {}, o);
+    const auto orbit =
+        solve_periodic_orbit(system, system.default_parameters(), zero, 2 * kPi, {}, o);
     EXPECT_TRUE(orbit.converged());
     EXPECT_EQ(orbit.floquet.trivial, -1);  // forced: no trivial multiplier
     std::vector<double> e;
@@ -111,7 +114,8 @@ TEST(PeriodicOrbit, FamilyOfOrbits) {
   Eigen::VectorXd guess(4);
   guess << 1.1, 0.0, 0.3, 0.9;
   for (int m : {1, 4}) {
-    const auto orbit = solve_periodic_orbit(system, guess, 6.0, {}, tight(m));
+    const auto orbit =
+        solve_periodic_orbit(system, system.default_parameters(), guess, 6.0, {}, tight(m));
     ASSERT_TRUE(orbit.converged()) << orbit.newton.reason;
     EXPECT_EQ(orbit.family_dimension, 1);
     EXPECT_EQ(orbit.floquet.structural, 1);
@@ -135,10 +139,13 @@ TEST(PeriodicOrbit, FamilyOfOrbits) {
 TEST(PeriodicOrbit, StaysInInvariantSubspace) {
   TwoHopf system;
   const InvariantSubspace antiphase(4, {{2, 0, -1.0}, {3, 1, -1.0}});
-  EXPECT_LT(antiphase.invariance_defect(system, Eigen::VectorXd::Ones(4)), 1e-15);
+  EXPECT_LT(
+      antiphase.invariance_defect(system, system.default_parameters(), Eigen::VectorXd::Ones(4)),
+      1e-15);
   Eigen::VectorXd guess(4);
   guess << 1.1, 0.2, -0.7, 0.1;
-  const auto orbit = solve_periodic_orbit(system, guess, 6.0, antiphase, tight());
+  const auto orbit =
+      solve_periodic_orbit(system, system.default_parameters(), guess, 6.0, antiphase, tight());
   ASSERT_TRUE(orbit.converged());
   EXPECT_EQ(orbit.state0[2], -orbit.state0[0]);
   EXPECT_EQ(orbit.state0[3], -orbit.state0[1]);
@@ -151,7 +158,7 @@ TEST(PeriodicOrbit, FoundFromAStart) {
   start << 0.3, 0.0, 1.0;
   OrbitOptions o = tight();
   o.transient = 10.0;
-  const auto orbit = find_periodic_orbit(system, start, {}, o);
+  const auto orbit = find_periodic_orbit(system, system.default_parameters(), start, {}, o);
   ASSERT_TRUE(orbit.converged()) << orbit.newton.reason;
   EXPECT_NEAR(orbit.period, 2 * kPi, 1e-10);
   EXPECT_LE(orbit.newton.iterations, 4);
@@ -165,7 +172,7 @@ TEST(PeriodicOrbit, NoOrbitIsReported) {
   OrbitOptions o;
   o.transient = 1.0;
   o.max_period = 2.0;
-  const auto orbit = find_periodic_orbit(system, start, {}, o);
+  const auto orbit = find_periodic_orbit(system, system.default_parameters(), start, {}, o);
   EXPECT_FALSE(orbit.converged());
   EXPECT_NE(orbit.newton.reason.find("no return to the section"), std::string::npos);
 }

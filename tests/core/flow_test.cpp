@@ -33,7 +33,7 @@ TEST(Flow, LinearSystemMatchesMatrixExponential) {
     o.nonlinear_solver =
         method == Method::BDF ? NonlinearSolver::Newton : NonlinearSolver::FixedPoint;
     Flow flow(system, o);
-    const Eigen::VectorXd z = flow.advance(z0, 0.0, 3.0);
+    const Eigen::VectorXd z = flow.advance(z0, system.default_parameters(), 0.0, 3.0);
     const Eigen::VectorXd exact = (a * 3.0).exp() * z0;
     EXPECT_LT((z - exact).norm(), 1e-8 * exact.norm()) << to_string(method);
   }
@@ -52,7 +52,7 @@ TEST(Flow, TransitionMatrixMatchesMatrixExponential) {
       o.linear_solver = solver;
       o.corrector = corrector;
       Flow flow(system, o);
-      const auto r = flow.advance_with_sensitivities(z0, 0.0, 2.0);
+      const auto r = flow.advance_with_sensitivities(z0, system.default_parameters(), 0.0, 2.0);
       EXPECT_LT((r.transition - exact).norm(), 1e-8 * exact.norm()) << to_string(solver);
       EXPECT_LT((r.state - exact * z0).norm(), 1e-9);
     }
@@ -66,13 +66,14 @@ TEST(Flow, ParameterSensitivityOfDecay) {
   Eigen::VectorXd z0(1);
   z0 << 2.0;
   const int a = system.parameter_index("a");
-  const auto r = flow.advance_with_sensitivities(z0, 0.0, 1.5, true, std::vector<int>{a});
+  const ParameterValues values = system.default_parameters();
+  const auto r = flow.advance_with_sensitivities(z0, values, 0.0, 1.5, true, std::vector<int>{a});
   const double e = std::exp(-0.7 * 1.5);
   EXPECT_NEAR(r.state[0], 2.0 * e, 1e-10);
   EXPECT_NEAR(r.transition(0, 0), e, 1e-10);
   EXPECT_NEAR(r.parameter_sensitivities(0, 0), -1.5 * 2.0 * e, 1e-9);
   // Parameter column alone, without the state columns.
-  const auto p = flow.advance_with_sensitivities(z0, 0.0, 1.5, false, std::vector<int>{a});
+  const auto p = flow.advance_with_sensitivities(z0, values, 0.0, 1.5, false, std::vector<int>{a});
   EXPECT_EQ(p.transition.size(), 0);
   EXPECT_NEAR(p.parameter_sensitivities(0, 0), -1.5 * 2.0 * e, 1e-9);
 }
@@ -84,11 +85,12 @@ TEST(Flow, ReusedAcrossCallsWithDifferentRequests) {
   Flow flow(system);
   Eigen::VectorXd z0(1);
   z0 << 1.0;
+  const ParameterValues p = system.default_parameters();
   for (int round = 0; round < 3; ++round) {
-    EXPECT_NEAR(flow.advance(z0, 0.0, 1.0)[0], std::exp(-1.1), 1e-8);
-    const auto r = flow.advance_with_sensitivities(z0, 0.0, 2.0);
+    EXPECT_NEAR(flow.advance(z0, p, 0.0, 1.0)[0], std::exp(-1.1), 1e-8);
+    const auto r = flow.advance_with_sensitivities(z0, p, 0.0, 2.0);
     EXPECT_NEAR(r.transition(0, 0), std::exp(-2.2), 1e-8);
-    const auto q = flow.advance_with_sensitivities(z0, 0.0, 2.0, true, std::vector<int>{0});
+    const auto q = flow.advance_with_sensitivities(z0, p, 0.0, 2.0, true, std::vector<int>{0});
     EXPECT_NEAR(q.parameter_sensitivities(0, 0), -2.0 * std::exp(-2.2), 1e-8);
   }
   EXPECT_EQ(flow.statistics().calls, 9);
@@ -107,9 +109,10 @@ TEST(Flow, SampleWithSensitivitiesMatchesMatrixExponential) {
   const std::vector<double> times{0.0, 0.3, 0.7, 1.9, 3.0};
   const std::vector<int> components{2, 0};
   const std::vector<int> parameters{system.parameter_index("scale")};
+  const ParameterValues p = system.default_parameters();
   std::vector<double> seen;
   flow.sample_with_sensitivities(
-      z0, 0.0, times, components, parameters,
+      z0, p, 0.0, times, components, parameters,
       [&](double t, const Eigen::VectorXd& z, const Eigen::MatrixXd& S) {
         seen.push_back(t);
         const Eigen::MatrixXd e = (a * t).exp();
@@ -121,10 +124,10 @@ TEST(Flow, SampleWithSensitivitiesMatchesMatrixExponential) {
         EXPECT_LT((S.col(2) - dz_dscale).norm(), 1e-8 * (1.0 + dz_dscale.norm())) << "t = " << t;
       });
   EXPECT_EQ(seen, times);
-  EXPECT_THROW(flow.sample_with_sensitivities(z0, 0.0, std::vector<double>{1.0, 0.5}, components,
+  EXPECT_THROW(flow.sample_with_sensitivities(z0, p, 0.0, std::vector<double>{1.0, 0.5}, components,
                                               parameters, [](double, auto&, auto&) {}),
                std::invalid_argument);
-  EXPECT_THROW(flow.sample_with_sensitivities(z0, 0.0, times, std::vector<int>{3}, parameters,
+  EXPECT_THROW(flow.sample_with_sensitivities(z0, p, 0.0, times, std::vector<int>{3}, parameters,
                                               [](double, auto&, auto&) {}),
                std::invalid_argument);
 }
@@ -136,13 +139,14 @@ TEST(Flow, SampleAtRequestedTimes) {
   Eigen::VectorXd z0(1);
   z0 << 1.0;
   std::vector<double> times{0.0, 0.1, 0.25, 1.0, 4.0};
+  const ParameterValues p = system.default_parameters();
   std::vector<double> seen;
-  flow.sample(z0, 0.0, times, [&](double t, const Eigen::VectorXd& z) {
+  flow.sample(z0, p, 0.0, times, [&](double t, const Eigen::VectorXd& z) {
     seen.push_back(t);
     EXPECT_NEAR(z[0], std::exp(-0.5 * t), 1e-8) << "t = " << t;
   });
   EXPECT_EQ(seen, times);
-  EXPECT_THROW(flow.sample(z0, 0.0, std::vector<double>{1.0, 0.5}, [](double, auto&) {}),
+  EXPECT_THROW(flow.sample(z0, p, 0.0, std::vector<double>{1.0, 0.5}, [](double, auto&) {}),
                std::invalid_argument);
 }
 
@@ -154,8 +158,9 @@ TEST(Flow, BlowUpIsReportedWithItsTime) {
   Flow flow(system, o);
   Eigen::VectorXd z0(1);
   z0 << 1.0;
+  const ParameterValues p = system.default_parameters();
   try {
-    flow.advance(z0, 0.0, 2.0);
+    flow.advance(z0, p, 0.0, 2.0);
     FAIL() << "expected an IntegrationError";
   } catch (const IntegrationError& e) {
     EXPECT_NEAR(e.time(), 1.0, 1e-3);  // z = 1/(1 - t)
@@ -165,17 +170,18 @@ TEST(Flow, BlowUpIsReportedWithItsTime) {
   EXPECT_GT(flow.statistics().steps, 100);
   // The same Flow works again afterwards.
   z0[0] = 0.1;
-  EXPECT_NEAR(flow.advance(z0, 0.0, 1.0)[0], 0.1 / 0.9, 1e-9);
+  EXPECT_NEAR(flow.advance(z0, p, 0.0, 1.0)[0], 0.1 / 0.9, 1e-9);
 }
 
 TEST(Flow, RejectsBadInput) {
   Decay system(1.0);
   Flow flow(system);
-  EXPECT_THROW(flow.advance(Eigen::VectorXd::Zero(2), 0.0, 1.0), std::invalid_argument);
-  EXPECT_THROW(flow.advance(Eigen::VectorXd::Zero(1), 1.0, 0.0), std::invalid_argument);
+  const ParameterValues p = system.default_parameters();
+  EXPECT_THROW(flow.advance(Eigen::VectorXd::Zero(2), p, 0.0, 1.0), std::invalid_argument);
+  EXPECT_THROW(flow.advance(Eigen::VectorXd::Zero(1), p, 1.0, 0.0), std::invalid_argument);
   Eigen::VectorXd bad(1);
   bad << std::nan("");
-  EXPECT_THROW(flow.advance(bad, 0.0, 1.0), std::invalid_argument);
+  EXPECT_THROW(flow.advance(bad, p, 0.0, 1.0), std::invalid_argument);
   FlowOptions o;
   o.rtol = -1.0;
   EXPECT_THROW(Flow(system, o), std::invalid_argument);
@@ -197,11 +203,13 @@ TEST(Flow, SteepZoneIsResolved) {
           method == Method::BDF ? NonlinearSolver::Newton : NonlinearSolver::FixedPoint;
       o.rtol = rtol;
       Flow resolved(system, o);
-      EXPECT_NEAR(resolved.advance(z0, 0.0, 2.0)[1], 1.0, 100 * rtol) << to_string(method);
+      EXPECT_NEAR(resolved.advance(z0, system.default_parameters(), 0.0, 2.0)[1], 1.0, 100 * rtol)
+          << to_string(method);
       EXPECT_GT(resolved.statistics().steep_roots, 0);
       o.resolve_steep_zones = false;
       Flow blind(system, o);
-      EXPECT_LT(blind.advance(z0, 0.0, 2.0)[1], 0.5) << to_string(method);
+      EXPECT_LT(blind.advance(z0, system.default_parameters(), 0.0, 2.0)[1], 0.5)
+          << to_string(method);
     }
   }
 }
@@ -218,7 +226,7 @@ TEST(Flow, CoincidingSteepZonesAreBothResolved) {
   o.rtol = 1e-10;
   o.max_steps = 100000;
   Flow flow(system, o);
-  const Eigen::VectorXd z = flow.advance(z0, 0.0, 2.0);
+  const Eigen::VectorXd z = flow.advance(z0, system.default_parameters(), 0.0, 2.0);
   EXPECT_NEAR(z[1], 1.0, 100 * o.rtol);
   EXPECT_NEAR(z[3], 1.0, 100 * o.rtol);
   EXPECT_GT(flow.statistics().steep_roots, 0);
@@ -241,9 +249,10 @@ TEST(Flow, DifferenceQuotientDerivatives) {
   Flow flow(system, o);
   const Eigen::VectorXd z0 = Eigen::VectorXd::Constant(2, 0.5);
   const Eigen::MatrixXd exact = (a * 2.0).exp();
-  EXPECT_LT((flow.advance_with_sensitivities(z0, 0.0, 2.0).transition - exact).norm(),
+  const ParameterValues p = system.default_parameters();
+  EXPECT_LT((flow.advance_with_sensitivities(z0, p, 0.0, 2.0).transition - exact).norm(),
             1e-6 * exact.norm());
-  EXPECT_THROW(flow.advance_with_sensitivities(z0, 0.0, 2.0, true, std::vector<int>{0}),
+  EXPECT_THROW(flow.advance_with_sensitivities(z0, p, 0.0, 2.0, true, std::vector<int>{0}),
                std::invalid_argument);
 }
 

@@ -30,11 +30,12 @@ TEST(InvariantSubspace, OrthogonalProjection) {
 TEST(InvariantSubspace, InvarianceDefect) {
   testing::TwoHopf system;
   const Eigen::VectorXd scale = Eigen::VectorXd::Ones(4);
-  EXPECT_LT(InvariantSubspace(4, {{2, 0, 1.0}, {3, 1, 1.0}}).invariance_defect(system, scale),
+  const ParameterValues p = system.default_parameters();
+  EXPECT_LT(InvariantSubspace(4, {{2, 0, 1.0}, {3, 1, 1.0}}).invariance_defect(system, p, scale),
             1e-15);
-  EXPECT_LT(InvariantSubspace(4, {{2, 0, -1.0}, {3, 1, -1.0}}).invariance_defect(system, scale),
+  EXPECT_LT(InvariantSubspace(4, {{2, 0, -1.0}, {3, 1, -1.0}}).invariance_defect(system, p, scale),
             1e-15);
-  EXPECT_GT(InvariantSubspace(4, {{2, 1, 1.0}}).invariance_defect(system, scale), 1e-3);
+  EXPECT_GT(InvariantSubspace(4, {{2, 1, 1.0}}).invariance_defect(system, p, scale), 1e-3);
 }
 
 }  // namespace

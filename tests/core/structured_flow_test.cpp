@@ -37,7 +37,8 @@ class LowRankLinearSystem final : public AutoDiffSystem<LowRankLinearSystem> {
     shape.W.setZero();
     return shape;
   }
-  bool low_rank_jacobian(double, const double*, LowRankJacobian& out) const override {
+  bool low_rank_jacobian(double, const double*, const double*,
+                         LowRankJacobian& out) const override {
     out = a_;
     ++evaluations;
     return true;
@@ -80,7 +81,8 @@ TEST(Flow, StructuredSolverMatchesMatrixExponential) {
   FlowOptions o;
   o.linear_solver = LinearSolver::Structured;
   Flow flow(system, o);
-  const FlowDerivatives r = flow.advance_with_sensitivities(z0, 0.0, 2.0);
+  const FlowDerivatives r =
+      flow.advance_with_sensitivities(z0, system.default_parameters(), 0.0, 2.0);
   const Eigen::MatrixXd exact = (a * 2.0).exp();
   EXPECT_LT((r.state - exact * z0).cwiseAbs().maxCoeff(), 1e-8 * (exact * z0).norm());
   EXPECT_LT((r.transition - exact).cwiseAbs().maxCoeff(), 1e-8 * exact.norm());

@@ -28,7 +28,7 @@ Eigen::MatrixXd record(const std::vector<double>& times, double x0, double v0, d
   z0 << x0, v0;
   Eigen::MatrixXd values(static_cast<int>(times.size()), 1);
   int i = 0;
-  flow.sample(z0, times.front(), times,
+  flow.sample(z0, system.default_parameters(), times.front(), times,
               [&](double, const Eigen::VectorXd& z) { values(i++, 0) = z[0]; });
   return values;
 }
@@ -55,11 +55,12 @@ TrajectoryFitProblem problem(const DampedOscillator& system, const std::vector<d
   pb.observed = {0};
   pb.values = values;
   pb.initial_state = Eigen::Vector2d(x0, v0);
+  pb.parameter_values = system.default_parameters();
   for (const char* name : {"c", "k"}) {
     FreeParameter f;
     f.index = system.parameter_index(name);
-    f.search_lower = system.parameter(f.index) / 10.0;
-    f.search_upper = system.parameter(f.index) * 10.0;
+    f.search_lower = system.parameter(pb.parameter_values, f.index) / 10.0;
+    f.search_upper = system.parameter(pb.parameter_values, f.index) * 10.0;
     pb.parameters.push_back(f);
   }
   return pb;
@@ -82,7 +83,10 @@ TEST(TrajectoryFit, NoiseFreeRecoveryByEachLocalMethod) {
     EXPECT_NEAR(r.values[0], kTrueC, 1e-7 * kTrueC) << to_string(method);
     EXPECT_NEAR(r.values[1], kTrueK, 1e-7 * kTrueK) << to_string(method);
     EXPECT_LT(std::sqrt(r.rss / r.residuals), 1e-8) << to_string(method);
-    EXPECT_EQ(system.parameter("c"), r.values[0]);  // left at the fitted values
+    // The fitted values come back as parameter values; the system itself is only read.
+    const int c = system.parameter_index("c");
+    EXPECT_EQ(system.parameter(r.fitted_parameters, c), r.values[0]);
+    EXPECT_EQ(system.parameter(system.default_parameters(), c), 0.45);
     EXPECT_EQ(r.start[0], 0.45);
   }
 }
@@ -124,7 +128,7 @@ TEST(TrajectoryFit, NoisyFitErrorBarsHoldTheTruth) {
     Flow flow(system, o);
     Eigen::VectorXd x(static_cast<int>(times.size()));
     int i = 0;
-    flow.sample(Eigen::Vector2d(x0, 0.0), 0.0, times,
+    flow.sample(Eigen::Vector2d(x0, 0.0), system.default_parameters(), 0.0, times,
                 [&](double, const Eigen::VectorXd& z) { x[i++] = z[0]; });
     return x;
   };

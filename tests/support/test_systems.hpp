@@ -96,7 +96,7 @@ class Pulse final : public AutoDiffSystem<Pulse> {
     }
     return names;
   }
-  std::vector<SteepZone> steep_zones() const override {
+  std::vector<SteepZone> steep_zones(const double* /*p*/) const override {
     std::vector<SteepZone> zones;
     for (int c = 0; c < copies_; ++c) zones.push_back({2 * c, width_, 1.0});
     return zones;

@@ -85,9 +85,9 @@ class MetronomeModel final : public AutoDiffSystem<MetronomeModel> {
   int dimension() const override { return 2 * (directions_ + n_metronomes_); }
   std::vector<std::string> state_names() const override;
   bool differentiable() const override { return spec_.escapement != Escapement::Impulsive; }
-  std::vector<SteepZone> steep_zones() const override;
+  std::vector<SteepZone> steep_zones(const double* p) const override;
   int switching_count() const override;
-  void switching_functions(double t, const double* z, double* g) const override;
+  void switching_functions(double t, const double* z, const double* p, double* g) const override;
 
   // df/dz = S + U W^T (OdeSystem::low_rank_jacobian) with rank = directions: write f(z) =
   // phi(z, s) with s = r'' the platform acceleration from the Schur complement. S = dphi/dz at
@@ -96,12 +96,14 @@ class MetronomeModel final : public AutoDiffSystem<MetronomeModel> {
   // the identity in the platform-acceleration rows and -b_i^T / I_i in the angular ones;
   // W^T = d(r'')/dz, by differentiating the Schur-complement solve. O(N) per evaluation.
   std::optional<LowRankJacobian> low_rank_structure() const override;
-  bool low_rank_jacobian(double t, const double* z, LowRankJacobian& out) const override;
+  bool low_rank_jacobian(double t, const double* z, const double* p,
+                         LowRankJacobian& out) const override;
 
-  // Total mechanical energy (kinetic + gravity + platform spring + torsion springs), J.
-  double mechanical_energy(const Eigen::VectorXd& z) const;
-  // Platform mass with the metronomes' masses, Mt.
-  double total_mass() const;
+  // Total mechanical energy (kinetic + gravity + platform spring + torsion springs), J, at
+  // parameter values p.
+  double mechanical_energy(const Eigen::VectorXd& z, const ParameterValues& p) const;
+  // Platform mass with the metronomes' masses, Mt, at parameter values p.
+  double total_mass(const ParameterValues& p) const;
 
   template <class T, class P>
   void evaluate(double t, const T* z, const P* raw, T* dz) const;

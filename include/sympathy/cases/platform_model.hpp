@@ -23,8 +23,8 @@ class PlatformModel final : public AutoDiffSystem<PlatformModel> {
   int dimension() const override { return 2 * directions_; }
   std::vector<std::string> state_names() const override;
   int platform_directions() const { return directions_; }
-  // Mt = M + sum of the pendulum masses.
-  double total_mass() const;
+  // Mt = M + sum of the pendulum masses, at parameter values p.
+  double total_mass(const ParameterValues& p) const;
 
   template <class T, class P>
   void evaluate(double /*t*/, const T* z, const P* raw, T* dz) const {

@@ -1,7 +1,10 @@
-// Branches of periodic orbits and the bifurcations found on them.
+// Branches of periodic orbits and the bifurcations found on them: the result of a continuation,
+// which keeps what made it (the options, the system's names, the parameter values), and what the
+// library does with results (joining a backward and a forward run into one branch).
 #pragma once
 
 #include <complex>
+#include <optional>
 #include <string>
 #include <vector>
 
@@ -32,6 +35,7 @@ struct ContinuationPoint {
   Eigen::VectorXd section_normal;  // its normal
   double step = 0.0;               // arclength step that led here (scaled)
   int iterations = 0;              // corrector iterations
+  std::vector<double> description;  // what the model's OrbitDescriber says of the orbit (if any)
 };
 
 struct Bifurcation {
@@ -67,14 +71,40 @@ struct StepRejections {
   }
 };
 
+// Why a run ended, for programs to switch on; the branch's stop_reason says it for people.
+enum class StopReason {
+  ParameterBound,  // left the interval asked for (the normal end)
+  PointLimit,      // max_points reached
+  MinimumStep,     // the step fell below min_step (the corrector kept failing)
+  Interrupted,     // stop_requested() said so
+  StartFailed,     // no starting orbit (not found, not convergent, or not integrable)
+};
+std::string to_string(StopReason r);
+
 struct Branch {
   std::string parameter_name;
+  int parameter = -1;                    // its index among the system's named parameters
+  std::vector<std::string> state_names;  // the system's, for writers and readers
   StepRejections rejected;
-  std::vector<ContinuationPoint> points;
-  std::vector<Bifurcation> events;
-  std::string stop_reason;
+  std::vector<ContinuationPoint> points;  // in order along the branch
+  std::vector<Bifurcation> events;        // in order along the branch
+  StopReason stop = StopReason::ParameterBound;
+  std::string stop_reason;  // the message: why, with numbers ("backward: ...; forward: ..." for
+                            // a two-way branch)
+  std::optional<StopReason> backward_stop;  // a two-way branch: why its backward part ended
   double seconds = 0.0;
   FlowStatistics flow;
+  // Whether the run had a starting orbit (false: stop is StartFailed, and nothing was continued).
+  bool started() const { return stop != StopReason::StartFailed; }
 };
+
+// One branch from a backward run and a forward run that started at the same orbit: the backward
+// points reversed (without their copy of the start, indices negated), then the forward ones;
+// events ordered along the branch. Statistics, rejections and the stop reasons are combined.
+Branch join_branches(Branch backward, Branch forward);
+
+// Sorts events along a branch: by the point before each, then by arclength from it (on the
+// backward part of a joined branch, indices are negative and arclength runs the other way).
+void order_events(std::vector<Bifurcation>& events);
 
 }  // namespace sympathy

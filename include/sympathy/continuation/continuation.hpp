@@ -15,8 +15,13 @@
 #pragma once
 
 #include <functional>
+#include <memory>
+#include <optional>
+#include <string>
 
 #include "sympathy/continuation/branch.hpp"
+#include "sympathy/continuation/branch_space.hpp"
+#include "sympathy/continuation/corrector.hpp"
 
 namespace sympathy {
 
@@ -42,6 +47,10 @@ struct ContinuationOptions {
   bool detect_bifurcations = true;
   bool curved_predictor = true;  // cubic through the last two points; false: the tangent alone
   OrbitOptions orbit;            // shooting, rank tolerance, stability tolerance
+
+  // The bounds are not checked here (a branch run sets them from its problem; the Continuation
+  // checks lower < upper).
+  OptionCheck validate() const;
 };
 
 struct ContinuationCallbacks {
@@ -52,55 +61,36 @@ struct ContinuationCallbacks {
 
 class Continuation {
  public:
-  // `parameter`: index of the continuation parameter of `system`, which the run changes.
-  Continuation(OdeSystem& system, int parameter, ContinuationOptions options);
+  // `parameter`: index of the named parameter of `system` that the runs vary. The system is only
+  // read: parameter values travel with the orbits and points, so one system serves many runs.
+  Continuation(const OdeSystem& system, int parameter, ContinuationOptions options);
 
-  // Continues from `start` (an orbit at the system's current parameter value) in the
-  // direction of increasing (+1) or decreasing (-1) parameter. When `initial_tangent` is given
-  // (branch switching), it is the first direction instead.
+  // Continues from `start` (an orbit, at its own parameter values; the other parameters keep
+  // them along the branch) in the direction of increasing (+1) or decreasing (-1) parameter.
+  // When `initial_tangent` is given (branch switching), it is the first direction instead.
   Branch run(const PeriodicOrbit& start, int direction, const ContinuationCallbacks& callbacks = {},
              const Eigen::VectorXd& initial_tangent = Eigen::VectorXd());
 
   const ContinuationOptions& options() const { return options_; }
 
  private:
-  struct Corrected;
-  Corrected correct(const Eigen::VectorXd& from, const Eigen::VectorXd& tangent, double step,
-                    const Eigen::VectorXd& start_guess, const Eigen::SparseMatrix<double>* chord);
-  Eigen::VectorXd predict(const ContinuationPoint* before, const ContinuationPoint& a,
-                          double ds) const;
-  Eigen::VectorXd tangent_of(const Eigen::SparseMatrix<double>& jac, const Eigen::VectorXd& y,
-                             const Eigen::VectorXd& previous) const;
-  ContinuationPoint make_point(const Corrected& c, const Eigen::VectorXd& tangent, int index,
-                               double step);
-  // The nontrivial multipliers of a followed to b (with their motion predicted from the point
-  // before a), and how doubtful the matching is (above 1/2: doubtful).
-  struct Followed {
-    std::vector<std::pair<Multiplier, Multiplier>> pairs;
-    double ambiguity = 0.0;
-  };
-  Followed track(const ContinuationPoint* before, const ContinuationPoint& a,
-                 const ContinuationPoint& b) const;
-  // Bifurcations between two consecutive points, located, in order along the branch.
-  std::vector<Bifurcation> detect(const Followed& tracked, const ContinuationPoint& a,
-                                  const ContinuationPoint& b);
-  Bifurcation locate(const ContinuationPoint& a, const ContinuationPoint& b, BifurcationType guess,
-                     int multiplicity, std::complex<double> mu_a, std::complex<double> mu_b);
-  double scaled_dot(const Eigen::VectorXd& u, const Eigen::VectorXd& v) const;
-  Eigen::VectorXd section_normal(const Eigen::VectorXd& z) const;
-  Eigen::VectorXd time_shift(const Eigen::VectorXd& y) const;
-  // Cosine between two tangents with shifts in time along the orbits left out.
-  double orbit_cosine(const Eigen::VectorXd& u, const Eigen::VectorXd& v,
-                      const Eigen::VectorXd& at) const;
-  void set_weights(const PeriodicOrbit& start);
-  void widen_scales(const Eigen::VectorXd& z0, double period);
+  // The run's pieces, each in its own file: BranchSpace (scaled norm, tangents), correct
+  // (corrector.hpp), predict (predictor.hpp), track (multiplier_tracking.hpp), detect
+  // (detection.hpp), locate (location.hpp), step control (step_control.hpp).
+  Correction correct_step(const Eigen::VectorXd& from, const Eigen::VectorXd& tangent, double step,
+                          const Eigen::VectorXd& guess,
+                          const Eigen::SparseMatrix<double>* chord) const;
+  ContinuationPoint make_point(const Correction& c, const Eigen::VectorXd& tangent, int index,
+                               double step) const;
+  // The point at arclength s from a along a's tangent, in a's section: what location probes.
+  std::optional<ContinuationPoint> point_at(const ContinuationPoint& a, double s,
+                                            std::string& why) const;
 
-  OdeSystem& system_;
+  const OdeSystem& system_;
   int parameter_;
   ContinuationOptions options_;
   std::unique_ptr<ShootingProblem> problem_;
-  Eigen::VectorXd weights_;  // of (unknowns, parameter): 1 / typical size
-  Eigen::VectorXd sizes_;    // largest |z_i| met on the branch's orbits so far
+  std::unique_ptr<BranchSpace> space_;  // made for each run, from its start
   int family_dimension_ = 0;
   // The shooting Jacobian (with its parameter column) at the last accepted point, in its section:
   // the chord steps' matrix for the next step and for locating events after it.

@@ -27,6 +27,8 @@ struct NewtonOptions {
   int max_iterations = 20;
   int max_halvings = 8;
   double rank_tolerance = 1e-6;  // see LinearSolveOptions
+
+  OptionCheck validate() const;
 };
 
 // The residual tolerance an integration at `flow` settings can meet.
@@ -34,8 +36,24 @@ inline double attainable_tolerance(double tolerance, double rtol_factor, const F
   return std::max(tolerance, rtol_factor * flow.rtol);
 }
 
+// How a search for an orbit ended, for programs to switch on (the summary's reason says it for
+// people, with numbers).
+enum class NewtonOutcome {
+  Converged,           // the residual fell below the tolerance
+  NoiseFloor,          // stalled within 10 tolerances: as far as the integration's noise allows
+  NotRun,              // nothing tried yet
+  IterationLimit,      // max_iterations reached
+  NoDescent,           // no halving of the step lowered the residual
+  NonFiniteStep,       // the Newton step was not finite
+  GuessNotIntegrable,  // the integration failed at the initial guess
+  TransientFailed,     // the transient integration before Newton failed
+  NoPeriod,            // no return to the section after the transient
+};
+std::string to_string(NewtonOutcome o);
+
 struct NewtonSummary {
-  bool converged = false;
+  bool converged = false;  // Converged or NoiseFloor
+  NewtonOutcome outcome = NewtonOutcome::NotRun;
   std::string reason;  // why it stopped
   int iterations = 0;
   std::vector<double> residual_norms;  // |r|_inf at each iterate, the start included
@@ -45,6 +63,10 @@ struct NewtonSummary {
   bool sparse = false;      // steps solved by the sparse LU (UMFPACK)
 };
 
+// The defaults of an orbit computation, each set here and nowhere else: the shooting flow at rtol
+// 1e-11, atol 1e-13 (the trivial multiplier's error is about 200-500 rtol, measured on the row
+// setup: within 1e-8 of 1 at this setting), the transient at rtol 1e-8, atol 1e-10 (it only has
+// to approach the orbit).
 struct OrbitOptions {
   ShootingOptions shooting;
   NewtonOptions newton;
@@ -53,11 +75,14 @@ struct OrbitOptions {
   double max_period = 10.0;    // s: the longest period looked for
   FlowOptions transient_flow;  // for the transient and the period estimate
   OrbitOptions();
+
+  OptionCheck validate() const;
 };
 
 struct PeriodicOrbit {
   Eigen::VectorXd state0;  // a point of the orbit (on the phase section)
   double period = 0.0;
+  ParameterValues parameters;  // the system's parameter values the orbit belongs to
   FloquetAnalysis floquet;
   double residual = 0.0;  // |Phi_T(z0) - z0|_inf at the converged point
   int segments = 1;
@@ -69,25 +94,28 @@ struct PeriodicOrbit {
 };
 
 // The multipliers of the orbit at the shooting unknowns' first state z0, from an evaluation with
-// derivatives there: f at z0 (if autonomous) and the `family_dimension` directions of a continuum
-// (null vectors of the shooting Jacobian) are what the analysis sets apart.
+// derivatives there (at its parameter values): f at z0 (if autonomous) and the `family_dimension`
+// directions of a continuum (null vectors of the shooting Jacobian) are what the analysis sets
+// apart.
 FloquetAnalysis shooting_floquet(const ShootingProblem& problem,
                                  const ShootingProblem::Evaluation& e, const Eigen::VectorXd& z0,
                                  int family_dimension, const FloquetOptions& options);
 
-// Newton from a guess (z0, T). Keeps every iterate in `subspace`.
-PeriodicOrbit solve_periodic_orbit(const OdeSystem& system, const Eigen::VectorXd& z0,
-                                   double period, const InvariantSubspace& subspace,
-                                   const OrbitOptions& options);
+// Newton from a guess (z0, T) at parameter values p. Keeps every iterate in `subspace`.
+PeriodicOrbit solve_periodic_orbit(const OdeSystem& system, const ParameterValues& p,
+                                   const Eigen::VectorXd& z0, double period,
+                                   const InvariantSubspace& subspace, const OrbitOptions& options);
 
 // From a start: a transient integration inside `subspace` (projected after every second, so
 // that even orbits unstable in the full space are approached), the period from the first return
 // to the section through the end point, then Newton.
-PeriodicOrbit find_periodic_orbit(const OdeSystem& system, const Eigen::VectorXd& start,
-                                  const InvariantSubspace& subspace, const OrbitOptions& options);
+PeriodicOrbit find_periodic_orbit(const OdeSystem& system, const ParameterValues& p,
+                                  const Eigen::VectorXd& start, const InvariantSubspace& subspace,
+                                  const OrbitOptions& options);
 
 // Period of the orbit through z: the first return to the section through z across the flow,
 // found by sampling every `dt` up to `max_period`; 0 if there is none.
-double estimate_period(Flow& flow, const Eigen::VectorXd& z, double max_period, double dt);
+double estimate_period(Flow& flow, const ParameterValues& p, const Eigen::VectorXd& z,
+                       double max_period, double dt);
 
 }  // namespace sympathy

@@ -30,8 +30,14 @@
 namespace sympathy {
 
 struct ShootingOptions {
-  int segments = 1;
+  int segments = 1;  // 1 to 1000
   FlowOptions flow;
+
+  OptionCheck validate() const {
+    if (segments < 1 || segments > 1000)
+      return OptionProblem{"segments", "an integer from 1 to 1000"};
+    return nested("flow.", flow.validate());
+  }
 };
 
 class ShootingProblem {
@@ -45,14 +51,14 @@ class ShootingProblem {
   bool autonomous() const { return autonomous_; }
   const OdeSystem& system() const { return system_; }
 
-  // The phase condition's section: through z_ref, normal f(z_ref) (or `normal`).
-  void set_phase_reference(const Eigen::VectorXd& z_ref);
+  // The phase condition's section: through z_ref, normal f(z_ref; p) (or `normal`).
+  void set_phase_reference(const Eigen::VectorXd& z_ref, const ParameterValues& p);
   void set_phase_section(const Eigen::VectorXd& z_ref, const Eigen::VectorXd& normal);
   const Eigen::VectorXd& phase_reference() const { return z_ref_; }
   const Eigen::VectorXd& phase_normal() const { return f_ref_; }
 
   // Unknowns from an initial state and period: the segment states by integrating one period.
-  Eigen::VectorXd unknowns_from(const Eigen::VectorXd& z0, double period);
+  Eigen::VectorXd unknowns_from(const Eigen::VectorXd& z0, const ParameterValues& p, double period);
   double period(const Eigen::VectorXd& x) const;
   Eigen::VectorXd state(const Eigen::VectorXd& x, int segment = 0) const {
     return x.segment(segment * n_, n_);
@@ -60,17 +66,20 @@ class ShootingProblem {
 
   struct Evaluation {
     Eigen::VectorXd residual;
+    ParameterValues parameters;  // where it was evaluated
     bool derivatives = false;
     std::vector<Eigen::MatrixXd> transitions;  // per segment, dPhi/dz_j
     std::vector<Eigen::VectorXd> end_rates;    // per segment, f at its end
     Eigen::MatrixXd parameter_sensitivities;   // n x m: dPhi/dp per segment (if asked)
     int parameter = -1;
   };
-  // Residual, and with `derivatives` the transition matrices (and dPhi/dp for `parameter`).
-  // Throws IntegrationError if a segment cannot be integrated.
-  Evaluation evaluate(const Eigen::VectorXd& x, bool derivatives, int parameter = -1);
+  // Residual at parameter values p, and with `derivatives` the transition matrices (and dPhi/dp
+  // for the named parameter `parameter`). Throws IntegrationError if a segment cannot be
+  // integrated.
+  Evaluation evaluate(const Eigen::VectorXd& x, const ParameterValues& p, bool derivatives,
+                      int parameter = -1);
   // The residual alone, from plain integrations as accurate as those with derivatives.
-  Eigen::VectorXd residual(const Eigen::VectorXd& x);
+  Eigen::VectorXd residual(const Eigen::VectorXd& x, const ParameterValues& p);
 
   // d(residual)/dx as a sparse matrix, rows = unknowns(); with `parameter_column` the column
   // d(residual)/dp appended (the evaluation must carry it).
@@ -89,7 +98,8 @@ class ShootingProblem {
   Flow flow_;                         // integrations with derivatives, unknowns_from
   std::unique_ptr<Flow> plain_flow_;  // residual(): tightened, made on first use
 
-  Evaluation evaluate(const Eigen::VectorXd& x, bool derivatives, int parameter, Flow& flow);
+  Evaluation evaluate(const Eigen::VectorXd& x, const ParameterValues& p, bool derivatives,
+                      int parameter, Flow& flow);
   Eigen::VectorXd z_ref_, f_ref_;
 };
 

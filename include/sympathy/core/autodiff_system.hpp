@@ -3,10 +3,11 @@
 // The derived class writes
 //   template <class T, class P>
 //   void evaluate(double t, const T* z, const P* raw, T* dz) const;
-// where `raw` are the model's raw parameters. T is double or a dual number; P is double, or the
-// same dual as T when a parameter derivative is wanted. Named parameters are directions in raw
-// parameter space: a name maps to the raw entries it sets together (e.g. a damping shared by
-// several metronomes), so df/dp for a name is the derivative along that direction.
+// where `raw` are the parameter values of the call (ParameterValues, the model's raw layout).
+// T is double or a dual number; P is double, or the same dual as T when a parameter derivative
+// is wanted. Named parameters are directions in raw parameter space: a name maps to the raw
+// entries it sets together (e.g. a damping shared by several metronomes), so df/dp for a name is
+// the derivative along that direction.
 #pragma once
 
 #include <algorithm>
@@ -35,25 +36,24 @@ class AutoDiffSystem : public OdeSystem {
     for (const auto& p : named_) names.push_back(p.name);
     return names;
   }
-  double parameter(int index) const override {
-    const auto& p = named_.at(index);
-    return raw_.at(p.raw.front()) / p.scale;
+  ParameterValues default_parameters() const override {
+    return Eigen::Map<const Eigen::VectorXd>(raw_.data(), static_cast<Eigen::Index>(raw_.size()));
   }
-  void set_parameter(int index, double value) override {
+  double parameter(const ParameterValues& values, int index) const override {
     const auto& p = named_.at(index);
-    for (int r : p.raw) raw_[r] = p.scale * value;
+    return values[p.raw.front()] / p.scale;
   }
-  using OdeSystem::parameter;
-  using OdeSystem::set_parameter;
+  void set_parameter(ParameterValues& values, int index, double value) const override {
+    const auto& p = named_.at(index);
+    for (int r : p.raw) values[r] = p.scale * value;
+  }
 
-  const std::vector<double>& raw_parameters() const { return raw_; }
-
-  void rhs(double t, const double* z, double* dz) const override {
-    derived().evaluate(t, z, raw_.data(), dz);
+  void rhs(double t, const double* z, const double* p, double* dz) const override {
+    derived().evaluate(t, z, p, dz);
   }
   using OdeSystem::rhs;
 
-  void jacobian(double t, const double* z, Eigen::MatrixXd& jac) const override {
+  void jacobian(double t, const double* z, const double* p, Eigen::MatrixXd& jac) const override {
     const int n = dimension();
     jac.resize(n, n);
     for (int c0 = 0; c0 < n;) {
@@ -64,7 +64,7 @@ class AutoDiffSystem : public OdeSystem {
         std::vector<D> zd(n), dzd(n);
         for (int i = 0; i < n; ++i) zd[i] = D(z[i]);
         for (int k = 0; k < width; ++k) zd[c0 + k].d[k] = 1.0;
-        derived().evaluate(t, zd.data(), raw_.data(), dzd.data());
+        derived().evaluate(t, zd.data(), p, dzd.data());
         for (int i = 0; i < n; ++i)
           for (int k = 0; k < width; ++k) jac(i, c0 + k) = dzd[i].d[k];
       };
@@ -74,8 +74,9 @@ class AutoDiffSystem : public OdeSystem {
   }
   using OdeSystem::jacobian;
 
-  void variational_rhs(double t, const double* z, int columns, const double* const* S,
-                       double* const* out, std::span<const int> parameters) const override {
+  void variational_rhs(double t, const double* z, const double* p, int columns,
+                       const double* const* S, double* const* out,
+                       std::span<const int> parameters) const override {
     const int n = dimension();
     const int state_columns = columns - static_cast<int>(parameters.size());
     for (int c0 = 0; c0 < state_columns;) {
@@ -87,7 +88,7 @@ class AutoDiffSystem : public OdeSystem {
           zd[i] = D(z[i]);
           for (int k = 0; k < width; ++k) zd[i].d[k] = S[c0 + k][i];
         }
-        derived().evaluate(t, zd.data(), raw_.data(), dzd.data());
+        derived().evaluate(t, zd.data(), p, dzd.data());
         for (int k = 0; k < width; ++k)
           for (int i = 0; i < n; ++i) out[c0 + k][i] = dzd[i].d[k];
       };
@@ -103,17 +104,18 @@ class AutoDiffSystem : public OdeSystem {
         zd[i] = D(z[i]);
         zd[i].d[0] = S[column][i];
       }
-      const auto pd = seeded_parameters(parameters[k]);
+      const auto pd = seeded_parameters(p, parameters[k]);
       derived().evaluate(t, zd.data(), pd.data(), dzd.data());
       for (int i = 0; i < n; ++i) out[column][i] = dzd[i].d[0];
     }
   }
 
-  void parameter_derivative(double t, const double* z, int parameter, double* dfdp) const override {
+  void parameter_derivative(double t, const double* z, const double* p, int parameter,
+                            double* dfdp) const override {
     using D = Dual<1>;
     const int n = dimension();
     std::vector<D> zd(z, z + n), dzd(n);
-    const auto pd = seeded_parameters(parameter);
+    const auto pd = seeded_parameters(p, parameter);
     derived().evaluate(t, zd.data(), pd.data(), dzd.data());
     for (int i = 0; i < n; ++i) dfdp[i] = dzd[i].d[0];
   }
@@ -132,8 +134,8 @@ class AutoDiffSystem : public OdeSystem {
  private:
   const Derived& derived() const { return static_cast<const Derived&>(*this); }
 
-  std::vector<Dual<1>> seeded_parameters(int parameter) const {
-    std::vector<Dual<1>> pd(raw_.begin(), raw_.end());
+  std::vector<Dual<1>> seeded_parameters(const double* values, int parameter) const {
+    std::vector<Dual<1>> pd(values, values + raw_.size());
     const auto& p = named_.at(parameter);
     for (int r : p.raw) pd[r].d[0] = p.scale;
     return pd;
@@ -152,7 +154,7 @@ class AutoDiffSystem : public OdeSystem {
   }
 
   std::vector<NamedParameter> named_;
-  std::vector<double> raw_;
+  std::vector<double> raw_;  // the values the system was built with (default_parameters)
 };
 
 }  // namespace sympathy

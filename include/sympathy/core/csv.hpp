@@ -1,32 +1,31 @@
-// CSV files. Writing: row by row and flushed as it goes, so a run that stops early keeps
-// everything computed before it stopped. Reading: a header line of column names, then rows of
-// numbers, every mistake reported with the file, line and column.
+// CSV files. Writing: row by row, each row written whole and flushed (StreamFile), so a run that
+// stops early keeps everything computed before it stopped, and a failed write is an OutputError.
+// Reading: a header line of column names, then rows of numbers, every mistake reported with the
+// file, line and column.
 #pragma once
 
-#include <cstdio>
 #include <string>
 #include <vector>
+
+#include "sympathy/core/output_file.hpp"
 
 namespace sympathy {
 
 class CsvWriter {
  public:
-  // Opens (truncates) `path` and writes the header; throws InputError if it cannot.
+  // Opens (truncates) `path` and writes the header; throws OutputError if it cannot.
   CsvWriter(const std::string& path, const std::vector<std::string>& header);
-  ~CsvWriter();
-  CsvWriter(const CsvWriter&) = delete;
-  CsvWriter& operator=(const CsvWriter&) = delete;
 
   // One row of numbers, shortest round-trip representation.
   void row(const std::vector<double>& values);
   // One row of preformatted fields.
   void row(const std::vector<std::string>& fields);
-  void flush();
-  const std::string& path() const { return path_; }
+  // Closes the file, checked (OutputError).
+  void close() { file_.close(); }
+  const std::string& path() const { return file_.path(); }
 
  private:
-  std::string path_;
-  std::FILE* file_ = nullptr;
+  StreamFile file_;
   std::size_t columns_ = 0;
 };
 

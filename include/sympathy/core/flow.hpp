@@ -4,7 +4,8 @@
 // matrix, linear and nonlinear solvers) and reuses them across calls: a continuation makes
 // thousands of calls. Each call asks only for what it needs: `advance` integrates the state
 // alone; `advance_with_sensitivities` adds the n state columns (the transition matrix) and/or
-// the columns of named parameters.
+// the columns of named parameters. The parameter values travel with each call (ParameterValues):
+// a flow holds those of the call it is computing and nothing after.
 //
 // Steep zones (OdeSystem::steep_zones) are resolved explicitly: on geometric levels
 // v_0 = scale > v_1 = v_0/3 > ... down to below the zone's width, while |z_c| <= v_l the step
@@ -30,6 +31,7 @@
 #include <Eigen/Dense>
 
 #include "sympathy/core/ode_system.hpp"
+#include "sympathy/core/option_check.hpp"
 
 namespace sympathy {
 
@@ -60,7 +62,10 @@ struct FlowOptions {
   long max_steps = 1000000;  // per call
   double max_step = 0.0;     // 0: no limit
   bool resolve_steep_zones = true;
-  double steep_step_fraction = 0.5;
+  double steep_step_fraction =
+      0.5;  // below 2/3, so that no step jumps a level (see update_max_step)
+
+  OptionCheck validate() const;
 };
 
 // The linear solver a flow of `system` with `options` uses: Automatic resolved (dense with
@@ -107,27 +112,30 @@ class Flow {
   Flow(const Flow&) = delete;
   Flow& operator=(const Flow&) = delete;
 
-  // z(t1) from z(t0) = z0. No sensitivities.
-  Eigen::VectorXd advance(const Eigen::VectorXd& z0, double t0, double t1);
+  // z(t1) from z(t0) = z0 at parameter values p. No sensitivities.
+  Eigen::VectorXd advance(const Eigen::VectorXd& z0, const ParameterValues& p, double t0,
+                          double t1);
 
   // Integrates from z0 at t0 and calls `observer(t, z)` at each of `times` (increasing, >= t0).
-  void sample(const Eigen::VectorXd& z0, double t0, std::span<const double> times,
+  void sample(const Eigen::VectorXd& z0, const ParameterValues& p, double t0,
+              std::span<const double> times,
               const std::function<void(double, const Eigen::VectorXd&)>& observer);
   // The same, stopping as soon as `done(t, z)` returns true; returns whether it did.
-  bool sample_until(const Eigen::VectorXd& z0, double t0, std::span<const double> times,
+  bool sample_until(const Eigen::VectorXd& z0, const ParameterValues& p, double t0,
+                    std::span<const double> times,
                     const std::function<bool(double, const Eigen::VectorXd&)>& done);
 
   // z(t1) and its derivatives: the transition matrix if `state` is true, and dz(t1)/dp for each
   // of `parameters` (indices into the system's parameters).
-  FlowDerivatives advance_with_sensitivities(const Eigen::VectorXd& z0, double t0, double t1,
-                                             bool state = true,
+  FlowDerivatives advance_with_sensitivities(const Eigen::VectorXd& z0, const ParameterValues& p,
+                                             double t0, double t1, bool state = true,
                                              std::span<const int> parameters = {});
 
   // Integrates once from z0 at t0 and calls `observer(t, z, S)` at each of `times` (increasing,
   // >= t0), where S (n x columns) holds dz(t)/dz0[c] for each of `initial_components`, then
   // dz(t)/dp for each of `parameters`; both interpolated in the step, under error control.
   void sample_with_sensitivities(
-      const Eigen::VectorXd& z0, double t0, std::span<const double> times,
+      const Eigen::VectorXd& z0, const ParameterValues& p, double t0, std::span<const double> times,
       std::span<const int> initial_components, std::span<const int> parameters,
       const std::function<void(double, const Eigen::VectorXd&, const Eigen::MatrixXd&)>& observer);
 
@@ -142,15 +150,15 @@ class Flow {
 
   // Sensitivity columns: one per initial component (seeded with its unit vector), then one per
   // parameter (seeded with zero).
-  void start(const Eigen::VectorXd& z0, double t0, std::span<const int> initial_components,
-             std::span<const int> parameters);
+  void start(const Eigen::VectorXd& z0, const ParameterValues& p, double t0,
+             std::span<const int> initial_components, std::span<const int> parameters);
   // Integrates to t_end one internal step at a time; see flow.cpp.
   void integrate_to(double t_end, const std::function<bool(double, double)>& after_step = {});
   void step_to(double t_end, const std::function<bool(double, double)>& after_step);
   // The sampling behind sample_until and sample_with_sensitivities: `observer(t, z, S)` at each
   // of `times` (S with no columns when there are no sensitivities); true from it stops the run.
   bool sample_run(
-      const Eigen::VectorXd& z0, double t0, std::span<const double> times,
+      const Eigen::VectorXd& z0, const ParameterValues& p, double t0, std::span<const double> times,
       std::span<const int> initial_components, std::span<const int> parameters,
       const std::function<bool(double, const Eigen::VectorXd&, const Eigen::MatrixXd&)>& observer);
   void configure_roots();
@@ -175,6 +183,7 @@ class Flow {
   std::vector<double> dz_scratch_;
 
   std::optional<double> forced_stop_;  // a stop time that shortens the step CVODES planned
+  ParameterValues values_;             // parameter values of the call now being integrated
   std::vector<int> parameters_;        // parameters of the sensitivity columns now being integrated
   double t_ = 0.0;
   std::string last_error_;

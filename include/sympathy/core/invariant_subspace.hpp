@@ -29,9 +29,10 @@ class InvariantSubspace {
   bool is_whole_space() const { return groups_.empty(); }
   // Orthogonal projection onto the subspace.
   Eigen::VectorXd project(const Eigen::VectorXd& z) const;
-  // Largest |(I - P) f(t, P z)| relative to |f| over a few sample states: about 1e-16 when the
-  // system keeps the subspace, O(1) when it does not.
-  double invariance_defect(const OdeSystem& system, const Eigen::VectorXd& scale) const;
+  // Largest |(I - P) f(t, P z; p)| relative to |f| over a few sample states: about 1e-16 when the
+  // system keeps the subspace at parameter values p, O(1) when it does not.
+  double invariance_defect(const OdeSystem& system, const ParameterValues& p,
+                           const Eigen::VectorXd& scale) const;
 
  private:
   struct Member {

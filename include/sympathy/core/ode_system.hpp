@@ -29,6 +29,12 @@ struct SteepZone {
   double scale = 1.0;
 };
 
+// A system's parameter values: a vector in the system's own layout (for a simple system one entry
+// per named parameter; a model may hold more entries than it names, a name then setting several
+// together). They travel with every call, as AUTO's PAR and BifurcationKit's `pars` do: nothing
+// here stores the values a run uses, so one system object serves any number of runs at once.
+using ParameterValues = Eigen::VectorXd;
+
 class OdeSystem {
  public:
   virtual ~OdeSystem() = default;
@@ -37,56 +43,68 @@ class OdeSystem {
   virtual std::vector<std::string> state_names() const = 0;
 
   virtual std::vector<std::string> parameter_names() const = 0;
-  virtual double parameter(int index) const = 0;
-  virtual void set_parameter(int index, double value) = 0;
+  // The values the system was built with: where a run starts unless it is told otherwise.
+  virtual ParameterValues default_parameters() const = 0;
+  // A named parameter's value in `p`, and `p` with that parameter set.
+  virtual double parameter(const ParameterValues& p, int index) const = 0;
+  virtual void set_parameter(ParameterValues& p, int index, double value) const = 0;
+  ParameterValues with_parameter(ParameterValues p, int index, double value) const {
+    set_parameter(p, index, value);
+    return p;
+  }
   // Index of a named parameter; throws std::invalid_argument naming the known ones.
   int parameter_index(std::string_view name) const;
-  double parameter(std::string_view name) const { return parameter(parameter_index(name)); }
-  void set_parameter(std::string_view name, double value) {
-    set_parameter(parameter_index(name), value);
-  }
+  int parameter_count() const { return static_cast<int>(parameter_names().size()); }
+  // Size of a ParameterValues of this system (default_parameters().size()).
+  int parameter_values_size() const { return static_cast<int>(default_parameters().size()); }
 
-  virtual void rhs(double t, const double* z, double* dz) const = 0;
+  // The raw calls take `p` as ParameterValues::data().
+  virtual void rhs(double t, const double* z, const double* p, double* dz) const = 0;
 
   // False when f has no derivatives (a discontinuous model): flows then refuse sensitivities.
   virtual bool differentiable() const { return true; }
   // df/dz, n x n.
-  virtual void jacobian(double t, const double* z, Eigen::MatrixXd& jac) const = 0;
+  virtual void jacobian(double t, const double* z, const double* p, Eigen::MatrixXd& jac) const = 0;
   // out[j] = J * S[j] for j < columns. The last parameters.size() columns are parameter
   // columns: column columns - parameters.size() + k also gets df/dp for parameters[k] (the
   // forward-sensitivity right-hand side of a parameter).
-  virtual void variational_rhs(double t, const double* z, int columns, const double* const* S,
-                               double* const* out, std::span<const int> parameters) const = 0;
+  virtual void variational_rhs(double t, const double* z, const double* p, int columns,
+                               const double* const* S, double* const* out,
+                               std::span<const int> parameters) const = 0;
   // Structurally nonzero entries of df/dz as (row, column) pairs, for sparse linear solvers;
   // empty means dense.
   virtual std::vector<std::pair<int, int>> jacobian_pattern() const { return {}; }
   // df/dz = S + U W^T with S sparse and U W^T of small rank (see LowRankJacobian), for linear
   // solvers that exploit it. low_rank_structure() gives S's pattern and the rank, values zero;
   // nullopt when the system does not provide the form. low_rank_jacobian() fills the values of
-  // a structure obtained from low_rank_structure() at (t, z) and returns true; false when not
+  // a structure obtained from low_rank_structure() at (t, z, p) and returns true; false when not
   // provided. Between switching surfaces (switching_functions) it is the Jacobian of the piece
   // that z lies in.
   virtual std::optional<LowRankJacobian> low_rank_structure() const { return std::nullopt; }
-  virtual bool low_rank_jacobian(double /*t*/, const double* /*z*/,
+  virtual bool low_rank_jacobian(double /*t*/, const double* /*z*/, const double* /*p*/,
                                  LowRankJacobian& /*out*/) const {
     return false;
   }
-  // df/dp for one parameter.
-  virtual void parameter_derivative(double t, const double* z, int parameter,
+  // df/dp for one named parameter.
+  virtual void parameter_derivative(double t, const double* z, const double* p, int parameter,
                                     double* dfdp) const = 0;
 
   // Does f depend on t? Autonomous systems have a trivial Floquet multiplier.
   virtual bool autonomous() const { return true; }
 
-  virtual std::vector<SteepZone> steep_zones() const { return {}; }
+  // Steep zones at parameter values p (a zone's width may depend on them).
+  virtual std::vector<SteepZone> steep_zones(const double* /*p*/) const { return {}; }
 
   // Surfaces g(z) = 0 across which f jumps: a flow stops at each and restarts from there.
   virtual int switching_count() const { return 0; }
-  virtual void switching_functions(double /*t*/, const double* /*z*/, double* /*g*/) const {}
+  virtual void switching_functions(double /*t*/, const double* /*z*/, const double* /*p*/,
+                                   double* /*g*/) const {}
 
   // Convenience wrappers on Eigen vectors.
-  Eigen::VectorXd rhs(double t, const Eigen::VectorXd& z) const;
-  Eigen::MatrixXd jacobian(double t, const Eigen::VectorXd& z) const;
+  Eigen::VectorXd rhs(double t, const Eigen::VectorXd& z, const ParameterValues& p) const;
+  Eigen::MatrixXd jacobian(double t, const Eigen::VectorXd& z, const ParameterValues& p) const;
+  // Throws std::invalid_argument unless p has this system's size and finite entries.
+  void check_parameters(const ParameterValues& p) const;
 };
 
 }  // namespace sympathy

@@ -38,7 +38,7 @@ namespace sympathy {
 constexpr double kInfinity = std::numeric_limits<double>::infinity();
 
 struct FreeParameter {
-  int index = 0;  // into the system's parameters; its current value is the starting value
+  int index = 0;  // a named parameter; its value in TrajectoryFitProblem::parameters starts it
   // Positive parameters are fitted as log(p / p_start) (bounds are then > 0 automatically);
   // others as (p - p_start) / scale.
   bool logarithmic = true;
@@ -57,11 +57,12 @@ struct FreeInitial {
 };
 
 struct TrajectoryFitProblem {
-  std::vector<double> times;      // strictly increasing; the integration starts at times[0]
-  std::vector<int> observed;      // the observed state components, one per column of `values`
-  Eigen::MatrixXd values;         // samples x observed
-  Eigen::VectorXd column_scale;   // residual weights 1/scale_k per column (empty: all 1)
-  Eigen::VectorXd initial_state;  // at times[0]; free components start here
+  std::vector<double> times;         // strictly increasing; the integration starts at times[0]
+  std::vector<int> observed;         // the observed state components, one per column of `values`
+  Eigen::MatrixXd values;            // samples x observed
+  Eigen::VectorXd column_scale;      // residual weights 1/scale_k per column (empty: all 1)
+  Eigen::VectorXd initial_state;     // at times[0]; free components start here
+  ParameterValues parameter_values;  // the system's values; free parameters start here
   std::vector<FreeParameter> parameters;
   std::vector<FreeInitial> initial;
 };
@@ -106,6 +107,7 @@ struct FitStage {
 struct TrajectoryFitResult {
   Eigen::VectorXd start;   // unknowns in physical units: the free parameters, then the free
   Eigen::VectorXd values;  // initial components; at the start and fitted
+  ParameterValues fitted_parameters;  // the problem's parameter values with the fitted ones set
   Eigen::VectorXd errors;  // standard errors (infinite where the data do not determine it)
   Eigen::MatrixXd covariance;
   Eigen::MatrixXd correlation;
@@ -127,10 +129,10 @@ struct TrajectoryFitResult {
   FlowStatistics statistics;
 };
 
-// Fits and leaves `system` at the fitted parameters. Throws std::invalid_argument for an
-// inconsistent problem (sizes, indices, bounds, no more residuals than unknowns) and
-// IntegrationError if the trajectory cannot be integrated at the starting values.
-TrajectoryFitResult fit_trajectory(OdeSystem& system, const TrajectoryFitProblem& problem,
+// Fits; the system is only read. Throws std::invalid_argument for an inconsistent problem (sizes,
+// indices, bounds, no more residuals than unknowns) and IntegrationError if the trajectory cannot
+// be integrated at the starting values.
+TrajectoryFitResult fit_trajectory(const OdeSystem& system, const TrajectoryFitProblem& problem,
                                    const TrajectoryFitOptions& options = {});
 
 // The number of residuals the problem has (samples x columns, less those left out at t0).

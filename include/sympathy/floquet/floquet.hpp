@@ -18,6 +18,8 @@
 
 #include <Eigen/Dense>
 
+#include "sympathy/core/option_check.hpp"
+
 namespace sympathy {
 
 enum class Stability { Stable, Unstable, Marginal };
@@ -28,6 +30,12 @@ struct FloquetOptions {
   // unstable: one has |mu| > 1 + tolerance; marginal otherwise. Default well above the
   // multipliers' measured errors (about 1e-8 at the default integrator settings).
   double stability_tolerance = 1e-6;
+
+  OptionCheck validate() const {
+    if (!(positive(stability_tolerance) && stability_tolerance < 1.0))
+      return OptionProblem{"stability_tolerance", "a number in (0, 1)"};
+    return std::nullopt;
+  }
 };
 
 struct Multiplier {

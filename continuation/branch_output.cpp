@@ -1,0 +1,170 @@
+#include "sympathy/continuation/branch_output.hpp"
+
+#include "sympathy/core/output_file.hpp"
+
+namespace sympathy {
+
+namespace {
+
+std::vector<double> as_vector(const Eigen::VectorXd& v) {
+  return std::vector<double>(v.data(), v.data() + v.size());
+}
+
+std::vector<std::string> csv_header(const OdeSystem& system, const std::string& parameter,
+                                    const OrbitDescriber* describer) {
+  std::vector<std::string> h{
+      "index",     parameter,        "period",      "frequency",
+      "stability", "unstable_count", "max_modulus", "trivial_multiplier_error",
+      "residual",  "structural",     "iterations",  "step"};
+  if (describer)
+    for (const auto& g : describer->layout())
+      for (const auto& label : g.labels) h.push_back(g.csv_prefix + label);
+  for (int i = 0; i < system.dimension(); ++i) {
+    h.push_back("mu" + std::to_string(i + 1) + "_re");
+    h.push_back("mu" + std::to_string(i + 1) + "_im");
+  }
+  for (const auto& n : system.state_names()) h.push_back(n);
+  return h;
+}
+
+}  // namespace
+
+nlohmann::json multipliers_json(const FloquetAnalysis& floquet) {
+  nlohmann::json j = nlohmann::json::array();
+  for (const auto& m : floquet.multipliers) j.push_back({m.value.real(), m.value.imag()});
+  return j;
+}
+
+nlohmann::json parameters_json(const OdeSystem& system, const ParameterValues& p) {
+  nlohmann::json j = nlohmann::json::object();
+  const auto names = system.parameter_names();
+  for (int i = 0; i < static_cast<int>(names.size()); ++i) j[names[i]] = system.parameter(p, i);
+  return j;
+}
+
+nlohmann::json orbit_json(const OdeSystem& system, const PeriodicOrbit& orbit,
+                          const OrbitDescriber* describer) {
+  const auto& f = orbit.floquet;
+  nlohmann::json j;
+  j["converged"] = orbit.converged();
+  j["period"] = orbit.period;
+  j["frequency"] = 1.0 / orbit.period;
+  j["multipliers"] = multipliers_json(f);
+  nlohmann::json moduli = nlohmann::json::array(), kinds = nlohmann::json::array();
+  for (const auto& m : f.multipliers) {
+    moduli.push_back(m.modulus());
+    kinds.push_back(m.trivial ? "trivial" : m.structural ? "structural" : "");
+  }
+  j["moduli"] = moduli;
+  j["multiplier_kinds"] = kinds;
+  j["stable"] = f.stability == Stability::Stable;
+  j["stability"] = to_string(f.stability);
+  j["trivial_multiplier_error"] = f.trivial_error;
+  j["residual"] = orbit.residual;
+  j["family_dimension"] = orbit.family_dimension;
+  j["segments"] = orbit.segments;
+  j["state0"] = as_vector(orbit.state0);
+  j["state_names"] = system.state_names();
+  if (describer) {
+    const std::vector<double> numbers = describer->describe(orbit);
+    std::size_t k = 0;
+    for (const auto& g : describer->layout()) {
+      nlohmann::json group = nlohmann::json::object();
+      for (const auto& label : g.labels) group[label] = k < numbers.size() ? numbers[k++] : NAN;
+      j[g.name] = group;
+    }
+  }
+  j["params"] = parameters_json(system, orbit.parameters);
+  j["newton"] = {{"converged", orbit.newton.converged},
+                 {"reason", orbit.newton.reason},
+                 {"iterations", orbit.newton.iterations},
+                 {"residual_norms", orbit.newton.residual_norms}};
+  return j;
+}
+
+nlohmann::json branch_json(const Branch& branch, const OrbitDescriber* describer) {
+  nlohmann::json j;
+  j["parameter"] = branch.parameter_name;
+  j["stop_reason"] = branch.stop_reason;
+  j["stop"] = to_string(branch.stop);
+  j["state_names"] = branch.state_names;
+  const auto layout = describer ? describer->layout() : std::vector<OrbitDescriber::Group>{};
+  nlohmann::json points = nlohmann::json::array();
+  for (const auto& p : branch.points) {
+    const auto& f = p.orbit.floquet;
+    nlohmann::json q;
+    q["index"] = p.index;
+    q["value"] = p.parameter;
+    q["period"] = p.orbit.period;
+    q["frequency"] = 1.0 / p.orbit.period;
+    q["stable"] = f.stability == Stability::Stable;
+    q["stability"] = to_string(f.stability);
+    q["multipliers"] = multipliers_json(f);
+    q["trivial_multiplier_error"] = f.trivial_error;
+    q["residual"] = p.orbit.residual;
+    q["structural"] = f.structural;
+    q["state0"] = as_vector(p.orbit.state0);
+    std::size_t k = 0;
+    for (const auto& g : layout) {
+      if (p.description.empty()) break;
+      std::vector<double> numbers;
+      for (std::size_t i = 0; i < g.labels.size() && k < p.description.size(); ++i)
+        numbers.push_back(p.description[k++]);
+      q[g.name] = numbers;
+    }
+    points.push_back(q);
+  }
+  j["points"] = points;
+  nlohmann::json events = nlohmann::json::array();
+  for (const auto& e : branch.events) {
+    events.push_back({{"type", to_string(e.type)},
+                      {"name", describe(e.type)},
+                      {"value", e.parameter},
+                      {"uncertainty", e.uncertainty},
+                      {"period", e.period},
+                      {"multipliers", multipliers_json(e.floquet)},
+                      {"crossing_multiplier", {e.crossing.real(), e.crossing.imag()}},
+                      {"multiplicity", e.multiplicity},
+                      {"located", e.located},
+                      {"trusted", e.trusted},
+                      {"note", e.note}});
+  }
+  j["events"] = events;
+  j["seconds"] = branch.seconds;
+  j["flow"] = {{"integrations", branch.flow.calls},
+               {"steps", branch.flow.steps},
+               {"rhs_evaluations", branch.flow.rhs_evaluations},
+               {"sensitivity_rhs_evaluations", branch.flow.variational_evaluations}};
+  return j;
+}
+
+void write_json(const std::string& path, const nlohmann::json& j) {
+  write_file_atomically(path, j.dump(1) + "\n");
+}
+
+BranchCsvWriter::BranchCsvWriter(const std::string& path, const OdeSystem& system,
+                                 const std::string& parameter_name, const OrbitDescriber* describer)
+    : csv_(path, csv_header(system, parameter_name, describer)) {
+  if (describer)
+    for (const auto& g : describer->layout()) described_ += g.labels.size();
+}
+
+void BranchCsvWriter::write(const ContinuationPoint& p) {
+  const auto& f = p.orbit.floquet;
+  std::vector<std::string> row{std::to_string(p.index),         format_double(p.parameter),
+                               format_double(p.orbit.period),   format_double(1.0 / p.orbit.period),
+                               to_string(f.stability),          std::to_string(f.unstable_count),
+                               format_double(f.max_modulus),    format_double(f.trivial_error),
+                               format_double(p.orbit.residual), std::to_string(f.structural),
+                               std::to_string(p.iterations),    format_double(p.step)};
+  for (std::size_t k = 0; k < described_; ++k)
+    row.push_back(format_double(k < p.description.size() ? p.description[k] : NAN));
+  for (const auto& m : f.multipliers) {
+    row.push_back(format_double(m.value.real()));
+    row.push_back(format_double(m.value.imag()));
+  }
+  for (int i = 0; i < p.orbit.state0.size(); ++i) row.push_back(format_double(p.orbit.state0[i]));
+  csv_.row(row);
+}
+
+}  // namespace sympathy

@@ -1,0 +1,100 @@
+#include "sympathy/continuation/branch_run.hpp"
+
+#include <algorithm>
+#include <map>
+#include <stdexcept>
+
+#include "sympathy/core/csv.hpp"
+#include "sympathy/core/text.hpp"
+
+namespace sympathy {
+
+std::string BranchProblem::problem_with(const OdeSystem& system) const {
+  if (parameter < 0 || parameter >= system.parameter_count())
+    return "parameter: expected the index of one of " + join(system.parameter_names());
+  if (values.size() != system.parameter_values_size() || !values.allFinite())
+    return "values: expected " + std::to_string(system.parameter_values_size()) +
+           " finite parameter values";
+  if (!std::isfinite(from) || !std::isfinite(to) || from == to)
+    return "from, to: expected two different finite values";
+  if (at && !(*at > std::min(from, to) && *at < std::max(from, to)))
+    return "at " + format_double(*at) + ": expected a value between from and to";
+  if (start_orbit) {
+    if (!start_orbit->converged()) return "start_orbit: expected a converged orbit";
+    if (start_orbit->parameters.size() != values.size())
+      return "start_orbit: expected an orbit of this system, with its parameter values";
+  } else if (start_state.size() != system.dimension() || !start_state.allFinite()) {
+    return "start_state: expected " + std::to_string(system.dimension()) + " finite values";
+  }
+  return "";
+}
+
+Branch continue_branch(const OdeSystem& system, const BranchProblem& problem,
+                       const ContinuationOptions& options, const ContinuationCallbacks& callbacks,
+                       const OrbitDescriber* describer) {
+  if (const std::string wrong = problem.problem_with(system); !wrong.empty())
+    throw std::invalid_argument("branch problem: " + wrong);
+  if (const auto wrong = options.validate())
+    throw std::invalid_argument("continuation options: " + wrong->message());
+  const Stopwatch clock;
+  const double first = problem.first_value();
+  const std::string parameter_name = system.parameter_names()[problem.parameter];
+
+  Branch failed;
+  failed.parameter_name = parameter_name;
+  failed.parameter = problem.parameter;
+  failed.state_names = system.state_names();
+  failed.stop = StopReason::StartFailed;
+  PeriodicOrbit orbit;
+  if (problem.start_orbit) {
+    orbit = *problem.start_orbit;
+  } else {
+    const ParameterValues values = system.with_parameter(problem.values, problem.parameter, first);
+    orbit =
+        find_periodic_orbit(system, values, problem.start_state, problem.subspace, options.orbit);
+    failed.flow = orbit.flow;
+  }
+  if (!orbit.converged()) {
+    failed.stop_reason = "no periodic orbit from start '" + problem.start_name + "' at " +
+                         parameter_name + " = " + format_double(first) + ": " + orbit.newton.reason;
+    failed.seconds = clock.seconds();
+    return failed;
+  }
+
+  ContinuationOptions bounded = options;
+  bounded.lower = std::min(problem.from, problem.to);
+  bounded.upper = std::max(problem.from, problem.to);
+  // Each point described once, as it is found; kept by its index along the joined branch.
+  std::map<int, std::vector<double>> descriptions;
+  int index_sign = +1;  // -1 on the backward part of a two-way run
+  ContinuationCallbacks inner;
+  inner.stop_requested = callbacks.stop_requested;
+  inner.on_event = callbacks.on_event;
+  inner.on_point = [&](const ContinuationPoint& point) {
+    ContinuationPoint p = point;
+    p.index *= index_sign;
+    if (describer) p.description = describer->describe(p.orbit);
+    if (callbacks.on_point) callbacks.on_point(p);
+    descriptions[p.index] = std::move(p.description);
+  };
+  Continuation continuation(system, problem.parameter, bounded);
+  const int toward = problem.to >= first ? +1 : -1;
+  Branch forward = continuation.run(orbit, toward, inner);
+  Branch branch;
+  const bool interrupted = callbacks.stop_requested && callbacks.stop_requested();
+  if (problem.at && !interrupted && forward.started()) {
+    index_sign = -1;
+    branch = join_branches(continuation.run(orbit, -toward, inner), std::move(forward));
+  } else {
+    branch = std::move(forward);
+  }
+  for (auto& p : branch.points) {
+    auto it = descriptions.find(p.index);
+    if (it != descriptions.end()) p.description = std::move(it->second);
+  }
+  branch.flow += orbit.flow;  // the start's transient and Newton
+  branch.seconds = clock.seconds();
+  return branch;
+}
+
+}  // namespace sympathy

@@ -1,0 +1,105 @@
+#include "sympathy/continuation/corrector.hpp"
+
+#include <limits>
+#include <sstream>
+#include <vector>
+
+#include "sympathy/continuation/broyden.hpp"
+
+namespace sympathy {
+
+namespace {
+
+double inf_norm(const Eigen::VectorXd& v) {
+  return v.size() ? v.cwiseAbs().maxCoeff() : 0.0;
+}
+
+}  // namespace
+
+Correction correct(ShootingProblem& problem, const BranchSpace& space, int parameter,
+                   const CorrectorOptions& options, const Eigen::VectorXd& from,
+                   const Eigen::VectorXd& tangent, double step, const Eigen::VectorXd& guess,
+                   const Eigen::SparseMatrix<double>* chord) {
+  const int N = space.unknowns();
+  const double tolerance = options.tolerance;
+  Correction c;
+  Eigen::VectorXd y = guess;
+  const Eigen::VectorXd row = space.arclength_row(tangent);
+  auto rhs_at = [&](const Eigen::VectorXd& residual) {
+    Eigen::VectorXd rhs(N + 1);
+    rhs.head(N) = -residual;
+    rhs[N] = -(row.dot(y - from) - step);
+    return rhs;
+  };
+  int iterations = 0;
+  // Broyden's updates of `chord` (the Jacobian extrapolated from the last points), in the scaled
+  // norm, while they contract.
+  if (chord && options.max_chord_steps > 0) {
+    const auto matrix = bordered(*chord, row);
+    std::vector<Eigen::VectorXd> steps;
+    double last = std::numeric_limits<double>::infinity();
+    Eigen::VectorXd before = y;
+    for (int k = 0; k < options.max_chord_steps; ++k) {
+      Eigen::VectorXd residual;
+      try {
+        residual = problem.residual(y.head(N), space.values_at(y[N]));
+      } catch (const IntegrationError&) {
+        y = before;
+        break;
+      }
+      const double norm = inf_norm(residual);
+      if (norm <= 0.25 * tolerance) break;
+      // Not contracting: Newton takes over, from the better of the last two.
+      if (norm > 0.5 * last) {
+        if (norm > last) y = before;
+        break;
+      }
+      const auto z = broyden_step(solve_linear(matrix, rhs_at(residual), space.linear()).x, steps,
+                                  [&](const auto& u, const auto& v) { return space.dot(u, v); });
+      if (!z || !z->allFinite()) break;
+      steps.push_back(*z);
+      before = y;
+      y += *z;
+      ++c.chord_steps;
+      last = norm;
+    }
+  }
+  double previous = std::numeric_limits<double>::infinity();
+  for (int it = 0;; ++it, ++iterations) {
+    ShootingProblem::Evaluation e;
+    try {
+      e = problem.evaluate(y.head(N), space.values_at(y[N]), true, parameter);
+    } catch (const IntegrationError& error) {
+      c.reason = error.what();
+      return c;
+    }
+    const double norm = inf_norm(e.residual);
+    // Converged; or stalled within ten tolerances: the integration's noise floor, not a failure.
+    const bool stalled = it >= 1 && norm > 0.3 * previous && norm <= 10 * tolerance;
+    if (norm <= tolerance || stalled) {
+      c.converged = true;
+      c.y = std::move(y);
+      c.evaluation = std::move(e);
+      c.residual = norm;
+      c.iterations = iterations;
+      return c;
+    }
+    if (it >= options.max_iterations || (it >= 2 && norm > previous)) {
+      std::ostringstream msg;
+      msg << "corrector " << (norm > previous ? "diverged" : "did not converge") << " (residual "
+          << norm << " after " << iterations << " iterations)";
+      c.reason = msg.str();
+      return c;
+    }
+    previous = norm;
+    const auto dy =
+        solve_linear(bordered(problem.jacobian(e, true), row), rhs_at(e.residual), space.linear());
+    if (!dy.x.allFinite()) {
+      c.reason = "corrector step not finite";
+      return c;
+    }
+    y += dy.x;
+  }
+}
+
+}  // namespace sympathy

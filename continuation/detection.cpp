@@ -1,0 +1,98 @@
+#include "sympathy/continuation/detection.hpp"
+
+#include <algorithm>
+#include <cmath>
+#include <sstream>
+#include <string>
+
+namespace sympathy {
+
+namespace {
+
+bool is_real(std::complex<double> mu) {
+  return std::abs(mu.imag()) <= 1e-6 * std::abs(mu);
+}
+
+}  // namespace
+
+std::vector<Bifurcation> detect(const TrackedMultipliers& tracked, const ContinuationPoint& a,
+                                const ContinuationPoint& b, double trust_limit,
+                                const Locator& locate) {
+  // The parameter's component of the tangents (the last entry).
+  const bool fold = a.tangent[a.tangent.size() - 1] * b.tangent[b.tangent.size() - 1] < 0.0;
+  struct Crossing {
+    std::complex<double> a, b;
+  };
+  std::vector<Crossing> plus, minus, complex;
+  {
+    // Every multiplier that can cross is followed (not the trivial one, nor a family's).
+    for (const auto& [mx, my] : tracked.pairs) {
+      const auto x = mx.value, y = my.value;
+      if ((std::abs(x) - 1.0) * (std::abs(y) - 1.0) >= 0.0) continue;
+      if (is_real(x) && is_real(y)) {
+        (x.real() > 0 ? plus : minus).push_back({x, y});
+      } else if (x.imag() > 0.0 || y.imag() > 0.0) {
+        complex.push_back({x, y});  // one of each conjugate pair
+      }
+    }
+  }
+  // Crossings with equal multipliers happen together (symmetry): one event, its multiplicity.
+  auto clusters = [](const std::vector<Crossing>& c) {
+    std::vector<std::vector<Crossing>> groups;
+    for (const auto& x : c) {
+      bool placed = false;
+      for (auto& g : groups)
+        if (std::abs(g.front().a - x.a) <= 1e-6 * std::max(1.0, std::abs(x.a))) {
+          g.push_back(x);
+          placed = true;
+          break;
+        }
+      if (!placed) groups.push_back({x});
+    }
+    return groups;
+  };
+  std::vector<Bifurcation> found;
+  auto report = [&](Bifurcation e) {
+    e.after_point = a.index;
+    const double worst = std::max(
+        {a.orbit.floquet.trivial_error, b.orbit.floquet.trivial_error, e.floquet.trivial_error});
+    if (worst > trust_limit) {
+      e.trusted = false;
+      std::ostringstream msg;
+      msg << "not trusted: trivial-multiplier error " << worst << " above " << trust_limit;
+      e.note += (e.note.empty() ? "" : "; ") + msg.str();
+    }
+    found.push_back(std::move(e));
+  };
+  auto plus_groups = clusters(plus);
+  if (fold) {
+    Bifurcation e = locate(BifurcationType::Fold, 1, {}, {});
+    if (plus_groups.empty())
+      e.note = "no multiplier crossing +1 seen between the bracketing points";
+    report(e);
+    if (!plus_groups.empty()) plus_groups.erase(plus_groups.begin());
+  }
+  for (const auto& g : plus_groups) {
+    Bifurcation e =
+        locate(BifurcationType::BranchPoint, static_cast<int>(g.size()), g.front().a, g.front().b);
+    if (g.size() > 1) e.note = std::to_string(g.size()) + " multipliers cross +1 together";
+    report(e);
+  }
+  for (const auto& g : clusters(minus)) {
+    Bifurcation e = locate(BifurcationType::PeriodDoubling, static_cast<int>(g.size()), g.front().a,
+                           g.front().b);
+    if (g.size() > 1) e.note = std::to_string(g.size()) + " multipliers cross -1 together";
+    report(e);
+  }
+  for (const auto& g : clusters(complex)) {
+    Bifurcation e = locate(BifurcationType::NeimarkSacker, static_cast<int>(g.size()), g.front().a,
+                           g.front().b);
+    if (g.size() > 1) e.note = std::to_string(g.size()) + " complex pairs cross together";
+    report(e);
+  }
+  std::stable_sort(found.begin(), found.end(),
+                   [](const auto& x, const auto& y) { return x.arclength < y.arclength; });
+  return found;
+}
+
+}  // namespace sympathy

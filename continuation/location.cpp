@@ -1,0 +1,112 @@
+#include "sympathy/continuation/location.hpp"
+
+#include <algorithm>
+#include <cmath>
+#include <limits>
+#include <utility>
+
+#include "sympathy/continuation/multiplier_tracking.hpp"
+
+namespace sympathy {
+
+Bifurcation locate(const ContinuationPoint& a, const ContinuationPoint& b, BifurcationType type,
+                   int multiplicity, std::complex<double> mu_a, std::complex<double> mu_b,
+                   double tolerance, const PointAt& point_at) {
+  const int N = static_cast<int>(a.unknowns.size());  // the parameter's entry of the tangents
+  const double sb = b.step;
+  // The multiplier followed across, by continuity: the one nearest the value interpolated
+  // between the multipliers followed at the current ends of the bracket (for a fold, the
+  // nontrivial one nearest to 1).
+  double s_lo = 0.0, s_hi = sb;
+  std::complex<double> mu_lo = mu_a, mu_hi = mu_b;
+  auto tracked = [&](const ContinuationPoint& p, double s) {
+    const std::complex<double> expected =
+        type == BifurcationType::Fold ? 1.0 : mu_lo + (s - s_lo) / (s_hi - s_lo) * (mu_hi - mu_lo);
+    std::complex<double> found = 0.0;
+    double best = std::numeric_limits<double>::infinity();
+    for (const auto& m : nontrivial(p.orbit.floquet))
+      if (std::abs(m.value - expected) < best) {
+        best = std::abs(m.value - expected);
+        found = m.value;
+      }
+    return found;
+  };
+  // The test function: the tangent's parameter component for a fold; |mu| - 1 of the
+  // multiplier followed otherwise.
+  auto test = [&](const ContinuationPoint& p, std::complex<double> mu) {
+    return type == BifurcationType::Fold ? p.tangent[N] : std::abs(mu) - 1.0;
+  };
+  Bifurcation e;
+  e.type = type;
+  e.multiplicity = multiplicity;
+  double f_lo = test(a, mu_a), f_hi = test(b, mu_b);
+  ContinuationPoint lo = a, hi = b, best = std::abs(f_lo) < std::abs(f_hi) ? a : b;
+  double f_best = std::min(std::abs(f_lo), std::abs(f_hi));
+  std::complex<double> mu_best = std::abs(f_lo) < std::abs(f_hi) ? mu_a : mu_b;
+  double s_best = std::abs(f_lo) < std::abs(f_hi) ? 0.0 : sb;
+  int side = 0;  // Illinois: which end was kept last time
+  for (int iteration = 0; iteration < 30; ++iteration) {
+    const double scale = std::max(std::abs(best.parameter), 1.0);
+    const bool narrow = std::abs(hi.parameter - lo.parameter) <= tolerance * scale;
+    const bool tight = (s_hi - s_lo) <= 1e-7 * sb;  // folds: the parameter is flat there
+    if ((narrow && (type != BifurcationType::Fold || tight)) || f_best == 0.0) {
+      e.located = true;
+      break;
+    }
+    double s = s_hi - f_hi * (s_hi - s_lo) / (f_hi - f_lo);
+    if (!(s > s_lo && s < s_hi)) s = 0.5 * (s_lo + s_hi);
+    // At least half the tolerance (in arclength) inside each end: when the root lies next to
+    // one end, a probe just past it closes the bracket at once, where the secant would creep up
+    // on it from one side.
+    const double dp_ds = std::abs(hi.parameter - lo.parameter) / (s_hi - s_lo);
+    const double half_tolerance = type == BifurcationType::Fold || !(dp_ds > 0.0)
+                                      ? 0.5e-7 * sb
+                                      : 0.5 * tolerance * scale / dp_ds;
+    const double inset = std::min(half_tolerance, 0.25 * (s_hi - s_lo));
+    s = std::clamp(s, s_lo + inset, s_hi - inset);
+    std::string why;
+    std::optional<ContinuationPoint> probe = point_at(s, why);
+    if (!probe) {
+      e.note = "location stopped: " + why;
+      break;
+    }
+    ContinuationPoint p = std::move(*probe);
+    const std::complex<double> mu = tracked(p, s);
+    const double f = test(p, mu);
+    if (std::abs(f) < f_best) {
+      f_best = std::abs(f);
+      best = p;
+      mu_best = mu;
+      s_best = s;
+    }
+    if ((f > 0) == (f_hi > 0)) {
+      s_hi = s;
+      f_hi = f;
+      mu_hi = mu;
+      hi = std::move(p);
+      if (side == +1) f_lo *= 0.5;
+      side = +1;
+    } else {
+      s_lo = s;
+      f_lo = f;
+      mu_lo = mu;
+      lo = std::move(p);
+      if (side == -1) f_hi *= 0.5;
+      side = -1;
+    }
+  }
+  e.parameter = best.parameter;
+  e.arclength = s_best;
+  e.uncertainty = std::abs(hi.parameter - lo.parameter);
+  e.period = best.orbit.period;
+  e.floquet = best.orbit.floquet;
+  e.crossing = type == BifurcationType::Fold ? tracked(best, 0.0) : mu_best;
+  if (e.crossing.imag() < 0.0) e.crossing = std::conj(e.crossing);
+  e.state0 = best.orbit.state0;
+  e.unknowns = best.unknowns;
+  e.tangent = best.tangent;
+  if (!e.located && e.note.empty()) e.note = "location did not reach the tolerance";
+  return e;
+}
+
+}  // namespace sympathy

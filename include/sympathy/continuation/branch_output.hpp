@@ -1,0 +1,52 @@
+// Writers of orbits and branches over the system's own state and parameter names, below every
+// front end: a branch's CSV streamed point by point (one row per point, written whole and
+// flushed: a run that stops keeps every point before it), JSON for an orbit and a branch, and a
+// JSON file written whole and atomically (core/output_file.hpp). A model's own columns (phases,
+// amplitudes) come from its OrbitDescriber, already in each point's description.
+#pragma once
+
+#include <string>
+#include <vector>
+
+#include <nlohmann/json.hpp>
+
+#include "sympathy/continuation/branch.hpp"
+#include "sympathy/continuation/orbit_describer.hpp"
+#include "sympathy/core/csv.hpp"
+
+namespace sympathy {
+
+// [[re, im], ...]
+nlohmann::json multipliers_json(const FloquetAnalysis& floquet);
+// {name: value} of every named parameter of the system at p.
+nlohmann::json parameters_json(const OdeSystem& system, const ParameterValues& p);
+
+// An orbit: period, multipliers (with moduli and kinds), stability, accuracy, state, parameter
+// values, Newton's summary, and the describer's groups as objects {label: value}.
+nlohmann::json orbit_json(const OdeSystem& system, const PeriodicOrbit& orbit,
+                          const OrbitDescriber* describer = nullptr);
+
+// A branch: its parameter, stop reason, state names, points (with the describer's groups as
+// lists, from each point's description), located events, run time and integration work.
+nlohmann::json branch_json(const Branch& branch, const OrbitDescriber* describer = nullptr);
+
+// The JSON written to `path` whole and atomically; throws OutputError.
+void write_json(const std::string& path, const nlohmann::json& j);
+
+// One CSV row per point: index, the parameter, period, frequency, stability, accuracy, the
+// describer's columns, the multipliers (re, im) and the orbit's initial state (any point can seed
+// a new run).
+class BranchCsvWriter {
+ public:
+  // Throws OutputError if `path` cannot be opened.
+  BranchCsvWriter(const std::string& path, const OdeSystem& system,
+                  const std::string& parameter_name, const OrbitDescriber* describer = nullptr);
+  void write(const ContinuationPoint& point);  // throws OutputError
+  void close() { csv_.close(); }
+
+ private:
+  CsvWriter csv_;
+  std::size_t described_ = 0;  // the describer's columns
+};
+
+}  // namespace sympathy

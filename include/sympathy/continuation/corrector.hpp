@@ -1,0 +1,40 @@
+// The corrector of a continuation step: Newton on the bordered system (the shooting equations and
+// the arclength condition <tau, Y - Y_from> = ds in the scaled norm), each iteration with the
+// flow's sensitivities, so that the converged point's monodromy serves its stability and its
+// tangent. Before it, quasi-Newton (Broyden) steps on plain residuals as accurate as those runs
+// (ShootingProblem::residual, about a tenth of their cost) from a chord Jacobian do most of the
+// work: they aim well below the tolerance, so that one integration with sensitivities at their
+// end usually both confirms the point and gives its monodromy.
+#pragma once
+
+#include <string>
+
+#include "sympathy/continuation/branch_space.hpp"
+#include "sympathy/continuation/periodic_orbit.hpp"
+
+namespace sympathy {
+
+struct CorrectorOptions {
+  int max_iterations = 7;
+  int max_chord_steps = 6;  // quasi-Newton steps on plain integrations before the iterations
+  double tolerance = 1e-9;  // |F|_inf: the attainable one (attainable_tolerance)
+};
+
+struct Correction {
+  bool converged = false;
+  std::string reason;                      // why not
+  Eigen::VectorXd y;                       // (unknowns, parameter)
+  ShootingProblem::Evaluation evaluation;  // at y, with sensitivities
+  double residual = 0.0;                   // |F|_inf at y
+  int iterations = 0;                      // with sensitivities
+  int chord_steps = 0;                     // on plain integrations, before the iterations
+};
+
+// Corrects `guess` onto the branch at arclength `step` from `from` along `tangent`, for the
+// continued `parameter`; `chord` (may be null) is the Jacobian the quasi-Newton steps start from.
+Correction correct(ShootingProblem& problem, const BranchSpace& space, int parameter,
+                   const CorrectorOptions& options, const Eigen::VectorXd& from,
+                   const Eigen::VectorXd& tangent, double step, const Eigen::VectorXd& guess,
+                   const Eigen::SparseMatrix<double>* chord);
+
+}  // namespace sympathy

@@ -1,0 +1,31 @@
+// What only a model knows about its orbits, for the writers: named numbers per orbit (a
+// metronome model's amplitudes and the pendula's phase differences). The engine and the writers
+// know nothing about metronomes; a model that wants columns of its own implements this, and the
+// branch run describes each point once, as it is found.
+#pragma once
+
+#include <string>
+#include <vector>
+
+#include "sympathy/continuation/periodic_orbit.hpp"
+
+namespace sympathy {
+
+class OrbitDescriber {
+ public:
+  // A group of numbers: JSON gets `name` (a list per branch point; an object of `labels` for an
+  // orbit), CSV gets one column `csv_prefix + label` per number.
+  struct Group {
+    std::string name;                 // "amplitudes"
+    std::string csv_prefix;           // "amp_"
+    std::vector<std::string> labels;  // "x", "th1", ...
+  };
+
+  virtual ~OrbitDescriber() = default;
+  virtual std::vector<Group> layout() const = 0;
+  // The numbers of every group, in layout order (NaN where a number is unknown). Called from
+  // several threads at once when branches run side by side.
+  virtual std::vector<double> describe(const PeriodicOrbit& orbit) const = 0;
+};
+
+}  // namespace sympathy

@@ -1,0 +1,43 @@
+// Checked output: the one way sympathy writes files, so that nothing computed is lost silently.
+//
+// Two kinds of file. A stream (CSV rows, one branch point at a time) is written a whole line at
+// a time and flushed after each, so that a run that stops keeps every line before it; every
+// write, flush and close is checked. A whole file (a JSON report, a fitted case) is written to a
+// temporary beside its target and renamed over it only when complete, so a failure or a signal
+// leaves the earlier file of that name as it was, never a truncated one. Either failure is an
+// OutputError naming the path and the operating system's reason (e.g. "No space left on device"
+// from /dev/full).
+#pragma once
+
+#include <cstdio>
+#include <string>
+
+namespace sympathy {
+
+class StreamFile {
+ public:
+  // Opens (truncates) `path`; throws OutputError if it cannot.
+  explicit StreamFile(const std::string& path);
+  ~StreamFile();
+  StreamFile(const StreamFile&) = delete;
+  StreamFile& operator=(const StreamFile&) = delete;
+
+  // Writes `line` (which should end in '\n') whole and flushes it; throws OutputError.
+  void write_line(const std::string& line);
+  // Closes the file, checking that everything reached it; throws OutputError. Idempotent.
+  void close();
+  const std::string& path() const { return path_; }
+
+ private:
+  std::string path_;
+  std::FILE* file_ = nullptr;
+};
+
+// Writes `content` to `path` atomically (a temporary beside it, then rename); throws OutputError.
+void write_file_atomically(const std::string& path, const std::string& content);
+
+// Checks, before any work, that `path` can be written: its directory exists and is writable, and
+// it is not a directory. Throws OutputError naming `option` (e.g. "--json") and the path.
+void check_writable(const std::string& path, const std::string& option);
+
+}  // namespace sympathy
