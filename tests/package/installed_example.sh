@@ -1,0 +1,35 @@
+#!/usr/bin/env bash
+# The installed package as a user meets it: `cmake --install` of the build tree to a temporary
+# prefix, then examples/fold_of_cycles configured, built and run out of tree against that
+# prefix alone. Fails if any step fails; the temporary directory goes in any case.
+# Usage: installed_example.sh CMAKE BUILD_DIR EXAMPLE_SOURCE_DIR CXX_COMPILER
+set -euo pipefail
+cmake=$1 build=$2 example=$3 cxx=$4
+tmp=$(mktemp -d)
+trap 'rm -rf "$tmp"' EXIT
+
+step() { echo "== $*"; }
+step "install to $tmp/prefix"
+"$cmake" --install "$build" --prefix "$tmp/prefix" > "$tmp/install.log" ||
+  { cat "$tmp/install.log"; exit 1; }
+# The package's files, wherever the build put its libdir (lib, lib64, lib/<multiarch>).
+config=$(find "$tmp/prefix" -path '*/cmake/sympathy/sympathyConfig.cmake')
+[[ -n "$config" ]] || { echo "not installed: sympathyConfig.cmake"; exit 1; }
+for f in sympathyConfigVersion.cmake sympathyTargets.cmake FindSuiteSparse.cmake; do
+  [[ -f "$(dirname "$config")/$f" ]] || { echo "not installed: $f"; exit 1; }
+done
+[[ -f "$tmp/prefix/include/sympathy/continuation/continuation.hpp" ]] ||
+  { echo "not installed: the headers"; exit 1; }
+
+step "configure the example against the prefix"
+"$cmake" -S "$example" -B "$tmp/example-build" -DCMAKE_PREFIX_PATH="$tmp/prefix" \
+  -DCMAKE_BUILD_TYPE=Release -DCMAKE_CXX_COMPILER="$cxx"
+# It must have found the installed package, not some other sympathy.
+found=$(sed -n 's/^sympathy_DIR:PATH=//p' "$tmp/example-build/CMakeCache.txt")
+[[ "$found" == "$tmp/prefix/"* ]] || { echo "found sympathy at '$found', not in the prefix"; exit 1; }
+
+step "build the example"
+"$cmake" --build "$tmp/example-build"
+
+step "run the example"
+"$tmp/example-build/fold_of_cycles"
