@@ -49,6 +49,18 @@ std::string to_string(StopReason r) {
   return "?";
 }
 
+std::string to_string(LocationOutcome o) {
+  switch (o) {
+    case LocationOutcome::Located:
+      return "located";
+    case LocationOutcome::NotNarrowed:
+      return "not narrowed";
+    case LocationOutcome::CorrectorFailed:
+      return "corrector failed";
+  }
+  return "?";
+}
+
 void order_events(std::vector<Bifurcation>& events) {
   std::stable_sort(events.begin(), events.end(), [](const auto& a, const auto& b) {
     if (a.after_point != b.after_point) return a.after_point < b.after_point;
@@ -61,6 +73,8 @@ Branch join_branches(Branch backward, Branch forward) {
   joined.parameter_name = forward.parameter_name;
   joined.parameter = forward.parameter;
   joined.state_names = forward.state_names;
+  joined.options = forward.options;
+  joined.start_values = forward.start_values;
   for (auto& p : backward.points) p.index = -p.index;
   // The point before each event along the joined branch: -(k+1) for one between -k and -(k+1).
   for (auto& e : backward.events) e.after_point = -(e.after_point + 1);

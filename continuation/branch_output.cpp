@@ -125,8 +125,9 @@ nlohmann::json branch_json(const Branch& branch, const OrbitDescriber* describer
                       {"multipliers", multipliers_json(e.floquet)},
                       {"crossing_multiplier", {e.crossing.real(), e.crossing.imag()}},
                       {"multiplicity", e.multiplicity},
-                      {"located", e.located},
-                      {"trusted", e.trusted},
+                      {"located", e.located()},
+                      {"location", to_string(e.location)},
+                      {"trusted", e.trusted()},
                       {"note", e.note}});
   }
   j["events"] = events;

@@ -45,6 +45,8 @@ Branch continue_branch(const OdeSystem& system, const BranchProblem& problem,
   failed.parameter = problem.parameter;
   failed.state_names = system.state_names();
   failed.stop = StopReason::StartFailed;
+  failed.options = options;
+  failed.start_values = problem.values;
   PeriodicOrbit orbit;
   if (problem.start_orbit) {
     orbit = *problem.start_orbit;

@@ -119,6 +119,8 @@ Branch Continuation::run(const PeriodicOrbit& start, int direction,
   branch.parameter_name = system_.parameter_names()[parameter_];
   branch.parameter = parameter_;
   branch.state_names = system_.state_names();
+  branch.options = options_;
+  branch.start_values = start.parameters;
   problem_->reset_statistics();
   auto finish = [&](StopReason stop, const std::string& reason) {
     branch.stop = stop;
@@ -246,7 +248,7 @@ Branch Continuation::run(const PeriodicOrbit& start, int direction,
       // An event that could not be located in this step: try a shorter one (the multipliers
       // are then easier to follow), unless the step is short already.
       const bool unlocated =
-          std::any_of(events.begin(), events.end(), [](const auto& e) { return !e.located; });
+          std::any_of(events.begin(), events.end(), [](const auto& e) { return !e.located(); });
       if (unlocated && location_retries < 3 && ds > 4 * options_.min_step) {
         ++branch.rejected.location;
         ++location_retries;

@@ -57,7 +57,7 @@ std::vector<Bifurcation> detect(const TrackedMultipliers& tracked, const Continu
     const double worst = std::max(
         {a.orbit.floquet.trivial_error, b.orbit.floquet.trivial_error, e.floquet.trivial_error});
     if (worst > trust_limit) {
-      e.trusted = false;
+      e.trust = EventTrust::TrivialErrorTooLarge;
       std::ostringstream msg;
       msg << "not trusted: trivial-multiplier error " << worst << " above " << trust_limit;
       e.note += (e.note.empty() ? "" : "; ") + msg.str();

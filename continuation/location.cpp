@@ -50,7 +50,7 @@ Bifurcation locate(const ContinuationPoint& a, const ContinuationPoint& b, Bifur
     const bool narrow = std::abs(hi.parameter - lo.parameter) <= tolerance * scale;
     const bool tight = (s_hi - s_lo) <= 1e-7 * sb;  // folds: the parameter is flat there
     if ((narrow && (type != BifurcationType::Fold || tight)) || f_best == 0.0) {
-      e.located = true;
+      e.location = LocationOutcome::Located;
       break;
     }
     double s = s_hi - f_hi * (s_hi - s_lo) / (f_hi - f_lo);
@@ -67,6 +67,7 @@ Bifurcation locate(const ContinuationPoint& a, const ContinuationPoint& b, Bifur
     std::string why;
     std::optional<ContinuationPoint> probe = point_at(s, why);
     if (!probe) {
+      e.location = LocationOutcome::CorrectorFailed;
       e.note = "location stopped: " + why;
       break;
     }
@@ -105,7 +106,7 @@ Bifurcation locate(const ContinuationPoint& a, const ContinuationPoint& b, Bifur
   e.state0 = best.orbit.state0;
   e.unknowns = best.unknowns;
   e.tangent = best.tangent;
-  if (!e.located && e.note.empty()) e.note = "location did not reach the tolerance";
+  if (e.location == LocationOutcome::NotNarrowed) e.note = "location did not reach the tolerance";
   return e;
 }
 

@@ -128,7 +128,7 @@ Result locate_branch_point(const MetronomeModel& model, const PeriodicOrbit& at4
     for (const auto& e : b.events)
       if (e.type == BifurcationType::BranchPoint) {
         r.parameter = e.parameter;
-        r.converged = e.located;
+        r.converged = e.located();
         break;
       }
     if (r.parameter == 0.0) r.note = "no branch point found (" + b.stop_reason + ")";

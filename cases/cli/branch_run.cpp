@@ -88,7 +88,7 @@ void print_events(std::FILE* out, const Branch& branch) {
     std::string note = e.note;
     if (e.multiplicity > 1 && note.empty()) note = "multiplicity " + std::to_string(e.multiplicity);
     std::fprintf(out, "  %-4s %-20.12g %-10.1e %-14.10f %-28s %s\n",
-                 (to_string(e.type) + (e.trusted ? "" : "?")).c_str(), e.parameter, e.uncertainty,
+                 (to_string(e.type) + (e.trusted() ? "" : "?")).c_str(), e.parameter, e.uncertainty,
                  e.period, mu, note.c_str());
   }
 }

@@ -98,8 +98,8 @@ void expect_identical(const Branch& a, const Branch& b, const std::string& what)
     ASSERT_EQ(mu.size(), nu.size()) << what << " event " << i;
     for (std::size_t m = 0; m < mu.size(); ++m)
       EXPECT_EQ(mu[m].value, nu[m].value) << what << " event " << i << " multiplier " << m;
-    EXPECT_EQ(e.located, f.located) << what << " event " << i;
-    EXPECT_EQ(e.trusted, f.trusted) << what << " event " << i;
+    EXPECT_EQ(e.location, f.location) << what << " event " << i;
+    EXPECT_EQ(e.trust, f.trust) << what << " event " << i;
     EXPECT_EQ(e.note, f.note) << what << " event " << i;
     EXPECT_EQ(e.after_point, f.after_point) << what << " event " << i;
   }

@@ -50,8 +50,8 @@ TEST(Continuation, FoldOfCyclesLocated) {
   const auto folds = events_of(branch, BifurcationType::Fold);
   ASSERT_EQ(folds.size(), 1u) << branch.stop_reason;
   EXPECT_NEAR(folds[0].parameter, -0.25, 1e-8);
-  EXPECT_TRUE(folds[0].located);
-  EXPECT_TRUE(folds[0].trusted);
+  EXPECT_TRUE(folds[0].located());
+  EXPECT_TRUE(folds[0].trusted());
   EXPECT_NEAR(folds[0].state0.head(2).norm(), std::sqrt(0.5), 1e-4);
   EXPECT_NEAR(folds[0].period, 2 * kPi, 1e-9);
   // Before the fold stable, after it (the inner cycles) unstable.
@@ -103,7 +103,7 @@ TEST(Continuation, BranchPointLocated) {
   EXPECT_NEAR(bps[0].parameter, 0.0, 1e-8);
   EXPECT_EQ(bps[0].multiplicity, 1);
   EXPECT_TRUE(events_of(branch, BifurcationType::Fold).empty());
-  EXPECT_EQ(branch.stop_reason, "reached the parameter bound");
+  EXPECT_EQ(branch.stop, StopReason::ParameterBound) << branch.stop_reason;
   // Multipliers along the branch: exp(2 pi mu), to the integration accuracy.
   for (const auto& p : branch.points) {
     double largest = 0.0;
@@ -168,7 +168,7 @@ TEST(Continuation, UntrustedEventsAreFlagged) {
   Continuation c(system, 0, o);
   const Branch branch = c.run(start, +1);
   ASSERT_EQ(branch.events.size(), 1u);
-  EXPECT_FALSE(branch.events[0].trusted);
+  EXPECT_EQ(branch.events[0].trust, EventTrust::TrivialErrorTooLarge);
   EXPECT_NE(branch.events[0].note.find("not trusted"), std::string::npos);
 }
 
@@ -182,7 +182,7 @@ TEST(Continuation, StreamsPointsAndStopsOnRequest) {
   callbacks.on_point = [&](const ContinuationPoint&) { ++seen; };
   callbacks.stop_requested = [&] { return seen >= 4; };
   const Branch branch = c.run(start, +1, callbacks);
-  EXPECT_EQ(branch.stop_reason, "interrupted");
+  EXPECT_EQ(branch.stop, StopReason::Interrupted) << branch.stop_reason;
   EXPECT_EQ(seen, 4);
   EXPECT_EQ(branch.points.size(), 4u);
   for (std::size_t i = 1; i < branch.points.size(); ++i)

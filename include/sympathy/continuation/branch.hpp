@@ -10,6 +10,7 @@
 
 #include <Eigen/Dense>
 
+#include "sympathy/continuation/continuation_options.hpp"
 #include "sympathy/continuation/periodic_orbit.hpp"
 
 namespace sympathy {
@@ -38,6 +39,20 @@ struct ContinuationPoint {
   std::vector<double> description;  // what the model's OrbitDescriber says of the orbit (if any)
 };
 
+// How the location of an event ended, for programs to switch on (the note says it for people).
+enum class LocationOutcome {
+  Located,          // the bracket shrank to the tolerance
+  NotNarrowed,      // 30 probes left the bracket wider than the tolerance
+  CorrectorFailed,  // a probe of the bracket could not be corrected onto the branch
+};
+std::string to_string(LocationOutcome o);
+
+// Whether an event can be trusted, and if not, why.
+enum class EventTrust {
+  Trusted,
+  TrivialErrorTooLarge,  // a trivial-multiplier error above the trust limit near it
+};
+
 struct Bifurcation {
   BifurcationType type = BifurcationType::Fold;
   int multiplicity = 1;      // multipliers crossing together (2: symmetric systems do this)
@@ -49,9 +64,11 @@ struct Bifurcation {
   Eigen::VectorXd state0;               // orbit at the located point
   Eigen::VectorXd unknowns;
   Eigen::VectorXd tangent;
-  bool located = false;    // the bracket shrank to the tolerance
-  bool trusted = true;     // false: a trivial-multiplier error too large near it
-  std::string note;        // what to know about it (why untrusted, how it was detected)
+  LocationOutcome location = LocationOutcome::NotNarrowed;
+  EventTrust trust = EventTrust::Trusted;
+  std::string note;  // what to know about it (why untrusted, how it was detected), for people
+  bool located() const { return location == LocationOutcome::Located; }
+  bool trusted() const { return trust == EventTrust::Trusted; }
   int after_point = 0;     // index of the branch point before it
   double arclength = 0.0;  // from that point (orders events found in one interval)
 };
@@ -94,6 +111,9 @@ struct Branch {
   std::optional<StopReason> backward_stop;  // a two-way branch: why its backward part ended
   double seconds = 0.0;
   FlowStatistics flow;
+  // What made it: the options (bounds included) and the parameter values it started from.
+  ContinuationOptions options;
+  ParameterValues start_values;
   // Whether the run had a starting orbit (false: stop is StartFailed, and nothing was continued).
   bool started() const { return stop != StopReason::StartFailed; }
 };

@@ -1,0 +1,38 @@
+// The options of a pseudo-arclength continuation run, their defaults (each set here and nowhere
+// else) and their validation. A Branch keeps the options that made it.
+#pragma once
+
+#include "sympathy/continuation/periodic_orbit.hpp"
+#include "sympathy/core/option_check.hpp"
+
+namespace sympathy {
+
+struct ContinuationOptions {
+  double lower = 0.0, upper = 0.0;  // parameter bounds; the run stops when it leaves them
+  double initial_step = 0.02;       // scaled arclength
+  double min_step = 1e-6;
+  double max_step = 0.1;
+  double max_parameter_step = 0.0;  // |dp| per step; 0: (upper - lower) / 25
+  int max_points = 400;
+  int max_corrector_iterations = 7;
+  int max_chord_steps = 6;  // before them, on plain integrations (0: Newton from the start)
+  double corrector_tolerance = 1e-9;  // |F|_inf, as NewtonOptions::residual_tolerance
+  // Per step, the largest change of the modulus of a multiplier within `watch_band` of the unit
+  // circle (only those can cross it and come back between two points).
+  double max_modulus_change = 0.02;
+  double watch_band = 0.1;
+  // Smallest cosine between consecutive unit tangents: a step that turns the tangent more is
+  // halved, so that orientation (and hence direction along the branch) stays unambiguous.
+  double min_tangent_cosine = 0.9;
+  double location_tolerance = 1e-8;  // relative, in the parameter
+  double trust_limit = 1e-6;         // trivial-multiplier error above which events are flagged
+  bool detect_bifurcations = true;
+  bool curved_predictor = true;  // cubic through the last two points; false: the tangent alone
+  OrbitOptions orbit;            // shooting, rank tolerance, stability tolerance
+
+  // The bounds are not checked here (a branch run sets them from its problem; the Continuation
+  // checks lower < upper).
+  OptionCheck validate() const;
+};
+
+}  // namespace sympathy
