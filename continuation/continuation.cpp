@@ -96,6 +96,30 @@ ContinuationPoint Continuation::make_point(const Correction& c, const Eigen::Vec
   return p;
 }
 
+std::optional<ContinuationPoint> Continuation::point_on_bound(const ContinuationPoint& a,
+                                                              const ContinuationPoint& b,
+                                                              double bound) const {
+  const int N = problem_->unknowns();
+  Eigen::VectorXd ya(N + 1), yb(N + 1);
+  ya << a.unknowns, a.parameter;
+  yb << b.unknowns, b.parameter;
+  problem_->set_phase_section(a.section, a.section_normal);
+  // A "tangent" whose arclength row is the parameter's unit row: the condition p - p_a = step.
+  const double w = space_->weights()[N];
+  Eigen::VectorXd along_parameter = Eigen::VectorXd::Zero(N + 1);
+  along_parameter[N] = 1.0 / (w * w);
+  const double t = (bound - a.parameter) / (b.parameter - a.parameter);
+  const Correction c =
+      correct_step(ya, along_parameter, bound - a.parameter, ya + t * (yb - ya), &chord_jacobian_);
+  if (!c.converged) return std::nullopt;
+  const Eigen::VectorXd tau =
+      space_->tangent(problem_->jacobian(c.evaluation, true), c.y, a.tangent);
+  // Its arclength from a along a's tangent, as location measures it.
+  ContinuationPoint p = make_point(c, tau, a.index + 1, space_->dot(a.tangent, c.y - ya));
+  p.parameter = bound;  // the linear condition holds to rounding; the bound itself is exact
+  return p;
+}
+
 std::optional<ContinuationPoint> Continuation::point_at(const ContinuationPoint& a, double s,
                                                         std::string& why) const {
   const int N = problem_->unknowns();
@@ -227,13 +251,25 @@ Branch Continuation::run(const PeriodicOrbit& start, int direction,
     // A step whose multipliers could not be paired with confidence, or moved too far near the
     // circle, is rejected after its whole cost: the retry, and the step after an accepted one,
     // aim below both limits at the rates just seen.
-    const TrackedMultipliers tracked = track(previous, a, b);
+    TrackedMultipliers tracked = track(previous, a, b);
     const MultiplierMotion motion = multiplier_motion(tracked, ds, options_);
     const double aim = motion.aim;
     if (motion.too_far && ds > 4 * options_.min_step) {
       ++branch.rejected.multipliers;
       ds = std::max(std::min(0.5 * ds, aim), 4 * options_.min_step);
       continue;
+    }
+    // The last point lies on the bound, never beyond it: a point past the bound gives way to the
+    // branch's point at the bound (the parameter fixed there instead of the arclength), and the
+    // events between a and it are the branch's last.
+    const double bound = std::clamp(b.parameter, options_.lower, options_.upper);
+    bool on_bound = false;
+    if (bound != b.parameter) {
+      if (auto at = point_on_bound(a, b, bound)) {
+        b = std::move(*at);
+        tracked = track(previous, a, b);
+        on_bound = true;
+      }
     }
     std::vector<Bifurcation> events;
     if (options_.detect_bifurcations) {
@@ -266,7 +302,7 @@ Branch Continuation::run(const PeriodicOrbit& start, int direction,
       branch.events.push_back(std::move(e));
       if (callbacks.on_event) callbacks.on_event(branch.events.back());
     }
-    if (added.parameter < options_.lower || added.parameter > options_.upper)
+    if (on_bound || added.parameter < options_.lower || added.parameter > options_.upper)
       return finish(StopReason::ParameterBound, "reached the parameter bound");
     // Scales follow the amplitudes met so far; the tangent stays a unit vector in them.
     try {

@@ -92,6 +92,25 @@ TEST(Continuation, CurvedPredictorAndChordStepsSaveWork) {
   EXPECT_LT(per_point(fast), per_point(plain));  // measured: 1.17 against 2.5
 }
 
+// The last point lies on the bound, exactly, and no point beyond it (the reliability issue: a
+// branch used to end a full step past --to), both ways; the point on the bound is an orbit of
+// the normal form there (radius 1 whatever mu for the pitchfork family: residual below 1e-8).
+TEST(Continuation, LastPointLiesOnTheBound) {
+  NormalForm system(Kind::Pitchfork, -0.4);
+  const auto start = circle(system);
+  Continuation c(system, 0, options(-0.5, 0.5));
+  for (int direction : {+1, -1}) {
+    const Branch branch = c.run(start, direction);
+    ASSERT_EQ(branch.stop, StopReason::ParameterBound) << branch.stop_reason;
+    for (const auto& p : branch.points) {
+      EXPECT_GE(p.parameter, -0.5);
+      EXPECT_LE(p.parameter, 0.5);
+    }
+    EXPECT_EQ(branch.points.back().parameter, direction > 0 ? 0.5 : -0.5);
+    EXPECT_LT(branch.points.back().orbit.residual, 1e-8);
+  }
+}
+
 // A transverse pitchfork: the multiplier exp(2 pi mu) crosses +1 at mu = 0 without a fold.
 TEST(Continuation, BranchPointLocated) {
   NormalForm system(Kind::Pitchfork, -0.4);

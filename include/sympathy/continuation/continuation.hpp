@@ -57,6 +57,10 @@ class Continuation {
   // The point at arclength s from a along a's tangent, in a's section: what location probes.
   std::optional<ContinuationPoint> point_at(const ContinuationPoint& a, double s,
                                             std::string& why) const;
+  // The branch's point at the parameter value `bound`, between a and b (b beyond it), in a's
+  // section; nullopt when it cannot be corrected.
+  std::optional<ContinuationPoint> point_on_bound(const ContinuationPoint& a,
+                                                  const ContinuationPoint& b, double bound) const;
 
   const OdeSystem& system_;
   int parameter_;
