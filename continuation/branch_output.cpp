@@ -168,4 +168,16 @@ void BranchCsvWriter::write(const ContinuationPoint& p) {
   csv_.row(row);
 }
 
+EventCsvWriter::EventCsvWriter(const std::string& path, const std::string& parameter_name)
+    : csv_(path, {"type", parameter_name, "uncertainty", "period", "crossing_re", "crossing_im",
+                  "multiplicity", "location", "trusted", "after_point", "note"}) {}
+
+void EventCsvWriter::write(const Bifurcation& e) {
+  csv_.row(std::vector<std::string>{
+      to_string(e.type), format_double(e.parameter), format_double(e.uncertainty),
+      format_double(e.period), format_double(e.crossing.real()), format_double(e.crossing.imag()),
+      std::to_string(e.multiplicity), to_string(e.location), e.trusted() ? "yes" : "no",
+      std::to_string(e.after_point), e.note});
+}
+
 }  // namespace sympathy

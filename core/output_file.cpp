@@ -48,6 +48,16 @@ void StreamFile::close() {
 }
 
 void write_file_atomically(const std::string& path, const std::string& content) {
+  // A device or a pipe (/dev/null, /dev/full, a FIFO) cannot be replaced by a rename, and must
+  // not be: it is written in place, every write checked.
+  std::error_code ec;
+  const auto status = std::filesystem::status(path, ec);
+  if (!ec && std::filesystem::exists(status) && !std::filesystem::is_regular_file(status)) {
+    StreamFile file(path);
+    file.write_line(content);
+    file.close();
+    return;
+  }
   // Beside the target (same directory, hence same file system, so that rename is atomic), named
   // per process so that two runs writing the same name do not share a temporary.
   const std::string temporary = path + ".tmp" + std::to_string(::getpid());

@@ -1,27 +1,11 @@
 #include "cases/cli/branch_run.hpp"
 
-#include <csignal>
 #include <memory>
 
 #include "sympathy/cases/metronome_describer.hpp"
 #include "sympathy/continuation/branch_output.hpp"
 
 namespace sympathy::cli {
-
-namespace {
-
-std::atomic<bool> g_interrupted{false};
-
-extern "C" void on_interrupt(int) {
-  if (g_interrupted.exchange(true)) std::_Exit(130);
-}
-
-}  // namespace
-
-const std::atomic<bool>* interrupt_flag() {
-  std::signal(SIGINT, on_interrupt);
-  return &g_interrupted;
-}
 
 Branch run_branch(const LoadedCase& c, const MetronomeModel& model, const BranchRequest& request,
                   const std::atomic<bool>* stop) {
@@ -61,7 +45,11 @@ Branch run_branch(const LoadedCase& c, const MetronomeModel& model, const Branch
                    p.orbit.floquet.trivial_error, p.orbit.residual);
     }
   };
+  std::unique_ptr<EventCsvWriter> events;
+  if (!request.events_path.empty())
+    events = std::make_unique<EventCsvWriter>(request.events_path, request.parameter);
   callbacks.on_event = [&](const Bifurcation& e) {
+    if (events) events->write(e);
     if (request.progress)
       std::fprintf(request.progress, "  >> %s at %s = %.10g (bracket %.1e)%s%s\n",
                    to_string(e.type).c_str(), request.parameter.c_str(), e.parameter, e.uncertainty,
@@ -70,6 +58,7 @@ Branch run_branch(const LoadedCase& c, const MetronomeModel& model, const Branch
   callbacks.stop_requested = [&] { return stop && stop->load(); };
   Branch branch = continue_branch(model, problem, request.continuation, callbacks, &describer);
   if (csv) csv->close();
+  if (events) events->close();
   return branch;
 }
 

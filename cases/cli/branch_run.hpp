@@ -23,6 +23,7 @@ struct BranchRequest {
   std::optional<double> at;          // start here and go both ways
   std::vector<Assignment> initial;   // state values on top of the start
   std::string csv_path;              // "" for none
+  std::string events_path;           // located events streamed here ("" for none)
   ContinuationOptions continuation;  // bounds are set from from/to
   std::FILE* progress = stderr;      // nullptr: quiet
   bool verbose = false;              // multipliers on each progress line
@@ -37,9 +38,5 @@ void print_events(std::FILE* out, const Branch& branch);
 // The engine's branch JSON with the request's start and bounds.
 nlohmann::json branch_json(const Branch& branch, const BranchRequest& request,
                            const MetronomeModel& model);
-
-// Installs a SIGINT handler that sets the returned flag (the run then stops after the current
-// point and writes what it has); a second Ctrl-C ends the program at once.
-const std::atomic<bool>* interrupt_flag();
 
 }  // namespace sympathy::cli

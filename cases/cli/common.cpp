@@ -1,6 +1,10 @@
 #include "cases/cli/common.hpp"
 
+#include "sympathy/core/csv.hpp"
+
 #include <algorithm>
+#include <csignal>
+#include <filesystem>
 #include <utility>
 
 namespace sympathy::cli {
@@ -55,6 +59,57 @@ FlowOptions flow_options(const Arguments& args, FlowOptions o) {
   else
     throw InputError("--linear-solver " + solver + ": expected dense, klu or structured");
   return o;
+}
+
+namespace {
+
+std::atomic<bool> g_interrupted{false};
+
+extern "C" void on_interrupt(int) {
+  if (g_interrupted.exchange(true)) std::_Exit(130);
+}
+
+// The same file whatever the spelling (a relative or absolute path, a symbolic link; a file
+// that does not exist yet by its normalized absolute path).
+std::string identity(const std::string& path) {
+  std::error_code ec;
+  const auto canonical = std::filesystem::weakly_canonical(path, ec);
+  return ec ? std::filesystem::absolute(path).lexically_normal().string() : canonical.string();
+}
+
+}  // namespace
+
+const std::atomic<bool>* interrupt_flag() {
+  for (int signal : {SIGINT, SIGTERM, SIGHUP}) std::signal(signal, on_interrupt);
+  return &g_interrupted;
+}
+
+void check_distinct_outputs(const std::vector<std::pair<std::string, std::string>>& outputs,
+                            const std::vector<std::pair<std::string, std::string>>& inputs) {
+  for (std::size_t i = 0; i < outputs.size(); ++i) {
+    const auto& [option, path] = outputs[i];
+    if (path.empty()) continue;
+    for (const auto& [input_name, input] : inputs)
+      if (!input.empty() && identity(path) == identity(input))
+        throw InputError(option + " " + path + ": is the " + input_name +
+                         "; expected an output that does not replace an input");
+    for (std::size_t j = 0; j < i; ++j)
+      if (!outputs[j].second.empty() && identity(path) == identity(outputs[j].second))
+        throw InputError(option + " " + path + ": the same file as " + outputs[j].first +
+                         "; expected a different file for each output");
+  }
+}
+
+void check_parameter_range(const ModelSpec& spec, const std::string& parameter,
+                           const std::vector<double>& values, const std::string& where) {
+  for (double v : values) {
+    ModelSpec at = spec;
+    at.set(parameter, v);
+    const auto problems = at.problems();
+    if (!problems.empty())
+      throw InputError(where + parameter + " = " + format_double(v) + " is outside the model's " +
+                       "domain: " + problems.front().first + " must be " + problems.front().second);
+  }
 }
 
 void check_options(const OptionCheck& problem, const std::string& where) {

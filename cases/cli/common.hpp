@@ -2,7 +2,9 @@
 // integrator options from the command line, and timing.
 #pragma once
 
+#include <atomic>
 #include <string>
+#include <utility>
 #include <vector>
 
 #include "cases/cli/arguments.hpp"
@@ -34,5 +36,24 @@ FlowOptions flow_options(const Arguments& args, FlowOptions defaults);
 // line names it ("--step: expected ...", where = "") or as a study file does (where =
 // "FILE: branches[2]." gives "FILE: branches[2].step: expected ...").
 void check_options(const OptionCheck& problem, const std::string& where);
+
+// Installs handlers of SIGINT, SIGTERM and SIGHUP that set the returned flag: a run then stops
+// after its current point or output sample and writes complete files of what it has (exit code
+// kInterrupted). A second signal ends the program at once (exit code 130).
+const std::atomic<bool>* interrupt_flag();
+constexpr int kInterrupted = 6;
+
+// Throws InputError (prefixed by `where`) unless the model is physically meaningful with
+// `parameter` at every one of `values` (ModelSpec::problems: masses and lengths positive,
+// damping and stiffness non-negative, ...), so that a range reaching out of the domain is refused
+// before any work instead of failing later as an integration error.
+void check_parameter_range(const ModelSpec& spec, const std::string& parameter,
+                           const std::vector<double>& values, const std::string& where);
+
+// Throws InputError when two of `paths` (option, path) name the same file, or one of them names
+// an input (option, path) such as the case file: an output must never replace an input or
+// another output of the same run. Empty paths are ignored.
+void check_distinct_outputs(const std::vector<std::pair<std::string, std::string>>& outputs,
+                            const std::vector<std::pair<std::string, std::string>>& inputs);
 
 }  // namespace sympathy::cli

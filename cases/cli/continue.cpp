@@ -26,6 +26,7 @@ int run_continue(const std::vector<std::string>& argv) {
        {"--transient", "SECONDS", false, "integration before the first Newton (default 60)"},
        {"--csv", "FILE", false, "stream every point to this CSV"},
        {"--json", "FILE", false, "write the branch and its bifurcations as JSON"},
+       {"--events", "FILE", false, "stream each bifurcation to this CSV as it is located"},
        {"--quiet", "", false, "no progress lines"},
        {"--verbose", "", false, "multipliers on each progress line; the full report at the end"}});
   const auto integrator = integrator_options();
@@ -61,9 +62,18 @@ int run_continue(const std::vector<std::string>& argv) {
   o.orbit.shooting.flow = flow_options(args, o.orbit.shooting.flow);
   o.orbit.transient_flow.linear_solver = o.orbit.shooting.flow.linear_solver;
   check_options(o.validate(), "");
+  std::vector<double> ends{request.from, request.to};
+  if (request.at) ends.push_back(*request.at);
+  check_parameter_range(c.spec, request.parameter, ends, "--from, --to: ");
   const auto json_path = args.value("--json");
   if (json_path) check_writable(*json_path, "--json");
+  request.events_path = args.text("--events", "");
   if (!request.csv_path.empty()) check_writable(request.csv_path, "--csv");
+  if (!request.events_path.empty()) check_writable(request.events_path, "--events");
+  check_distinct_outputs({{"--csv", request.csv_path},
+                          {"--events", request.events_path},
+                          {"--json", json_path.value_or("")}},
+                         {{"case file", c.file.path()}});
 
   std::printf("sympathy continue %s  params %s  start %s  %s from %g to %g\n",
               c.file.path().c_str(), c.params.empty() ? "(none)" : c.params.c_str(),
@@ -93,7 +103,7 @@ int run_continue(const std::vector<std::string>& argv) {
     j["seconds"] = clock.seconds();
     write_json(*json_path, j);
   }
-  return 0;
+  return branch.stop == StopReason::Interrupted ? kInterrupted : 0;
 }
 
 }  // namespace sympathy::cli

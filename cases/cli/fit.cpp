@@ -128,6 +128,14 @@ int run_fit(const std::vector<std::string>& argv) {
   if (seed < 0) throw InputError("--seed: expected a non-negative integer");
   o.seed = static_cast<unsigned>(seed);
 
+  // Every output checked before any work: writable, and none replacing an input or another.
+  for (const char* option : {"--out", "--json", "--csv"})
+    if (auto path = args.value(option)) check_writable(*path, option);
+  check_distinct_outputs({{"--out", args.text("--out", "")},
+                          {"--json", args.text("--json", "")},
+                          {"--csv", args.text("--csv", "")}},
+                         {{"case file", c.file.path()}, {"recording (--data)", request.data}});
+
   PreparedFit fit = prepare_fit(c.file, c.spec, request);
   const Recording& rec = fit.recording;
   const auto states = fit.model->state_names();

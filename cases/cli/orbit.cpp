@@ -43,6 +43,10 @@ int run_orbit(const std::vector<std::string>& argv) {
   o.shooting.flow = flow_options(args, o.shooting.flow);
   o.transient_flow.linear_solver = o.shooting.flow.linear_solver;
   check_options(o.validate(), "");
+  if (auto path = args.value("--json")) {
+    check_writable(*path, "--json");
+    check_distinct_outputs({{"--json", *path}}, {{"case file", c.file.path()}});
+  }
 
   const PeriodicOrbit orbit =
       find_periodic_orbit(model, model.default_parameters(), z0, subspace, o);

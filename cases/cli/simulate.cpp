@@ -76,6 +76,7 @@ int run_simulate(const std::vector<std::string>& argv) {
   const auto names = system->state_names();
   std::unique_ptr<CsvWriter> csv;
   if (auto out = args.value("--out")) {
+    check_distinct_outputs({{"--out", *out}}, {{"case file", c.file.path()}});
     std::vector<std::string> header{"t"};
     header.insert(header.end(), names.begin(), names.end());
     csv = std::make_unique<CsvWriter>(*out, header);
@@ -89,16 +90,20 @@ int run_simulate(const std::vector<std::string>& argv) {
   if (t_end - times.back() > 1e-12) times.push_back(t_end);
   std::vector<double> row(names.size() + 1);
   std::string failure;
+  const auto* stop = interrupt_flag();
+  bool interrupted = false;
   try {
-    flow.sample(z0, system->default_parameters(), 0.0, times,
-                [&](double t, const Eigen::VectorXd& z) {
-                  analyzer.add(t, z);
-                  if (csv) {
-                    row[0] = t;
-                    for (int i = 0; i < z.size(); ++i) row[i + 1] = z[i];
-                    csv->row(row);
-                  }
-                });
+    // A signal stops the run after the current output sample; the rows written are whole.
+    interrupted = flow.sample_until(z0, system->default_parameters(), 0.0, times,
+                                    [&](double t, const Eigen::VectorXd& z) {
+                                      analyzer.add(t, z);
+                                      if (csv) {
+                                        row[0] = t;
+                                        for (int i = 0; i < z.size(); ++i) row[i + 1] = z[i];
+                                        csv->row(row);
+                                      }
+                                      return stop->load();
+                                    });
   } catch (const IntegrationError& e) {
     failure = e.what();  // keep what was computed; report below
   }
@@ -114,6 +119,8 @@ int run_simulate(const std::vector<std::string>& argv) {
                csv ? " -> " : " (no --out: time series not written)",
                csv ? csv->path().c_str() : "");
   if (!failure.empty()) std::fprintf(stderr, "  STOPPED: %s\n", failure.c_str());
+  if (interrupted)
+    std::fprintf(stderr, "  INTERRUPTED: the time series ends where the signal came\n");
   std::fprintf(stderr, "  over the last %g s:\n", std::min(10.0, 0.5 * t_end));
   if (s.frequency > 0.0)
     std::fprintf(stderr, "    frequency %.6g Hz (period %.6g s, %d cycles)\n", s.frequency,
@@ -139,7 +146,8 @@ int run_simulate(const std::vector<std::string>& argv) {
                st.steps, st.rhs_evaluations, st.steep_roots, st.switchings);
   if (args.flag("--verbose")) print_flow_statistics(stderr, st);
   std::fprintf(stderr, "  run time %.3f s\n", clock.seconds());
-  return failure.empty() ? 0 : 3;
+  if (!failure.empty()) return 3;
+  return interrupted ? kInterrupted : 0;
 }
 
 }  // namespace sympathy::cli

@@ -2,6 +2,7 @@
 // (cases/figures/*.toml), computed side by side; a CSV per branch and one JSON for the figure.
 #include <toml++/toml.h>
 
+#include <algorithm>
 #include <cstdio>
 #include <filesystem>
 #include <fstream>
@@ -123,8 +124,24 @@ int run_study(const std::vector<std::string>& argv) {
       throw InputError(study.path + ": parameter '" + study.parameter + "' is not one of " +
                        file.path() + "'s: " + join(c.spec.parameter_names()));
     file.start(b.request.start);
+    std::vector<double> ends{b.request.from, b.request.to};
+    if (b.request.at) ends.push_back(*b.request.at);
+    check_parameter_range(c.spec, study.parameter, ends,
+                          study.path + ": branch '" + b.name + "': ");
     cases.push_back(std::move(c));
   }
+
+  // Every output named before any work: one CSV per branch (two branches of one name would
+  // write one file from two threads) and the JSON, none replacing an input or another.
+  const std::string json_path = out + "/" + study.name + ".json";
+  std::vector<std::pair<std::string, std::string>> outputs{{"the study's JSON", json_path}};
+  for (const auto& b : study.branches) {
+    const std::string stem = out + "/" + study.name + "-" + b.name;
+    outputs.emplace_back("branch '" + b.name + "''s CSV", stem + ".csv");
+    outputs.emplace_back("branch '" + b.name + "''s events CSV", stem + "-events.csv");
+  }
+  for (const auto& [what, path] : outputs) check_writable(path, study.path + ": " + what);
+  check_distinct_outputs(outputs, {{"study file", study.path}, {"case file", file.path()}});
 
   std::printf("sympathy study %s: %s\n  case %s  params %s  parameter %s\n", study.path.c_str(),
               study.title.c_str(), file.path().c_str(), cases.front().params.c_str(),
@@ -139,6 +156,7 @@ int run_study(const std::vector<std::string>& argv) {
     const auto& b = study.branches[i];
     BranchRequest r = b.request;
     r.csv_path = out + "/" + study.name + "-" + b.name + ".csv";
+    r.events_path = out + "/" + study.name + "-" + b.name + "-events.csv";
     r.progress = nullptr;
     requests.push_back(r);
   }
@@ -190,11 +208,14 @@ int run_study(const std::vector<std::string>& argv) {
     print_events(stdout, results[i]);
   }
   j["seconds"] = clock.seconds();
-  const std::string json_path = out + "/" + study.name + ".json";
   write_json(json_path, j);
-  std::printf("  wrote %s and %zu CSV files; run time %.2f s\n", json_path.c_str(),
-              study.branches.size(), clock.seconds());
-  return ok ? 0 : 4;
+  std::printf("  wrote %s, %zu CSV files of points and %zu of events; run time %.2f s\n",
+              json_path.c_str(), study.branches.size(), study.branches.size(), clock.seconds());
+  if (!ok) return 4;
+  const bool interrupted = std::any_of(results.begin(), results.end(), [](const Branch& b) {
+    return b.stop == StopReason::Interrupted;
+  });
+  return interrupted ? kInterrupted : 0;
 }
 
 }  // namespace sympathy::cli

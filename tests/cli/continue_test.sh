@@ -25,6 +25,8 @@ check "every point within 1e-8 of a trivial multiplier of 1" \
   test "$(json "$work/anti.json" "max(p['trivial_multiplier_error'] for p in j['points']) < 1e-8")" = True
 check "CSV has a row per point" test "$(($(wc -l < "$work/anti.csv") - 1))" -eq "$(json "$work/anti.json" "len(j['points'])")"
 check "CSV header" grep -q '^index,k,period,frequency,stability' "$work/anti.csv"
+check "the last point lies on the bound, k = 52 exactly" \
+  test "$(json "$work/anti.json" "j['points'][-1]['value'] == 52.0 and max(p['value'] for p in j['points']) <= 52.0")" = True
 
 # Ctrl-C: the run stops after the point in progress, keeping the CSV and writing the JSON.
 # (Stale files from an earlier run would send the signal before the handler is in place.)
@@ -35,7 +37,7 @@ pid=$!
 for _ in $(seq 1 100); do [ "$(wc -l < "$work/int.csv" 2>/dev/null || echo 0)" -ge 4 ] && break; sleep 0.2; done
 kill -INT $pid
 wait $pid
-check "interrupted run exits 0" test $? -eq 0
+check "interrupted run exits 6 (documented: interrupted, outputs complete)" test $? -eq 6
 check "interrupted run says so" grep -q 'stopped: interrupted' "$work/int.out"
 check "interrupted run keeps its points" test "$(json "$work/int.json" "len(j['points']) >= 3")" = True
 

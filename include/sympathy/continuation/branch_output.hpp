@@ -49,4 +49,17 @@ class BranchCsvWriter {
   std::size_t described_ = 0;  // the describer's columns
 };
 
+// One CSV row per located event, written as each is found (a run that is killed keeps every
+// bifurcation located before): type, the parameter value, its bracket, period, the crossing
+// multiplier, multiplicity, how location ended, trust, the point before it and the note.
+class EventCsvWriter {
+ public:
+  EventCsvWriter(const std::string& path, const std::string& parameter_name);
+  void write(const Bifurcation& event);  // throws OutputError
+  void close() { csv_.close(); }
+
+ private:
+  CsvWriter csv_;
+};
+
 }  // namespace sympathy

@@ -34,6 +34,7 @@ class StreamFile {
 };
 
 // Writes `content` to `path` atomically (a temporary beside it, then rename); throws OutputError.
+// A path that names a device or a pipe (/dev/null, /dev/full) is written in place instead.
 void write_file_atomically(const std::string& path, const std::string& content);
 
 // Checks, before any work, that `path` can be written: its directory exists and is writable, and

@@ -1,0 +1,77 @@
+#!/usr/bin/env bash
+# Nothing lost, nothing wrong (the reliability issue): failed writes are errors, outputs never
+# replace an input or each other, signals stop a run with complete files, parameter ranges are
+# checked against the model's domain, all before any work where they can be.
+# Usage: outputs_test.sh SYMPATHY_BINARY SOURCE_DIR WORK_DIR
+set -u
+bin=$1 src=$2 work=$3
+mkdir -p "$work"
+. "$(dirname "$0")/check.sh"
+json() { /usr/bin/python3 -c "import json,sys; j=json.load(open(sys.argv[1])); print($2)" "$1"; }
+row2="$src/cases/row2.toml"
+
+# A full disk: /dev/full refuses every write with ENOSPC (exit 5, the path and the reason named).
+if [ -e /dev/full ]; then
+  "$bin" orbit "$row2" --start anti-phase --json /dev/full > /dev/null 2> "$work/full.err"
+  check "orbit --json /dev/full exits 5" test $? -eq 5
+  check "the message names the path and the reason" grep -q "/dev/full: cannot write (No space left on device)" "$work/full.err"
+  check "/dev/full is still a device" test -c /dev/full
+  "$bin" simulate "$row2" --start anti-phase --t-end 2 --out /dev/full 2> "$work/full.err"
+  check "simulate --out /dev/full exits 5 before any work" test $? -eq 5
+  "$bin" continue "$row2" --start anti-phase --param k --from 10 --to 11 --quiet --csv /dev/full > /dev/null 2> "$work/full.err"
+  check "continue --csv /dev/full exits 5" test $? -eq 5
+fi
+
+# Outputs that collide with an input or with each other, refused before any work (exit 2).
+cp "$row2" "$work/case.toml"
+"$bin" simulate "$work/case.toml" --start anti-phase --t-end 1 --out "$work/../$(basename "$work")/case.toml" 2> "$work/err"
+check "simulate --out CASE exits 2" test $? -eq 2
+check "... and says it is the case file" grep -q "is the case file" "$work/err"
+check "... and the case file is intact" cmp -s "$row2" "$work/case.toml"
+"$bin" continue "$row2" --start anti-phase --param k --from 10 --to 11 --csv "$work/same" --json "$work/same" 2> "$work/err"
+check "continue --csv F --json F exits 2" test $? -eq 2
+check "... naming both options" grep -q -- "--json $work/same: the same file as --csv" "$work/err"
+printf 'case = "%s"\nparameter = "k"\n[[branches]]\nname = "a"\nstart = "anti-phase"\nfrom = 10.0\nto = 11.0\n[[branches]]\nname = "a"\nstart = "in-phase"\nfrom = 10.0\nto = 11.0\n' "$row2" > "$work/twice.toml"
+"$bin" study "$work/twice.toml" --out "$work" > /dev/null 2> "$work/err"
+check "a study with two branches of one name exits 2" test $? -eq 2
+check "... naming the branch" grep -q "branch 'a''s CSV" "$work/err"
+"$bin" continue "$row2" --start anti-phase --param k --from 10 --to 11 --json "$work/missing/dir.json" 2> "$work/err"
+check "an output in a missing directory exits before any work" test $? -eq 5
+check "... naming the directory" grep -q "does not exist" "$work/err"
+
+# Parameter ranges outside the model's domain (exit 2, before any work).
+"$bin" continue "$row2" --start anti-phase --param M --from -0.5 --to 1 2> "$work/err"
+check "--from -0.5 for M exits 2" test $? -eq 2
+check "... saying M must be positive" grep -q "M = -0.5 is outside the model's domain: M must be a positive number" "$work/err"
+
+# Options validated by the engine's one validation, in study files as on the command line.
+printf 'case = "%s"\nparameter = "k"\n[[branches]]\nname = "a"\nstart = "anti-phase"\nfrom = 1.0\nto = 2.0\nstep = -0.1\n' "$row2" > "$work/step.toml"
+"$bin" study "$work/step.toml" --out "$work" 2> "$work/err"
+check "a study with step < 0 exits 2" test $? -eq 2
+check "... naming the key and the domain" grep -q "step.toml:3: branches\[1\].step: expected a positive number" "$work/err"
+"$bin" continue "$row2" --start anti-phase --param k --from 1 --to 2 --step -0.1 2> "$work/err"
+check "--step -0.1 exits 2 with the same domain" grep -q -- "--step: expected a positive number" "$work/err"
+
+# SIGTERM and SIGHUP stop a run after its current point or sample: complete, valid files, exit 6.
+rm -f "$work/term.csv" "$work/term.json" "$work/term-events.csv"
+"$bin" continue "$row2" --start anti-phase --param k --from 1 --to 100 --quiet --csv "$work/term.csv" \
+  --json "$work/term.json" --events "$work/term-events.csv" > "$work/term.out" 2>&1 &
+pid=$!
+for _ in $(seq 1 100); do [ "$(wc -l < "$work/term.csv" 2>/dev/null || echo 0)" -ge 4 ] && break; sleep 0.2; done
+kill -TERM $pid
+wait $pid
+check "SIGTERM: exit 6" test $? -eq 6
+check "SIGTERM: the JSON is whole and says interrupted" test "$(json "$work/term.json" "j['stop']")" = interrupted
+check "SIGTERM: one CSV row per JSON point" test "$(($(wc -l < "$work/term.csv") - 1))" -eq "$(json "$work/term.json" "len(j['points'])")"
+check "SIGTERM: the events CSV has its header" grep -q '^type,k,uncertainty' "$work/term-events.csv"
+rm -f "$work/hup.csv"
+"$bin" simulate "$row2" --start anti-phase --t-end 400 --out "$work/hup.csv" 2> "$work/hup.err" &
+pid=$!
+for _ in $(seq 1 100); do [ "$(wc -l < "$work/hup.csv" 2>/dev/null || echo 0)" -ge 100 ] && break; sleep 0.05; done
+kill -HUP $pid
+wait $pid
+check "SIGHUP: simulate exits 6" test $? -eq 6
+check "SIGHUP: every row of the CSV is whole" \
+  test "$(awk -F, 'NR == 1 { n = NF } NF != n { bad = 1 } END { print bad + 0 }' "$work/hup.csv")" = 0
+
+exit $failures
