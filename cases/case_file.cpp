@@ -362,7 +362,7 @@ InvariantSubspace CaseFile::invariant_subspace(const StartSpec& start,
     text += (text.empty() ? "" : ", ") + r.component + " = " +
             (r.other.empty() ? "0" : (r.sign < 0 ? "-" : "") + r.other);
   }
-  InvariantSubspace subspace(n, relations);
+  InvariantSubspace subspace(n, relations, text);
   const double defect = subspace.invariance_defect(system, system.default_parameters(),
                                                    Eigen::VectorXd::Constant(n, 0.5));
   if (defect > 1e-12)

@@ -57,6 +57,12 @@ nlohmann::json orbit_json(const OdeSystem& system, const PeriodicOrbit& orbit,
   }
   j["moduli"] = moduli;
   j["multiplier_kinds"] = kinds;
+  if (!orbit.subspace.is_whole_space()) {
+    nlohmann::json symmetry = nlohmann::json::array();
+    for (const auto& m : f.multipliers) symmetry.push_back(to_string(m.symmetry));
+    j["multiplier_symmetry"] = symmetry;  // "keeps" or "breaks" the subspace's symmetry
+    j["subspace"] = orbit.subspace.description();
+  }
   j["stable"] = f.stability == Stability::Stable;
   j["stability"] = to_string(f.stability);
   j["trivial_multiplier_error"] = f.trivial_error;
@@ -127,6 +133,7 @@ nlohmann::json branch_json(const Branch& branch, const OrbitDescriber* describer
                       {"multiplicity", e.multiplicity},
                       {"located", e.located()},
                       {"location", to_string(e.location)},
+                      {"symmetry", to_string(e.symmetry)},
                       {"trusted", e.trusted()},
                       {"note", e.note}});
   }

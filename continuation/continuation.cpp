@@ -87,8 +87,9 @@ ContinuationPoint Continuation::make_point(const Correction& c, const Eigen::Vec
   o.residual = c.residual;
   o.family_dimension = family_dimension_;
   o.parameters = c.evaluation.parameters;
+  o.subspace = subspace_;
   o.floquet = shooting_floquet(*problem_, c.evaluation, o.state0, family_dimension_,
-                               options_.orbit.floquet);
+                               options_.orbit.floquet, subspace_);
   o.newton.converged = true;
   o.newton.outcome = NewtonOutcome::Converged;
   o.newton.iterations = c.iterations;
@@ -157,6 +158,7 @@ Branch Continuation::run(const PeriodicOrbit& start, int direction,
   if (start.parameters.size() == 0)
     throw std::invalid_argument("continuation: the starting orbit carries no parameter values");
   system_.check_parameters(start.parameters);
+  subspace_ = start.subspace;
   space_ = std::make_unique<BranchSpace>(system_, *problem_, parameter_, start.parameters,
                                          options_.upper - options_.lower,
                                          options_.orbit.newton.rank_tolerance);

@@ -102,6 +102,14 @@ Bifurcation locate(const ContinuationPoint& a, const ContinuationPoint& b, Bifur
   e.period = best.orbit.period;
   e.floquet = best.orbit.floquet;
   e.crossing = type == BifurcationType::Fold ? tracked(best, 0.0) : mu_best;
+  if (type != BifurcationType::Fold) {
+    double nearest = std::numeric_limits<double>::infinity();
+    for (const auto& m : nontrivial(best.orbit.floquet))
+      if (std::abs(m.value - e.crossing) < nearest) {
+        nearest = std::abs(m.value - e.crossing);
+        e.symmetry = m.symmetry;
+      }
+  }
   if (e.crossing.imag() < 0.0) e.crossing = std::conj(e.crossing);
   e.state0 = best.orbit.state0;
   e.unknowns = best.unknowns;

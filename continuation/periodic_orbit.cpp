@@ -79,7 +79,8 @@ Eigen::VectorXd project_unknowns(const InvariantSubspace& subspace, Eigen::Vecto
 
 FloquetAnalysis shooting_floquet(const ShootingProblem& problem,
                                  const ShootingProblem::Evaluation& e, const Eigen::VectorXd& z0,
-                                 int family_dimension, const FloquetOptions& options) {
+                                 int family_dimension, const FloquetOptions& options,
+                                 const InvariantSubspace& subspace) {
   const Eigen::VectorXd f =
       problem.autonomous() ? problem.system().rhs(0.0, z0, e.parameters) : Eigen::VectorXd();
   const Eigen::MatrixXd family =
@@ -87,7 +88,12 @@ FloquetAnalysis shooting_floquet(const ShootingProblem& problem,
           ? Eigen::MatrixXd(
                 null_vectors(problem.jacobian(e), family_dimension).topRows(problem.dimension()))
           : Eigen::MatrixXd();
-  return analyze_floquet(e.transitions, f, family, options);
+  FloquetAnalysis a = analyze_floquet(e.transitions, f, family, options);
+  if (!subspace.is_whole_space()) {
+    const int n = problem.dimension();
+    label_symmetry(a, e.transitions, subspace.basis(n), subspace.complement(n));
+  }
+  return a;
 }
 
 PeriodicOrbit solve_periodic_orbit(const OdeSystem& system, const ParameterValues& p,
@@ -102,6 +108,7 @@ PeriodicOrbit solve_periodic_orbit(const OdeSystem& system, const ParameterValue
   PeriodicOrbit orbit;
   orbit.segments = m;
   orbit.parameters = p;
+  orbit.subspace = subspace;
   NewtonSummary& s = orbit.newton;
   const Eigen::VectorXd z = subspace.project(z0);
   problem.set_phase_reference(z, p);
@@ -189,7 +196,7 @@ PeriodicOrbit solve_periodic_orbit(const OdeSystem& system, const ParameterValue
   const auto jac = problem.jacobian(e);
   orbit.family_dimension = rank_deficiency(jac, options.newton.rank_tolerance);
   orbit.floquet =
-      shooting_floquet(problem, e, orbit.state0, orbit.family_dimension, options.floquet);
+      shooting_floquet(problem, e, orbit.state0, orbit.family_dimension, options.floquet, subspace);
   orbit.flow = problem.statistics();
   orbit.seconds = started.seconds();
   return orbit;

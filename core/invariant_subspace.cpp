@@ -4,11 +4,13 @@
 #include <numeric>
 #include <random>
 #include <stdexcept>
+#include <utility>
 
 namespace sympathy {
 
-InvariantSubspace::InvariantSubspace(int dimension,
-                                     const std::vector<ComponentRelation>& relations) {
+InvariantSubspace::InvariantSubspace(int dimension, const std::vector<ComponentRelation>& relations,
+                                     std::string description)
+    : description_(std::move(description)) {
   // Union-find with a sign per node relative to its parent.
   std::vector<int> parent(dimension);
   std::iota(parent.begin(), parent.end(), 0);
@@ -62,6 +64,38 @@ InvariantSubspace::InvariantSubspace(int dimension,
     g.members.push_back({i, s});
     g.zero = g.zero || zero[root];
   }
+}
+
+namespace {
+
+// The eigenvectors of an orthogonal projector with eigenvalue 1 (`inside`) or 0: its range or
+// its null space, orthonormal. The projector's eigenvalues are 0 and 1 to rounding; 1/2 splits
+// them.
+Eigen::MatrixXd projector_eigenvectors(const Eigen::MatrixXd& projector, bool inside) {
+  const Eigen::SelfAdjointEigenSolver<Eigen::MatrixXd> eig(projector);
+  std::vector<int> chosen;
+  for (int i = 0; i < projector.rows(); ++i)
+    if ((eig.eigenvalues()[i] > 0.5) == inside) chosen.push_back(i);
+  Eigen::MatrixXd q(projector.rows(), static_cast<int>(chosen.size()));
+  for (std::size_t k = 0; k < chosen.size(); ++k)
+    q.col(static_cast<int>(k)) = eig.eigenvectors().col(chosen[k]);
+  return q;
+}
+
+}  // namespace
+
+Eigen::MatrixXd InvariantSubspace::projector(int dimension) const {
+  Eigen::MatrixXd p(dimension, dimension);
+  for (int j = 0; j < dimension; ++j) p.col(j) = project(Eigen::VectorXd::Unit(dimension, j));
+  return p;
+}
+
+Eigen::MatrixXd InvariantSubspace::basis(int dimension) const {
+  return projector_eigenvectors(projector(dimension), true);
+}
+
+Eigen::MatrixXd InvariantSubspace::complement(int dimension) const {
+  return projector_eigenvectors(projector(dimension), false);
 }
 
 Eigen::VectorXd InvariantSubspace::project(const Eigen::VectorXd& z) const {

@@ -76,6 +76,9 @@ void print_events(std::FILE* out, const Branch& branch) {
     std::snprintf(mu, sizeof mu, "%.8f%+.8fi", crossing.real(), crossing.imag());
     std::string note = e.note;
     if (e.multiplicity > 1 && note.empty()) note = "multiplicity " + std::to_string(e.multiplicity);
+    if (e.symmetry == SymmetryKind::Breaking && !branch.points.empty())
+      note = "breaks " + branch.points.front().orbit.subspace.description() +
+             (note.empty() ? "" : "; " + note);
     std::fprintf(out, "  %-4s %-20.12g %-10.1e %-14.10f %-28s %s\n",
                  (to_string(e.type) + (e.trusted() ? "" : "?")).c_str(), e.parameter, e.uncertainty,
                  e.period, mu, note.c_str());

@@ -27,6 +27,7 @@ void print_orbit(std::FILE* out, const MetronomeModel& model, const PeriodicOrbi
     std::fprintf(out, "    %.12f  %+.6f", m.modulus(), std::arg(m.value));
     if (m.trivial) std::fprintf(out, "   trivial");
     if (m.structural) std::fprintf(out, "   structural");
+    if (m.symmetry == SymmetryKind::Breaking) std::fprintf(out, "   breaks symmetry");
     std::fprintf(out, "\n");
   }
   std::fprintf(out, "  stability    %s", to_string(f.stability).c_str());

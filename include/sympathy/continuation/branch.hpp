@@ -65,6 +65,9 @@ struct Bifurcation {
   Eigen::VectorXd unknowns;
   Eigen::VectorXd tangent;
   LocationOutcome location = LocationOutcome::NotNarrowed;
+  // Whether the crossing multiplier's perturbations keep or break the symmetry of the branch's
+  // subspace (Unlabelled where none was declared, and for folds).
+  SymmetryKind symmetry = SymmetryKind::Unlabelled;
   EventTrust trust = EventTrust::Trusted;
   std::string note;  // what to know about it (why untrusted, how it was detected), for people
   bool located() const { return location == LocationOutcome::Located; }

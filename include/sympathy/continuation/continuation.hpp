@@ -67,6 +67,7 @@ class Continuation {
   ContinuationOptions options_;
   std::unique_ptr<ShootingProblem> problem_;
   std::unique_ptr<BranchSpace> space_;  // made for each run, from its start
+  InvariantSubspace subspace_;          // the start's: every point's multipliers labelled by it
   int family_dimension_ = 0;
   // The shooting Jacobian (with its parameter column) at the last accepted point, in its section:
   // the chord steps' matrix for the next step and for locating events after it.

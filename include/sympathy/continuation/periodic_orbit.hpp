@@ -83,6 +83,9 @@ struct PeriodicOrbit {
   Eigen::VectorXd state0;  // a point of the orbit (on the phase section)
   double period = 0.0;
   ParameterValues parameters;  // the system's parameter values the orbit belongs to
+  // The subspace a symmetry keeps that the orbit lies in (the whole space if none was declared):
+  // its multipliers are labelled by it (SymmetryKind), and a branch from it keeps it.
+  InvariantSubspace subspace;
   FloquetAnalysis floquet;
   double residual = 0.0;  // |Phi_T(z0) - z0|_inf at the converged point
   int segments = 1;
@@ -97,9 +100,11 @@ struct PeriodicOrbit {
 // derivatives there (at its parameter values): f at z0 (if autonomous) and the `family_dimension`
 // directions of a continuum (null vectors of the shooting Jacobian) are what the analysis sets
 // apart.
+// With a `subspace` (not the whole space) the multipliers are labelled by it (label_symmetry).
 FloquetAnalysis shooting_floquet(const ShootingProblem& problem,
                                  const ShootingProblem::Evaluation& e, const Eigen::VectorXd& z0,
-                                 int family_dimension, const FloquetOptions& options);
+                                 int family_dimension, const FloquetOptions& options,
+                                 const InvariantSubspace& subspace = {});
 
 // Newton from a guess (z0, T) at parameter values p. Keeps every iterate in `subspace`.
 PeriodicOrbit solve_periodic_orbit(const OdeSystem& system, const ParameterValues& p,

@@ -5,6 +5,7 @@
 // directions, which all point out of the subspace.
 #pragma once
 
+#include <string>
 #include <vector>
 
 #include <Eigen/Dense>
@@ -23,10 +24,18 @@ class InvariantSubspace {
  public:
   InvariantSubspace() = default;  // the whole space
   // Relations between components of an n-dimensional state; throws std::invalid_argument if
-  // one names a component outside 0..n-1.
-  InvariantSubspace(int dimension, const std::vector<ComponentRelation>& relations);
+  // one names a component outside 0..n-1. `description`: how people name it ("x = 0, th2 =
+  // -th1"), for reports of the symmetry a multiplier breaks.
+  InvariantSubspace(int dimension, const std::vector<ComponentRelation>& relations,
+                    std::string description = "");
 
   bool is_whole_space() const { return groups_.empty(); }
+  const std::string& description() const { return description_; }
+  // Orthonormal bases (columns) of the subspace and of its orthogonal complement, in a state
+  // space of `dimension` components: the directions that keep the symmetry and those that
+  // break it.
+  Eigen::MatrixXd basis(int dimension) const;
+  Eigen::MatrixXd complement(int dimension) const;
   // Orthogonal projection onto the subspace.
   Eigen::VectorXd project(const Eigen::VectorXd& z) const;
   // Largest |(I - P) f(t, P z; p)| relative to |f| over a few sample states: about 1e-16 when the
@@ -44,7 +53,10 @@ class InvariantSubspace {
     std::vector<Member> members;
     bool zero = false;
   };
+  Eigen::MatrixXd projector(int dimension) const;  // the orthogonal projection, as a matrix
+
   std::vector<Group> groups_;
+  std::string description_;
 };
 
 }  // namespace sympathy

@@ -38,11 +38,19 @@ struct FloquetOptions {
   }
 };
 
+// Which perturbations a multiplier belongs to, where the orbit lies in a subspace that a symmetry
+// keeps (a start's InvariantSubspace: anti-phase x = 0, th2 = -th1): those inside it keep the
+// symmetry, those across it break it (a branch point of a breaking multiplier is the
+// symmetry-breaking pitchfork). Unlabelled: no subspace was declared.
+enum class SymmetryKind { Unlabelled, Keeping, Breaking };
+std::string to_string(SymmetryKind k);  // "", "keeps", "breaks"
+
 struct Multiplier {
   std::complex<double> value;
   double log_modulus = 0.0;  // log|value|, accurate even where |value| underflows
   bool trivial = false;      // the multiplier of the vector field's direction
   bool structural = false;   // forced to 1 by a family of orbits
+  SymmetryKind symmetry = SymmetryKind::Unlabelled;  // see label_symmetry
   double modulus() const { return std::abs(value); }
 };
 
@@ -55,6 +63,9 @@ struct FloquetAnalysis {
   Stability stability = Stability::Marginal;
   double max_modulus = 0.0;  // largest |mu| among the others
   int unstable_count = 0;    // others with |mu| > 1 + tolerance
+  // With symmetry labels: the largest |Q_across^T Phi Q_inside| / |Phi| over the segments, which
+  // is zero when the subspace is invariant (the labels are given only below 1e-6).
+  double symmetry_defect = 0.0;
 };
 
 // `segments`: transition matrices of the m shooting segments in order (one: the monodromy).
@@ -66,5 +77,15 @@ FloquetAnalysis analyze_floquet(const std::vector<Eigen::MatrixXd>& segments,
                                 const Eigen::VectorXd& flow_direction,
                                 const Eigen::MatrixXd& family = Eigen::MatrixXd(),
                                 const FloquetOptions& options = {});
+
+// Labels every multiplier of `a` by the symmetry of its perturbations (SymmetryKind): the segment
+// matrices of an orbit lying in an invariant subspace are block triangular in the basis
+// (`inside`, `across`) of the subspace and its orthogonal complement (they map the subspace into
+// itself), so the multipliers are the eigenvalues of the inside blocks' product and of the across
+// blocks' product, each a periodic Schur decomposition of its own; each multiplier takes the kind
+// of the block eigenvalue it pairs with (least total distance). Where the segments leak out of the
+// subspace by more than 1e-6 (the orbit does not lie in it), nothing is labelled.
+void label_symmetry(FloquetAnalysis& a, const std::vector<Eigen::MatrixXd>& segments,
+                    const Eigen::MatrixXd& inside, const Eigen::MatrixXd& across);
 
 }  // namespace sympathy
