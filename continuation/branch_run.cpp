@@ -23,6 +23,10 @@ std::string BranchProblem::problem_with(const OdeSystem& system) const {
     if (!start_orbit->converged()) return "start_orbit: expected a converged orbit";
     if (start_orbit->parameters.size() != values.size())
       return "start_orbit: expected an orbit of this system, with its parameter values";
+    const double v = system.parameter(start_orbit->parameters, parameter);
+    if (!(std::abs(v - first_value()) <= 1e-12 * std::max(1.0, std::abs(first_value()))))
+      return "start_orbit: an orbit at " + system.parameter_names()[parameter] + " = " +
+             format_double(v) + "; expected one at the first value " + format_double(first_value());
   } else if (start_state.size() != system.dimension() || !start_state.allFinite()) {
     return "start_state: expected " + std::to_string(system.dimension()) + " finite values";
   }
@@ -71,8 +75,17 @@ Branch continue_branch(const OdeSystem& system, const BranchProblem& problem,
   int index_sign = +1;  // -1 on the backward part of a two-way run
   ContinuationCallbacks inner;
   inner.stop_requested = callbacks.stop_requested;
-  inner.on_event = callbacks.on_event;
+  // The callbacks see the joined branch: the backward run's copy of the start is not reported
+  // again, and its events name the point before them along the joined branch (join_branches).
+  inner.on_event = [&](const Bifurcation& event) {
+    if (!callbacks.on_event) return;
+    if (index_sign > 0) return callbacks.on_event(event);
+    Bifurcation e = event;
+    e.after_point = -(e.after_point + 1);
+    callbacks.on_event(e);
+  };
   inner.on_point = [&](const ContinuationPoint& point) {
+    if (index_sign < 0 && point.index == 0) return;  // the start, reported by the forward run
     ContinuationPoint p = point;
     p.index *= index_sign;
     if (describer) p.description = describer->describe(p.orbit);

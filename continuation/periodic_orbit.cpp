@@ -231,11 +231,11 @@ PeriodicOrbit find_periodic_orbit(const OdeSystem& system, const ParameterValues
   const Stopwatch started;
   if (!system.autonomous())
     throw std::invalid_argument("find_periodic_orbit: for autonomous systems; give the period");
-  Flow flow(system, options.transient_flow);
-  Eigen::VectorXd z = subspace.project(start);
   system.check_parameters(p);
   if (const auto problem = options.validate())
     throw std::invalid_argument("orbit options: " + problem->message());
+  Flow flow(system, options.transient_flow);
+  Eigen::VectorXd z = subspace.project(start);
   PeriodicOrbit failed;
   failed.segments = options.shooting.segments;
   failed.parameters = p;
