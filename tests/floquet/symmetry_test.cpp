@@ -141,5 +141,42 @@ TEST(SymmetryLabels, RowSetupSubspacesSplitTheMultipliers) {
   }
 }
 
+// N identical metronomes in a row (cases/row, Table II's platform times N/2): on the in-phase
+// orbit every pendulum moves as in the row setup's in-phase orbit (the platform equation divided
+// by N/2 is row2's), so the period and the multipliers that keep th_i = th1 are row2's, and the
+// perturbations that break it (differences of pendula, which leave the platform alone) evolve as
+// row2's antisymmetric one: its pair, N - 1 times (the permutations' standard representation).
+// Tolerance 1e-8: the multipliers' own accuracy at rtol 1e-11.
+TEST(SymmetryLabels, IdenticalMetronomesRepeatTheirBreakingPair) {
+  auto in_phase = [](const std::string& name) {
+    const CaseFile file = CaseFile::load(testing::case_path(name));
+    const MetronomeModel model(file.spec());
+    const StartSpec& s = file.start("in-phase");
+    return find_periodic_orbit(model, model.default_parameters(), file.initial_state(&s),
+                               file.invariant_subspace(s, model), OrbitOptions{});
+  };
+  const PeriodicOrbit two = in_phase("row2");
+  ASSERT_TRUE(two.converged());
+  std::vector<std::complex<double>> keeping, breaking;
+  for (const auto& m : two.floquet.multipliers)
+    (m.symmetry == SymmetryKind::Breaking ? breaking : keeping).push_back(m.value);
+  ASSERT_EQ(breaking.size(), 2u);
+  for (int n : {4, 8}) {
+    const PeriodicOrbit orbit = in_phase("row/row" + std::to_string(n));
+    ASSERT_TRUE(orbit.converged()) << n;
+    EXPECT_NEAR(orbit.period, two.period, 1e-9) << n;
+    int kept = 0, broken = 0;
+    for (const auto& m : orbit.floquet.multipliers) {
+      const auto& expected = m.symmetry == SymmetryKind::Breaking ? breaking : keeping;
+      double nearest = 1.0;
+      for (const auto& e : expected) nearest = std::min(nearest, std::abs(m.value - e));
+      EXPECT_LT(nearest, 1e-8) << n << ": " << m.value;
+      (m.symmetry == SymmetryKind::Breaking ? broken : kept) += 1;
+    }
+    EXPECT_EQ(kept, 4) << n;
+    EXPECT_EQ(broken, 2 * (n - 1)) << n;
+  }
+}
+
 }  // namespace
 }  // namespace sympathy
