@@ -37,11 +37,16 @@ void label_symmetry(FloquetAnalysis& a, const std::vector<Eigen::MatrixXd>& segm
   const ProductEigenvalues k = product_eigenvalues(kept), b = product_eigenvalues(broken);
   std::vector<std::complex<double>> blocks = k.values;
   blocks.insert(blocks.end(), b.values.begin(), b.values.end());
+  const int keeping = static_cast<int>(k.values.size());
+  // The trivial multiplier's eigenvector f lies in the subspace (the orbit does): it keeps the
+  // symmetry, whatever other multiplier lies as near 1 (a family's, cross4's in-in orbit).
+  constexpr double kForbidden = 1e30;
   Eigen::MatrixXd cost(n, n);
   for (int i = 0; i < n; ++i)
-    for (int j = 0; j < n; ++j) cost(i, j) = std::norm(a.multipliers[i].value - blocks[j]);
+    for (int j = 0; j < n; ++j)
+      cost(i, j) = i == a.trivial && j >= keeping ? kForbidden
+                                                  : std::norm(a.multipliers[i].value - blocks[j]);
   const std::vector<int> column = least_cost_assignment(cost);
-  const int keeping = static_cast<int>(k.values.size());
   for (int i = 0; i < n; ++i)
     a.multipliers[i].symmetry =
         column[i] < keeping ? SymmetryKind::Keeping : SymmetryKind::Breaking;

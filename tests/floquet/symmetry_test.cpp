@@ -141,6 +141,27 @@ TEST(SymmetryLabels, RowSetupSubspacesSplitTheMultipliers) {
   }
 }
 
+// The cross setup's in-in orbit lies in th2 = th3 = th4 = th1, y = 0 (x, th1 and their
+// velocities: 4 of 12 directions keep it), and carries a family (the free phase between the
+// pairs) whose structural multiplier sits at 1 beside the trivial one: the trivial one must keep
+// the symmetry (f lies in the subspace), the family's break it (the pairs drift apart).
+TEST(SymmetryLabels, TrivialMultiplierKeepsTheSymmetryBesideAFamily) {
+  const CaseFile file = CaseFile::load(testing::case_path("cross4"));
+  const MetronomeModel model(file.spec("table4"));
+  const StartSpec& s = file.start("in-in");
+  const PeriodicOrbit orbit =
+      find_periodic_orbit(model, model.default_parameters(), file.initial_state(&s),
+                          file.invariant_subspace(s, model), OrbitOptions{});
+  ASSERT_TRUE(orbit.converged());
+  ASSERT_GE(orbit.floquet.trivial, 0);
+  EXPECT_EQ(orbit.floquet.multipliers[orbit.floquet.trivial].symmetry, SymmetryKind::Keeping);
+  for (const auto& m : orbit.floquet.multipliers) {
+    if (m.structural) EXPECT_EQ(m.symmetry, SymmetryKind::Breaking);
+  }
+  EXPECT_EQ(count(orbit.floquet, SymmetryKind::Keeping), 4);
+  EXPECT_EQ(count(orbit.floquet, SymmetryKind::Breaking), 8);
+}
+
 // N identical metronomes in a row (cases/row, Table II's platform times N/2): on the in-phase
 // orbit every pendulum moves as in the row setup's in-phase orbit (the platform equation divided
 // by N/2 is row2's), so the period and the multipliers that keep th_i = th1 are row2's, and the

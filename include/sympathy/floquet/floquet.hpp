@@ -83,8 +83,9 @@ FloquetAnalysis analyze_floquet(const std::vector<Eigen::MatrixXd>& segments,
 // (`inside`, `across`) of the subspace and its orthogonal complement (they map the subspace into
 // itself), so the multipliers are the eigenvalues of the inside blocks' product and of the across
 // blocks' product, each a periodic Schur decomposition of its own; each multiplier takes the kind
-// of the block eigenvalue it pairs with (least total distance). Where the segments leak out of the
-// subspace by more than 1e-6 (the orbit does not lie in it), nothing is labelled.
+// of the block eigenvalue it pairs with (least total distance), the trivial one always with the
+// subspace's block (f lies in it). Where the segments leak out of the subspace by more than 1e-6
+// (the orbit does not lie in it), nothing is labelled.
 void label_symmetry(FloquetAnalysis& a, const std::vector<Eigen::MatrixXd>& segments,
                     const Eigen::MatrixXd& inside, const Eigen::MatrixXd& across);
 
