@@ -156,7 +156,9 @@ TEST(SymmetryLabels, TrivialMultiplierKeepsTheSymmetryBesideAFamily) {
   ASSERT_GE(orbit.floquet.trivial, 0);
   EXPECT_EQ(orbit.floquet.multipliers[orbit.floquet.trivial].symmetry, SymmetryKind::Keeping);
   for (const auto& m : orbit.floquet.multipliers) {
-    if (m.structural) EXPECT_EQ(m.symmetry, SymmetryKind::Breaking);
+    if (m.structural) {
+      EXPECT_EQ(m.symmetry, SymmetryKind::Breaking);
+    }
   }
   EXPECT_EQ(count(orbit.floquet, SymmetryKind::Keeping), 4);
   EXPECT_EQ(count(orbit.floquet, SymmetryKind::Breaking), 8);
