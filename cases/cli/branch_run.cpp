@@ -19,10 +19,10 @@ Branch run_branch(const LoadedCase& c, const MetronomeModel& model, const Branch
   problem.start_state = c.file.initial_state(&start, request.initial);
   problem.subspace = c.file.invariant_subspace(start, model);
   problem.start_name = start.name;
-  if (request.at && !(*request.at > std::min(request.from, request.to) &&
-                      *request.at < std::max(request.from, request.to)))
-    throw InputError("--at " + format_double(*request.at) + ": expected a value between --from " +
-                     "and --to");
+  // The engine's own check of the problem, before any work ("at 3: expected a value between
+  // from and to"), in the command line's names.
+  if (const std::string wrong = problem.problem_with(model); !wrong.empty())
+    throw InputError("--" + wrong);
 
   const MetronomeDescriber describer(model);
   std::unique_ptr<BranchCsvWriter> csv;
