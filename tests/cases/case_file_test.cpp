@@ -231,8 +231,9 @@ TEST(CaseFiles, PaperTablesByName) {
   EXPECT_EQ(spring.spec().springs[0].kappa, 0.01);
   EXPECT_EQ(spring.spec().springs[0].first, 0);
   EXPECT_EQ(spring.spec().springs[0].second, 2);
-  // Table I in SI units.
-  const auto& m = row.spec().metronomes[0].values;
+  // Table I in SI units (spec() returns a ModelSpec by value: keep it, not a reference into it).
+  const ModelSpec spec = row.spec();
+  const auto& m = spec.metronomes[0].values;
   EXPECT_EQ(m.at("d"), 2.4e-6);
   EXPECT_EQ(m.at("s"), 4.51e-5);
 }
