@@ -178,13 +178,15 @@ CaseFile CaseFile::load(const std::string& path) {
       const auto* arr = between->as_array();
       if (!arr || arr->size() != 2 || !(*arr)[0].is_integer() || !(*arr)[1].is_integer())
         in.fail(*between, prefix + "between", "two metronome numbers [i, j]");
-      SpringSpec s;
-      s.first = static_cast<int>(*(*arr)[0].value<int64_t>()) - 1;
-      s.second = static_cast<int>(*(*arr)[1].value<int64_t>()) - 1;
-      if (s.first < 0 || s.first >= count || s.second < 0 || s.second >= count ||
-          s.first == s.second)
+      // Checked as 64-bit integers, before narrowing: any number the file holds is in range.
+      const int64_t first = *(*arr)[0].value<int64_t>();
+      const int64_t second = *(*arr)[1].value<int64_t>();
+      if (first < 1 || first > count || second < 1 || second > count || first == second)
         in.fail(*between, prefix + "between",
                 "two different metronomes among 1.." + std::to_string(count));
+      SpringSpec s;
+      s.first = static_cast<int>(first) - 1;
+      s.second = static_cast<int>(second) - 1;
       s.kappa = in.number(*kappa, prefix + "kappa");
       record("kappa" + std::to_string(j), *kappa, prefix + "kappa");
       c.base_.springs.push_back(s);

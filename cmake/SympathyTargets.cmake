@@ -13,6 +13,30 @@ function(sympathy_target_defaults target)
   set_target_properties(${target} PROPERTIES CXX_EXTENSIONS OFF)
   target_compile_options(${target} PRIVATE
     $<$<CXX_COMPILER_ID:GNU,Clang,AppleClang>:-Wall -Wextra -Wpedantic>)
+  sympathy_target_sanitizers(${target})
+endfunction()
+
+# SYMPATHY_SANITIZE (and SYMPATHY_FUZZ): the sanitizers on this target's own sources, and at link
+# time on the target and on whatever links it (a static library instrumented by ASan needs the
+# ASan runtime in the program), so the flags travel with the libraries to the tests and the CLI.
+function(sympathy_target_sanitizers target)
+  if(NOT SYMPATHY_SANITIZE AND NOT SYMPATHY_FUZZ)
+    return()
+  endif()
+  set(flags -fsanitize=address,undefined -fno-omit-frame-pointer -fno-sanitize-recover=all)
+  set(compile_flags ${flags})
+  if(SYMPATHY_FUZZ)
+    # The coverage instrumentation libFuzzer steers by, without its main() (the fuzz targets link
+    # -fsanitize=fuzzer themselves, see tests/fuzz/CMakeLists.txt).
+    list(APPEND compile_flags -fsanitize=fuzzer-no-link)
+  endif()
+  target_compile_options(${target} PRIVATE ${compile_flags})
+  get_target_property(type ${target} TYPE)
+  if(type STREQUAL "EXECUTABLE")
+    target_link_options(${target} PRIVATE ${flags})
+  else()
+    target_link_options(${target} PUBLIC ${flags})
+  endif()
 endfunction()
 
 # sympathy_add_library(<name> <source>...): the library sympathy_<name>, used in the tree and

@@ -137,6 +137,19 @@ TEST_F(CaseFileErrors, SpringToMissingMetronome) {
                   {path + ":25", "springs[1].between", "two different metronomes among 1..2"});
 }
 
+// Metronome numbers beyond int's range were cast to int before the range check: -2147483648
+// became INT_MIN and "- 1" overflowed (undefined behaviour, a UBSan report through the case-file
+// fuzz target), and 4294967297 became 1, so the spring was silently put on metronome 1.
+TEST_F(CaseFileErrors, SpringNumbersBeyondIntRange) {
+  for (const std::string between :
+       {"[-2147483648, 1]", "[4294967297, 2]", "[1, 9223372036854775807]"}) {
+    const auto path = write_changed(
+        "[params.base]", "[[springs]]\nbetween = " + between + "\nkappa = 0.01\n\n[params.base]");
+    expect_mentions(error_of([&] { CaseFile::load(path); }),
+                    {path + ":25", "springs[1].between", "two different metronomes among 1..2"});
+  }
+}
+
 TEST_F(CaseFileErrors, UnknownParameterSet) {
   const auto c = CaseFile::load(write(kValid));
   expect_mentions(error_of([&] { c.spec("table9"); }),
@@ -231,8 +244,9 @@ TEST(CaseFiles, PaperTablesByName) {
   EXPECT_EQ(spring.spec().springs[0].kappa, 0.01);
   EXPECT_EQ(spring.spec().springs[0].first, 0);
   EXPECT_EQ(spring.spec().springs[0].second, 2);
-  // Table I in SI units.
-  const auto& m = row.spec().metronomes[0].values;
+  // Table I in SI units (spec() returns a ModelSpec by value: keep it, not a reference into it).
+  const ModelSpec spec = row.spec();
+  const auto& m = spec.metronomes[0].values;
   EXPECT_EQ(m.at("d"), 2.4e-6);
   EXPECT_EQ(m.at("s"), 4.51e-5);
 }

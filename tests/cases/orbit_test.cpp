@@ -107,7 +107,9 @@ TEST(Orbits, CrossSetupDecouplesIntoRowLikeSystems) {
     if (std::abs(m.value - 1.0) < 1e-8) ++at_one;
   EXPECT_EQ(at_one, 2);
 
-  const auto& table1 = CaseFile::load(case_path("row2")).spec().metronomes[0].values;
+  // spec() returns a ModelSpec by value: keep it, not a reference into it.
+  const ModelSpec row_spec = CaseFile::load(case_path("row2")).spec();
+  const auto& table1 = row_spec.metronomes[0].values;
   const double pair_mass = 2.0 * (table1.at("mp") + table1.at("mb"));
   const Found row =
       find("row2", "", "in-phase",

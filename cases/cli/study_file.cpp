@@ -1,0 +1,81 @@
+#include "cases/cli/study_file.hpp"
+
+#include <toml++/toml.h>
+
+#include <algorithm>
+#include <filesystem>
+
+namespace sympathy::cli {
+
+Study load_study(const std::string& path) {
+  const toml::table root = read_toml(path, "study file");
+  const TomlReader in(path);
+  in.only(root, "", {"title", "case", "params", "parameter", "axis", "branches"});
+  Study s;
+  s.path = path;
+  s.name = std::filesystem::path(path).stem().string();
+  auto required = [&](const char* key) -> const toml::node& {
+    const toml::node* n = root.get(key);
+    if (!n) throw InputError(path + ": key '" + key + "' is missing");
+    return *n;
+  };
+  s.title = root.get("title") ? in.string(*root.get("title"), "title") : s.name;
+  const std::string case_file = in.string(required("case"), "case");
+  s.case_path = (std::filesystem::path(path).parent_path() / case_file).lexically_normal().string();
+  if (root.get("params")) s.params = in.string(*root.get("params"), "params");
+  s.parameter = in.string(required("parameter"), "parameter");
+  s.axis = root.get("axis") ? in.string(*root.get("axis"), "axis") : "phase";
+  if (s.axis != "phase" && s.axis != "frequency")
+    in.fail(*root.get("axis"), "axis", "\"phase\" or \"frequency\"");
+  const toml::node& list = required("branches");
+  if (!list.is_array_of_tables() || list.as_array()->empty())
+    in.fail(list, "branches", "one or more [[branches]] tables");
+  int index = 0;
+  for (const auto& entry : *list.as_array()) {
+    ++index;
+    const std::string prefix = "branches[" + std::to_string(index) + "].";
+    const auto& t = *entry.as_table();
+    in.only(t, prefix,
+            {"name", "start", "from", "to", "at", "set", "initial", "max_points", "step",
+             "max_step", "transient"});
+    StudyBranch b;
+    for (const char* key : {"name", "start", "from", "to"})
+      if (!t.get(key))
+        throw InputError(path + ":" + std::to_string(entry.source().begin.line) + ": key '" +
+                         prefix + key + "' is missing");
+    b.name = in.string(*t.get("name"), prefix + "name");
+    b.request.start = in.string(*t.get("start"), prefix + "start");
+    b.request.parameter = s.parameter;
+    b.request.from = in.number(*t.get("from"), prefix + "from");
+    b.request.to = in.number(*t.get("to"), prefix + "to");
+    if (auto* n = t.get("at")) b.request.at = in.number(*n, prefix + "at");
+    auto& o = b.request.continuation;
+    if (auto* n = t.get("transient")) o.orbit.transient = in.number(*n, prefix + "transient");
+    if (auto* n = t.get("max_points")) o.max_points = in.integer(*n, prefix + "max_points");
+    if (auto* n = t.get("step")) o.initial_step = in.number(*n, prefix + "step");
+    if (auto* n = t.get("max_step")) o.max_step = in.number(*n, prefix + "max_step");
+    // The engine's own validation, as the command line's (the same domains, named by key).
+    const std::string where =
+        path + ":" + std::to_string(entry.source().begin.line) + ": " + prefix;
+    check_options(o.validate(), where);
+    if (b.request.from == b.request.to)
+      throw InputError(where + "from, " + prefix + "to: expected different values");
+    if (b.request.at && !(*b.request.at > std::min(b.request.from, b.request.to) &&
+                          *b.request.at < std::max(b.request.from, b.request.to)))
+      throw InputError(where + "at: expected a value between from and to");
+    for (const char* group : {"set", "initial"}) {
+      const toml::node* n = t.get(group);
+      if (!n) continue;
+      if (!n->is_table()) in.fail(*n, prefix + group, "a table of NAME = VALUE");
+      for (auto&& [k, v] : *n->as_table()) {
+        Assignment a{std::string(k.str()),
+                     in.number(v, prefix + group + "." + std::string(k.str())), in.where(v)};
+        (std::string(group) == "set" ? b.sets : b.request.initial).push_back(a);
+      }
+    }
+    s.branches.push_back(std::move(b));
+  }
+  return s;
+}
+
+}  // namespace sympathy::cli

@@ -1,0 +1,27 @@
+// Study files (cases/figures/*.toml): the branches that make one figure, next to a case. Read by
+// `sympathy study` (cases/cli/study.cpp) and by the fuzz target tests/fuzz/study_file_fuzz.cpp.
+#pragma once
+
+#include <string>
+#include <vector>
+
+#include "cases/cli/branch_run.hpp"
+
+namespace sympathy::cli {
+
+struct StudyBranch {
+  std::string name;
+  BranchRequest request;
+  std::vector<Assignment> sets;  // on top of the study's parameter set
+};
+
+struct Study {
+  std::string path, name, title, case_path, params, parameter, axis;
+  std::vector<StudyBranch> branches;
+};
+
+// Reads and checks a study file (its keys, types and each branch's options; not yet its case);
+// throws InputError naming the file, the line and the key.
+Study load_study(const std::string& path);
+
+}  // namespace sympathy::cli
