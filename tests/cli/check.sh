@@ -5,3 +5,12 @@ check() {
   local what=$1; shift
   if "$@"; then echo "ok: $what"; else echo "FAILED: $what"; failures=$((failures + 1)); fi
 }
+# `wait_for_lines FILE N`: until FILE has N lines (a run in the background has got that far and
+# installed its signal handlers), for at most 20 s.
+wait_for_lines() {
+  local file=$1 lines=$2
+  for _ in $(seq 1 400); do
+    [ "$(wc -l < "$file" 2>/dev/null || echo 0)" -ge "$lines" ] && return 0
+    sleep 0.05
+  done
+}

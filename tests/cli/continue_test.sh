@@ -34,7 +34,7 @@ rm -f "$work/int.csv" "$work/int.json"
 "$bin" continue "$src/cases/row2.toml" --start in-phase --param k --from 1 --to 100 \
   --csv "$work/int.csv" --json "$work/int.json" > "$work/int.out" 2>&1 &
 pid=$!
-for _ in $(seq 1 100); do [ "$(wc -l < "$work/int.csv" 2>/dev/null || echo 0)" -ge 4 ] && break; sleep 0.2; done
+wait_for_lines "$work/int.csv" 4
 kill -INT $pid
 wait $pid
 check "interrupted run exits 6 (documented: interrupted, outputs complete)" test $? -eq 6

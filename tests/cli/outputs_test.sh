@@ -57,7 +57,7 @@ rm -f "$work/term.csv" "$work/term.json" "$work/term-events.csv"
 "$bin" continue "$row2" --start anti-phase --param k --from 1 --to 100 --quiet --csv "$work/term.csv" \
   --json "$work/term.json" --events "$work/term-events.csv" > "$work/term.out" 2>&1 &
 pid=$!
-for _ in $(seq 1 100); do [ "$(wc -l < "$work/term.csv" 2>/dev/null || echo 0)" -ge 4 ] && break; sleep 0.2; done
+wait_for_lines "$work/term.csv" 4
 kill -TERM $pid
 wait $pid
 check "SIGTERM: exit 6" test $? -eq 6
@@ -67,7 +67,7 @@ check "SIGTERM: the events CSV has its header" grep -q '^type,k,uncertainty' "$w
 rm -f "$work/hup.csv"
 "$bin" simulate "$row2" --start anti-phase --t-end 400 --out "$work/hup.csv" 2> "$work/hup.err" &
 pid=$!
-for _ in $(seq 1 100); do [ "$(wc -l < "$work/hup.csv" 2>/dev/null || echo 0)" -ge 100 ] && break; sleep 0.05; done
+wait_for_lines "$work/hup.csv" 100
 kill -HUP $pid
 wait $pid
 check "SIGHUP: simulate exits 6" test $? -eq 6
