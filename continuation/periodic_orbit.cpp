@@ -90,8 +90,8 @@ FloquetAnalysis shooting_floquet(const ShootingProblem& problem,
           : Eigen::MatrixXd();
   FloquetAnalysis a = analyze_floquet(e.transitions, f, family, options);
   if (!subspace.is_whole_space()) {
-    const int n = problem.dimension();
-    label_symmetry(a, e.transitions, subspace.basis(n), subspace.complement(n));
+    const auto bases = subspace.bases(problem.dimension());
+    label_symmetry(a, e.transitions, bases.inside, bases.across);
   }
   return a;
 }

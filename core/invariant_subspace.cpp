@@ -71,12 +71,12 @@ namespace {
 // The eigenvectors of an orthogonal projector with eigenvalue 1 (`inside`) or 0: its range or
 // its null space, orthonormal. The projector's eigenvalues are 0 and 1 to rounding; 1/2 splits
 // them.
-Eigen::MatrixXd projector_eigenvectors(const Eigen::MatrixXd& projector, bool inside) {
-  const Eigen::SelfAdjointEigenSolver<Eigen::MatrixXd> eig(projector);
+Eigen::MatrixXd projector_eigenvectors(const Eigen::SelfAdjointEigenSolver<Eigen::MatrixXd>& eig,
+                                       bool inside) {
   std::vector<int> chosen;
-  for (int i = 0; i < projector.rows(); ++i)
+  for (int i = 0; i < eig.eigenvalues().size(); ++i)
     if ((eig.eigenvalues()[i] > 0.5) == inside) chosen.push_back(i);
-  Eigen::MatrixXd q(projector.rows(), static_cast<int>(chosen.size()));
+  Eigen::MatrixXd q(eig.eigenvectors().rows(), static_cast<int>(chosen.size()));
   for (std::size_t k = 0; k < chosen.size(); ++k)
     q.col(static_cast<int>(k)) = eig.eigenvectors().col(chosen[k]);
   return q;
@@ -90,12 +90,17 @@ Eigen::MatrixXd InvariantSubspace::projector(int dimension) const {
   return p;
 }
 
+InvariantSubspace::Bases InvariantSubspace::bases(int dimension) const {
+  const Eigen::SelfAdjointEigenSolver<Eigen::MatrixXd> eig(projector(dimension));
+  return {projector_eigenvectors(eig, true), projector_eigenvectors(eig, false)};
+}
+
 Eigen::MatrixXd InvariantSubspace::basis(int dimension) const {
-  return projector_eigenvectors(projector(dimension), true);
+  return bases(dimension).inside;
 }
 
 Eigen::MatrixXd InvariantSubspace::complement(int dimension) const {
-  return projector_eigenvectors(projector(dimension), false);
+  return bases(dimension).across;
 }
 
 Eigen::VectorXd InvariantSubspace::project(const Eigen::VectorXd& z) const {

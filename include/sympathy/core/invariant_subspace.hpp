@@ -36,6 +36,11 @@ class InvariantSubspace {
   // break it.
   Eigen::MatrixXd basis(int dimension) const;
   Eigen::MatrixXd complement(int dimension) const;
+  // Both from one eigendecomposition of the projector.
+  struct Bases {
+    Eigen::MatrixXd inside, across;
+  };
+  Bases bases(int dimension) const;
   // Orthogonal projection onto the subspace.
   Eigen::VectorXd project(const Eigen::VectorXd& z) const;
   // Largest |(I - P) f(t, P z; p)| relative to |f| over a few sample states: about 1e-16 when the
