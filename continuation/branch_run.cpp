@@ -107,7 +107,7 @@ Branch continue_branch(const OdeSystem& system, const BranchProblem& problem,
     auto it = descriptions.find(p.index);
     if (it != descriptions.end()) p.description = std::move(it->second);
   }
-  branch.flow += orbit.flow;  // the start's transient and Newton
+  if (!problem.start_orbit) branch.flow += orbit.flow;  // the start's transient and Newton
   branch.seconds = clock.seconds();
   return branch;
 }
