@@ -347,6 +347,55 @@ const StartSpec& CaseFile::start(const std::string& name) const {
                    "; expected one of: " + join(start_names()));
 }
 
+namespace {
+
+// A start that ties metronomes in phase (thJ = thI, nothing else) declares the fixed space of
+// permuting them: identical metronomes (checked where it is used, PermutationSymmetry::defect,
+// at the parameter values of the run) then move alike on it, and an orbit there can be computed
+// for the cost of two of them (continuation/symmetry_reduction.hpp).
+InvariantSubspace with_metronome_symmetry(const InvariantSubspace& subspace, const StartSpec& start,
+                                          const std::vector<std::string>& names) {
+  const int n = static_cast<int>(names.size());
+  std::vector<int> angles;
+  auto angle = [&](const std::string& name) {
+    const auto it = std::find(names.begin(), names.end(), name);
+    return name.rfind("th", 0) == 0 && it != names.end() ? static_cast<int>(it - names.begin())
+                                                         : -1;
+  };
+  for (const auto& r : start.invariant) {
+    const int a = angle(r.component), b = r.other.empty() ? -1 : angle(r.other);
+    if (a < 0 || b < 0 || r.sign != 1.0) return subspace;
+    for (int c : {a, b})
+      if (std::find(angles.begin(), angles.end(), c) == angles.end()) angles.push_back(c);
+  }
+  if (angles.size() < 3) return subspace;
+  std::sort(angles.begin(), angles.end());
+  PermutationSymmetry symmetry;
+  std::vector<int> numbers;
+  for (int c : angles) {
+    symmetry.units.push_back({c, c + n / 2});  // the angle and its velocity
+    numbers.push_back(std::stoi(names[c].substr(2)));
+  }
+  // "1-64", or "1-3, 5": runs of consecutive numbers.
+  std::string list;
+  std::sort(numbers.begin(), numbers.end());
+  for (std::size_t i = 0; i < numbers.size();) {
+    std::size_t j = i;
+    while (j + 1 < numbers.size() && numbers[j + 1] == numbers[j] + 1) ++j;
+    list += (list.empty() ? "" : ", ") + std::to_string(numbers[i]) +
+            (j > i ? "-" + std::to_string(numbers[j]) : "");
+    i = j + 1;
+  }
+  symmetry.description = "metronomes " + list;
+  try {
+    return subspace.with_symmetry(std::move(symmetry), n);
+  } catch (const std::invalid_argument&) {
+    return subspace;  // ties that leave some of them apart: no permutation symmetry
+  }
+}
+
+}  // namespace
+
 InvariantSubspace CaseFile::invariant_subspace(const StartSpec& start,
                                                const OdeSystem& system) const {
   const auto names = state_names();
@@ -364,7 +413,8 @@ InvariantSubspace CaseFile::invariant_subspace(const StartSpec& start,
     text += (text.empty() ? "" : ", ") + r.component + " = " +
             (r.other.empty() ? "0" : (r.sign < 0 ? "-" : "") + r.other);
   }
-  InvariantSubspace subspace(n, relations, text);
+  InvariantSubspace subspace =
+      with_metronome_symmetry(InvariantSubspace(n, relations, text), start, names);
   const double defect = subspace.invariance_defect(system, system.default_parameters(),
                                                    Eigen::VectorXd::Constant(n, 0.5));
   if (defect > 1e-12)

@@ -1,9 +1,11 @@
 #include "sympathy/cases/metronome_model.hpp"
 #include "sympathy/cases/names.hpp"
+#include "sympathy/core/invariant_subspace.hpp"
 
 #include <algorithm>
 #include <array>
 #include <numbers>
+#include <numeric>
 #include <stdexcept>
 
 namespace sympathy {
@@ -187,7 +189,10 @@ std::vector<std::pair<std::string, std::string>> ModelSpec::problems() const {
 MetronomeModel::MetronomeModel(ModelSpec spec)
     : spec_(std::move(spec)),
       directions_(spec_.directions),
-      n_metronomes_(static_cast<int>(spec_.metronomes.size())) {
+      n_metronomes_(static_cast<int>(spec_.metronomes.size())),
+      represented_(n_metronomes_),
+      copies_(n_metronomes_, 1.0) {
+  std::iota(represented_.begin(), represented_.end(), 0);
   const auto problems = spec_.problems();
   if (!problems.empty())
     throw std::invalid_argument("invalid model: " + problems.front().first + " must be " +
@@ -224,10 +229,48 @@ MetronomeModel::MetronomeModel(ModelSpec spec)
   layout_ = low_rank_layout();
 }
 
+std::unique_ptr<OdeSystem> MetronomeModel::restricted(const InvariantSubspace& subspace) const {
+  const bool already =
+      std::any_of(copies_.begin(), copies_.end(), [](double c) { return c != 1.0; });
+  if (already || !spec_.springs.empty() || subspace.is_whole_space()) return nullptr;
+  const auto c = subspace.coordinates(dimension());
+  const int D = directions_, N = n_metronomes_, m = D + N;
+  // The coordinate a component is tied to (with sign +1), as a component; -1 if zero or negated.
+  auto tied_to = [&](int component) {
+    const int k = c.coordinate[component];
+    return k < 0 || c.sign[component] != 1.0 ? -1 : c.representative[k];
+  };
+  for (int a = 0; a < D; ++a)
+    if (tied_to(a) != a || tied_to(m + a) != m + a) return nullptr;
+  std::vector<int> represented;
+  std::vector<double> copies;
+  std::vector<int> unit_of(N, -1);
+  for (int i = 0; i < N; ++i) {
+    const int angle = tied_to(D + i), velocity = tied_to(m + D + i);
+    if (angle < D || angle >= m || velocity != angle + m) return nullptr;
+    const int j = angle - D;  // the group's first metronome
+    if (j == i) {
+      unit_of[i] = static_cast<int>(represented.size());
+      represented.push_back(i);
+      copies.push_back(1.0);
+    } else {
+      copies[unit_of[j]] += 1.0;
+    }
+  }
+  if (c.size() != 2 * (D + static_cast<int>(represented.size()))) return nullptr;
+  auto model = std::make_unique<MetronomeModel>(*this);
+  model->n_metronomes_ = static_cast<int>(represented.size());
+  model->represented_ = std::move(represented);
+  model->copies_ = std::move(copies);
+  model->layout_ = model->low_rank_layout();
+  return model;
+}
+
 std::vector<std::string> MetronomeModel::state_names() const {
   std::vector<std::string> names{"x"};
   if (directions_ == 2) names.push_back("y");
-  for (int i = 0; i < n_metronomes_; ++i) names.push_back("th" + std::to_string(i + 1));
+  for (int i = 0; i < n_metronomes_; ++i)
+    names.push_back("th" + std::to_string(represented_[i] + 1));
   const int m = static_cast<int>(names.size());
   for (int i = 0; i < m; ++i) names.push_back("v" + names[i]);
   return names;
@@ -324,7 +367,8 @@ bool MetronomeModel::low_rank_jacobian(double /*t*/, const double* z, const doub
   for (int a = 0; a < D; ++a) F[a] = -raw[1 + a] * z[m + a] - raw[3 + a] * z[a];
   for (int i = 0; i < N; ++i) {
     const double* mi = raw + metronome_offset(i);
-    Mt += mi[0] + mi[1];
+    const double copies = copies_[i];
+    Mt += copies * (mi[0] + mi[1]);
     p[i] = mi[0] * mi[2] - mi[1] * mi[3];
     inertia[i] = mi[0] * mi[2] * mi[2] + mi[1] * mi[3] * mi[3];
     e[i] = {std::cos(mi[9]), std::sin(mi[9])};
@@ -340,9 +384,9 @@ bool MetronomeModel::low_rank_jacobian(double /*t*/, const double* z, const doub
     G_velocity[i] = u.d[1] - mi[4];
     for (int a = 0; a < D; ++a) {
       const double ba = p[i] * cs[i] * e[i][a];
-      F[a] += p[i] * w * w * sn[i] * e[i][a];
-      R[a] += ba * G[i] / inertia[i];
-      for (int c = 0; c < D; ++c) A[a][c] += ba * p[i] * cs[i] * e[i][c] / inertia[i];
+      F[a] += copies * p[i] * w * w * sn[i] * e[i][a];
+      R[a] += copies * ba * G[i] / inertia[i];
+      for (int c = 0; c < D; ++c) A[a][c] += copies * ba * p[i] * cs[i] * e[i][c] / inertia[i];
     }
   }
 
@@ -393,9 +437,11 @@ bool MetronomeModel::low_rank_jacobian(double /*t*/, const double* z, const doub
     }
     for (int a = 0; a < D; ++a) {
       const double b = p[i] * cs[i] * e[i][a], db = -p[i] * sn[i] * e[i][a];
-      Y(a, D + i) = p[i] * w * w * cs[i] * e[i][a] - (db * G[i] + b * G_angle[i]) / inertia[i] +
-                    (db * b_acc + b * db_acc) / inertia[i];
-      Y(a, m + D + i) = 2.0 * p[i] * w * sn[i] * e[i][a] - b * G_velocity[i] / inertia[i];
+      Y(a, D + i) =
+          copies_[i] * (p[i] * w * w * cs[i] * e[i][a] - (db * G[i] + b * G_angle[i]) / inertia[i] +
+                        (db * b_acc + b * db_acc) / inertia[i]);
+      Y(a, m + D + i) =
+          copies_[i] * (2.0 * p[i] * w * sn[i] * e[i][a] - b * G_velocity[i] / inertia[i]);
     }
   }
   for (int j = 0; j < static_cast<int>(spec_.springs.size()); ++j) {
@@ -425,7 +471,7 @@ bool MetronomeModel::low_rank_jacobian(double /*t*/, const double* z, const doub
 double MetronomeModel::total_mass(const ParameterValues& raw) const {
   double Mt = raw[0];
   for (int i = 0; i < n_metronomes_; ++i)
-    Mt += raw[metronome_offset(i)] + raw[metronome_offset(i) + 1];
+    Mt += copies_[i] * (raw[metronome_offset(i)] + raw[metronome_offset(i) + 1]);
   return Mt;
 }
 
@@ -447,7 +493,8 @@ double MetronomeModel::mechanical_energy(const Eigen::VectorXd& z,
     const double th = z[D + i], w = z[m + D + i];
     double e_dot_v = z[m] * std::cos(mi[9]);
     if (D == 2) e_dot_v += z[m + 1] * std::sin(mi[9]);
-    energy += 0.5 * I * w * w + p * std::cos(th) * w * e_dot_v + p * raw[5] * (1.0 - std::cos(th));
+    energy += copies_[i] * (0.5 * I * w * w + p * std::cos(th) * w * e_dot_v +
+                            p * raw[5] * (1.0 - std::cos(th)));
   }
   for (int j = 0; j < static_cast<int>(spec_.springs.size()); ++j) {
     const auto& s = spec_.springs[j];

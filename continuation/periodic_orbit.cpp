@@ -3,6 +3,7 @@
 #include <cmath>
 #include <sstream>
 
+#include "sympathy/continuation/symmetry_reduction.hpp"
 #include "sympathy/core/linear_solve.hpp"
 #include "sympathy/core/text.hpp"
 
@@ -103,6 +104,15 @@ PeriodicOrbit solve_periodic_orbit(const OdeSystem& system, const ParameterValue
   system.check_parameters(p);
   if (const auto problem = options.validate())
     throw std::invalid_argument("orbit options: " + problem->message());
+  if (options.use_symmetry)
+    if (const auto r = symmetry_reduction(system, p, subspace)) {
+      PeriodicOrbit orbit =
+          solve_periodic_orbit(*r->system, p, r->coordinates.restrict(subspace.project(z0)), period,
+                               r->subspace, options);
+      orbit = lift(std::move(orbit), *r, subspace, options.floquet);
+      orbit.seconds = started.seconds();
+      return orbit;
+    }
   ShootingProblem problem(system, options.shooting, period);
   const int n = problem.dimension(), m = problem.segments();
   PeriodicOrbit orbit;
@@ -234,6 +244,14 @@ PeriodicOrbit find_periodic_orbit(const OdeSystem& system, const ParameterValues
   system.check_parameters(p);
   if (const auto problem = options.validate())
     throw std::invalid_argument("orbit options: " + problem->message());
+  if (options.use_symmetry)
+    if (const auto r = symmetry_reduction(system, p, subspace)) {
+      PeriodicOrbit orbit = find_periodic_orbit(
+          *r->system, p, r->coordinates.restrict(subspace.project(start)), r->subspace, options);
+      orbit = lift(std::move(orbit), *r, subspace, options.floquet);
+      orbit.seconds = started.seconds();
+      return orbit;
+    }
   Flow flow(system, options.transient_flow);
   Eigen::VectorXd z = subspace.project(start);
   PeriodicOrbit failed;

@@ -1,5 +1,6 @@
 #include "sympathy/core/invariant_subspace.hpp"
 
+#include <algorithm>
 #include <cmath>
 #include <numeric>
 #include <random>
@@ -114,6 +115,152 @@ Eigen::VectorXd InvariantSubspace::project(const Eigen::VectorXd& z) const {
     for (const auto& m : g.members) p[m.component] = m.sign * mean;
   }
   return p;
+}
+
+InvariantSubspace InvariantSubspace::fixed_by(const PermutationSymmetry& symmetry, int dimension,
+                                              std::string description) {
+  std::vector<ComponentRelation> relations;
+  const auto& units = symmetry.units;
+  for (std::size_t u = 1; u < units.size(); ++u) {
+    if (units[u].size() != units[0].size())
+      throw std::invalid_argument("permutation symmetry: units of different sizes");
+    for (std::size_t k = 0; k < units[u].size(); ++k)
+      relations.push_back({units[u][k], units[0][k], 1.0});
+  }
+  InvariantSubspace s(dimension, relations, std::move(description));
+  s.symmetry_ = symmetry;
+  return s;
+}
+
+InvariantSubspace InvariantSubspace::with_symmetry(PermutationSymmetry symmetry,
+                                                   int dimension) const {
+  if (!same_as(fixed_by(symmetry, dimension, ""), dimension))
+    throw std::invalid_argument("the subspace {" + description_ +
+                                "} is not the one that every permutation of " +
+                                symmetry.description + " keeps");
+  InvariantSubspace s = *this;
+  s.symmetry_ = std::move(symmetry);
+  return s;
+}
+
+bool InvariantSubspace::same_as(const InvariantSubspace& other, int dimension) const {
+  for (int j = 0; j < dimension; ++j) {
+    const Eigen::VectorXd e = Eigen::VectorXd::Unit(dimension, j);
+    if ((project(e) - other.project(e)).cwiseAbs().maxCoeff() > 1e-12) return false;
+  }
+  return true;
+}
+
+InvariantSubspace::Coordinates InvariantSubspace::coordinates(int dimension) const {
+  Coordinates c;
+  c.coordinate.assign(dimension, -1);
+  c.sign.assign(dimension, 1.0);
+  std::vector<int> group_of(dimension, -1);
+  for (std::size_t g = 0; g < groups_.size(); ++g)
+    for (const auto& m : groups_[g].members) {
+      if (m.component >= dimension)
+        throw std::invalid_argument("invariant subspace: component " + std::to_string(m.component) +
+                                    " outside a state of dimension " + std::to_string(dimension));
+      group_of[m.component] = static_cast<int>(g);
+    }
+  // Members are in increasing order of component, so a group's first member comes first.
+  for (int i = 0; i < dimension; ++i) {
+    if (group_of[i] < 0) {
+      c.coordinate[i] = c.size();
+      c.representative.push_back(i);
+      continue;
+    }
+    const Group& g = groups_[group_of[i]];
+    if (g.zero) {
+      c.sign[i] = 0.0;
+      continue;
+    }
+    const Member& first = g.members.front();
+    if (first.component == i) {
+      c.coordinate[i] = c.size();
+      c.representative.push_back(i);
+    } else {
+      c.coordinate[i] = c.coordinate[first.component];
+      const auto self = std::find_if(g.members.begin(), g.members.end(),
+                                     [i](const Member& m) { return m.component == i; });
+      c.sign[i] = self->sign * first.sign;  // signs are +-1
+    }
+  }
+  return c;
+}
+
+Eigen::VectorXd InvariantSubspace::Coordinates::embed(const Eigen::VectorXd& y) const {
+  Eigen::VectorXd z(static_cast<int>(coordinate.size()));
+  for (int i = 0; i < z.size(); ++i) z[i] = coordinate[i] < 0 ? 0.0 : sign[i] * y[coordinate[i]];
+  return z;
+}
+
+Eigen::VectorXd InvariantSubspace::Coordinates::restrict(const Eigen::VectorXd& z) const {
+  Eigen::VectorXd y(size());
+  for (int k = 0; k < size(); ++k) y[k] = z[representative[k]];
+  return y;
+}
+
+InvariantSubspace InvariantSubspace::within(const InvariantSubspace& larger, int dimension) const {
+  const Coordinates outer = larger.coordinates(dimension);
+  const Coordinates inner = coordinates(dimension);
+  // Larger's coordinate k is component r_k; here r_k = sign * u_(inner coordinate). Tie the
+  // coordinates that share an inner coordinate; those of zero components are zero.
+  std::vector<ComponentRelation> relations;
+  std::vector<int> first(inner.size(), -1);
+  for (int k = 0; k < outer.size(); ++k) {
+    const int r = outer.representative[k];
+    const int u = inner.coordinate[r];
+    if (u < 0) {
+      relations.push_back({k, -1, 1.0});
+    } else if (first[u] < 0) {
+      first[u] = k;
+    } else {
+      const int k0 = first[u];
+      relations.push_back({k, k0, inner.sign[r] * inner.sign[outer.representative[k0]]});
+    }
+  }
+  InvariantSubspace s(outer.size(), relations, description_);
+  // Every state of this subspace must be a state of `larger` with these relations.
+  for (int j = 0; j < dimension; ++j) {
+    const Eigen::VectorXd z = project(Eigen::VectorXd::Unit(dimension, j));
+    if ((outer.embed(s.project(outer.restrict(z))) - z).cwiseAbs().maxCoeff() > 1e-12)
+      throw std::invalid_argument("the subspace {" + description_ + "} does not lie in {" +
+                                  larger.description_ + "}");
+  }
+  return s;
+}
+
+Eigen::VectorXd PermutationSymmetry::swapped(Eigen::VectorXd z, int a, int b) const {
+  for (std::size_t k = 0; k < units[a].size(); ++k) std::swap(z[units[a][k]], z[units[b][k]]);
+  return z;
+}
+
+double PermutationSymmetry::defect(const OdeSystem& system, const ParameterValues& p,
+                                   const Eigen::VectorXd& scale) const {
+  const int n = system.dimension();
+  for (const auto& unit : units) {
+    if (unit.size() != units.front().size())
+      throw std::invalid_argument("permutation symmetry: units of different sizes");
+    for (int c : unit)
+      if (c < 0 || c >= n)
+        throw std::invalid_argument("permutation symmetry: no state component " +
+                                    std::to_string(c));
+  }
+  std::mt19937 rng(2);
+  std::uniform_real_distribution<double> u(-1.0, 1.0);
+  double worst = 0.0;
+  for (int trial = 0; trial < 3; ++trial) {
+    Eigen::VectorXd z(n);
+    for (int i = 0; i < n; ++i) z[i] = scale[i] * u(rng);
+    const Eigen::VectorXd f = system.rhs(0.0, z, p);
+    const double norm = std::max(f.cwiseAbs().maxCoeff(), 1e-300);
+    for (int a = 0; a + 1 < static_cast<int>(units.size()); ++a) {
+      const Eigen::VectorXd image = system.rhs(0.0, swapped(z, a, a + 1), p);
+      worst = std::max(worst, (image - swapped(f, a, a + 1)).cwiseAbs().maxCoeff() / norm);
+    }
+  }
+  return worst;
 }
 
 double InvariantSubspace::invariance_defect(const OdeSystem& system, const ParameterValues& p,

@@ -5,6 +5,7 @@
 #include <numeric>
 #include <stdexcept>
 
+#include "summary.hpp"
 #include "sympathy/core/assignment.hpp"
 #include "sympathy/floquet/periodic_schur.hpp"
 
@@ -99,6 +100,41 @@ std::vector<Eigen::MatrixXd> quotient_segments(const std::vector<Eigen::MatrixXd
 
 }  // namespace
 
+void order_and_summarize(FloquetAnalysis& a, const FloquetOptions& options) {
+  // Order by decreasing modulus, keeping track of the trivial one.
+  std::stable_sort(a.multipliers.begin(), a.multipliers.end(),
+                   [](const auto& x, const auto& y) { return x.log_modulus > y.log_modulus; });
+  // Conjugate pairs have equal moduli up to rounding: put the positive argument first, so that
+  // the order does not depend on the last bit.
+  for (int i = 0; i + 1 < static_cast<int>(a.multipliers.size()); ++i) {
+    auto& p = a.multipliers[i];
+    auto& q = a.multipliers[i + 1];
+    if (std::abs(p.value - std::conj(q.value)) <= 1e-9 * std::abs(p.value) &&
+        p.value.imag() < q.value.imag())
+      std::swap(p, q);
+  }
+  summarize(a, options);
+}
+
+void summarize(FloquetAnalysis& a, const FloquetOptions& options) {
+  a.trivial = -1;
+  for (int i = 0; i < static_cast<int>(a.multipliers.size()); ++i)
+    if (a.multipliers[i].trivial) a.trivial = i;
+  if (a.trivial >= 0) a.trivial_error = std::abs(a.multipliers[a.trivial].value - 1.0);
+
+  const double tol = options.stability_tolerance;
+  a.max_modulus = 0.0;
+  a.unstable_count = 0;
+  for (const auto& m : a.multipliers) {
+    if (m.trivial || m.structural) continue;
+    a.max_modulus = std::max(a.max_modulus, m.modulus());
+    if (m.modulus() > 1.0 + tol) ++a.unstable_count;
+  }
+  a.stability = a.max_modulus < 1.0 - tol   ? Stability::Stable
+                : a.max_modulus > 1.0 + tol ? Stability::Unstable
+                                            : Stability::Marginal;
+}
+
 FloquetAnalysis analyze_floquet(const std::vector<Eigen::MatrixXd>& segments,
                                 const Eigen::VectorXd& flow_direction,
                                 const Eigen::MatrixXd& family, const FloquetOptions& options) {
@@ -191,33 +227,7 @@ FloquetAnalysis analyze_floquet(const std::vector<Eigen::MatrixXd>& segments,
       a.multipliers.push_back({others.values[i], others.log_moduli[i]});
   }
 
-  // Order by decreasing modulus, keeping track of the trivial one.
-  std::stable_sort(a.multipliers.begin(), a.multipliers.end(),
-                   [](const auto& x, const auto& y) { return x.log_modulus > y.log_modulus; });
-  // Conjugate pairs have equal moduli up to rounding: put the positive argument first, so that
-  // the order does not depend on the last bit.
-  for (int i = 0; i + 1 < n; ++i) {
-    auto& p = a.multipliers[i];
-    auto& q = a.multipliers[i + 1];
-    if (std::abs(p.value - std::conj(q.value)) <= 1e-9 * std::abs(p.value) &&
-        p.value.imag() < q.value.imag())
-      std::swap(p, q);
-  }
-  a.trivial = -1;
-  for (int i = 0; i < n; ++i)
-    if (a.multipliers[i].trivial) a.trivial = i;
-  if (a.trivial >= 0) a.trivial_error = std::abs(a.multipliers[a.trivial].value - 1.0);
-
-  const double tol = options.stability_tolerance;
-  a.max_modulus = 0.0;
-  for (const auto& m : a.multipliers) {
-    if (m.trivial || m.structural) continue;
-    a.max_modulus = std::max(a.max_modulus, m.modulus());
-    if (m.modulus() > 1.0 + tol) ++a.unstable_count;
-  }
-  a.stability = a.max_modulus < 1.0 - tol   ? Stability::Stable
-                : a.max_modulus > 1.0 + tol ? Stability::Unstable
-                                            : Stability::Marginal;
+  order_and_summarize(a, options);
   return a;
 }
 

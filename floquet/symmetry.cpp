@@ -1,5 +1,8 @@
 #include <algorithm>
+#include <cmath>
+#include <stdexcept>
 
+#include "summary.hpp"
 #include "sympathy/core/assignment.hpp"
 #include "sympathy/floquet/floquet.hpp"
 #include "sympathy/floquet/periodic_schur.hpp"
@@ -50,6 +53,27 @@ void label_symmetry(FloquetAnalysis& a, const std::vector<Eigen::MatrixXd>& segm
   for (int i = 0; i < n; ++i)
     a.multipliers[i].symmetry =
         column[i] < keeping ? SymmetryKind::Keeping : SymmetryKind::Breaking;
+}
+
+FloquetAnalysis repeat_breaking(FloquetAnalysis a, int copies, const FloquetOptions& options) {
+  if (copies < 1) throw std::invalid_argument("repeat_breaking: copies must be at least 1");
+  // Each run of breaking multipliers of one modulus (a conjugate pair, or a real one) repeated
+  // in place: the order by modulus stays, and pairs stay together.
+  std::vector<Multiplier> all;
+  const auto& m = a.multipliers;
+  for (std::size_t i = 0; i < m.size();) {
+    std::size_t end = i + 1;
+    if (m[i].symmetry == SymmetryKind::Breaking)
+      while (end < m.size() && m[end].symmetry == SymmetryKind::Breaking &&
+             std::abs(m[end].log_modulus - m[i].log_modulus) <= 1e-9)
+        ++end;
+    const int times = m[i].symmetry == SymmetryKind::Breaking ? copies : 1;
+    for (int c = 0; c < times; ++c) all.insert(all.end(), m.begin() + i, m.begin() + end);
+    i = end;
+  }
+  a.multipliers = std::move(all);
+  summarize(a, options);
+  return a;
 }
 
 }  // namespace sympathy

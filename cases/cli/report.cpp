@@ -5,6 +5,7 @@
 #include <numbers>
 
 #include "cases/cli/common.hpp"
+#include "sympathy/continuation/symmetry_reduction.hpp"
 
 namespace sympathy::cli {
 
@@ -53,10 +54,19 @@ void print_orbit(std::FILE* out, const MetronomeModel& model, const PeriodicOrbi
   std::fprintf(out, "\n");
   const auto& st = orbit.flow;
   const auto& flow = options.shooting.flow;
+  // The system integrated: the reduction's where a symmetry reduced the computation.
+  const auto reduction = orbit.reduction.empty()
+                             ? std::nullopt
+                             : symmetry_reduction(model, orbit.parameters, orbit.subspace);
+  const OdeSystem& integrated =
+      reduction ? *reduction->system : static_cast<const OdeSystem&>(model);
   const std::string solver =
       flow.nonlinear_solver == NonlinearSolver::Newton
-          ? " (" + to_string(resolved_linear_solver(model, flow)) + " linear solver)"
+          ? " (" + to_string(resolved_linear_solver(integrated, flow)) + " linear solver)"
           : "";
+  if (!orbit.reduction.empty())
+    std::fprintf(out, "  symmetry     %s: %d states integrated instead of %d\n",
+                 orbit.reduction.c_str(), integrated.dimension(), model.dimension());
   std::fprintf(
       out,
       "  work         %d segment%s, %s%s rtol %g: %ld integrations, %ld steps, %ld rhs and "

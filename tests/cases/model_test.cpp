@@ -8,6 +8,7 @@
 
 #include "sympathy/cases/case_file.hpp"
 #include "sympathy/core/flow.hpp"
+#include "sympathy/core/reduced_system.hpp"
 #include "tests/support/cases.hpp"
 
 namespace sympathy {
@@ -348,6 +349,66 @@ TEST(MetronomeModel, TurningPointPulseIsResolved) {
   // a micro-scale error; resolved, the error is at the tolerance.
   EXPECT_GT((run(1e-8, 1e-4, false) - exact).cwiseAbs().maxCoeff(), 1e-6);
   EXPECT_LT((run(1e-8, 1e-4, true) - exact).cwiseAbs().maxCoeff(), 1e-7);
+}
+
+// Eight identical metronomes, restricted to where metronomes 2-8 move alike: the model's own
+// restriction (a platform with two metronomes, the second counted seven times) is the generic
+// one (the whole model evaluated on the embedded state), to rounding, in f, its Jacobian (dense
+// and sparse plus low rank), its variational and parameter columns, and its steep zones.
+TEST(MetronomeModel, RestrictionToIdenticalMetronomesIsTheGenericOne) {
+  for (int directions : {1, 2}) {
+    ModelSpec spec = load_spec("row/row8");
+    if (directions == 2) {
+      spec.directions = 2;
+      spec.cy = spec.cx;
+      spec.ky = spec.kx;
+    }
+    const MetronomeModel model(spec);
+    const int n = model.dimension(), m = n / 2, D = directions;
+    std::vector<ComponentRelation> relations;
+    for (int i = 2; i < 8; ++i) {
+      relations.push_back({D + i, D + 1, 1.0});
+      relations.push_back({m + D + i, m + D + 1, 1.0});
+    }
+    const InvariantSubspace block(n, relations);
+    const auto own = model.restricted(block);
+    ASSERT_NE(own, nullptr);
+    const ReducedSystem generic(model, block);
+    ASSERT_EQ(own->dimension(), 2 * (D + 2));
+    EXPECT_EQ(own->state_names(), generic.state_names());
+    EXPECT_EQ(own->parameter_names(), model.parameter_names());
+    std::mt19937 rng(5);
+    const ParameterValues p = model.default_parameters();
+    for (int trial = 0; trial < 3; ++trial) {
+      const Eigen::VectorXd y =
+          generic.coordinates().restrict(block.project(random_state(model, rng)));
+      const Eigen::VectorXd f = generic.rhs(0.0, y, p);
+      EXPECT_LT((own->rhs(0.0, y, p) - f).cwiseAbs().maxCoeff(), 1e-13 * f.cwiseAbs().maxCoeff());
+      const Eigen::MatrixXd J = generic.jacobian(0.0, y, p);
+      const double scale = J.cwiseAbs().maxCoeff();
+      EXPECT_LT((own->jacobian(0.0, y, p) - J).cwiseAbs().maxCoeff(), 1e-12 * scale);
+      auto low_rank = own->low_rank_structure();
+      ASSERT_TRUE(low_rank.has_value());
+      ASSERT_TRUE(own->low_rank_jacobian(0.0, y.data(), p.data(), *low_rank));
+      EXPECT_LT((low_rank->dense() - J).cwiseAbs().maxCoeff(), 1e-12 * scale);
+      for (const std::string name : {"k", "s", "M"}) {
+        const int k = model.parameter_index(name);
+        Eigen::VectorXd a(y.size()), b(y.size());
+        own->parameter_derivative(0.0, y.data(), p.data(), k, a.data());
+        generic.parameter_derivative(0.0, y.data(), p.data(), k, b.data());
+        EXPECT_LT((a - b).cwiseAbs().maxCoeff(), 1e-12 * std::max(1.0, b.cwiseAbs().maxCoeff()))
+            << name;
+      }
+    }
+    ASSERT_EQ(own->steep_zones(p.data()).size(), 2u);
+    EXPECT_EQ(own->steep_zones(p.data())[1].component, generic.steep_zones(p.data())[1].component);
+  }
+  // Anything but whole metronomes tied together has no restriction of the model's own.
+  const MetronomeModel row2(load_spec("row2"));
+  EXPECT_EQ(row2.restricted(
+                InvariantSubspace(6, {{0, -1, 1.0}, {2, 1, -1.0}, {3, -1, 1.0}, {5, 4, -1.0}})),
+            nullptr);
+  EXPECT_EQ(row2.restricted(InvariantSubspace(6, {{2, 1, 1.0}})), nullptr);  // angles alone
 }
 
 }  // namespace

@@ -7,6 +7,7 @@
 #include <numbers>
 
 #include "sympathy/continuation/continuation.hpp"
+#include "sympathy/continuation/symmetry_reduction.hpp"
 #include "sympathy/floquet/floquet.hpp"
 #include "tests/support/cases.hpp"
 #include "tests/support/test_systems.hpp"
@@ -199,6 +200,89 @@ TEST(SymmetryLabels, IdenticalMetronomesRepeatTheirBreakingPair) {
     EXPECT_EQ(kept, 4) << n;
     EXPECT_EQ(broken, 2 * (n - 1)) << n;
   }
+}
+
+// repeat_breaking: each breaking run (a pair, or a real one) repeated in place, the order by
+// modulus kept, the summary recounted.
+TEST(SymmetryLabels, RepeatBreakingKeepsPairsTogether) {
+  FloquetAnalysis a;
+  auto mu = [](std::complex<double> v, SymmetryKind kind, bool trivial = false) {
+    Multiplier m;
+    m.value = v;
+    m.log_modulus = std::log(std::abs(v));
+    m.symmetry = kind;
+    m.trivial = trivial;
+    return m;
+  };
+  const std::complex<double> pair = std::polar(1.2, 0.3);
+  a.multipliers = {mu(pair, SymmetryKind::Breaking), mu(std::conj(pair), SymmetryKind::Breaking),
+                   mu(1.0, SymmetryKind::Keeping, true), mu(-0.5, SymmetryKind::Breaking),
+                   mu(0.1, SymmetryKind::Keeping)};
+  const FloquetAnalysis r = repeat_breaking(a, 3, FloquetOptions{});
+  ASSERT_EQ(r.multipliers.size(), 11u);
+  for (int c = 0; c < 3; ++c) {
+    EXPECT_EQ(r.multipliers[2 * c].value, pair);
+    EXPECT_EQ(r.multipliers[2 * c + 1].value, std::conj(pair));
+    EXPECT_EQ(r.multipliers[7 + c].value, -0.5);
+  }
+  EXPECT_EQ(r.trivial, 6);
+  EXPECT_EQ(r.unstable_count, 6);
+  EXPECT_EQ(r.stability, Stability::Unstable);
+  EXPECT_EQ(count(r, SymmetryKind::Breaking), 9);
+}
+
+// The in-phase orbit of N identical metronomes computed in the smallest block (the platform and
+// two metronomes, the second standing for N - 1) against the same computation on the whole
+// state: period, state and every multiplier to 1e-8 (the multipliers' own accuracy at rtol
+// 1e-11) at N = 4 and 8. Detuning one metronome leaves no permutation symmetry: the whole state
+// is computed, and says so.
+TEST(SymmetryLabels, ReducedOrbitOfIdenticalMetronomesIsTheWholeOne) {
+  for (int n : {4, 8}) {
+    const CaseFile file = CaseFile::load(testing::case_path("row/row" + std::to_string(n)));
+    const MetronomeModel model(file.spec());
+    const StartSpec& s = file.start("in-phase");
+    const InvariantSubspace subspace = file.invariant_subspace(s, model);
+    ASSERT_TRUE(subspace.symmetry().has_value());
+    OrbitOptions whole;
+    whole.use_symmetry = false;
+    const PeriodicOrbit reduced = find_periodic_orbit(
+        model, model.default_parameters(), file.initial_state(&s), subspace, OrbitOptions{});
+    const PeriodicOrbit full = solve_periodic_orbit(
+        model, model.default_parameters(), reduced.state0, reduced.period, subspace, whole);
+    ASSERT_TRUE(reduced.converged() && full.converged()) << n;
+    EXPECT_FALSE(reduced.reduction.empty());
+    EXPECT_TRUE(full.reduction.empty());
+    EXPECT_NEAR(reduced.period, full.period, 1e-9) << n;
+    EXPECT_LT((reduced.state0 - full.state0).cwiseAbs().maxCoeff(), 1e-8) << n;
+    ASSERT_EQ(reduced.floquet.multipliers.size(), full.floquet.multipliers.size());
+    // Paired one to one (repeated ones in any order): each whole one has a reduced one of its
+    // kind within 1e-8, used once.
+    std::vector<bool> used(full.floquet.multipliers.size(), false);
+    for (const auto& b : full.floquet.multipliers) {
+      int best = -1;
+      for (std::size_t i = 0; i < used.size(); ++i) {
+        const auto& a = reduced.floquet.multipliers[i];
+        if (used[i] || a.symmetry != b.symmetry || a.trivial != b.trivial) continue;
+        if (best < 0 || std::abs(a.value - b.value) <
+                            std::abs(reduced.floquet.multipliers[best].value - b.value))
+          best = static_cast<int>(i);
+      }
+      ASSERT_GE(best, 0) << n << ": " << b.value;
+      used[best] = true;
+      EXPECT_LT(std::abs(reduced.floquet.multipliers[best].value - b.value), 1e-8)
+          << n << ": " << b.value;
+    }
+    EXPECT_EQ(reduced.floquet.unstable_count, full.floquet.unstable_count);
+    EXPECT_NEAR(reduced.floquet.trivial_error, full.floquet.trivial_error, 1e-8);
+  }
+  const CaseFile file = CaseFile::load(testing::case_path("row/row4"));
+  const MetronomeModel alike(file.spec());
+  const InvariantSubspace subspace = file.invariant_subspace(file.start("in-phase"), alike);
+  EXPECT_TRUE(symmetry_reduction(alike, alike.default_parameters(), subspace).has_value());
+  ModelSpec spec = file.spec();
+  spec.set("d3", spec.get("d3") * (1.0 + 1e-3));
+  const MetronomeModel detuned(spec);
+  EXPECT_FALSE(symmetry_reduction(detuned, detuned.default_parameters(), subspace).has_value());
 }
 
 }  // namespace

@@ -14,6 +14,7 @@
 
 #include <cmath>
 #include <map>
+#include <memory>
 #include <optional>
 #include <set>
 #include <string>
@@ -108,12 +109,21 @@ class MetronomeModel final : public AutoDiffSystem<MetronomeModel> {
   template <class T, class P>
   void evaluate(double t, const T* z, const P* raw, T* dz) const;
 
+  // On a subspace where whole metronomes move together (th_j = th_i and th_j' = th_i', nothing
+  // else tied, no springs): a model of the platform and one metronome per group, each standing for
+  // its group (its platform force counted once per member). Its state is the subspace's
+  // coordinates, its parameters this model's. nullptr for any other subspace.
+  std::unique_ptr<OdeSystem> restricted(const InvariantSubspace& subspace) const override;
+
  private:
   // Raw layout: [M, cx, cy, kx, ky, g], then 10 entries per metronome, then one per spring.
   static constexpr int kPlatformRaw = 6;
   static constexpr int kMetronomeRaw = 10;
-  int metronome_offset(int i) const { return kPlatformRaw + kMetronomeRaw * i; }
-  int spring_offset(int j) const { return kPlatformRaw + kMetronomeRaw * n_metronomes_ + j; }
+  // The raw parameters of the metronome that state metronome i is (or, restricted, stands for).
+  int metronome_offset(int i) const { return kPlatformRaw + kMetronomeRaw * represented_[i]; }
+  int spring_offset(int j) const {
+    return kPlatformRaw + kMetronomeRaw * static_cast<int>(spec_.metronomes.size()) + j;
+  }
 
   template <class T, class P>
   T escapement(const T& th, const T& w, const P* m) const;
@@ -131,7 +141,12 @@ class MetronomeModel final : public AutoDiffSystem<MetronomeModel> {
 
   ModelSpec spec_;
   int directions_;
-  int n_metronomes_;
+  int n_metronomes_;  // in the state: the spec's, or the restriction's units
+  // Per state metronome: the spec's metronome it is, and how many identical metronomes moving
+  // with it it stands for (1 unless restricted: their platform forces add up, each swings the
+  // same).
+  std::vector<int> represented_;
+  std::vector<double> copies_;
   LowRankLayout layout_;
 };
 
@@ -201,7 +216,8 @@ void MetronomeModel::evaluate(double /*t*/, const T* z, const P* raw, T* dz) con
     const P& mb = mi[1];
     const P& lp = mi[2];
     const P& lb = mi[3];
-    Mt = Mt + mp + mb;
+    const double copies = copies_[i];  // identical metronomes it stands for (restricted)
+    Mt = Mt + copies * (mp + mb);
     const P p = mp * lp - mb * lb;
     const P I = mp * lp * lp + mb * lb * lb;
     const P e[2] = {cos(mi[9]), sin(mi[9])};
@@ -214,13 +230,13 @@ void MetronomeModel::evaluate(double /*t*/, const T* z, const P* raw, T* dz) con
     inertia[i] = T(0.0) + I;
     for (int a = 0; a < D; ++a) {
       b[2 * i + a] = p * cs * e[a];
-      F[a] += pw2s * e[a];
-      R[a] += b[2 * i + a] * G[i] / I;
+      F[a] += copies * pw2s * e[a];
+      R[a] += copies * b[2 * i + a] * G[i] / I;
     }
-    A[0] += b[2 * i] * b[2 * i] / I;
+    A[0] += copies * b[2 * i] * b[2 * i] / I;
     if (D == 2) {
-      A[1] += b[2 * i] * b[2 * i + 1] / I;
-      A[2] += b[2 * i + 1] * b[2 * i + 1] / I;
+      A[1] += copies * b[2 * i] * b[2 * i + 1] / I;
+      A[2] += copies * b[2 * i + 1] * b[2 * i + 1] / I;
     }
   }
 

@@ -74,6 +74,9 @@ struct OrbitOptions {
   double transient = 60.0;     // s of integration before Newton (find_periodic_orbit)
   double max_period = 10.0;    // s: the longest period looked for
   FlowOptions transient_flow;  // for the transient and the period estimate
+  // Orbits of interchangeable units that move alike are computed in their smallest block
+  // (symmetry_reduction.hpp); false: in the whole state (for comparison).
+  bool use_symmetry = true;
   OrbitOptions();
 
   OptionCheck validate() const;
@@ -93,6 +96,7 @@ struct PeriodicOrbit {
   NewtonSummary newton;
   FlowStatistics flow;  // integration work of the whole computation
   double seconds = 0.0;
+  std::string reduction;  // how a symmetry reduced the computation; empty: the whole state
   bool converged() const { return newton.converged; }
 };
 

@@ -5,6 +5,7 @@
 // directions, which all point out of the subspace.
 #pragma once
 
+#include <optional>
 #include <string>
 #include <vector>
 
@@ -20,6 +21,21 @@ struct ComponentRelation {
   double sign = 1.0;
 };
 
+// Units whose every permutation the system keeps (identical metronomes on a platform that treats
+// them alike): each unit's state components, the same number per unit and in the same order.
+// S_N acts by permuting the units. Declared by a case; `defect` checks it at parameter values.
+struct PermutationSymmetry {
+  std::vector<std::vector<int>> units;
+  std::string description;  // how people name the units ("metronomes 1-64")
+
+  // Largest |f(sigma z) - sigma f(z)| relative to |f| over the adjacent transpositions (which
+  // generate S_N) at a few sample states: about 1e-16 for a symmetry of f at p, O(1) otherwise.
+  double defect(const OdeSystem& system, const ParameterValues& p,
+                const Eigen::VectorXd& scale) const;
+  // Every unit's state in z permuted by swapping units a and b.
+  Eigen::VectorXd swapped(Eigen::VectorXd z, int a, int b) const;
+};
+
 class InvariantSubspace {
  public:
   InvariantSubspace() = default;  // the whole space
@@ -30,6 +46,33 @@ class InvariantSubspace {
                     std::string description = "");
 
   bool is_whole_space() const { return groups_.empty(); }
+  // The subspace that every permutation of `symmetry`'s units keeps (each unit's state equal to
+  // the first's), remembering the symmetry.
+  static InvariantSubspace fixed_by(const PermutationSymmetry& symmetry, int dimension,
+                                    std::string description);
+  // The symmetry whose fixed space this is, where one was declared (with_symmetry).
+  const std::optional<PermutationSymmetry>& symmetry() const { return symmetry_; }
+  // This subspace, declared to be the fixed space of `symmetry`; throws std::invalid_argument if
+  // it is not (different relations).
+  InvariantSubspace with_symmetry(PermutationSymmetry symmetry, int dimension) const;
+
+  // Representative coordinates of the subspace: one for each component in no relation and one
+  // for each tied group that is not zero (its smallest component), in increasing order of those
+  // components. A state of the subspace is z_c = sign_c * y_(coordinate_c), 0 where
+  // coordinate_c is -1.
+  struct Coordinates {
+    std::vector<int> representative;  // per coordinate: its component
+    std::vector<int> coordinate;      // per component: its coordinate, or -1 (a zero component)
+    std::vector<double> sign;         // per component
+    int size() const { return static_cast<int>(representative.size()); }
+    Eigen::VectorXd embed(const Eigen::VectorXd& y) const;     // z from y
+    Eigen::VectorXd restrict(const Eigen::VectorXd& z) const;  // y: z's representatives
+  };
+  Coordinates coordinates(int dimension) const;
+  // This subspace as a subspace of `larger` (which contains it), in larger's coordinates.
+  InvariantSubspace within(const InvariantSubspace& larger, int dimension) const;
+  // Whether two subspaces of a space of `dimension` components are the same.
+  bool same_as(const InvariantSubspace& other, int dimension) const;
   const std::string& description() const { return description_; }
   // Orthonormal bases (columns) of the subspace and of its orthogonal complement, in a state
   // space of `dimension` components: the directions that keep the symmetry and those that
@@ -62,6 +105,7 @@ class InvariantSubspace {
 
   std::vector<Group> groups_;
   std::string description_;
+  std::optional<PermutationSymmetry> symmetry_;
 };
 
 }  // namespace sympathy

@@ -6,6 +6,7 @@
 // many columns at once (the variational equations), and df/dp for one named parameter.
 #pragma once
 
+#include <memory>
 #include <optional>
 #include <span>
 #include <string>
@@ -34,6 +35,8 @@ struct SteepZone {
 // together). They travel with every call, as AUTO's PAR and BifurcationKit's `pars` do: nothing
 // here stores the values a run uses, so one system object serves any number of runs at once.
 using ParameterValues = Eigen::VectorXd;
+
+class InvariantSubspace;
 
 class OdeSystem {
  public:
@@ -99,6 +102,15 @@ class OdeSystem {
   virtual int switching_count() const { return 0; }
   virtual void switching_functions(double /*t*/, const double* /*z*/, const double* /*p*/,
                                    double* /*g*/) const {}
+
+  // The system restricted to an invariant subspace, in the subspace's representative coordinates
+  // (InvariantSubspace::coordinates), with the same parameters, where the model can evaluate it
+  // for less than the whole state costs (identical metronomes that move together: one evaluation
+  // for all of them); nullptr otherwise (restrict_system then uses the generic restriction).
+  // Valid at parameter values that keep the subspace invariant: the caller checks them.
+  virtual std::unique_ptr<OdeSystem> restricted(const InvariantSubspace& /*subspace*/) const {
+    return nullptr;
+  }
 
   // Convenience wrappers on Eigen vectors.
   Eigen::VectorXd rhs(double t, const Eigen::VectorXd& z, const ParameterValues& p) const;

@@ -89,4 +89,13 @@ FloquetAnalysis analyze_floquet(const std::vector<Eigen::MatrixXd>& segments,
 void label_symmetry(FloquetAnalysis& a, const std::vector<Eigen::MatrixXd>& segments,
                     const Eigen::MatrixXd& inside, const Eigen::MatrixXd& across);
 
+// The multipliers of an orbit of N identical units that all move alike, from those of one
+// representative block: `a` analyses the orbit in the subspace where every unit but the first
+// moves alike (its Keeping multipliers those of the symmetric motion, its Breaking ones those of
+// the first unit against the rest). The permutations of the units make the whole monodromy
+// block diagonal in the isotypic components, the breaking block repeated once for each of the
+// N - 1 independent differences between units: each Breaking multiplier is repeated `copies`
+// (N - 1) times in all, and the summary (stability, unstable count) follows.
+FloquetAnalysis repeat_breaking(FloquetAnalysis a, int copies, const FloquetOptions& options);
+
 }  // namespace sympathy

@@ -1,0 +1,99 @@
+#include "sympathy/core/reduced_system.hpp"
+
+#include <vector>
+
+namespace sympathy {
+
+ReducedSystem::ReducedSystem(const OdeSystem& system, const InvariantSubspace& subspace)
+    : system_(system), coordinates_(subspace.coordinates(system.dimension())) {}
+
+std::vector<std::string> ReducedSystem::state_names() const {
+  const auto names = system_.state_names();
+  std::vector<std::string> out;
+  for (int r : coordinates_.representative) out.push_back(names[r]);
+  return out;
+}
+
+Eigen::VectorXd ReducedSystem::embed(const double* y) const {
+  return coordinates_.embed(Eigen::Map<const Eigen::VectorXd>(y, dimension()));
+}
+
+void ReducedSystem::rhs(double t, const double* y, const double* p, double* dy) const {
+  const Eigen::VectorXd z = embed(y);
+  Eigen::VectorXd dz(z.size());
+  system_.rhs(t, z.data(), p, dz.data());
+  for (int k = 0; k < dimension(); ++k) dy[k] = dz[coordinates_.representative[k]];
+}
+
+void ReducedSystem::jacobian(double t, const double* y, const double* p,
+                             Eigen::MatrixXd& jac) const {
+  // R J P, from the whole Jacobian's columns: column k of J P sums the columns of the components
+  // that coordinate k stands for.
+  const Eigen::VectorXd z = embed(y);
+  Eigen::MatrixXd full(z.size(), z.size());
+  system_.jacobian(t, z.data(), p, full);
+  const int d = dimension();
+  jac.setZero(d, d);
+  for (int c = 0; c < z.size(); ++c) {
+    const int k = coordinates_.coordinate[c];
+    if (k < 0) continue;
+    for (int i = 0; i < d; ++i)
+      jac(i, k) += coordinates_.sign[c] * full(coordinates_.representative[i], c);
+  }
+}
+
+void ReducedSystem::variational_rhs(double t, const double* y, const double* p, int columns,
+                                    const double* const* S, double* const* out,
+                                    std::span<const int> parameters) const {
+  const Eigen::VectorXd z = embed(y);
+  const int n = static_cast<int>(z.size()), d = dimension();
+  Eigen::MatrixXd in(n, columns), result(n, columns);
+  std::vector<const double*> in_columns(columns);
+  std::vector<double*> out_columns(columns);
+  for (int j = 0; j < columns; ++j) {
+    in.col(j) = coordinates_.embed(Eigen::Map<const Eigen::VectorXd>(S[j], d));
+    in_columns[j] = in.col(j).data();
+    out_columns[j] = result.col(j).data();
+  }
+  system_.variational_rhs(t, z.data(), p, columns, in_columns.data(), out_columns.data(),
+                          parameters);
+  for (int j = 0; j < columns; ++j)
+    for (int k = 0; k < d; ++k) out[j][k] = result(coordinates_.representative[k], j);
+}
+
+void ReducedSystem::parameter_derivative(double t, const double* y, const double* p, int parameter,
+                                         double* dfdp) const {
+  const Eigen::VectorXd z = embed(y);
+  Eigen::VectorXd full(z.size());
+  system_.parameter_derivative(t, z.data(), p, parameter, full.data());
+  for (int k = 0; k < dimension(); ++k) dfdp[k] = full[coordinates_.representative[k]];
+}
+
+std::vector<SteepZone> ReducedSystem::steep_zones(const double* p) const {
+  std::vector<SteepZone> zones;
+  for (SteepZone zone : system_.steep_zones(p)) {
+    const int k = coordinates_.coordinate[zone.component];
+    if (k < 0) continue;
+    // Several components tied to one coordinate share its zone: keep one.
+    bool seen = false;
+    for (const auto& z : zones) seen = seen || z.component == k;
+    if (seen) continue;
+    zone.component = k;
+    zones.push_back(zone);
+  }
+  return zones;
+}
+
+void ReducedSystem::switching_functions(double t, const double* y, const double* p,
+                                        double* g) const {
+  const Eigen::VectorXd z = embed(y);
+  system_.switching_functions(t, z.data(), p, g);
+}
+
+std::unique_ptr<OdeSystem> restrict_system(const OdeSystem& system,
+                                           const InvariantSubspace& subspace) {
+  if (auto own = system.restricted(subspace)) return own;
+  return std::make_unique<ReducedSystem>(system, subspace);
+}
+
+}  // namespace sympathy
