@@ -4,6 +4,7 @@
 #include <map>
 #include <stdexcept>
 
+#include "sympathy/continuation/symmetry_reduction.hpp"
 #include "sympathy/core/csv.hpp"
 #include "sympathy/core/text.hpp"
 
@@ -33,6 +34,45 @@ std::string BranchProblem::problem_with(const OdeSystem& system) const {
   return "";
 }
 
+namespace {
+
+// Describes an orbit of the reduction as the whole orbit it stands for.
+class LiftingDescriber final : public OrbitDescriber {
+ public:
+  LiftingDescriber(const OrbitDescriber& whole, const SymmetryReduction& reduction,
+                   const InvariantSubspace& subspace, const FloquetOptions& options)
+      : whole_(whole), reduction_(reduction), subspace_(subspace), options_(options) {}
+  std::vector<Group> layout() const override { return whole_.layout(); }
+  std::vector<double> describe(const PeriodicOrbit& orbit) const override {
+    return whole_.describe(lift(orbit, reduction_, subspace_, options_));
+  }
+
+ private:
+  const OrbitDescriber& whole_;
+  const SymmetryReduction& reduction_;
+  const InvariantSubspace& subspace_;
+  const FloquetOptions& options_;
+};
+
+// The symmetry reduction of the whole branch, where the start's subspace has one that the
+// parameter keeps: checked at both ends and at the start (a parameter of one metronome alone
+// breaks the permutations as soon as it moves).
+std::optional<SymmetryReduction> branch_reduction(const OdeSystem& system,
+                                                  const BranchProblem& problem,
+                                                  const ContinuationOptions& options) {
+  if (!options.orbit.use_symmetry || problem.start_orbit || !problem.subspace.symmetry())
+    return std::nullopt;
+  std::optional<SymmetryReduction> r;
+  for (double v : {problem.from, problem.to, problem.first_value()}) {
+    const ParameterValues p = system.with_parameter(problem.values, problem.parameter, v);
+    r = symmetry_reduction(system, p, problem.subspace);
+    if (!r) return std::nullopt;
+  }
+  return r;
+}
+
+}  // namespace
+
 Branch continue_branch(const OdeSystem& system, const BranchProblem& problem,
                        const ContinuationOptions& options, const ContinuationCallbacks& callbacks,
                        const OrbitDescriber* describer) {
@@ -40,6 +80,28 @@ Branch continue_branch(const OdeSystem& system, const BranchProblem& problem,
     throw std::invalid_argument("branch problem: " + wrong);
   if (const auto wrong = options.validate())
     throw std::invalid_argument("continuation options: " + wrong->message());
+  if (const auto r = branch_reduction(system, problem, options)) {
+    // The branch of the reduced system, in the reduced subspace; everything it hands out lifted.
+    BranchProblem reduced = problem;
+    reduced.start_state = r->coordinates.restrict(problem.subspace.project(problem.start_state));
+    reduced.subspace = r->subspace;
+    const FloquetOptions& floquet = options.orbit.floquet;
+    ContinuationCallbacks lifted;
+    lifted.stop_requested = callbacks.stop_requested;
+    if (callbacks.on_point)
+      lifted.on_point = [&](const ContinuationPoint& p) {
+        callbacks.on_point(lift(p, *r, problem.subspace, floquet));
+      };
+    if (callbacks.on_event)
+      lifted.on_event = [&](const Bifurcation& e) { callbacks.on_event(lift(e, *r, floquet)); };
+    const std::optional<LiftingDescriber> lifting =
+        describer ? std::optional<LiftingDescriber>(std::in_place, *describer, *r, problem.subspace,
+                                                    floquet)
+                  : std::nullopt;
+    Branch branch =
+        continue_branch(*r->system, reduced, options, lifted, lifting ? &*lifting : nullptr);
+    return lift(std::move(branch), *r, system, problem.subspace);
+  }
   const Stopwatch clock;
   const double first = problem.first_value();
   const std::string parameter_name = system.parameter_names()[problem.parameter];

@@ -15,6 +15,19 @@ bool is_real(std::complex<double> mu) {
 
 }  // namespace
 
+std::string together_note(BifurcationType type, int multiplicity) {
+  if (multiplicity <= 1) return "";
+  const std::string count = std::to_string(multiplicity);
+  switch (type) {
+    case BifurcationType::NeimarkSacker:
+      return count + " complex pairs cross together";
+    case BifurcationType::PeriodDoubling:
+      return count + " multipliers cross -1 together";
+    default:
+      return count + " multipliers cross +1 together";
+  }
+}
+
 std::vector<Bifurcation> detect(const TrackedMultipliers& tracked, const ContinuationPoint& a,
                                 const ContinuationPoint& b, double trust_limit,
                                 const Locator& locate) {
@@ -75,19 +88,19 @@ std::vector<Bifurcation> detect(const TrackedMultipliers& tracked, const Continu
   for (const auto& g : plus_groups) {
     Bifurcation e =
         locate(BifurcationType::BranchPoint, static_cast<int>(g.size()), g.front().a, g.front().b);
-    if (g.size() > 1) e.note = std::to_string(g.size()) + " multipliers cross +1 together";
+    if (g.size() > 1) e.note = together_note(e.type, static_cast<int>(g.size()));
     report(e);
   }
   for (const auto& g : clusters(minus)) {
     Bifurcation e = locate(BifurcationType::PeriodDoubling, static_cast<int>(g.size()), g.front().a,
                            g.front().b);
-    if (g.size() > 1) e.note = std::to_string(g.size()) + " multipliers cross -1 together";
+    if (g.size() > 1) e.note = together_note(e.type, static_cast<int>(g.size()));
     report(e);
   }
   for (const auto& g : clusters(complex)) {
     Bifurcation e = locate(BifurcationType::NeimarkSacker, static_cast<int>(g.size()), g.front().a,
                            g.front().b);
-    if (g.size() > 1) e.note = std::to_string(g.size()) + " complex pairs cross together";
+    if (g.size() > 1) e.note = together_note(e.type, static_cast<int>(g.size()));
     report(e);
   }
   std::stable_sort(found.begin(), found.end(),

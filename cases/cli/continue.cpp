@@ -27,6 +27,8 @@ int run_continue(const std::vector<std::string>& argv) {
        {"--csv", "FILE", false, "stream every point to this CSV"},
        {"--json", "FILE", false, "write the branch and its bifurcations as JSON"},
        {"--events", "FILE", false, "stream each bifurcation to this CSV as it is located"},
+       {"--whole-state", "", false,
+        "no symmetry reduction: integrate every metronome (for comparison)"},
        {"--quiet", "", false, "no progress lines"},
        {"--verbose", "", false, "multipliers on each progress line; the full report at the end"}});
   const auto integrator = integrator_options();
@@ -61,6 +63,7 @@ int run_continue(const std::vector<std::string>& argv) {
   o.max_points = args.integer("--max-points", o.max_points);
   o.orbit.shooting.flow = flow_options(args, o.orbit.shooting.flow);
   o.orbit.transient_flow.linear_solver = o.orbit.shooting.flow.linear_solver;
+  o.orbit.use_symmetry = !args.flag("--whole-state");
   check_options(o.validate(), "");
   std::vector<double> ends{request.from, request.to};
   if (request.at) ends.push_back(*request.at);

@@ -23,6 +23,8 @@ int run_orbit(const std::vector<std::string>& argv) {
                   {"--segments", "M", false, "shooting segments (default 1: single shooting)"},
                   {"--transient", "SECONDS", false, "integration before Newton (default 60)"},
                   {"--json", "FILE", false, "write the orbit as JSON"},
+                  {"--whole-state", "", false,
+                   "no symmetry reduction: integrate every metronome (for comparison)"},
                   {"--verbose", "", false, "the full report: Newton steps, integration work"}});
   const auto integrator = integrator_options();
   options.insert(options.end(), integrator.begin(), integrator.end());
@@ -42,6 +44,7 @@ int run_orbit(const std::vector<std::string>& argv) {
   o.transient = args.number("--transient", o.transient);
   o.shooting.flow = flow_options(args, o.shooting.flow);
   o.transient_flow.linear_solver = o.shooting.flow.linear_solver;
+  o.use_symmetry = !args.flag("--whole-state");
   check_options(o.validate(), "");
   if (auto path = args.value("--json")) {
     check_writable(*path, "--json");

@@ -8,6 +8,7 @@
 
 #include <complex>
 #include <functional>
+#include <string>
 #include <vector>
 
 #include "sympathy/continuation/multiplier_tracking.hpp"
@@ -18,6 +19,10 @@ namespace sympathy {
 // across at a and at b (zero for a fold).
 using Locator = std::function<Bifurcation(BifurcationType type, int multiplicity,
                                           std::complex<double> mu_a, std::complex<double> mu_b)>;
+
+// What an event's note says of multipliers that cross together ("3 complex pairs cross
+// together"); empty for one.
+std::string together_note(BifurcationType type, int multiplicity);
 
 // The events between a and b, located, in order along the branch.
 std::vector<Bifurcation> detect(const TrackedMultipliers& tracked, const ContinuationPoint& a,

@@ -16,6 +16,7 @@
 #include <optional>
 #include <string>
 
+#include "sympathy/continuation/branch.hpp"
 #include "sympathy/continuation/periodic_orbit.hpp"
 #include "sympathy/core/invariant_subspace.hpp"
 #include "sympathy/core/ode_system.hpp"
@@ -42,5 +43,16 @@ std::optional<SymmetryReduction> symmetry_reduction(const OdeSystem& system,
 // system in `subspace`: its state embedded, its breaking multipliers repeated.
 PeriodicOrbit lift(PeriodicOrbit reduced, const SymmetryReduction& reduction,
                    const InvariantSubspace& subspace, const FloquetOptions& options);
+
+// The same for a branch point, an event (a breaking crossing is N - 1 crossings at once: its
+// multiplicity times N - 1) and a whole branch computed in the reduction: states, unknowns,
+// tangents and sections embedded (each shooting segment's state; the period and the parameter
+// as they are), multipliers repeated, state names the whole system's.
+ContinuationPoint lift(ContinuationPoint reduced, const SymmetryReduction& reduction,
+                       const InvariantSubspace& subspace, const FloquetOptions& options);
+Bifurcation lift(Bifurcation reduced, const SymmetryReduction& reduction,
+                 const FloquetOptions& options);
+Branch lift(Branch reduced, const SymmetryReduction& reduction, const OdeSystem& system,
+            const InvariantSubspace& subspace);
 
 }  // namespace sympathy
