@@ -14,6 +14,7 @@
 #include <sstream>
 #include <tuple>
 
+#include "cases/cli/bench_identical.hpp"
 #include "cases/cli/commands.hpp"
 #include "cases/cli/common.hpp"
 #include "sympathy/continuation/continuation.hpp"
@@ -275,18 +276,19 @@ int run_bench(const std::vector<std::string>& argv) {
                  {{"--out", "DIR", false, "where bench.csv and bench.md go (default out/bench)"},
                   {"--quick", "", false, "fewer tolerances (for a smoke run)"},
                   {"--sections", "LIST", false,
-                   "which parts, e.g. abc (default abcde): (a)-(c) error against run time, "
-                   "(d) cost of a continuation point, (e) cost against the number of metronomes"}},
+                   "which parts, e.g. abc (default abcdeg): (a)-(c) error against run time, "
+                   "(d) cost of a continuation point, (e) cost against the number of metronomes, "
+                   "(g) identical metronomes in phase, reduced and whole"}},
                  {});
   Stopwatch clock;
   const std::string out = args.text("--out", "out/bench");
   std::filesystem::create_directories(out);
   const bool quick = args.flag("--quick");
-  const std::string sections = args.text("--sections", "abcde");
+  const std::string sections = args.text("--sections", "abcdeg");
   for (char ch : sections)
-    if (ch < 'a' || ch > 'e')
-      throw InputError("--sections: expected letters from a to e (e.g. abc), got '" + sections +
-                       "'");
+    if (ch < 'a' || ch > 'g' || ch == 'f')
+      throw InputError("--sections: expected letters from a to e and g (e.g. abc), got '" +
+                       sections + "'");
   auto want = [&](char section) { return sections.find(section) != std::string::npos; };
   const std::string root =
       std::filesystem::exists("cases/row2.toml") ? "" : SYMPATHY_SOURCE_DIR "/";
@@ -489,6 +491,7 @@ int run_bench(const std::vector<std::string>& argv) {
       }
     }
   }
+  if (want('g')) bench_identical(root, out, quick, md);
   std::ofstream(out + "/bench.md") << md.str();
   std::printf("wrote %s/bench.csv and %s/bench.md; run time %.1f s\n", out.c_str(), out.c_str(),
               clock.seconds());
