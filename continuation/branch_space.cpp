@@ -38,6 +38,10 @@ void BranchSpace::widen_scales(const Eigen::VectorXd& z0, const ParameterValues&
   for (int k = 1; k <= 100; ++k) times.push_back(period * k / 100.0);
   flow.sample(z0, p, 0.0, times,
               [&](double, const Eigen::VectorXd& z) { size = size.cwiseMax(z.cwiseAbs()); });
+  include_sizes(size);
+}
+
+void BranchSpace::include_sizes(const Eigen::VectorXd& size) {
   sizes_ = sizes_.size() ? Eigen::VectorXd(sizes_.cwiseMax(size)) : size;
   const double floor = std::max(1e-3 * sizes_.maxCoeff(), 1e-12);
   for (int j = 0; j < m_; ++j)

@@ -139,6 +139,13 @@ std::optional<ContinuationPoint> Continuation::point_at(const ContinuationPoint&
 Branch Continuation::run(const PeriodicOrbit& start, int direction,
                          const ContinuationCallbacks& callbacks,
                          const Eigen::VectorXd& initial_tangent) {
+  return run_from(start, direction, callbacks, initial_tangent, Eigen::VectorXd());
+}
+
+Branch Continuation::run_from(const PeriodicOrbit& start, int direction,
+                              const ContinuationCallbacks& callbacks,
+                              const Eigen::VectorXd& initial_tangent,
+                              const Eigen::VectorXd& sizes) {
   const Stopwatch started;
   Branch branch;
   branch.parameter_name = system_.parameter_names()[parameter_];
@@ -165,6 +172,7 @@ Branch Continuation::run(const PeriodicOrbit& start, int direction,
   const BranchSpace& space = *space_;
   try {
     space_->reset_scales(start.state0, start.period, options_.orbit.transient_flow);
+    if (sizes.size()) space_->include_sizes(sizes);
   } catch (const IntegrationError& e) {
     return finish(StopReason::StartFailed,
                   std::string("the starting orbit cannot be integrated: ") + e.what());

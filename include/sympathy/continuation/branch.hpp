@@ -117,6 +117,8 @@ struct Branch {
   // What made it: the options (bounds included) and the parameter values it started from.
   ContinuationOptions options;
   ParameterValues start_values;
+  // Where it was born, for a switched branch ("BP at k = 47.0655622538"); empty otherwise.
+  std::string origin;
   // Whether the run had a starting orbit (false: stop is StartFailed, and nothing was continued).
   bool started() const { return stop != StopReason::StartFailed; }
 };

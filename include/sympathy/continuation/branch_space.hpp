@@ -33,6 +33,11 @@ class BranchSpace {
   void widen_scales(const Eigen::VectorXd& z0, const ParameterValues& p, double period,
                     const FlowOptions& flow);
 
+  // Widens the state scales to at least `size` (per state component): a switched branch's new
+  // direction, which the orbit it starts from does not show.
+  void include_sizes(const Eigen::VectorXd& size);
+  const Eigen::VectorXd& sizes() const { return sizes_; }
+
   double dot(const Eigen::VectorXd& u, const Eigen::VectorXd& v) const;
   const Eigen::VectorXd& weights() const { return weights_; }
   // The row <tau, .> of the arclength condition in the scaled norm.

@@ -25,6 +25,8 @@
 
 namespace sympathy {
 
+struct SwitchStart;  // branch_switching.hpp
+
 struct ContinuationCallbacks {
   std::function<void(const ContinuationPoint&)> on_point;  // each point as it is accepted
   std::function<void(const Bifurcation&)> on_event;        // each bifurcation as it is located
@@ -43,12 +45,25 @@ class Continuation {
   Branch run(const PeriodicOrbit& start, int direction, const ContinuationCallbacks& callbacks = {},
              const Eigen::VectorXd& initial_tangent = Eigen::VectorXd());
 
+  // Branch switching (branch_switching.cpp, used by switch_branch): from `base`, an orbit at a
+  // branch point (of period 2T at a period doubling), along the direction in the null space of
+  // [F_x F_p] there nearest to `critical` (unknowns and parameter, unscaled), orthogonal to
+  // `old_tangent` (or, if that is empty, with no parameter component); one step corrected each
+  // way, and the branch continued away from the event from each. `start` receives the direction
+  // and the checks of the first steps.
+  Branch run_switched(const PeriodicOrbit& base, const Eigen::VectorXd& critical,
+                      const Eigen::VectorXd& old_tangent, const ContinuationCallbacks& callbacks,
+                      SwitchStart& start);
+
   const ContinuationOptions& options() const { return options_; }
 
  private:
   // The run's pieces, each in its own file: BranchSpace (scaled norm, tangents), correct
   // (corrector.hpp), predict (predictor.hpp), track (multiplier_tracking.hpp), detect
   // (detection.hpp), locate (location.hpp), step control (step_control.hpp).
+  // run(), with the state scales widened to at least `sizes` (if not empty).
+  Branch run_from(const PeriodicOrbit& start, int direction, const ContinuationCallbacks& callbacks,
+                  const Eigen::VectorXd& initial_tangent, const Eigen::VectorXd& sizes);
   Correction correct_step(const Eigen::VectorXd& from, const Eigen::VectorXd& tangent, double step,
                           const Eigen::VectorXd& guess,
                           const Eigen::SparseMatrix<double>* chord) const;

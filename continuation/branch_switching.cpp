@@ -1,0 +1,292 @@
+#include "sympathy/continuation/branch_switching.hpp"
+
+#include <algorithm>
+#include <cmath>
+#include <complex>
+#include <stdexcept>
+
+#include <Eigen/Eigenvalues>
+#include <Eigen/SVD>
+
+#include "sympathy/core/csv.hpp"
+#include "sympathy/core/text.hpp"
+
+namespace sympathy {
+
+namespace {
+
+// The unit vector of span(basis) (orthonormal columns) nearest to c, orthogonal to a (both in the
+// same coordinates; a may be empty).
+Eigen::VectorXd nearest_in_span(const Eigen::MatrixXd& basis, const Eigen::VectorXd& c,
+                                const Eigen::VectorXd& a) {
+  Eigen::MatrixXd k = basis;
+  if (a.size()) {
+    // The span's part orthogonal to a's projection onto it: one dimension less.
+    Eigen::VectorXd pa = k * (k.transpose() * a);
+    if (pa.norm() > 1e-12 * a.norm()) {
+      pa.normalize();
+      k -= pa * (pa.transpose() * k);
+      // An orthonormal basis of what is left (rank one less).
+      Eigen::JacobiSVD<Eigen::MatrixXd> svd(k, Eigen::ComputeThinU);
+      k = svd.matrixU().leftCols(basis.cols() - 1);
+    }
+  }
+  Eigen::VectorXd v = k * (k.transpose() * c);
+  if (v.norm() < 1e-12 * c.norm())
+    throw std::runtime_error(
+        "branch switching: the critical direction has no component along the new branch's "
+        "directions (not a simple branch point?)");
+  return v.normalized();
+}
+
+// Product of the segment transition matrices: the monodromy.
+Eigen::MatrixXd monodromy(const std::vector<Eigen::MatrixXd>& segments) {
+  Eigen::MatrixXd m = segments.front();
+  for (std::size_t j = 1; j < segments.size(); ++j) m = segments[j] * m;
+  return m;
+}
+
+// The eigenvector of M for the real eigenvalue nearest `target` (+1 or -1) that is farthest from
+// f (the trivial direction, whose multiplier 1 sits beside a BP's) and, where `across` (the
+// complement of the orbit's subspace, columns) is given, has the largest part across it.
+Eigen::VectorXd critical_eigenvector(const Eigen::MatrixXd& m, double target,
+                                     const Eigen::VectorXd& f, const Eigen::MatrixXd& across) {
+  const Eigen::EigenSolver<Eigen::MatrixXd> eig(m);
+  const int n = static_cast<int>(m.rows());
+  // The two eigenvalues nearest the target (a BP's and the trivial one near +1).
+  std::vector<int> order(n);
+  for (int i = 0; i < n; ++i) order[i] = i;
+  std::sort(order.begin(), order.end(), [&](int a, int b) {
+    return std::abs(eig.eigenvalues()[a] - target) < std::abs(eig.eigenvalues()[b] - target);
+  });
+  const Eigen::VectorXd fn = f.size() ? Eigen::VectorXd(f.normalized()) : Eigen::VectorXd();
+  Eigen::VectorXd best;
+  double best_score = -1.0;
+  for (int k = 0; k < std::min(n, 2); ++k) {
+    Eigen::VectorXd v = eig.eigenvectors().col(order[k]).real();
+    if (v.norm() == 0.0) v = eig.eigenvectors().col(order[k]).imag();
+    v.normalize();
+    if (fn.size()) v -= fn * fn.dot(v);  // the trivial direction's part out
+    if (across.cols()) v = across * (across.transpose() * v);
+    const double score = v.norm();
+    if (score > best_score) {
+      best_score = score;
+      best = v;
+    }
+  }
+  if (!(best_score > 1e-6))
+    throw std::runtime_error(
+        "branch switching: no critical eigenvector apart from the trivial one");
+  return best.normalized();
+}
+
+}  // namespace
+
+Branch Continuation::run_switched(const PeriodicOrbit& base, const Eigen::VectorXd& critical,
+                                  const Eigen::VectorXd& old_tangent,
+                                  const ContinuationCallbacks& callbacks, SwitchStart& start) {
+  const int N = problem_->unknowns();
+  system_.check_parameters(base.parameters);
+  subspace_ = base.subspace;
+  space_ = std::make_unique<BranchSpace>(system_, *problem_, parameter_, base.parameters,
+                                         options_.upper - options_.lower,
+                                         options_.orbit.newton.rank_tolerance);
+  space_->reset_scales(base.state0, base.period, options_.orbit.transient_flow);
+  // The new direction has the size of the orbit: the orbit at the event does not show it (a
+  // component that is zero there, the platform of an anti-phase orbit) and its scale would be the
+  // floor, 1e-3 of the largest, making the first steps a thousand times too short.
+  const int n = problem_->dimension();
+  Eigen::VectorXd sizes = critical.head(n).cwiseAbs();
+  if (sizes.maxCoeff() > 0.0) sizes *= space_->sizes().maxCoeff() / sizes.maxCoeff();
+  space_->include_sizes(sizes);
+  const BranchSpace& space = *space_;
+  const double p0 = system_.parameter(base.parameters, parameter_);
+  problem_->set_phase_section(base.state0, space.section_normal(base.state0, p0));
+  Eigen::VectorXd y0(N + 1);
+  y0.head(N) = problem_->unknowns_from(base.state0, base.parameters, base.period);
+  y0[N] = p0;
+  const auto e = problem_->evaluate(y0.head(N), base.parameters, true, parameter_);
+  family_dimension_ = base.family_dimension;
+
+  // The null space of [F_x F_p] in the scaled norm: the right singular vectors of J W^-1 with the
+  // smallest singular values, two (the old branch and the new) plus the family's.
+  const Eigen::VectorXd w = space.weights();
+  const Eigen::MatrixXd scaled =
+      Eigen::MatrixXd(problem_->jacobian(e, true)) * w.cwiseInverse().asDiagonal();
+  const Eigen::JacobiSVD<Eigen::MatrixXd> svd(scaled, Eigen::ComputeFullV);
+  const int k = std::min(N + 1, 2 + base.family_dimension);
+  const Eigen::MatrixXd kernel = svd.matrixV().rightCols(k);
+  // The constraint: orthogonal to the old tangent, or no parameter component.
+  const Eigen::VectorXd a = old_tangent.size() == N + 1
+                                ? Eigen::VectorXd(w.asDiagonal() * old_tangent)
+                                : Eigen::VectorXd(Eigen::VectorXd::Unit(N + 1, N));
+  Eigen::VectorXd tau = nearest_in_span(kernel, w.asDiagonal() * critical, a);
+  tau = w.cwiseInverse().asDiagonal() * tau;  // unit in the scaled norm
+  start.direction = tau;
+
+  // One step each way along it, halved until it corrects. The event itself, where the Jacobian
+  // is singular, is never a point of the new branch: it lies between the two first points.
+  auto step_off = [&](double sign) {
+    double h = options_.initial_step;
+    Correction c;
+    for (int tries = 0; tries < 6; ++tries, h *= 0.5) {
+      c = correct_step(y0, sign * tau, h, y0 + sign * h * tau, nullptr);
+      if (c.converged) break;
+    }
+    if (!c.converged)
+      throw std::runtime_error("branch switching: no step off the event could be corrected: " +
+                               c.reason);
+    start.off_event = std::max(start.off_event, std::sqrt(space.dot(c.y - y0, c.y - y0)));
+    if (old_tangent.size() == N + 1) {
+      const double old_norm = std::sqrt(space.dot(old_tangent, old_tangent));
+      const double along_old = std::abs(space.dot(old_tangent, c.y - y0)) / (old_norm * h);
+      start.old_branch_component = std::max(start.old_branch_component, along_old);
+      // On the new branch the step is along tau, and the old branch is left at O(h^2): a step
+      // that moved as far along the old branch as along the new one went back onto it.
+      if (along_old > 0.5)
+        throw std::runtime_error(
+            "branch switching: the step off the event went back onto the branch it started on "
+            "(its component along the old tangent is " +
+            format_double(along_old) + " of the step)");
+    }
+    return make_point(c, sign * tau, 0, h).orbit;
+  };
+  const PeriodicOrbit ahead = step_off(+1.0), behind = step_off(-1.0);
+  // The event itself, as the joined branch's point 0: where both halves start.
+  Correction at_event;
+  at_event.converged = true;
+  at_event.y = y0;
+  at_event.evaluation = e;
+  at_event.residual = e.residual.cwiseAbs().maxCoeff();
+  ContinuationPoint event_point = make_point(at_event, tau, 0, 0.0);
+  event_point.orbit.newton.reason = "the event the branch was born at";
+
+  // Away from the event from each: the run from `behind` is the joined branch's backward part.
+  int sign = +1;
+  ContinuationCallbacks inner;
+  inner.stop_requested = callbacks.stop_requested;
+  // Numbered from the event (0): 1, 2, ... away from it on one side, -1, -2, ... on the other.
+  auto joined_index = [&](int index) { return sign * (index + 1); };
+  auto joined_after = [&](int after) { return sign > 0 ? after + 1 : -(after + 2); };
+  if (callbacks.on_point) callbacks.on_point(event_point);
+  inner.on_point = [&](const ContinuationPoint& p) {
+    if (!callbacks.on_point) return;
+    ContinuationPoint q = p;
+    q.index = joined_index(p.index);
+    callbacks.on_point(q);
+  };
+  inner.on_event = [&](const Bifurcation& event) {
+    if (!callbacks.on_event) return;
+    Bifurcation b = event;
+    b.after_point = joined_after(event.after_point);
+    callbacks.on_event(b);
+  };
+  const Eigen::VectorXd widened = space.sizes();
+  const int toward = tau[N] >= 0.0 ? +1 : -1;
+  Branch away = run_from(ahead, toward, inner, tau, widened);
+  if (callbacks.stop_requested && callbacks.stop_requested()) return away;
+  sign = -1;
+  Branch back = run_from(behind, -toward, inner, -tau, widened);
+  // Joined: back's points reversed, the event, away's points.
+  Branch joined = std::move(away);
+  std::vector<ContinuationPoint> points;
+  for (auto it = back.points.rbegin(); it != back.points.rend(); ++it) {
+    it->index = joined_index(it->index);
+    points.push_back(std::move(*it));
+  }
+  points.push_back(std::move(event_point));
+  sign = +1;
+  for (auto& p : joined.points) {
+    p.index = joined_index(p.index);
+    points.push_back(std::move(p));
+  }
+  joined.points = std::move(points);
+  for (auto& ev : joined.events) ev.after_point = joined_after(ev.after_point);
+  sign = -1;
+  for (auto& ev : back.events) {
+    ev.after_point = joined_after(ev.after_point);
+    joined.events.push_back(std::move(ev));
+  }
+  order_events(joined.events);
+  joined.backward_stop = back.stop;
+  joined.stop_reason = "backward: " + back.stop_reason + "; forward: " + joined.stop_reason;
+  joined.rejected += back.rejected;
+  joined.flow += back.flow;
+  joined.seconds += back.seconds;
+  return joined;
+}
+
+Branch switch_branch(const OdeSystem& system, const Branch& branch, const Bifurcation& event,
+                     const ContinuationOptions& options, const ContinuationCallbacks& callbacks,
+                     SwitchStart* start) {
+  const bool doubling = event.type == BifurcationType::PeriodDoubling;
+  if (event.type != BifurcationType::BranchPoint && !doubling)
+    throw std::invalid_argument(
+        "branch switching: at a branch point (BP) or a period doubling "
+        "(PD), not at a " +
+        describe(event.type) + " (" + to_string(event.type) + ")");
+  if (!event.located())
+    throw std::invalid_argument("branch switching: the " + to_string(event.type) + " at " +
+                                branch.parameter_name + " = " + format_double(event.parameter) +
+                                " was not located (" + to_string(event.location) + ")");
+  if (branch.parameter < 0 || branch.start_values.size() != system.parameter_values_size())
+    throw std::invalid_argument("branch switching: the branch is not one of this system");
+  SwitchStart s;
+  const ParameterValues values =
+      system.with_parameter(branch.start_values, branch.parameter, event.parameter);
+  // The orbit's subspace and family, from the branch point before the event.
+  PeriodicOrbit base;
+  base.parameters = values;
+  base.state0 = event.state0;
+  base.period = event.period;
+  base.segments = options.orbit.shooting.segments;
+  for (const auto& p : branch.points)
+    if (p.index == event.after_point) {
+      base.family_dimension = p.orbit.family_dimension;
+      base.subspace = p.orbit.subspace;
+    }
+
+  // The critical eigenvector from the monodromy at the event.
+  ShootingProblem problem(system, options.orbit.shooting);
+  problem.set_phase_reference(event.state0, values);
+  const auto e =
+      problem.evaluate(problem.unknowns_from(event.state0, values, event.period), values, true);
+  const Eigen::VectorXd f = system.rhs(0.0, event.state0, values);
+  const Eigen::MatrixXd across =
+      event.symmetry == SymmetryKind::Breaking && !base.subspace.is_whole_space()
+          ? base.subspace.bases(system.dimension()).across
+          : Eigen::MatrixXd();
+  s.critical = critical_eigenvector(monodromy(e.transitions), doubling ? -1.0 : 1.0, f, across);
+
+  // The new branch breaks the subspace's symmetry (BP of a breaking multiplier) or doubles the
+  // period (PD): it is continued in the whole space.
+  if (event.symmetry == SymmetryKind::Breaking || doubling) base.subspace = InvariantSubspace();
+  if (doubling) base.period *= 2.0;
+
+  Continuation continuation(system, branch.parameter, options);
+  // The critical direction in the unknowns: each segment's state carries it along the orbit
+  // (the segments of the new problem: of the doubled period for a PD).
+  ShootingProblem base_problem(system, options.orbit.shooting);
+  base_problem.set_phase_reference(base.state0, values);
+  const Eigen::VectorXd x = base_problem.unknowns_from(base.state0, values, base.period);
+  const auto eb = base_problem.evaluate(x, values, true);
+  const int n = system.dimension(), m = base_problem.segments();
+  Eigen::VectorXd critical = Eigen::VectorXd::Zero(base_problem.unknowns() + 1);
+  Eigen::VectorXd v = s.critical;
+  for (int j = 0; j < m; ++j) {
+    critical.segment(j * n, n) = v;
+    v = eb.transitions[j] * v;
+  }
+  // The old tangent (BP: the same unknowns; PD: unknown in the doubled ones, see run_switched).
+  const Eigen::VectorXd old_tangent = doubling ? Eigen::VectorXd() : event.tangent;
+  base.floquet = FloquetAnalysis();
+  base.newton.converged = true;
+  Branch born = continuation.run_switched(base, critical, old_tangent, callbacks, s);
+  born.origin = to_string(event.type) + " at " + branch.parameter_name + " = " +
+                format_double(event.parameter) + (doubling ? " (period doubled)" : "");
+  s.base = base;
+  if (start) *start = s;
+  return born;
+}
+
+}  // namespace sympathy
