@@ -3,6 +3,7 @@
 #include <algorithm>
 #include <cmath>
 #include <complex>
+#include <random>
 #include <stdexcept>
 
 #include <Eigen/Eigenvalues>
@@ -84,7 +85,8 @@ Eigen::VectorXd critical_eigenvector(const Eigen::MatrixXd& m, double target,
 
 Branch Continuation::run_switched(const PeriodicOrbit& base, const Eigen::VectorXd& critical,
                                   const Eigen::VectorXd& old_tangent,
-                                  const ContinuationCallbacks& callbacks, SwitchStart& start) {
+                                  const ContinuationCallbacks& callbacks, SwitchStart& start,
+                                  const Eigen::MatrixXd& mirror) {
   const int N = problem_->unknowns();
   system_.check_parameters(base.parameters);
   subspace_ = base.subspace;
@@ -151,7 +153,9 @@ Branch Continuation::run_switched(const PeriodicOrbit& base, const Eigen::Vector
     }
     return make_point(c, sign * tau, 0, h).orbit;
   };
-  const PeriodicOrbit ahead = step_off(+1.0), behind = step_off(-1.0);
+  const PeriodicOrbit ahead = step_off(+1.0);
+  // With a mirror the other half is not computed but reflected (below).
+  const PeriodicOrbit behind = mirror.size() ? ahead : step_off(-1.0);
   // The event itself, as the joined branch's point 0: where both halves start.
   Correction at_event;
   at_event.converged = true;
@@ -186,7 +190,37 @@ Branch Continuation::run_switched(const PeriodicOrbit& base, const Eigen::Vector
   Branch away = run_from(ahead, toward, inner, tau, widened);
   if (callbacks.stop_requested && callbacks.stop_requested()) return away;
   sign = -1;
-  Branch back = run_from(behind, -toward, inner, -tau, widened);
+  Branch back;
+  if (mirror.size()) {
+    // The other half is this one reflected: every state, segment, tangent and section mapped by
+    // the reflection, the period and the parameter as they are, the multipliers the same.
+    back = away;
+    const int m = problem_->segments();
+    auto reflect = [&](Eigen::VectorXd y) {
+      for (int j = 0; j < m && y.size() >= (j + 1) * n; ++j)
+        y.segment(j * n, n) = mirror * y.segment(j * n, n);
+      return y;
+    };
+    for (auto& p : back.points) {
+      p.orbit.state0 = mirror * p.orbit.state0;
+      p.unknowns = reflect(p.unknowns);
+      p.tangent = reflect(p.tangent);
+      if (p.section.size() == n) p.section = mirror * p.section;
+      if (p.section_normal.size() == n) p.section_normal = mirror * p.section_normal;
+      inner.on_point(p);
+    }
+    for (auto& ev : back.events) {
+      ev.state0 = mirror * ev.state0;
+      ev.unknowns = reflect(ev.unknowns);
+      ev.tangent = reflect(ev.tangent);
+      ev.note += std::string(ev.note.empty() ? "" : "; ") + "the mirror image of the other half's";
+      inner.on_event(ev);
+    }
+    back.flow = FlowStatistics{};
+    back.seconds = 0.0;
+  } else {
+    back = run_from(behind, -toward, inner, -tau, widened);
+  }
   // Joined: back's points reversed, the event, away's points.
   Branch joined = std::move(away);
   std::vector<ContinuationPoint> points;
@@ -258,6 +292,32 @@ Branch switch_branch(const OdeSystem& system, const Branch& branch, const Bifurc
           : Eigen::MatrixXd();
   s.critical = critical_eigenvector(monodromy(e.transitions), doubling ? -1.0 : 1.0, f, across);
 
+  // A pitchfork out of a subspace whose reflection R = 2P - I (P the orthogonal projection onto
+  // it) is a symmetry of f (f(R z) = R f(z), checked at sample states to 1e-12 relative): the two
+  // halves of the new branch are each other's images (R v = -v for the breaking eigenvector), so
+  // the second is the first reflected, not computed again. Anti-phase x = 0, th2 = -th1 is the
+  // fixed space of R (x, th1, th2) = (-x, -th2, -th1).
+  Eigen::MatrixXd mirror;
+  if (event.symmetry == SymmetryKind::Breaking && !base.subspace.is_whole_space() && !doubling) {
+    const int n = system.dimension();
+    const auto bases = base.subspace.bases(n);
+    const Eigen::MatrixXd r =
+        2.0 * bases.inside * bases.inside.transpose() - Eigen::MatrixXd::Identity(n, n);
+    double defect = 0.0;
+    Eigen::VectorXd scale =
+        event.state0.cwiseAbs().cwiseMax(1e-3 * event.state0.cwiseAbs().maxCoeff());
+    std::mt19937 rng(3);
+    std::uniform_real_distribution<double> u(-1.0, 1.0);
+    for (int trial = 0; trial < 3; ++trial) {
+      Eigen::VectorXd z(n);
+      for (int i = 0; i < n; ++i) z[i] = scale[i] * u(rng);
+      const Eigen::VectorXd fz = system.rhs(0.0, z, values);
+      defect = std::max(defect, (system.rhs(0.0, r * z, values) - r * fz).cwiseAbs().maxCoeff() /
+                                    std::max(fz.cwiseAbs().maxCoeff(), 1e-300));
+    }
+    if (defect < 1e-12) mirror = r;
+  }
+
   // The new branch breaks the subspace's symmetry (BP of a breaking multiplier) or doubles the
   // period (PD): it is continued in the whole space.
   if (event.symmetry == SymmetryKind::Breaking || doubling) base.subspace = InvariantSubspace();
@@ -281,7 +341,7 @@ Branch switch_branch(const OdeSystem& system, const Branch& branch, const Bifurc
   const Eigen::VectorXd old_tangent = doubling ? Eigen::VectorXd() : event.tangent;
   base.floquet = FloquetAnalysis();
   base.newton.converged = true;
-  Branch born = continuation.run_switched(base, critical, old_tangent, callbacks, s);
+  Branch born = continuation.run_switched(base, critical, old_tangent, callbacks, s, mirror);
   born.origin = to_string(event.type) + " at " + branch.parameter_name + " = " +
                 format_double(event.parameter) + (doubling ? " (period doubled)" : "");
   s.base = base;

@@ -1,9 +1,13 @@
 #include "cases/cli/branch_run.hpp"
 
+#include <algorithm>
+#include <map>
 #include <memory>
 
 #include "sympathy/cases/metronome_describer.hpp"
 #include "sympathy/continuation/branch_output.hpp"
+#include "sympathy/continuation/branch_switching.hpp"
+#include "sympathy/core/csv.hpp"
 
 namespace sympathy::cli {
 
@@ -56,10 +60,93 @@ Branch run_branch(const LoadedCase& c, const MetronomeModel& model, const Branch
                    e.note.empty() ? "" : ": ", e.note.c_str());
   };
   callbacks.stop_requested = [&] { return stop && stop->load(); };
-  Branch branch = continue_branch(model, problem, request.continuation, callbacks, &describer);
+  if (request.switch_at.empty()) {
+    Branch branch = continue_branch(model, problem, request.continuation, callbacks, &describer);
+    if (csv) csv->close();
+    if (events) events->close();
+    return branch;
+  }
+
+  // The branch asked for, with its progress only; then the one born at the named event.
+  const EventName name = parse_event_name(request.switch_at, "--switch-at");
+  ContinuationCallbacks parent_callbacks;
+  parent_callbacks.stop_requested = callbacks.stop_requested;
+  if (request.progress) {
+    parent_callbacks.on_point = [&](const ContinuationPoint& p) {
+      std::fprintf(request.progress, "  (parent %4d) %s = %-14.9g T = %.9f s  %s\n", p.index,
+                   request.parameter.c_str(), p.parameter, p.orbit.period,
+                   to_string(p.orbit.floquet.stability).c_str());
+    };
+    parent_callbacks.on_event = [&](const Bifurcation& e) {
+      std::fprintf(request.progress, "  (parent) >> %s at %s = %.10g\n", to_string(e.type).c_str(),
+                   request.parameter.c_str(), e.parameter);
+    };
+  }
+  const Branch parent = continue_branch(model, problem, request.continuation, parent_callbacks);
+  if (!parent.started()) return parent;
+  if (stop && stop->load()) return parent;
+  const Bifurcation& event = find_event(parent, name, "--switch-at");
+  if (request.progress)
+    std::fprintf(request.progress, "  switching at %s: %s = %.10g\n", name.text.c_str(),
+                 request.parameter.c_str(), event.parameter);
+  ContinuationCallbacks born_callbacks = callbacks;
+  born_callbacks.on_point = [&](const ContinuationPoint& p) {
+    ContinuationPoint q = p;
+    q.description = describer.describe(q.orbit);
+    callbacks.on_point(q);
+  };
+  ContinuationOptions window = request.continuation;
+  window.lower = std::min(request.from, request.to);
+  window.upper = std::max(request.from, request.to);
+  Branch born;
+  try {
+    born = switch_branch(model, parent, event, window, born_callbacks);
+  } catch (const std::runtime_error& e) {
+    born.parameter_name = parent.parameter_name;
+    born.parameter = parent.parameter;
+    born.state_names = parent.state_names;
+    born.stop = StopReason::StartFailed;
+    born.stop_reason = std::string("no branch born at ") + name.text + ": " + e.what();
+  }
+  for (auto& p : born.points) p.description = describer.describe(p.orbit);
+  born.flow += parent.flow;
   if (csv) csv->close();
   if (events) events->close();
-  return branch;
+  return born;
+}
+
+EventName parse_event_name(const std::string& text, const std::string& option) {
+  EventName name;
+  name.text = text;
+  const std::string kind = text.substr(0, 2);
+  const std::string number = text.size() > 2 ? text.substr(2) : "";
+  const bool digits = !number.empty() && number.size() < 9 &&
+                      number.find_first_not_of("0123456789") == std::string::npos;
+  if (kind != "BP" && kind != "PD")
+    throw InputError(option + " " + text +
+                     ": expected a branch point or period doubling, BP or PD followed by its "
+                     "number along the branch (e.g. BP1): only there is a branch born");
+  if (!digits || std::stoi(number) < 1)
+    throw InputError(option + " " + text + ": expected " + kind +
+                     " followed by a positive number (e.g. " + kind + "1)");
+  name.type = kind == "BP" ? BifurcationType::BranchPoint : BifurcationType::PeriodDoubling;
+  name.ordinal = std::stoi(number);
+  return name;
+}
+
+const Bifurcation& find_event(const Branch& branch, const EventName& name,
+                              const std::string& option) {
+  int seen = 0;
+  std::string list;
+  std::map<std::string, int> counts;
+  for (const auto& e : branch.events) {
+    const std::string type = to_string(e.type);
+    list += (list.empty() ? "" : ", ") + type + std::to_string(++counts[type]) + " at " +
+            format_double(e.parameter);
+    if (e.type == name.type && ++seen == name.ordinal) return e;
+  }
+  throw InputError(option + " " + name.text + ": the branch has no such event; it has " +
+                   (list.empty() ? std::string("none") : list));
 }
 
 void print_events(std::FILE* out, const Branch& branch) {

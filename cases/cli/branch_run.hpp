@@ -27,7 +27,23 @@ struct BranchRequest {
   ContinuationOptions continuation;  // bounds are set from from/to
   std::FILE* progress = stderr;      // nullptr: quiet
   bool verbose = false;              // multipliers on each progress line
+  // "BP1", "PD2": continue the branch born at that event of the branch asked for instead (its
+  // points and events are what the CSV, the events file and the result hold).
+  std::string switch_at;
 };
+
+// The event a name like "BP1" (type, then its 1-based number among the branch's events of that
+// type) picks. parse_event_name checks the name before any work: InputError naming `option`
+// unless it is BP or PD (the events a branch can be switched at) and a positive number.
+struct EventName {
+  BifurcationType type = BifurcationType::BranchPoint;
+  int ordinal = 1;
+  std::string text;
+};
+EventName parse_event_name(const std::string& text, const std::string& option);
+// The event of `branch` so named; InputError listing the branch's events if there is none.
+const Bifurcation& find_event(const Branch& branch, const EventName& name,
+                              const std::string& option);
 
 // Runs the branch; the model must be built from `c.spec`. Throws InputError for a request that
 // does not fit the case, OutputError when the CSV cannot be written.

@@ -27,6 +27,8 @@ int run_continue(const std::vector<std::string>& argv) {
        {"--csv", "FILE", false, "stream every point to this CSV"},
        {"--json", "FILE", false, "write the branch and its bifurcations as JSON"},
        {"--events", "FILE", false, "stream each bifurcation to this CSV as it is located"},
+       {"--switch-at", "EVENT", false,
+        "continue the branch born at this event instead (BP1, PD1, ...: the first BP, ...)"},
        {"--whole-state", "", false,
         "no symmetry reduction: integrate every metronome (for comparison)"},
        {"--quiet", "", false, "no progress lines"},
@@ -52,6 +54,8 @@ int run_continue(const std::vector<std::string>& argv) {
   if (args.has("--at")) request.at = args.number("--at", 0.0);
   request.initial = args.assignments("--initial");
   request.csv_path = args.text("--csv", "");
+  request.switch_at = args.text("--switch-at", "");
+  if (!request.switch_at.empty()) parse_event_name(request.switch_at, "--switch-at");
 
   if (args.flag("--quiet")) request.progress = nullptr;
   request.verbose = args.flag("--verbose");
@@ -94,6 +98,8 @@ int run_continue(const std::vector<std::string>& argv) {
       "multipliers, %d location\n",
       branch.points.size(), branch.stop_reason.c_str(), rj.corrector, rj.turn, rj.multipliers,
       rj.location);
+  if (!branch.origin.empty())
+    std::printf("  born at the parent branch's %s\n", branch.origin.c_str());
   std::printf("bifurcations:\n");
   print_events(stdout, branch);
   if (request.verbose) print_flow_statistics(stdout, branch.flow);

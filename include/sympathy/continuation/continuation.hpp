@@ -50,10 +50,11 @@ class Continuation {
   // [F_x F_p] there nearest to `critical` (unknowns and parameter, unscaled), orthogonal to
   // `old_tangent` (or, if that is empty, with no parameter component); one step corrected each
   // way, and the branch continued away from the event from each. `start` receives the direction
-  // and the checks of the first steps.
+  // and the checks of the first steps. `mirror` (if not empty): a symmetry of f that maps one
+  // half of the new branch onto the other, which is then reflected rather than computed.
   Branch run_switched(const PeriodicOrbit& base, const Eigen::VectorXd& critical,
                       const Eigen::VectorXd& old_tangent, const ContinuationCallbacks& callbacks,
-                      SwitchStart& start);
+                      SwitchStart& start, const Eigen::MatrixXd& mirror = Eigen::MatrixXd());
 
   const ContinuationOptions& options() const { return options_; }
 
