@@ -200,7 +200,11 @@ Branch Continuation::run_from(const PeriodicOrbit& start, int direction,
       rank_deficiency(problem_->jacobian(c0.evaluation), options_.orbit.newton.rank_tolerance);
   Eigen::VectorXd tau;
   if (initial_tangent.size() == N + 1) {
-    tau = initial_tangent / std::sqrt(space.dot(initial_tangent, initial_tangent));
+    // The start's own tangent, oriented along the one given: a switched branch starts a step off
+    // its event, where the given direction (the event's) is only first-order right, and its
+    // parameter component, zero at a pitchfork, must have the sign the branch really has there
+    // (else the next point's sign change is taken for a fold).
+    tau = space.tangent(problem_->jacobian(c0.evaluation, true), c0.y, initial_tangent);
   } else {
     tau = space.tangent(problem_->jacobian(c0.evaluation, true), c0.y, direction * along_parameter);
   }

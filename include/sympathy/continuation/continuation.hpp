@@ -41,7 +41,7 @@ class Continuation {
 
   // Continues from `start` (an orbit, at its own parameter values; the other parameters keep
   // them along the branch) in the direction of increasing (+1) or decreasing (-1) parameter.
-  // When `initial_tangent` is given (branch switching), it is the first direction instead.
+  // When `initial_tangent` is given (branch switching), it orients the first tangent instead.
   Branch run(const PeriodicOrbit& start, int direction, const ContinuationCallbacks& callbacks = {},
              const Eigen::VectorXd& initial_tangent = Eigen::VectorXd());
 
