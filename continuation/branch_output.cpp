@@ -92,6 +92,7 @@ nlohmann::json branch_json(const Branch& branch, const OrbitDescriber* describer
   nlohmann::json j;
   j["parameter"] = branch.parameter_name;
   j["stop_reason"] = branch.stop_reason;
+  if (!branch.origin.empty()) j["origin"] = branch.origin;  // a switched branch: its event
   j["stop"] = to_string(branch.stop);
   j["state_names"] = branch.state_names;
   const auto layout = describer ? describer->layout() : std::vector<OrbitDescriber::Group>{};
