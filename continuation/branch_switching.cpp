@@ -128,30 +128,37 @@ Branch Continuation::run_switched(const PeriodicOrbit& base, const Eigen::Vector
 
   // One step each way along it, halved until it corrects. The event itself, where the Jacobian
   // is singular, is never a point of the new branch: it lies between the two first points.
+  // Along the new branch the old one is left at O(h^2): the step's component along the old
+  // tangent, over h, is the new branch's curvature times h (a pitchfork's p - p_0 = c s^2), and
+  // falls as h does; a corrector that went back onto the old branch instead moved along it by
+  // O(sqrt(h)), which grows relative to h as h falls. So a step with more than half of itself
+  // along the old tangent is retried at half the length, and refused when that does not help.
   auto step_off = [&](double sign) {
+    const double old_norm =
+        old_tangent.size() == N + 1 ? std::sqrt(space.dot(old_tangent, old_tangent)) : 0.0;
     double h = options_.initial_step;
-    Correction c;
-    for (int tries = 0; tries < 6; ++tries, h *= 0.5) {
-      c = correct_step(y0, sign * tau, h, y0 + sign * h * tau, nullptr);
-      if (c.converged) break;
+    std::string why;
+    for (int tries = 0; tries < 8; ++tries, h *= 0.5) {
+      const Correction c = correct_step(y0, sign * tau, h, y0 + sign * h * tau, nullptr);
+      if (!c.converged) {
+        why = "no step off the event could be corrected: " + c.reason;
+        continue;
+      }
+      if (old_norm > 0.0) {
+        const double along_old = std::abs(space.dot(old_tangent, c.y - y0)) / (old_norm * h);
+        if (along_old > 0.5) {
+          why =
+              "the step off the event went back onto the branch it started on (its component "
+              "along the old tangent is " +
+              format_double(along_old) + " of the step)";
+          continue;
+        }
+        start.old_branch_component = std::max(start.old_branch_component, along_old);
+      }
+      start.off_event = std::max(start.off_event, std::sqrt(space.dot(c.y - y0, c.y - y0)));
+      return make_point(c, sign * tau, 0, h).orbit;
     }
-    if (!c.converged)
-      throw std::runtime_error("branch switching: no step off the event could be corrected: " +
-                               c.reason);
-    start.off_event = std::max(start.off_event, std::sqrt(space.dot(c.y - y0, c.y - y0)));
-    if (old_tangent.size() == N + 1) {
-      const double old_norm = std::sqrt(space.dot(old_tangent, old_tangent));
-      const double along_old = std::abs(space.dot(old_tangent, c.y - y0)) / (old_norm * h);
-      start.old_branch_component = std::max(start.old_branch_component, along_old);
-      // On the new branch the step is along tau, and the old branch is left at O(h^2): a step
-      // that moved as far along the old branch as along the new one went back onto it.
-      if (along_old > 0.5)
-        throw std::runtime_error(
-            "branch switching: the step off the event went back onto the branch it started on "
-            "(its component along the old tangent is " +
-            format_double(along_old) + " of the step)");
-    }
-    return make_point(c, sign * tau, 0, h).orbit;
+    throw std::runtime_error("branch switching: " + why);
   };
   const PeriodicOrbit ahead = step_off(+1.0);
   // With a mirror the other half is not computed but reflected (below).

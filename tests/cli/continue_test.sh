@@ -56,4 +56,22 @@ printf 'case = "%s"\nparameter = "k"\n[[branches]]\nname = "a"\nstart = "anti-ph
 check "study refuses a fractional max_points, saying what it got" \
   grep -q "bad.toml:8: key 'branches\[1\].max_points': expected an integer, got 2.5" "$work/bad.err"
 
+# Branch switching at the anti-phase branch point (k = 47.0656): the born branch runs to lower
+# k, off the subspace x = 0, th2 = -th1 (the platform moves, the pendula swing unequally).
+"$bin" continue "$src/cases/row2.toml" --start anti-phase --param k --from 45 --to 49 \
+  --switch-at BP1 --json "$work/born.json" --quiet > "$work/born.out" 2>&1
+check "switch exits 0" test $? -eq 0
+check "the born branch names its origin" grep -q "born at the parent branch's BP at k = 47.06" "$work/born.out"
+check "JSON origin is the BP" test "$(json "$work/born.json" "j['origin'].startswith('BP at k = 47.0655')")" = True
+check "born orbits lie at k <= the BP, the platform moving, amplitudes unequal" \
+  test "$(json "$work/born.json" "all(p['value'] <= 47.06557 for p in j['points']) and all(p['amplitudes'][0] > 1e-4 and abs(p['amplitudes'][1] - p['amplitudes'][2]) > 1e-3 for p in j['points'] if p['value'] < 47.0)")" = True
+"$bin" continue "$src/cases/row2.toml" --start anti-phase --param k --from 45 --to 49 \
+  --switch-at NS1 2> "$work/bad.err"
+check "switching at an NS exits 2 before any work" test $? -eq 2
+check "switching at an NS says where a branch is born" grep -q "BP or PD followed by its number" "$work/bad.err"
+"$bin" continue "$src/cases/row2.toml" --start anti-phase --param k --from 45 --to 49 \
+  --switch-at PD1 --quiet 2> "$work/bad.err"
+check "switching at a missing event exits 2" test $? -eq 2
+check "a missing event is named with the branch's events" grep -q "PD1: the branch has no such event; it has BP1 at 47.06" "$work/bad.err"
+
 exit $failures
