@@ -37,7 +37,7 @@ Study load_study(const std::string& path) {
     const auto& t = *entry.as_table();
     in.only(t, prefix,
             {"name", "start", "from", "to", "at", "set", "initial", "max_points", "step",
-             "max_step", "transient"});
+             "max_step", "transient", "switch_at"});
     StudyBranch b;
     for (const char* key : {"name", "start", "from", "to"})
       if (!t.get(key))
@@ -49,6 +49,10 @@ Study load_study(const std::string& path) {
     b.request.from = in.number(*t.get("from"), prefix + "from");
     b.request.to = in.number(*t.get("to"), prefix + "to");
     if (auto* n = t.get("at")) b.request.at = in.number(*n, prefix + "at");
+    if (auto* n = t.get("switch_at")) {
+      b.request.switch_at = in.string(*n, prefix + "switch_at");
+      parse_event_name(b.request.switch_at, in.where(*n) + ": key '" + prefix + "switch_at'");
+    }
     auto& o = b.request.continuation;
     if (auto* n = t.get("transient")) o.orbit.transient = in.number(*n, prefix + "transient");
     if (auto* n = t.get("max_points")) o.max_points = in.integer(*n, prefix + "max_points");
