@@ -31,6 +31,8 @@ OptionCheck NewtonOptions::validate() const {
 OptionCheck OrbitOptions::validate() const {
   if (!non_negative(transient))
     return OptionProblem{"transient", "a non-negative number of seconds"};
+  if (!(non_negative(settle_tolerance) && settle_tolerance < 1.0))
+    return OptionProblem{"settle_tolerance", "0 (the whole transient) or a number in (0, 1)"};
   if (!positive(max_period)) return OptionProblem{"max_period", "a positive number of seconds"};
   if (auto p = nested("shooting.", shooting.validate())) return p;
   if (auto p = nested("newton.", newton.validate())) return p;
@@ -257,11 +259,29 @@ PeriodicOrbit find_periodic_orbit(const OdeSystem& system, const ParameterValues
   PeriodicOrbit failed;
   failed.segments = options.shooting.segments;
   failed.parameters = p;
+  double settled_period = 0.0;  // from a check that found the motion settled
   try {
+    double next_check = 8.0;
     for (double t = 0.0; t < options.transient;) {
       const double dt = std::min(1.0, options.transient - t);
       z = subspace.project(flow.advance(z, p, 0.0, dt));
       t += dt;
+      if (options.settle_tolerance > 0.0 && t >= next_check && t < options.transient) {
+        // Settled when one period later the motion is back within the tolerance, relative to
+        // the state's size (Newton's first residual is about that): checked at 8 and 24 s,
+        // two periods of extra integration each, against most of the transient saved.
+        next_check *= 3.0;
+        const double period =
+            estimate_period(flow, p, z, options.max_period, options.max_period / 1e4);
+        if (period > 0.0) {
+          const Eigen::VectorXd later = subspace.project(flow.advance(z, p, 0.0, period));
+          const double size = std::max(z.cwiseAbs().maxCoeff(), 1e-300);
+          if ((later - z).cwiseAbs().maxCoeff() <= options.settle_tolerance * size) {
+            settled_period = period;
+            break;
+          }
+        }
+      }
     }
   } catch (const IntegrationError& e) {
     failed.newton.outcome = NewtonOutcome::TransientFailed;
@@ -269,7 +289,9 @@ PeriodicOrbit find_periodic_orbit(const OdeSystem& system, const ParameterValues
     failed.state0 = z;
     return failed;
   }
-  const double period = estimate_period(flow, p, z, options.max_period, options.max_period / 1e4);
+  const double period = settled_period > 0.0 ? settled_period
+                                             : estimate_period(flow, p, z, options.max_period,
+                                                               options.max_period / 1e4);
   if (!(period > 0.0)) {
     failed.newton.outcome = NewtonOutcome::NoPeriod;
     failed.newton.reason = "no return to the section within " + std::to_string(options.max_period) +

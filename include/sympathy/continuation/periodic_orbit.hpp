@@ -71,7 +71,12 @@ struct OrbitOptions {
   ShootingOptions shooting;
   NewtonOptions newton;
   FloquetOptions floquet;
-  double transient = 60.0;     // s of integration before Newton (find_periodic_orbit)
+  double transient = 60.0;  // s of integration before Newton (find_periodic_orbit) ...
+  // ... cut short where the motion has settled: back within this (relative to the state's size)
+  // one period later, checked at 8 and 24 s; 0: always the whole transient. At 1e-4 Newton
+  // starts about that far from the orbit and needs two or three iterations (row setup: the
+  // in-phase orbit at Table III settles by 24 s, the anti-phase start needs most of the 60 s).
+  double settle_tolerance = 1e-4;
   double max_period = 10.0;    // s: the longest period looked for
   FlowOptions transient_flow;  // for the transient and the period estimate
   // Orbits of interchangeable units that move alike are computed in their smallest block
