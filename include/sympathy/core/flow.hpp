@@ -16,14 +16,15 @@
 //     vector of n (1 + columns) entries, one error test over all of it;
 //   - ARKODE's ERKStep (method ERK) on the same augmented system: Dormand-Prince 5(4) or
 //     Verner 6(5).
-// Measured on the row setup's anti-phase k-branch (k = 1 to 100 N/m, n = 6, the monodromy and the
-// parameter column; NUMERICS.md and bench section (f)): the forward module spends 10-15 us a step
-// in per-vector overhead on its seven short vectors; one augmented CVODE problem (Adams, fixed
-// point) gave the same error 2.9x faster; Dormand-Prince on the augmented system needs ~480 steps
-// a period at ~3 us against ~3,000 BDF steps, 13x faster at error 8e-10 -- but it is explicit, so
-// a stiff system (a stiff platform, large k and c) forces small steps on it, where BDF is safe.
-// Leaving the sensitivities out of the error test was measured slower and 16x less accurate: all
-// three keep them in.
+// Measured on the row setup (n = 6; bench section (f), cases/cli/common.cpp): one period of the
+// anti-phase orbit with the monodromy and a parameter column at rtol 1e-11 takes ~3,000 BDF steps
+// with the forward module at 10-15 us a step (per-vector overhead on seven short vectors), 1,256
+// Adams steps on the augmented system and 943 Dormand-Prince steps; the anti-phase k-branch
+// (k = 1 to 100 N/m, located points within 5e-10 to 8e-10 of the reference) took 3.8 s with the
+// forward module (BDF, 1e-11), 2.0 s augmented (Adams, fixed point, 5e-12) and 1.2 s with
+// Dormand-Prince (1e-10). Dormand-Prince is explicit: a stiff system (a stiff platform, large k
+// and c) forces small steps on it, where BDF is safe. Leaving the sensitivities out of the error
+// test was measured slower and 16x less accurate (NUMERICS.md): all three keep them in.
 //
 // Steep zones (OdeSystem::steep_zones) are resolved explicitly: on geometric levels
 // v_0 = scale > v_1 = v_0/3 > ... down to below the zone's width, while |z_c| <= v_l the step
@@ -65,7 +66,12 @@ class FlowStepper;
 // ignores the nonlinear and linear solver and the corrector.
 enum class Method { BDF, Adams, ERK };
 // ERK tables: Dormand-Prince 5(4), 7 stages (ARKODE_DORMAND_PRINCE_7_4_5), or Verner 6(5), 8
-// stages (ARKODE_VERNER_8_5_6), for tighter tolerances.
+// stages (ARKODE_VERNER_8_5_6). Debian's ARKODE 6.4.1 gets far less from Verner than from
+// Dormand-Prince at equal rtol, in more steps: a plain ERKStep run of a harmonic oscillator at
+// rtol 1e-10 (no Flow involved) took 676 steps to an error of 3.3e-8 against Dormand-Prince's 278
+// steps and 1.4e-11, though the table passes ARKODE's own order check (6 and 5); on the anti-phase
+// k-branch Verner at 1e-9 located the events to 2e-7 in 2.8 s, Dormand-Prince to 2.7e-10 in 1.1 s.
+// Kept as an option for comparison; Dormand-Prince is the default.
 enum class ExplicitTable { DormandPrince, Verner };
 // How sensitivities are integrated: CVODES's forward-sensitivity module (each column its own
 // vector, the staggered or simultaneous corrector), or the variational equations appended to the
