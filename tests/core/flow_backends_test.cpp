@@ -200,6 +200,10 @@ TEST(FlowBackends, SwitchingSurfacesOnEveryBackend) {
     const double x = -std::sqrt(2.0) * s + s * s / 2.0;
     flow.sample(z0, system.default_parameters(), 0.0, std::vector<double>{t},
                 [&](double, const Eigen::VectorXd& y) { EXPECT_NEAR(y[0], x, 1e-6) << b.name; });
+    // The surfaces stay set across calls (each call restarts the integrator).
+    flow.reset_statistics();
+    flow.advance(z0, system.default_parameters(), 0.0, 2.0 * period);
+    EXPECT_EQ(flow.statistics().switchings, 4) << b.name;
   }
 }
 
