@@ -51,6 +51,8 @@ class AugmentedCvode final : public FlowStepper {
   const char* name() const override { return "CVode"; }
 
  private:
+  void create(const FlowOptions& options);  // the SUNDIALS objects
+  void release();                           // ... freed
   static int rhs(sunrealtype t, N_Vector y, N_Vector ydot, void* user);
   static int block_jacobian(sunrealtype t, N_Vector y, N_Vector, SUNMatrix jac, void* user,
                             N_Vector, N_Vector, N_Vector);
@@ -85,6 +87,16 @@ void error_handler(int /*code*/, const char* module, const char* function, char*
 
 AugmentedCvode::AugmentedCvode(FlowCall& flow_call, const FlowOptions& options, int c)
     : call(flow_call), columns(c) {
+  // A constructor that throws runs no destructor: free what was made so far.
+  try {
+    create(options);
+  } catch (...) {
+    release();
+    throw;
+  }
+}
+
+void AugmentedCvode::create(const FlowOptions& options) {
   const int n = call.system.dimension();
   const int size = n * (1 + columns);
   require(SUNContext_Create(nullptr, &ctx) == 0, "SUNContext_Create failed");
@@ -120,6 +132,12 @@ AugmentedCvode::AugmentedCvode(FlowCall& flow_call, const FlowOptions& options, 
 }
 
 AugmentedCvode::~AugmentedCvode() {
+  release();
+}
+
+// Frees every SUNDIALS object made, in reverse order of creation; once: from the destructor, or
+// from a constructor that failed.
+void AugmentedCvode::release() {
   if (mem) CVodeFree(&mem);
   if (nonlinear_solver) SUNNonlinSolFree(nonlinear_solver);
   if (linear_solver) SUNLinSolFree(linear_solver);

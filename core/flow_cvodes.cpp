@@ -192,6 +192,8 @@ class CvodesStepper final : public FlowStepper {
   const char* name() const override { return "CVode"; }
 
  private:
+  void create();   // the SUNDIALS objects, from the options
+  void release();  // ... freed
   friend struct CvodesCallbacks;
   [[noreturn]] void fail(int flag, const char* function);
   void check(int flag, const char* function) {
@@ -364,6 +366,16 @@ void CvodesStepper::fail(int flag, const char* function) {
 
 CvodesStepper::CvodesStepper(FlowCall& flow_call, const FlowOptions& flow_options)
     : call(flow_call), options(flow_options) {
+  // A constructor that throws runs no destructor: free what was made so far.
+  try {
+    create();
+  } catch (...) {
+    release();
+    throw;
+  }
+}
+
+void CvodesStepper::create() {
   const auto& system = call.system;
   const int n = system.dimension();
   require(SUNContext_Create(nullptr, &ctx) == 0, "SUNContext_Create failed");
@@ -453,6 +465,12 @@ CvodesStepper::CvodesStepper(FlowCall& flow_call, const FlowOptions& flow_option
 }
 
 CvodesStepper::~CvodesStepper() {
+  release();
+}
+
+// Frees every SUNDIALS object made, in reverse order of creation; once: from the destructor, or
+// from a constructor that failed.
+void CvodesStepper::release() {
   if (mem) CVodeFree(&mem);
   if (sens_nonlinear_solver) SUNNonlinSolFree(sens_nonlinear_solver);
   if (nonlinear_solver) SUNNonlinSolFree(nonlinear_solver);

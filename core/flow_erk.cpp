@@ -51,6 +51,8 @@ class ErkStepper final : public FlowStepper {
   const char* name() const override { return "ERKStep"; }
 
  private:
+  void create(const FlowOptions& options);  // the SUNDIALS objects
+  void release();                           // ... freed
   static int rhs(sunrealtype t, N_Vector y, N_Vector ydot, void* user);
   static int roots(sunrealtype t, N_Vector y, sunrealtype* g, void* user);
   void columns_of(const double* v, Eigen::MatrixXd& S) const {
@@ -89,6 +91,16 @@ ARKODE_ERKTableID table_id(ExplicitTable table) {
 
 ErkStepper::ErkStepper(FlowCall& flow_call, const FlowOptions& options, int c)
     : call(flow_call), columns(c) {
+  // A constructor that throws runs no destructor: free what was made so far.
+  try {
+    create(options);
+  } catch (...) {
+    release();
+    throw;
+  }
+}
+
+void ErkStepper::create(const FlowOptions& options) {
   const int size = call.system.dimension() * (1 + columns);
   require(SUNContext_Create(nullptr, &ctx) == 0, "SUNContext_Create failed");
   y = N_VNew_Serial(size, ctx);
@@ -107,6 +119,12 @@ ErkStepper::ErkStepper(FlowCall& flow_call, const FlowOptions& options, int c)
 }
 
 ErkStepper::~ErkStepper() {
+  release();
+}
+
+// Frees every SUNDIALS object made, in reverse order of creation; once: from the destructor, or
+// from a constructor that failed.
+void ErkStepper::release() {
   if (mem) ERKStepFree(&mem);
   if (out) N_VDestroy(out);
   if (y) N_VDestroy(y);
