@@ -6,6 +6,9 @@
 // with the turning-point pulse resolved; the reference's own change from rtol 1e-12 is
 // reported as the level below which errors are not resolved. Orbits start from the same guess
 // (the orbit's state and period moved by 1e-3), so each setting does its own Newton iterations.
+// Sections (d) and (e) measure the cost of a continuation point and of one period against the
+// number of metronomes; (f), the accuracy presets and integrators on a whole branch beside
+// AUTO-07p's measured points, is in bench_branch.cpp.
 #include <algorithm>
 #include <cmath>
 #include <cstdio>
@@ -14,6 +17,7 @@
 #include <sstream>
 #include <tuple>
 
+#include "cases/cli/bench_branch.hpp"
 #include "cases/cli/bench_identical.hpp"
 #include "cases/cli/commands.hpp"
 #include "cases/cli/common.hpp"
@@ -272,23 +276,25 @@ std::vector<Scaling> scaling(const std::string& path, const std::string& params,
 }  // namespace
 
 int run_bench(const std::vector<std::string>& argv) {
-  Arguments args("bench", argv,
-                 {{"--out", "DIR", false, "where bench.csv and bench.md go (default out/bench)"},
-                  {"--quick", "", false, "fewer tolerances (for a smoke run)"},
-                  {"--sections", "LIST", false,
-                   "which parts, e.g. abc (default abcdeg): (a)-(c) error against run time, "
-                   "(d) cost of a continuation point, (e) cost against the number of metronomes, "
-                   "(g) identical metronomes in phase, reduced and whole"}},
-                 {});
+  Arguments args(
+      "bench", argv,
+      {{"--out", "DIR", false, "where bench.csv and bench.md go (default out/bench)"},
+       {"--quick", "", false, "fewer tolerances (for a smoke run)"},
+       {"--sections", "LIST", false,
+        "which parts, e.g. abc (default abcdefg): (a)-(c) error against run time, "
+        "(d) cost of a continuation point, (e) cost against the number of metronomes, "
+        "(f) the anti-phase k-branch per accuracy preset and integrator, with AUTO-07p's "
+        "measured points, (g) identical metronomes in phase, reduced and whole"}},
+      {});
   Stopwatch clock;
   const std::string out = args.text("--out", "out/bench");
   std::filesystem::create_directories(out);
   const bool quick = args.flag("--quick");
-  const std::string sections = args.text("--sections", "abcdeg");
+  const std::string sections = args.text("--sections", "abcdefg");
   for (char ch : sections)
-    if (ch < 'a' || ch > 'g' || ch == 'f')
-      throw InputError("--sections: expected letters from a to e and g (e.g. abc), got '" +
-                       sections + "'");
+    if (ch < 'a' || ch > 'g')
+      throw InputError("--sections: expected letters from a to g (e.g. abc), got '" + sections +
+                       "'");
   auto want = [&](char section) { return sections.find(section) != std::string::npos; };
   const std::string root =
       std::filesystem::exists("cases/row2.toml") ? "" : SYMPATHY_SOURCE_DIR "/";
@@ -328,7 +334,7 @@ int run_bench(const std::vector<std::string>& argv) {
       out + "/bench.csv",
       {"problem", "setting", "rtol", "period_error", "multiplier_error", "parameter_error",
        "trivial_multiplier_error", "seconds", "rhs_evaluations", "sensitivity_rhs_evaluations",
-       "jacobians", "newton_iterations", "converged", "note"});
+       "jacobians", "newton_iterations", "converged", "note", "steps", "points"});
   std::ostringstream md;
   md << "# sympathy bench: error against run time (row setup)\n\n";
   const Setting reference = setting("reference", Method::BDF, 1e-13);
@@ -340,7 +346,7 @@ int run_bench(const std::vector<std::string>& argv) {
         format(k_error), format(r.trivial_error), format(r.seconds, "%.4f"),
         std::to_string(r.flow.rhs_evaluations), std::to_string(r.flow.variational_evaluations),
         std::to_string(r.flow.jacobian_evaluations), std::to_string(r.iterations),
-        r.converged ? "yes" : "no", r.note});
+        r.converged ? "yes" : "no", r.note, std::to_string(r.flow.steps), ""});
     md << "| " << s.name << " | " << format(s.flow.rtol, "%.0e") << " | "
        << (std::isnan(period_error) ? format(k_error) : format(period_error)) << " | "
        << (std::isnan(mu_error) ? std::string("-") : format(mu_error)) << " | "
@@ -491,6 +497,7 @@ int run_bench(const std::vector<std::string>& argv) {
       }
     }
   }
+  if (want('f')) bench_branch_accuracy(root, quick, csv, md);
   if (want('g')) bench_identical(root, out, quick, md);
   std::ofstream(out + "/bench.md") << md.str();
   std::printf("wrote %s/bench.csv and %s/bench.md; run time %.1f s\n", out.c_str(), out.c_str(),

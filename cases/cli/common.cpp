@@ -20,7 +20,12 @@ std::vector<OptionSpec> integrator_options() {
   return {
       {"--rtol", "R", false, "relative tolerance of the integrator"},
       {"--atol", "A", false, "absolute tolerance of the integrator"},
-      {"--method", "bdf|adams", false, "linear multistep method (default bdf)"},
+      {"--method", "bdf|adams|erk", false,
+       "integration method: CVODES's BDF or Adams, or ARKODE's explicit Runge-Kutta "
+       "(Dormand-Prince 5(4); with it the sensitivities are augmented) (default bdf)"},
+      {"--sensitivities", "forward|augmented", false,
+       "how the monodromy is integrated: CVODES's forward-sensitivity module, or the variational "
+       "equations appended to the state (default forward)"},
       {"--linear-solver", "dense|klu|structured", false,
        "linear solver of the BDF Newton iteration (default: structured, sparse plus low rank, for "
        "more than 3 metronomes; else dense)"},
@@ -34,20 +39,109 @@ LoadedCase load_case(const Arguments& args) {
   return c;
 }
 
+OptionSpec accuracy_option() {
+  return {"--accuracy", "fast|default|high", false,
+          "integrator preset (--rtol, --method, --sensitivities override it): fast = explicit "
+          "Runge-Kutta, located points to about 4e-7; default = located points within 1e-8; "
+          "high = tighter (default: default)"};
+}
+
+Accuracy parse_accuracy(const std::string& text, const std::string& where) {
+  if (text == "fast") return Accuracy::Fast;
+  if (text == "default") return Accuracy::Default;
+  if (text == "high") return Accuracy::High;
+  throw InputError(where + " " + text + ": expected fast, default or high");
+}
+
+// Chosen by measurement on `sympathy continue cases/row2.toml --start anti-phase --param k --from 1
+// --to 100` (2026-11-23, 2-core machine shared with another build, single runs; bench section (f)
+// repeats them). Error: the largest relative error of the located BP, NS, NS against BDF at rtol
+// 1e-13; trivial: the largest |mu - 1| over the branch's points.
+//
+//   integrator (shooting flow)          rtol    error    trivial  seconds  steps
+//   forward module, BDF (before)        1e-11   8.7e-10  7.3e-09  3.70     700,441
+//   forward module, BDF                 1e-12   5.1e-10  1.2e-09  5.01     874,988
+//   forward module, Adams               1e-11   6.5e-10  7.7e-09  2.33     323,901
+//   augmented, BDF (dense Newton)       1e-11   8.9e-10  1.1e-08  4.81     654,205
+//   augmented, Adams                    1e-11   7.0e-10  1.1e-08  1.87     311,194
+//   augmented, Adams  (default)         5e-12   6.5e-10  5.6e-09  2.03     319,770
+//   augmented, Adams  (high)            1e-12   5.2e-10  8.4e-10  2.40     349,807
+//   ERK Dormand-Prince                  1e-10   5.2e-10  4.2e-10  1.23     197,641
+//   ERK Dormand-Prince, ERK transient (fast) 1e-8  2.2e-09  1.0e-07  0.72   93,006
+//   ERK Dormand-Prince, ERK transient   1e-7    5.9e-08  5.0e-06  0.67     80,333
+//   ERK Dormand-Prince, ERK transient   5e-7    4.4e-07  2.1e-05  0.65     76,756
+//
+// Default: the fastest CVODE configuration with the located points within 1e-8 and every trivial
+// multiplier within 1e-8 of 1 (augmented Adams at 1e-11 misses the latter by a hair). Below ~5e-10
+// the corrector's and location's tolerances, not the integration, set the error. Adams with
+// fixed-point iteration is not stiff-safe: a stiff platform (large k, c) wants --method bdf.
+// Fast: Dormand-Prince's steps here are set by the turning-point caps, not by the tolerance
+// (93,006 steps at 1e-8, 76,756 at 5e-7), so loosening rtol from 1e-8 to 5e-7 buys 10% for 200x the
+// error, and from 2e-8 up some points' trivial error passes the trust limit (1e-6; 9.4e-6 at 2e-8)
+// and events get reported as not trusted; hence 1e-8 (`--accuracy fast --rtol 5e-7` gives the
+// 4e-7 of AUTO's best setting). Its transient (60 s before the first Newton) is Dormand-Prince
+// too: 0.72 s against 0.83 s with the BDF transient.
+void apply_accuracy(Accuracy accuracy, OrbitOptions& o) {
+  FlowOptions& f = o.shooting.flow;
+  switch (accuracy) {
+    case Accuracy::Fast:
+      f.method = Method::ERK;
+      f.sensitivities = Sensitivities::Augmented;
+      f.explicit_table = ExplicitTable::DormandPrince;
+      f.rtol = 1e-8;
+      f.atol = 1e-10;
+      // The transient too: plain Dormand-Prince on the state at the transient's own tolerance.
+      o.transient_flow.method = Method::ERK;
+      o.transient_flow.sensitivities = Sensitivities::Augmented;
+      break;
+    case Accuracy::Default:
+      f.method = Method::Adams;
+      f.nonlinear_solver = NonlinearSolver::FixedPoint;
+      f.sensitivities = Sensitivities::Augmented;
+      f.rtol = 5e-12;
+      f.atol = 5e-14;
+      break;
+    case Accuracy::High:
+      f.method = Method::Adams;
+      f.nonlinear_solver = NonlinearSolver::FixedPoint;
+      f.sensitivities = Sensitivities::Augmented;
+      f.rtol = 1e-12;
+      f.atol = 1e-14;
+      break;
+  }
+}
+
+Accuracy accuracy(const Arguments& args) {
+  const auto text = args.value("--accuracy");
+  return text ? parse_accuracy(*text, "--accuracy") : Accuracy::Default;
+}
+
 FlowOptions flow_options(const Arguments& args, FlowOptions o) {
   o.rtol = args.number("--rtol", o.rtol);
   o.atol = args.number("--atol", o.atol);
-  check_options(o.validate(), "");
-  const std::string method = args.text("--method", o.method == Method::BDF ? "bdf" : "adams");
+  const char* given = o.method == Method::BDF ? "bdf" : o.method == Method::Adams ? "adams" : "erk";
+  const std::string method = args.text("--method", given);
   if (method == "bdf") {
     o.method = Method::BDF;
     o.nonlinear_solver = NonlinearSolver::Newton;
   } else if (method == "adams") {
     o.method = Method::Adams;
     o.nonlinear_solver = NonlinearSolver::FixedPoint;
+  } else if (method == "erk") {
+    o.method = Method::ERK;
+    o.sensitivities = Sensitivities::Augmented;  // an explicit method has no sensitivity module
   } else {
-    throw InputError("--method " + method + ": expected bdf or adams");
+    throw InputError("--method " + method + ": expected bdf, adams or erk");
   }
+  if (auto sensitivities = args.value("--sensitivities")) {
+    if (*sensitivities == "forward")
+      o.sensitivities = Sensitivities::ForwardModule;
+    else if (*sensitivities == "augmented")
+      o.sensitivities = Sensitivities::Augmented;
+    else
+      throw InputError("--sensitivities " + *sensitivities + ": expected forward or augmented");
+  }
+  check_options(o.validate(), "");
   if (!args.has("--linear-solver")) return o;  // as given (by default the flow's own choice)
   const std::string solver = args.text("--linear-solver", "");
   if (solver == "dense")
@@ -126,6 +220,8 @@ void check_options(const OptionCheck& problem, const std::string& where) {
       {"shooting.segments", "segments"},
       {"rtol", "rtol"},
       {"atol", "atol"},
+      {"sensitivities", "sensitivities"},
+      {"method", "method"},
       {"orbit.shooting.flow.rtol", "rtol"},
       {"orbit.shooting.flow.atol", "atol"},
       {"shooting.flow.rtol", "rtol"},

@@ -11,6 +11,7 @@
 #include "sympathy/cases/case_file.hpp"
 #include "sympathy/cases/metronome_model.hpp"
 #include "sympathy/cases/names.hpp"
+#include "sympathy/continuation/periodic_orbit.hpp"
 #include "sympathy/core/flow.hpp"
 #include "sympathy/core/option_check.hpp"
 
@@ -24,12 +25,27 @@ struct LoadedCase {
 
 // Options every command that loads a case accepts.
 std::vector<OptionSpec> case_options();
-// Integrator options: --rtol, --atol, --method, --linear-solver.
+// Integrator options: --rtol, --atol, --method, --sensitivities, --linear-solver.
 std::vector<OptionSpec> integrator_options();
 
+// Accuracy presets of the shooting flow (--accuracy; a study file's `accuracy`), chosen by
+// measurement on the row setup's anti-phase k-branch (see accuracy_flow in common.cpp and bench
+// section (f)).
+enum class Accuracy { Fast, Default, High };
+OptionSpec accuracy_option();
+// Throws InputError "WHERE TEXT: expected fast, default or high" unless TEXT names a preset.
+Accuracy parse_accuracy(const std::string& text, const std::string& where);
+// The preset --accuracy names (Default without it).
+Accuracy accuracy(const Arguments& args);
+// The preset's method, sensitivities and tolerances: the shooting flow's, and for Fast the
+// transient's method too.
+void apply_accuracy(Accuracy accuracy, OrbitOptions& options);
+
 LoadedCase load_case(const Arguments& args);
-// The integrator options on top of `defaults`; without --linear-solver, defaults.linear_solver
-// (by default Automatic: the flow chooses, see LinearSolver).
+// The integrator options on top of `defaults` (for orbit, continue and study: an accuracy
+// preset's):
+// --rtol, --atol, --method, --sensitivities; without --linear-solver, defaults.linear_solver (by
+// default Automatic: the flow chooses, see LinearSolver).
 FlowOptions flow_options(const Arguments& args, FlowOptions defaults);
 
 // Throws the InputError of an options problem (the engine's validate()), named as the command

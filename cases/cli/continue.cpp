@@ -35,6 +35,7 @@ int run_continue(const std::vector<std::string>& argv) {
        {"--verbose", "", false, "multipliers on each progress line; the full report at the end"}});
   const auto integrator = integrator_options();
   options.insert(options.end(), integrator.begin(), integrator.end());
+  options.push_back(accuracy_option());
   Arguments args("continue", argv, options, {"CASE"});
 
   Stopwatch clock;
@@ -65,6 +66,7 @@ int run_continue(const std::vector<std::string>& argv) {
   o.initial_step = args.number("--step", o.initial_step);
   o.max_step = args.number("--max-step", o.max_step);
   o.max_points = args.integer("--max-points", o.max_points);
+  apply_accuracy(accuracy(args), o.orbit);
   o.orbit.shooting.flow = flow_options(args, o.orbit.shooting.flow);
   o.orbit.transient_flow.linear_solver = o.orbit.shooting.flow.linear_solver;
   o.orbit.use_symmetry = !args.flag("--whole-state");

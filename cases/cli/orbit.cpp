@@ -28,6 +28,7 @@ int run_orbit(const std::vector<std::string>& argv) {
                   {"--verbose", "", false, "the full report: Newton steps, integration work"}});
   const auto integrator = integrator_options();
   options.insert(options.end(), integrator.begin(), integrator.end());
+  options.push_back(accuracy_option());
   Arguments args("orbit", argv, options, {"CASE"});
 
   Stopwatch clock;
@@ -42,6 +43,7 @@ int run_orbit(const std::vector<std::string>& argv) {
   OrbitOptions o;
   o.shooting.segments = args.integer("--segments", 1);
   o.transient = args.number("--transient", o.transient);
+  apply_accuracy(accuracy(args), o);
   o.shooting.flow = flow_options(args, o.shooting.flow);
   o.transient_flow.linear_solver = o.shooting.flow.linear_solver;
   o.use_symmetry = !args.flag("--whole-state");

@@ -60,20 +60,23 @@ void print_orbit(std::FILE* out, const MetronomeModel& model, const PeriodicOrbi
                              : symmetry_reduction(model, orbit.parameters, orbit.subspace);
   const OdeSystem& integrated =
       reduction ? *reduction->system : static_cast<const OdeSystem&>(model);
-  const std::string solver =
-      flow.nonlinear_solver == NonlinearSolver::Newton
-          ? " (" + to_string(resolved_linear_solver(integrated, flow)) + " linear solver)"
-          : "";
+  std::string solver;  // what the method runs on
+  if (flow.method == Method::ERK)
+    solver.append(" ").append(to_string(flow.explicit_table));
+  else if (flow.nonlinear_solver == NonlinearSolver::Newton)
+    solver.append(" (")
+        .append(to_string(resolved_linear_solver(integrated, flow)))
+        .append(" linear solver)");
   if (!orbit.reduction.empty())
     std::fprintf(out, "  symmetry     %s: %d states integrated instead of %d\n",
                  orbit.reduction.c_str(), integrated.dimension(), model.dimension());
   std::fprintf(
       out,
-      "  work         %d segment%s, %s%s rtol %g: %ld integrations, %ld steps, %ld rhs and "
-      "%ld sensitivity-rhs evaluations, %ld Jacobians\n",
+      "  work         %d segment%s, %s%s, %s sensitivities, rtol %g: %ld integrations, %ld steps, "
+      "%ld rhs and %ld sensitivity-rhs evaluations, %ld Jacobians\n",
       orbit.segments, orbit.segments > 1 ? "s" : "", to_string(flow.method).c_str(), solver.c_str(),
-      flow.rtol, st.calls, st.steps, st.rhs_evaluations, st.variational_evaluations,
-      st.jacobian_evaluations);
+      to_string(flow.sensitivities).c_str(), flow.rtol, st.calls, st.steps, st.rhs_evaluations,
+      st.variational_evaluations, st.jacobian_evaluations);
 }
 
 void print_flow_statistics(std::FILE* out, const FlowStatistics& s) {

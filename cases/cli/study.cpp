@@ -18,7 +18,8 @@ namespace sympathy::cli {
 int run_study(const std::vector<std::string>& argv) {
   Arguments args("study", argv,
                  {{"--out", "DIR", false, "where the CSV and JSON files go (default out/figures)"},
-                  {"--jobs", "N", false, "branches computed side by side (default 2)"}},
+                  {"--jobs", "N", false, "branches computed side by side (default 2)"},
+                  accuracy_option()},
                  {"STUDY"});
   Stopwatch clock;
   const Study study = load_study(args.positional(0));
@@ -68,6 +69,7 @@ int run_study(const std::vector<std::string>& argv) {
   for (std::size_t i = 0; i < study.branches.size(); ++i) {
     const auto& b = study.branches[i];
     BranchRequest r = b.request;
+    if (args.has("--accuracy")) apply_accuracy(accuracy(args), r.continuation.orbit);
     r.csv_path = out + "/" + study.name + "-" + b.name + ".csv";
     r.events_path = out + "/" + study.name + "-" + b.name + "-events.csv";
     r.progress = nullptr;

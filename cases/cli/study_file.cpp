@@ -10,7 +10,7 @@ namespace sympathy::cli {
 Study load_study(const std::string& path) {
   const toml::table root = read_toml(path, "study file");
   const TomlReader in(path);
-  in.only(root, "", {"title", "case", "params", "parameter", "axis", "branches"});
+  in.only(root, "", {"title", "case", "params", "parameter", "axis", "accuracy", "branches"});
   Study s;
   s.path = path;
   s.name = std::filesystem::path(path).stem().string();
@@ -27,6 +27,16 @@ Study load_study(const std::string& path) {
   s.axis = root.get("axis") ? in.string(*root.get("axis"), "axis") : "phase";
   if (s.axis != "phase" && s.axis != "frequency")
     in.fail(*root.get("axis"), "axis", "\"phase\" or \"frequency\"");
+  // The integrator preset of every branch (see accuracy_flow); `sympathy study --accuracy`
+  // overrides it.
+  Accuracy accuracy = Accuracy::Default;
+  if (const toml::node* n = root.get("accuracy")) {
+    const std::string text = in.string(*n, "accuracy");
+    if (text != "fast" && text != "default" && text != "high")
+      in.fail(*n, "accuracy", "\"fast\", \"default\" or \"high\"");
+    accuracy = parse_accuracy(text, "accuracy");
+  }
+  s.accuracy = accuracy;
   const toml::node& list = required("branches");
   if (!list.is_array_of_tables() || list.as_array()->empty())
     in.fail(list, "branches", "one or more [[branches]] tables");
@@ -54,6 +64,7 @@ Study load_study(const std::string& path) {
       parse_event_name(b.request.switch_at, in.where(*n) + ": key '" + prefix + "switch_at'");
     }
     auto& o = b.request.continuation;
+    apply_accuracy(accuracy, o.orbit);
     if (auto* n = t.get("transient")) o.orbit.transient = in.number(*n, prefix + "transient");
     if (auto* n = t.get("max_points")) o.max_points = in.integer(*n, prefix + "max_points");
     if (auto* n = t.get("step")) o.initial_step = in.number(*n, prefix + "step");

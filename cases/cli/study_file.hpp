@@ -17,6 +17,7 @@ struct StudyBranch {
 
 struct Study {
   std::string path, name, title, case_path, params, parameter, axis;
+  Accuracy accuracy = Accuracy::Default;  // the file's `accuracy`, applied to every branch
   std::vector<StudyBranch> branches;
 };
 

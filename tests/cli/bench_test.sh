@@ -59,9 +59,25 @@ sys.exit(0 if ok else 1)
 PY
 check "(d) point costs and (e) scaling rows are complete and sensible" test $? -eq 0
 
+# (f): the anti-phase k-branch per accuracy preset, against the rtol 1e-13 reference, with AUTO-07p's
+# measured points beside (bench/anchors/auto07p_row_k.csv). The presets' stated accuracy
+# (cases/cli/common.cpp): default and high locate BP, NS, NS within 1e-8 with every trivial
+# multiplier within 1e-8 of 1; fast within 4e-7 (AUTO-07p's best, NTST 50, is 4.1e-7).
+check "(f) the default and high presets: events within 1e-8, trivial multipliers within 1e-8" csv_check \
+  "all(float(r['parameter_error']) < 1e-8 and float(r['trivial_multiplier_error']) < 1e-8 for r in rows if r['setting'] in ('preset default', 'preset high'))"
+check "(f) the fast preset: events within 4e-7" csv_check \
+  "[float(r['parameter_error']) < 4e-7 for r in rows if r['setting'] == 'preset fast'] == [True]"
+check "(f) AUTO-07p's measured points, labelled as such" csv_check \
+  "sum(r['converged'] == 'AUTO-07p' and r['setting'].startswith('AUTO-07p') for r in rows) >= 5"
+check "(f) rows report steps" csv_check "all(int(r['steps']) > 0 for r in rows if r['problem'].startswith('(f)') and r['converged'] == 'yes')"
+check "(g) identical metronomes: reduced and whole multipliers within 1e-8 at N = 2, 4, 8" \
+  /usr/bin/python3 -c "
+import csv, sys
+rows = list(csv.DictReader(open('$work/identical.csv')))
+sys.exit(0 if [r['metronomes'] for r in rows] == ['2', '4', '8'] and all(float(r['multiplier_difference']) < 1e-8 for r in rows) else 1)"
 "$bin" bench --bogus > /dev/null 2> "$work/bad.err"
 check "an unknown option exits 2" test $? -eq 2
 "$bin" bench --sections xyz > /dev/null 2> "$work/bad.err"
 check "--sections with an unknown letter exits 2 and says what it expected" \
-  grep -q "expected letters from a to e" "$work/bad.err"
+  grep -q "expected letters from a to g" "$work/bad.err"
 exit $failures

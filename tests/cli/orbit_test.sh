@@ -25,17 +25,26 @@ check "JSON: trivial multiplier within 1e-8 of 1" test "$(json_value "$work/anti
 check "JSON: state names" test "$(json_value "$work/anti.json" "','.join(j['state_names'])")" = "x,th1,th2,vx,vth1,vth2"
 check "JSON: parameters of the case" test "$(json_value "$work/anti.json" "j['params']['k']")" = 14.7467
 
-"$bin" orbit "$src/cases/cross4.toml" --start in-in --segments 4 --verbose > "$work/cross.out"
+"$bin" orbit "$src/cases/cross4.toml" --start in-in --segments 4 --method bdf --verbose > "$work/cross.out"
 check "cross in-in with 4 segments exits 0" test $? -eq 0
-check "4 metronomes: the structured linear solver by default" grep -q 'BDF (structured linear solver)' "$work/cross.out"
+check "4 metronomes, BDF: the structured linear solver by default" grep -q 'BDF (structured linear solver)' "$work/cross.out"
 check "cross in-in is reported as not isolated" grep -q 'not isolated' "$work/cross.out"
 check "cross in-in has a structural multiplier" grep -qE '   structural( |$)' "$work/cross.out"
 
-"$bin" orbit "$src/cases/row2.toml" --start anti-phase --linear-solver structured --verbose > "$work/structured.out"
+"$bin" orbit "$src/cases/row2.toml" --start anti-phase --method bdf --linear-solver structured --verbose > "$work/structured.out"
 check "--linear-solver structured exits 0" test $? -eq 0
 check "structured: anti-phase still unstable" grep -q '^  stability    unstable' "$work/structured.out"
 check "the report names the linear solver" grep -q 'BDF (structured linear solver)' "$work/structured.out"
-check "2 metronomes: dense by default" grep -q 'BDF (dense linear solver)' <("$bin" orbit "$src/cases/row2.toml" --start anti-phase --verbose)
+check "2 metronomes, BDF: dense by default" grep -q 'BDF (dense linear solver)' <("$bin" orbit "$src/cases/row2.toml" --start anti-phase --method bdf --verbose)
+# The default accuracy preset: Adams on the augmented system (cases/cli/common.cpp).
+check "the report names the method and the sensitivities" grep -q 'Adams, augmented sensitivities, rtol 5e-12' <("$bin" orbit "$src/cases/row2.toml" --start anti-phase --verbose)
+check "--accuracy fast: explicit Runge-Kutta" grep -q 'ERK Dormand-Prince 5(4), augmented sensitivities, rtol 1e-08' <("$bin" orbit "$src/cases/row2.toml" --start anti-phase --accuracy fast --verbose)
+"$bin" orbit "$src/cases/row2.toml" --start anti-phase --accuracy medium 2> "$work/accuracy.err"
+check "--accuracy medium is refused (exit 2)" test $? -eq 2
+check "and the message names the presets" grep -q -- '--accuracy medium: expected fast, default or high' "$work/accuracy.err"
+"$bin" orbit "$src/cases/row2.toml" --start anti-phase --method erk --sensitivities forward 2> "$work/erk.err"
+check "--method erk with forward sensitivities is refused (exit 2)" test $? -eq 2
+check "and the message says why" grep -q -- '--sensitivities: expected Augmented with method ERK' "$work/erk.err"
 "$bin" orbit "$src/cases/row2.toml" --start anti-phase --linear-solver lu 2> "$work/bad.err"
 check "--linear-solver lu exits 2" test $? -eq 2
 check "and lists the solvers" grep -q "expected dense, klu or structured" "$work/bad.err"

@@ -51,6 +51,16 @@ check "a study with step < 0 exits 2" test $? -eq 2
 check "... naming the key and the domain" grep -q "step.toml:3: branches\[1\].step: expected a positive number" "$work/err"
 "$bin" continue "$row2" --start anti-phase --param k --from 1 --to 2 --step -0.1 2> "$work/err"
 check "--step -0.1 exits 2 with the same domain" grep -q -- "--step: expected a positive number" "$work/err"
+# A study's accuracy preset (cases/cli/common.cpp): checked by name, applied to every branch.
+printf 'case = "%s"\nparameter = "k"\naccuracy = "rough"\n[[branches]]\nname = "a"\nstart = "anti-phase"\nfrom = 1.0\nto = 2.0\n' "$row2" > "$work/accuracy.toml"
+"$bin" study "$work/accuracy.toml" --out "$work" 2> "$work/err"
+check "a study with accuracy = \"rough\" exits 2" test $? -eq 2
+check "... naming the line, the key and the presets" grep -q "accuracy.toml:3: key 'accuracy': expected \"fast\", \"default\" or \"high\", got \"rough\"" "$work/err"
+sed -i 's/"rough"/"fast"/' "$work/accuracy.toml"
+"$bin" study "$work/accuracy.toml" --out "$work" > /dev/null 2> "$work/err"
+check "a study with accuracy = \"fast\" runs (exit 0)" test $? -eq 0
+"$bin" study "$work/accuracy.toml" --out "$work" --accuracy medium > /dev/null 2> "$work/err"
+check "study --accuracy medium exits 2" grep -q -- "--accuracy medium: expected fast, default or high" "$work/err"
 
 # SIGTERM and SIGHUP stop a run after its current point or sample: complete, valid files, exit 6.
 rm -f "$work/term.csv" "$work/term.json" "$work/term-events.csv"

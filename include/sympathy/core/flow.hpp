@@ -1,22 +1,44 @@
-// The flow of an OdeSystem, computed by CVODES, with or without forward sensitivities.
+// The flow of an OdeSystem, computed by SUNDIALS (CVODES, or ARKODE's explicit Runge-Kutta
+// stepper), with or without sensitivities.
 //
-// One Flow owns one CVODES integrator and every SUNDIALS object it needs (context, vectors,
-// matrix, linear and nonlinear solvers) and reuses them across calls: a continuation makes
-// thousands of calls. Each call asks only for what it needs: `advance` integrates the state
-// alone; `advance_with_sensitivities` adds the n state columns (the transition matrix) and/or
-// the columns of named parameters. The parameter values travel with each call (ParameterValues):
-// a flow holds those of the call it is computing and nothing after.
+// One Flow owns one integrator and every SUNDIALS object it needs (context, vectors, matrix,
+// linear and nonlinear solvers) and reuses them across calls: a continuation makes thousands of
+// calls. Each call asks only for what it needs: `advance` integrates the state alone;
+// `advance_with_sensitivities` adds the n state columns (the transition matrix) and/or the
+// columns of named parameters. The parameter values travel with each call (ParameterValues): a
+// flow holds those of the call it is computing and nothing after.
+//
+// Three integrators sit behind the same calls (FlowOptions::method and ::sensitivities; the step
+// loop below runs unchanged on each, core/flow_stepper.hpp):
+//   - CVODES with its forward-sensitivity module (the default; BDF or Adams): the state and each
+//     sensitivity column in vectors of their own, the columns in the error test;
+//   - CVODE on the augmented system: the state with its variational equations appended, one
+//     vector of n (1 + columns) entries, one error test over all of it;
+//   - ARKODE's ERKStep (method ERK) on the same augmented system: Dormand-Prince 5(4) or
+//     Verner 6(5).
+// Measured on the row setup (n = 6; bench section (f), cases/cli/common.cpp): one period of the
+// anti-phase orbit with the monodromy and a parameter column at rtol 1e-11 takes ~3,000 BDF steps
+// with the forward module at 10-15 us a step (per-vector overhead on seven short vectors), 1,256
+// Adams steps on the augmented system and 943 Dormand-Prince steps; the anti-phase k-branch
+// (k = 1 to 100 N/m, located points within 5e-10 to 8e-10 of the reference) took 3.8 s with the
+// forward module (BDF, 1e-11), 2.0 s augmented (Adams, fixed point, 5e-12) and 1.2 s with
+// Dormand-Prince (1e-10). Dormand-Prince is explicit: a stiff system (a stiff platform, large k
+// and c) forces small steps on it, where BDF is safe. Leaving the sensitivities out of the error
+// test was measured slower and 16x less accurate (NUMERICS.md): all three keep them in.
 //
 // Steep zones (OdeSystem::steep_zones) are resolved explicitly: on geometric levels
 // v_0 = scale > v_1 = v_0/3 > ... down to below the zone's width, while |z_c| <= v_l the step
 // is capped at fraction * v_(l+1) / |dz_c/dt|, so no step can jump over the next inner level,
 // and the innermost band (the steep part itself) is crossed in several steps. Error control
-// alone steps straight over such features (see NUMERICS.md). The integrator takes one internal
-// step at a time and reads the bands off the state after each; a step that crosses a level was
-// capped by the band it started in, and lands in the next. CVODES applies a new maximum step
-// only when it next changes the step size, so a stop time one capped step ahead also shortens
-// the step it has already planned. (Root functions on the levels were tried first: CVODES
-// returns the same root forever when two identical ones, from symmetric pendula, coincide.)
+// alone steps straight over such features (see NUMERICS.md; an explicit Runge-Kutta method
+// without the caps keeps an error of 1.9e-6 in the multipliers whatever its tolerance). The
+// integrator takes one internal step at a time and reads the bands off the state after each; a
+// step that crosses a level was capped by the band it started in, and lands in the next. CVODES
+// and ARKODE apply a new maximum step only when they next choose a step size, so a stop time one
+// capped step ahead also shortens the step already planned. (Root functions on the levels were
+// tried first: CVODES returns the same root forever when two identical ones, from symmetric
+// pendula, coincide.) On the augmented vector the state is its first n components, so the zones
+// and caps carry over unchanged.
 #pragma once
 
 #include <functional>
@@ -25,7 +47,6 @@
 #include <span>
 #include <stdexcept>
 #include <string>
-#include <type_traits>
 #include <vector>
 
 #include <Eigen/Dense>
@@ -35,7 +56,28 @@
 
 namespace sympathy {
 
-enum class Method { BDF, Adams };
+namespace detail {  // core/flow_stepper.hpp
+struct FlowCall;
+class FlowStepper;
+}  // namespace detail
+
+// CVODES's linear multistep methods (BDF, Adams), or ARKODE's explicit embedded Runge-Kutta
+// pairs (ERK; its table in FlowOptions::explicit_table). ERK needs sensitivities = Augmented and
+// ignores the nonlinear and linear solver and the corrector.
+enum class Method { BDF, Adams, ERK };
+// ERK tables: Dormand-Prince 5(4), 7 stages (ARKODE_DORMAND_PRINCE_7_4_5), or Verner 6(5), 8
+// stages (ARKODE_VERNER_8_5_6). Debian's ARKODE 6.4.1 gets far less from Verner than from
+// Dormand-Prince at equal rtol, in more steps: a plain ERKStep run of a harmonic oscillator at
+// rtol 1e-10 (no Flow involved) took 676 steps to an error of 3.3e-8 against Dormand-Prince's 278
+// steps and 1.4e-11, though the table passes ARKODE's own order check (6 and 5); on the anti-phase
+// k-branch Verner at 1e-9 located the events to 2e-7 in 2.8 s, Dormand-Prince to 2.7e-10 in 1.1 s.
+// Kept as an option for comparison; Dormand-Prince is the default.
+enum class ExplicitTable { DormandPrince, Verner };
+// How sensitivities are integrated: CVODES's forward-sensitivity module (each column its own
+// vector, the staggered or simultaneous corrector), or the variational equations appended to the
+// state as one augmented system (CVODE's BDF or Adams, or ERK). Both need the system's own
+// derivatives for parameter columns; the augmented system for state columns too.
+enum class Sensitivities { ForwardModule, Augmented };
 enum class NonlinearSolver { Newton, FixedPoint };
 // The linear solver of the BDF Newton iteration, for (I - gamma J) x = b. Dense: LAPACK-style LU
 // of the full matrix. KLU: sparse LU on the system's jacobian_pattern(). Structured: for
@@ -55,6 +97,8 @@ struct FlowOptions {
   double rtol = 1e-10;
   double atol = 1e-12;
   Method method = Method::BDF;
+  Sensitivities sensitivities = Sensitivities::ForwardModule;
+  ExplicitTable explicit_table = ExplicitTable::DormandPrince;  // method ERK only
   NonlinearSolver nonlinear_solver = NonlinearSolver::Newton;
   LinearSolver linear_solver = LinearSolver::Automatic;
   SensitivityCorrector corrector = SensitivityCorrector::Staggered;
@@ -74,6 +118,8 @@ LinearSolver resolved_linear_solver(const OdeSystem& system, const FlowOptions& 
 
 std::string to_string(Method m);
 std::string to_string(LinearSolver s);
+std::string to_string(Sensitivities s);
+std::string to_string(ExplicitTable t);
 
 struct FlowStatistics {
   long calls = 0;
@@ -89,7 +135,8 @@ struct FlowStatistics {
   FlowStatistics& operator+=(const FlowStatistics& other);
 };
 
-// Raised when CVODES fails (step size underflow, too many steps, a failing right-hand side).
+// Raised when the integrator fails (step size underflow, too many steps, a failing right-hand
+// side).
 class IntegrationError : public std::runtime_error {
  public:
   IntegrationError(const std::string& what, double t) : std::runtime_error(what), t_(t) {}
@@ -145,9 +192,6 @@ class Flow {
   void reset_statistics() { statistics_ = FlowStatistics{}; }
 
  private:
-  struct Cvodes;  // the SUNDIALS objects, owned
-  friend struct FlowCallbacks;
-
   // Sensitivity columns: one per initial component (seeded with its unit vector), then one per
   // parameter (seeded with zero).
   void start(const Eigen::VectorXd& z0, const ParameterValues& p, double t0,
@@ -161,33 +205,28 @@ class Flow {
       const Eigen::VectorXd& z0, const ParameterValues& p, double t0, std::span<const double> times,
       std::span<const int> initial_components, std::span<const int> parameters,
       const std::function<bool(double, const Eigen::VectorXd&, const Eigen::MatrixXd&)>& observer);
-  void configure_roots();
+  void configure_zones();
   int band_of(std::size_t zone, double value) const;
   void update_bands(double t);
   void on_switching();
   void update_max_step(double t);
   void collect_statistics();
-  [[noreturn]] void fail(int flag, const char* function);
 
   const OdeSystem& system_;
   FlowOptions options_;
   FlowStatistics statistics_;
-  std::unique_ptr<Cvodes> cv_;
+  std::unique_ptr<detail::FlowCall> call_;        // the call now being integrated
+  std::unique_ptr<detail::FlowStepper> stepper_;  // the integrator
 
-  // Steep zones with their levels, and the system's switching functions (CVODES roots).
+  // Steep zones with their levels.
   std::vector<SteepZone> zones_;
   std::vector<std::vector<double>> levels_;  // per zone, decreasing
   std::vector<int> bands_;                   // per zone: innermost level l with |z_c| <= v_l
-  int switching_count_ = 0;
-  std::vector<int> root_info_;
   std::vector<double> dz_scratch_;
 
-  std::optional<double> forced_stop_;  // a stop time that shortens the step CVODES planned
-  ParameterValues values_;             // parameter values of the call now being integrated
-  std::vector<int> parameters_;        // parameters of the sensitivity columns now being integrated
+  std::optional<double> forced_stop_;  // a stop time that shortens the step already planned
+  Eigen::MatrixXd seeds_;              // initial sensitivity columns of the call
   double t_ = 0.0;
-  std::string last_error_;
-  std::exception_ptr callback_error_;
 };
 
 }  // namespace sympathy

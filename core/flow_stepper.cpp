@@ -1,0 +1,90 @@
+// What the flow's integrators share: the augmented right-hand side and error plumbing.
+#include "flow_stepper.hpp"
+
+#include <cmath>
+#include <stdexcept>
+#include <utility>
+
+namespace sympathy::detail {
+
+int augmented_rhs(FlowCall& call, double t, const double* y, double* ydot,
+                  std::vector<const double*>& columns_in, std::vector<double*>& columns_out) {
+  try {
+    const int n = call.system.dimension();
+    const double* p = call.values.data();
+    call.system.rhs(t, y, p, ydot);
+    for (int i = 0; i < n; ++i)
+      if (!std::isfinite(ydot[i])) return 1;  // recoverable: the integrator retries a smaller step
+    if (call.columns == 0) return 0;
+    columns_in.resize(call.columns);
+    columns_out.resize(call.columns);
+    for (int j = 0; j < call.columns; ++j) {
+      columns_in[j] = y + n * (j + 1);
+      columns_out[j] = ydot + n * (j + 1);
+    }
+    call.system.variational_rhs(t, y, p, call.columns, columns_in.data(), columns_out.data(),
+                                call.parameters);
+    return 0;
+  } catch (...) {
+    call.callback_error = std::current_exception();
+    return -1;
+  }
+}
+
+namespace {
+
+class StepperByColumns final : public FlowStepper {
+ public:
+  StepperByColumns(FlowCall& call, std::function<std::unique_ptr<FlowStepper>(int)> make)
+      : call_(call), make_(std::move(make)) {}
+  void start(double t0, const double* z0, const Eigen::MatrixXd& seeds) override {
+    auto& stepper = steppers_[call_.columns];
+    if (!stepper) stepper = make_(call_.columns);
+    active_ = stepper.get();
+    active_->start(t0, z0, seeds);
+  }
+  void restart(double t) override { active().restart(t); }
+  void set_max_step(double hmax) override { active().set_max_step(hmax); }
+  std::optional<PlannedStep> planned_step() override { return active().planned_step(); }
+  void set_stop_time(double t) override { active().set_stop_time(t); }
+  StepOutcome step(double t_end, double& t) override { return active().step(t_end, t); }
+  const double* state() const override { return active_->state(); }
+  void sensitivities(Eigen::MatrixXd& S) override { active().sensitivities(S); }
+  void interpolate(double t, Eigen::VectorXd& z, Eigen::MatrixXd& S) override {
+    active().interpolate(t, z, S);
+  }
+  void collect(FlowStatistics& s) override {
+    if (active_) active_->collect(s);
+  }
+  const char* name() const override { return active_ ? active_->name() : "integrator"; }
+
+ private:
+  FlowStepper& active() {
+    if (!active_) throw std::logic_error("flow stepper used before its first start");
+    return *active_;
+  }
+  FlowCall& call_;
+  std::function<std::unique_ptr<FlowStepper>(int)> make_;
+  std::map<int, std::unique_ptr<FlowStepper>> steppers_;
+  FlowStepper* active_ = nullptr;
+};
+
+}  // namespace
+
+std::unique_ptr<FlowStepper> make_stepper_by_columns(
+    FlowCall& call, std::function<std::unique_ptr<FlowStepper>(int columns)> make) {
+  return std::make_unique<StepperByColumns>(call, std::move(make));
+}
+
+void rethrow_callback_error(FlowCall& call) {
+  if (!call.callback_error) return;
+  auto e = call.callback_error;
+  call.callback_error = nullptr;
+  std::rethrow_exception(e);
+}
+
+void require(bool ok, const std::string& what) {
+  if (!ok) throw std::runtime_error("SUNDIALS: " + what);
+}
+
+}  // namespace sympathy::detail
