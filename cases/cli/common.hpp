@@ -29,8 +29,8 @@ std::vector<OptionSpec> case_options();
 std::vector<OptionSpec> integrator_options();
 
 // Accuracy presets of the shooting flow (--accuracy; a study file's `accuracy`), chosen by
-// measurement on the row setup's anti-phase k-branch (see accuracy_flow in common.cpp and bench
-// section (f)).
+// measurement on the row setup's anti-phase k-branch (the numbers are beside apply_accuracy in
+// common.cpp; bench section (f) repeats them).
 enum class Accuracy { Fast, Default, High };
 OptionSpec accuracy_option();
 // Throws InputError "WHERE TEXT: expected fast, default or high" unless TEXT names a preset.
@@ -42,9 +42,8 @@ Accuracy accuracy(const Arguments& args);
 void apply_accuracy(Accuracy accuracy, OrbitOptions& options);
 
 LoadedCase load_case(const Arguments& args);
-// The integrator options on top of `defaults` (for orbit, continue and study: an accuracy
-// preset's):
-// --rtol, --atol, --method, --sensitivities; without --linear-solver, defaults.linear_solver (by
+// The integrator options --rtol, --atol, --method and --sensitivities on top of `defaults` (for
+// orbit and continue: the accuracy preset's); without --linear-solver, defaults.linear_solver (by
 // default Automatic: the flow chooses, see LinearSolver).
 FlowOptions flow_options(const Arguments& args, FlowOptions defaults);
 

@@ -27,8 +27,8 @@ Study load_study(const std::string& path) {
   s.axis = root.get("axis") ? in.string(*root.get("axis"), "axis") : "phase";
   if (s.axis != "phase" && s.axis != "frequency")
     in.fail(*root.get("axis"), "axis", "\"phase\" or \"frequency\"");
-  // The integrator preset of every branch (see accuracy_flow); `sympathy study --accuracy`
-  // overrides it.
+  // The integrator preset of every branch (apply_accuracy); `sympathy study --accuracy` overrides
+  // it.
   Accuracy accuracy = Accuracy::Default;
   if (const toml::node* n = root.get("accuracy")) {
     const std::string text = in.string(*n, "accuracy");
