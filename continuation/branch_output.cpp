@@ -128,6 +128,7 @@ nlohmann::json branch_json(const Branch& branch, const OrbitDescriber* describer
                       {"name", describe(e.type)},
                       {"value", e.parameter},
                       {"uncertainty", e.uncertainty},
+                      {"bracket", e.bracket},
                       {"period", e.period},
                       {"multipliers", multipliers_json(e.floquet)},
                       {"crossing_multiplier", {e.crossing.real(), e.crossing.imag()}},

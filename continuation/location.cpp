@@ -98,7 +98,16 @@ Bifurcation locate(const ContinuationPoint& a, const ContinuationPoint& b, Bifur
   }
   e.parameter = best.parameter;
   e.arclength = s_best;
-  e.uncertainty = std::abs(hi.parameter - lo.parameter);
+  e.bracket = std::abs(hi.parameter - lo.parameter);
+  e.uncertainty = e.bracket;
+  if (type != BifurcationType::Fold) {
+    // The crossing speed over the whole step (a to b), which rounding does not blur as it
+    // would a final bracket of 1e-8 relative width.
+    const double dp = std::abs(b.parameter - a.parameter);
+    const double speed = dp > 0.0 ? std::abs(test(b, mu_b) - test(a, mu_a)) / dp : 0.0;
+    const double error = best.orbit.floquet.trivial_error;
+    if (speed > 0.0) e.uncertainty += error / speed;
+  }
   e.period = best.orbit.period;
   e.floquet = best.orbit.floquet;
   e.crossing = type == BifurcationType::Fold ? tracked(best, 0.0) : mu_best;

@@ -55,7 +55,7 @@ Branch run_branch(const LoadedCase& c, const MetronomeModel& model, const Branch
   callbacks.on_event = [&](const Bifurcation& e) {
     if (events) events->write(e);
     if (request.progress)
-      std::fprintf(request.progress, "  >> %s at %s = %.10g (bracket %.1e)%s%s\n",
+      std::fprintf(request.progress, "  >> %s at %s = %.10g (+- %.1e)%s%s\n",
                    to_string(e.type).c_str(), request.parameter.c_str(), e.parameter, e.uncertainty,
                    e.note.empty() ? "" : ": ", e.note.c_str());
   };
@@ -155,8 +155,8 @@ void print_events(std::FILE* out, const Branch& branch) {
     std::fprintf(out, "  no bifurcations on this branch\n");
     return;
   }
-  std::fprintf(out, "  %-4s %-20s %-10s %-14s %-28s %s\n", "type", branch.parameter_name.c_str(),
-               "bracket", "period (s)", "crossing multiplier", "note");
+  std::fprintf(out, "  %-4s %-20s %-11s %-14s %-28s %s\n", "type", branch.parameter_name.c_str(),
+               "uncertainty", "period (s)", "crossing multiplier", "note");
   for (const auto& e : events) {
     const std::complex<double> crossing = e.crossing;
     char mu[64];
@@ -166,7 +166,7 @@ void print_events(std::FILE* out, const Branch& branch) {
     if (e.symmetry == SymmetryKind::Breaking && !branch.points.empty())
       note = "breaks " + branch.points.front().orbit.subspace.description() +
              (note.empty() ? "" : "; " + note);
-    std::fprintf(out, "  %-4s %-20.12g %-10.1e %-14.10f %-28s %s\n",
+    std::fprintf(out, "  %-4s %-20.12g %-11.1e %-14.10f %-28s %s\n",
                  (to_string(e.type) + (e.trusted() ? "" : "?")).c_str(), e.parameter, e.uncertainty,
                  e.period, mu, note.c_str());
   }

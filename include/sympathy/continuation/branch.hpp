@@ -55,9 +55,16 @@ enum class EventTrust {
 
 struct Bifurcation {
   BifurcationType type = BifurcationType::Fold;
-  int multiplicity = 1;      // multipliers crossing together (2: symmetric systems do this)
-  double parameter = 0.0;    // located value
-  double uncertainty = 0.0;  // width of the final bracket in the parameter
+  int multiplicity = 1;    // multipliers crossing together (2: symmetric systems do this)
+  double parameter = 0.0;  // located value
+  // How far the true point may lie from `parameter`: the final bracket's width plus, where a
+  // multiplier crosses, the multipliers' own error (the located orbit's trivial-multiplier error)
+  // over the speed at which the crossing multiplier's |mu| - 1 moves with the parameter. A slow
+  // crossing is located no better than its multipliers allow, however narrow its bracket (the
+  // row setup's c-branch BPs: |mu| moves by 2-5e-4 per N s/m, so a 3e-9 multiplier error moves
+  // the root by about 1e-5 N s/m).
+  double uncertainty = 0.0;
+  double bracket = 0.0;  // width of the final bracket in the parameter
   double period = 0.0;
   FloquetAnalysis floquet;              // at the located point
   std::complex<double> crossing = 0.0;  // the multiplier followed across (LP: nearest to +1)
