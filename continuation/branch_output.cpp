@@ -95,6 +95,7 @@ nlohmann::json branch_json(const Branch& branch, const OrbitDescriber* describer
   if (!branch.origin.empty()) j["origin"] = branch.origin;  // a switched branch: its event
   j["stop"] = to_string(branch.stop);
   j["state_names"] = branch.state_names;
+  j["parameter_values"] = as_vector(branch.start_values);  // every raw value the branch kept
   const auto layout = describer ? describer->layout() : std::vector<OrbitDescriber::Group>{};
   nlohmann::json points = nlohmann::json::array();
   for (const auto& p : branch.points) {
@@ -137,7 +138,13 @@ nlohmann::json branch_json(const Branch& branch, const OrbitDescriber* describer
                       {"location", to_string(e.location)},
                       {"symmetry", to_string(e.symmetry)},
                       {"trusted", e.trusted()},
-                      {"note", e.note}});
+                      {"note", e.note},
+                      // What switching at it needs (switch_branch): the located orbit, the
+                      // shooting unknowns and the branch's tangent there, the point before it.
+                      {"state0", as_vector(e.state0)},
+                      {"unknowns", as_vector(e.unknowns)},
+                      {"tangent", as_vector(e.tangent)},
+                      {"after_point", e.after_point}});
   }
   j["events"] = events;
   j["seconds"] = branch.seconds;

@@ -1,6 +1,7 @@
 #include "cases/cli/branch_run.hpp"
 
 #include <algorithm>
+#include <fstream>
 #include <map>
 #include <memory>
 
@@ -82,8 +83,14 @@ Branch run_branch(const LoadedCase& c, const MetronomeModel& model, const Branch
                    request.parameter.c_str(), e.parameter);
     };
   }
-  const Branch parent = continue_branch(model, problem, request.continuation, parent_callbacks);
+  const Branch parent =
+      request.parent_path.empty()
+          ? continue_branch(model, problem, request.continuation, parent_callbacks)
+          : read_branch_json(request.parent_path, model, problem.subspace);
   if (!parent.started()) return parent;
+  if (parent.parameter_name != request.parameter)
+    throw InputError("--parent " + request.parent_path + ": a branch in " + parent.parameter_name +
+                     "; expected one in --param " + request.parameter);
   if (stop && stop->load()) return parent;
   const Bifurcation& event = find_event(parent, name, "--switch-at");
   if (request.progress)
@@ -114,6 +121,117 @@ Branch run_branch(const LoadedCase& c, const MetronomeModel& model, const Branch
   if (events) events->close();
   return born;
 }
+
+namespace {
+
+Eigen::VectorXd vector_of(const nlohmann::json& j, const std::string& where, int size = -1) {
+  if (!j.is_array()) throw InputError(where + ": expected a list of numbers");
+  Eigen::VectorXd v(static_cast<int>(j.size()));
+  for (std::size_t i = 0; i < j.size(); ++i) {
+    if (!j[i].is_number()) throw InputError(where + ": expected a list of numbers");
+    v[static_cast<int>(i)] = j[i].get<double>();
+  }
+  if (size >= 0 && v.size() != size)
+    throw InputError(where + ": expected " + std::to_string(size) + " numbers, got " +
+                     std::to_string(v.size()));
+  return v;
+}
+
+const nlohmann::json& key(const nlohmann::json& j, const std::string& name,
+                          const std::string& where) {
+  if (!j.is_object() || !j.contains(name))
+    throw InputError(where + ": key '" + name +
+                     "' is missing; expected a branch JSON written by sympathy continue --json");
+  return j.at(name);
+}
+
+Branch branch_from_json(const nlohmann::json& j, const std::string& path,
+                        const MetronomeModel& model, const InvariantSubspace& subspace);
+
+}  // namespace
+
+Branch read_branch_json(const std::string& path, const MetronomeModel& model,
+                        const InvariantSubspace& subspace) {
+  std::ifstream in(path);
+  if (!in) throw InputError(path + ": cannot be read");
+  nlohmann::json j;
+  try {
+    j = nlohmann::json::parse(in);
+  } catch (const nlohmann::json::exception& e) {
+    throw InputError(path + ": not JSON (" + e.what() + ")");
+  }
+  try {
+    return branch_from_json(j, path, model, subspace);
+  } catch (const nlohmann::json::exception& e) {
+    throw InputError(path + ": a value of the wrong type (" + e.what() +
+                     "); expected a branch JSON written by sympathy continue --json");
+  }
+}
+
+namespace {
+
+Branch branch_from_json(const nlohmann::json& j, const std::string& path,
+                        const MetronomeModel& model, const InvariantSubspace& subspace) {
+  Branch b;
+  const auto& name = key(j, "parameter", path);
+  if (!name.is_string()) throw InputError(path + ": key 'parameter': expected a name");
+  b.parameter_name = name.get<std::string>();
+  try {
+    b.parameter = model.parameter_index(b.parameter_name);
+  } catch (const std::invalid_argument& e) {
+    throw InputError(path + ": key 'parameter': " + e.what());
+  }
+  b.start_values = vector_of(key(j, "parameter_values", path), path + ": key 'parameter_values'",
+                             model.parameter_values_size());
+  b.state_names = model.state_names();
+  const int n = model.dimension();
+  const auto& points = key(j, "points", path);
+  if (!points.is_array()) throw InputError(path + ": key 'points': expected a list");
+  for (std::size_t i = 0; i < points.size(); ++i) {
+    const std::string where = path + ": points[" + std::to_string(i) + "]";
+    ContinuationPoint p;
+    p.index = key(points[i], "index", where).get<int>();
+    p.parameter = key(points[i], "value", where).get<double>();
+    p.orbit.state0 = vector_of(key(points[i], "state0", where), where + ".state0", n);
+    p.orbit.family_dimension = key(points[i], "structural", where).get<int>();
+    p.orbit.subspace = subspace;
+    b.points.push_back(std::move(p));
+  }
+  const auto& events = key(j, "events", path);
+  if (!events.is_array()) throw InputError(path + ": key 'events': expected a list");
+  for (std::size_t i = 0; i < events.size(); ++i) {
+    const std::string where = path + ": events[" + std::to_string(i) + "]";
+    const auto& e = events[i];
+    Bifurcation ev;
+    const std::string type = key(e, "type", where).get<std::string>();
+    const std::vector<std::pair<std::string, BifurcationType>> types{
+        {"LP", BifurcationType::Fold},
+        {"BP", BifurcationType::BranchPoint},
+        {"PD", BifurcationType::PeriodDoubling},
+        {"NS", BifurcationType::NeimarkSacker}};
+    const auto t =
+        std::find_if(types.begin(), types.end(), [&](const auto& x) { return x.first == type; });
+    if (t == types.end()) throw InputError(where + ".type: expected LP, BP, PD or NS");
+    ev.type = t->second;
+    ev.parameter = key(e, "value", where).get<double>();
+    ev.period = key(e, "period", where).get<double>();
+    ev.location = key(e, "located", where).get<bool>() ? LocationOutcome::Located
+                                                       : LocationOutcome::NotNarrowed;
+    const std::string symmetry = key(e, "symmetry", where).get<std::string>();
+    ev.symmetry = symmetry == "breaks"  ? SymmetryKind::Breaking
+                  : symmetry == "keeps" ? SymmetryKind::Keeping
+                                        : SymmetryKind::Unlabelled;
+    ev.state0 = vector_of(key(e, "state0", where), where + ".state0", n);
+    ev.unknowns = vector_of(key(e, "unknowns", where), where + ".unknowns");
+    ev.tangent = vector_of(key(e, "tangent", where), where + ".tangent",
+                           static_cast<int>(ev.unknowns.size()) + 1);
+    ev.after_point = key(e, "after_point", where).get<int>();
+    b.events.push_back(std::move(ev));
+  }
+  return b;
+}
+
+}  // namespace
 
 EventName parse_event_name(const std::string& text, const std::string& option) {
   EventName name;

@@ -30,7 +30,17 @@ struct BranchRequest {
   // "BP1", "PD2": continue the branch born at that event of the branch asked for instead (its
   // points and events are what the CSV, the events file and the result hold).
   std::string switch_at;
+  // With switch_at: the parent branch read from this JSON (written by continue --json) instead
+  // of computed.
+  std::string parent_path;
 };
+
+// A branch read back from the JSON `continue --json` wrote, with what switching at its events
+// needs: the parameter, every parameter value, and per event its located orbit, unknowns and
+// tangent; its points carry `subspace` (the start's). InputError naming the file and the key for
+// anything missing or of the wrong size for `model`.
+Branch read_branch_json(const std::string& path, const MetronomeModel& model,
+                        const InvariantSubspace& subspace);
 
 // The event a name like "BP1" (type, then its 1-based number among the branch's events of that
 // type) picks. parse_event_name checks the name before any work: InputError naming `option`

@@ -29,6 +29,8 @@ int run_continue(const std::vector<std::string>& argv) {
        {"--events", "FILE", false, "stream each bifurcation to this CSV as it is located"},
        {"--switch-at", "EVENT", false,
         "continue the branch born at this event instead (BP1, PD1, ...: the first BP, ...)"},
+       {"--parent", "FILE", false,
+        "with --switch-at: the parent branch from this JSON (continue --json) instead of computed"},
        {"--whole-state", "", false,
         "no symmetry reduction: integrate every metronome (for comparison)"},
        {"--quiet", "", false, "no progress lines"},
@@ -57,6 +59,10 @@ int run_continue(const std::vector<std::string>& argv) {
   request.csv_path = args.text("--csv", "");
   request.switch_at = args.text("--switch-at", "");
   if (!request.switch_at.empty()) parse_event_name(request.switch_at, "--switch-at");
+  request.parent_path = args.text("--parent", "");
+  if (!request.parent_path.empty() && request.switch_at.empty())
+    throw InputError("--parent " + request.parent_path +
+                     ": expected --switch-at EVENT too (the event of the parent to switch at)");
 
   if (args.flag("--quiet")) request.progress = nullptr;
   request.verbose = args.flag("--verbose");
@@ -82,7 +88,7 @@ int run_continue(const std::vector<std::string>& argv) {
   check_distinct_outputs({{"--csv", request.csv_path},
                           {"--events", request.events_path},
                           {"--json", json_path.value_or("")}},
-                         {{"case file", c.file.path()}});
+                         {{"case file", c.file.path()}, {"--parent", request.parent_path}});
 
   std::printf("sympathy continue %s  params %s  start %s  %s from %g to %g\n",
               c.file.path().c_str(), c.params.empty() ? "(none)" : c.params.c_str(),

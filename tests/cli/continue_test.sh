@@ -65,6 +65,21 @@ check "the born branch names its origin" grep -q "born at the parent branch's BP
 check "JSON origin is the BP" test "$(json "$work/born.json" "j['origin'].startswith('BP at k = 47.0655')")" = True
 check "born orbits lie at k <= the BP, the platform moving, amplitudes unequal" \
   test "$(json "$work/born.json" "all(p['value'] <= 47.06557 for p in j['points']) and all(p['amplitudes'][0] > 1e-4 and abs(p['amplitudes'][1] - p['amplitudes'][2]) > 1e-3 for p in j['points'] if p['value'] < 47.0)")" = True
+# ... and from a saved parent: the JSON of the branch, its events carrying what switching needs.
+"$bin" continue "$src/cases/row2.toml" --start anti-phase --param k --from 45 --to 49 \
+  --json "$work/parent.json" --quiet > /dev/null 2>&1
+"$bin" continue "$src/cases/row2.toml" --start anti-phase --param k --from 45 --to 49 \
+  --switch-at BP1 --parent "$work/parent.json" --json "$work/born2.json" --quiet > /dev/null 2>&1
+check "switch from a saved parent exits 0" test $? -eq 0
+check "the born branch from a saved parent is the same branch" \
+  test "$(json "$work/born2.json" "j['origin'].startswith('BP at k = 47.0655') and min(p['value'] for p in j['points']) == 45.0")" = True
+"$bin" continue "$src/cases/row2.toml" --start anti-phase --param k --from 45 --to 49 \
+  --switch-at BP1 --parent "$work/parent.json" --json "$work/parent.json" --quiet 2> "$work/bad.err"
+check "the output cannot replace the parent" grep -q "is the --parent" "$work/bad.err"
+printf '{"parameter": "k"}' > "$work/half.json"
+"$bin" continue "$src/cases/row2.toml" --start anti-phase --param k --from 45 --to 49 \
+  --switch-at BP1 --parent "$work/half.json" --quiet 2> "$work/bad.err"
+check "a parent JSON without its values exits 2 naming the key" grep -q "half.json: key 'parameter_values' is missing" "$work/bad.err"
 "$bin" continue "$src/cases/row2.toml" --start anti-phase --param k --from 45 --to 49 \
   --switch-at NS1 2> "$work/bad.err"
 check "switching at an NS exits 2 before any work" test $? -eq 2
