@@ -3,6 +3,7 @@
 #include <algorithm>
 #include <cmath>
 #include <filesystem>
+#include <limits>
 
 #include "sympathy/cases/names.hpp"
 #include "sympathy/core/errors.hpp"
@@ -73,7 +74,15 @@ double TomlReader::number(const toml::node& node, const std::string& key) const 
 
 int TomlReader::integer(const toml::node& node, const std::string& key) const {
   if (!node.is_integer()) fail(node, key, "an integer");
-  return static_cast<int>(*node.value<int64_t>());
+  // TOML integers are 64-bit; narrowed, 4294967297 would become 1 and be refused (or taken) as
+  // something the file never said.
+  const int64_t v = *node.value<int64_t>();
+  if (v < std::numeric_limits<int>::min() || v > std::numeric_limits<int>::max())
+    fail(node.source().begin.line, key,
+         "an integer between " + std::to_string(std::numeric_limits<int>::min()) + " and " +
+             std::to_string(std::numeric_limits<int>::max()),
+         std::to_string(v));
+  return static_cast<int>(v);
 }
 
 const toml::table& TomlReader::table(const toml::node& node, const std::string& key) const {

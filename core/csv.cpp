@@ -113,7 +113,8 @@ CsvTable read_csv(const std::string& path) {
       double v = 0.0;
       const char* first = f.data();
       const char* last = f.data() + f.size();
-      if (*first == '+') ++first;
+      // from_chars takes no '+'; skip one, but not before a sign ("+-1" is no number).
+      if (*first == '+' && f.size() > 1 && first[1] != '-' && first[1] != '+') ++first;
       auto [end, ec] = std::from_chars(first, last, v);
       if (ec != std::errc() || end != last)
         throw InputError(column + ": expected a number, got '" + f + "'");

@@ -55,6 +55,10 @@ printf 'case = "%s"\nparameter = "k"\n[[branches]]\nname = "a"\nstart = "anti-ph
 "$bin" study "$work/bad.toml" --out "$work" 2> "$work/bad.err"
 check "study refuses a fractional max_points, saying what it got" \
   grep -q "bad.toml:8: key 'branches\[1\].max_points': expected an integer, got 2.5" "$work/bad.err"
+printf 'case = "%s"\nparameter = "k"\n[[branches]]\nname = "a"\nstart = "anti-phase"\nfrom = 1.0\nto = 2.0\nmax_points = 4294967297\n' "$src/cases/row2.toml" > "$work/bad.toml"
+"$bin" study "$work/bad.toml" --out "$work" 2> "$work/bad.err"
+check "study refuses a max_points beyond int, not narrowed to 1" \
+  grep -q "bad.toml:8: key 'branches\[1\].max_points': expected an integer between -2147483648 and 2147483647, got 4294967297" "$work/bad.err"
 
 # Branch switching at the anti-phase branch point (k = 47.0656): the born branch runs to lower
 # k, off the subspace x = 0, th2 = -th1 (the platform moves, the pendula swing unequally).
