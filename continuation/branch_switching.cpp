@@ -3,7 +3,6 @@
 #include <algorithm>
 #include <cmath>
 #include <complex>
-#include <random>
 #include <stdexcept>
 
 #include <Eigen/Eigenvalues>
@@ -38,13 +37,6 @@ Eigen::VectorXd nearest_in_span(const Eigen::MatrixXd& basis, const Eigen::Vecto
         "branch switching: the critical direction has no component along the new branch's "
         "directions (not a simple branch point?)");
   return v.normalized();
-}
-
-// Product of the segment transition matrices: the monodromy.
-Eigen::MatrixXd monodromy(const std::vector<Eigen::MatrixXd>& segments) {
-  Eigen::MatrixXd m = segments.front();
-  for (std::size_t j = 1; j < segments.size(); ++j) m = segments[j] * m;
-  return m;
 }
 
 // The eigenvector of M for the real eigenvalue nearest `target` (+1 or -1) that is farthest from
@@ -310,18 +302,10 @@ Branch switch_branch(const OdeSystem& system, const Branch& branch, const Bifurc
     const auto bases = base.subspace.bases(n);
     const Eigen::MatrixXd r =
         2.0 * bases.inside * bases.inside.transpose() - Eigen::MatrixXd::Identity(n, n);
-    double defect = 0.0;
-    Eigen::VectorXd scale =
+    const Eigen::VectorXd scale =
         event.state0.cwiseAbs().cwiseMax(1e-3 * event.state0.cwiseAbs().maxCoeff());
-    std::mt19937 rng(3);
-    std::uniform_real_distribution<double> u(-1.0, 1.0);
-    for (int trial = 0; trial < 3; ++trial) {
-      Eigen::VectorXd z(n);
-      for (int i = 0; i < n; ++i) z[i] = scale[i] * u(rng);
-      const Eigen::VectorXd fz = system.rhs(0.0, z, values);
-      defect = std::max(defect, (system.rhs(0.0, r * z, values) - r * fz).cwiseAbs().maxCoeff() /
-                                    std::max(fz.cwiseAbs().maxCoeff(), 1e-300));
-    }
+    const double defect =
+        equivariance_defect(system, values, scale, [&](const Eigen::VectorXd& z) { return r * z; });
     if (defect < 1e-12) mirror = r;
   }
 
@@ -333,12 +317,16 @@ Branch switch_branch(const OdeSystem& system, const Branch& branch, const Bifurc
   Continuation continuation(system, branch.parameter, options);
   // The critical direction in the unknowns: each segment's state carries it along the orbit
   // (the segments of the new problem: of the doubled period for a PD).
-  ShootingProblem base_problem(system, options.orbit.shooting);
-  base_problem.set_phase_reference(base.state0, values);
-  const Eigen::VectorXd x = base_problem.unknowns_from(base.state0, values, base.period);
-  const auto eb = base_problem.evaluate(x, values, true);
-  const int n = system.dimension(), m = base_problem.segments();
-  Eigen::VectorXd critical = Eigen::VectorXd::Zero(base_problem.unknowns() + 1);
+  // (A BP's segments are the event's own, already integrated; a PD's are of the doubled period.)
+  ShootingProblem::Evaluation doubled;
+  if (doubling) {
+    problem.set_phase_reference(base.state0, values);
+    doubled =
+        problem.evaluate(problem.unknowns_from(base.state0, values, base.period), values, true);
+  }
+  const ShootingProblem::Evaluation& eb = doubling ? doubled : e;
+  const int n = system.dimension(), m = problem.segments();
+  Eigen::VectorXd critical = Eigen::VectorXd::Zero(problem.unknowns() + 1);
   Eigen::VectorXd v = s.critical;
   for (int j = 0; j < m; ++j) {
     critical.segment(j * n, n) = v;

@@ -236,6 +236,22 @@ Eigen::VectorXd PermutationSymmetry::swapped(Eigen::VectorXd z, int a, int b) co
   return z;
 }
 
+double equivariance_defect(const OdeSystem& system, const ParameterValues& p,
+                           const Eigen::VectorXd& scale,
+                           const std::function<Eigen::VectorXd(const Eigen::VectorXd&)>& g) {
+  std::mt19937 rng(2);
+  std::uniform_real_distribution<double> u(-1.0, 1.0);
+  double worst = 0.0;
+  for (int trial = 0; trial < 3; ++trial) {
+    Eigen::VectorXd z(system.dimension());
+    for (int i = 0; i < z.size(); ++i) z[i] = scale[i] * u(rng);
+    const Eigen::VectorXd f = system.rhs(0.0, z, p);
+    const double norm = std::max(f.cwiseAbs().maxCoeff(), 1e-300);
+    worst = std::max(worst, (system.rhs(0.0, g(z), p) - g(f)).cwiseAbs().maxCoeff() / norm);
+  }
+  return worst;
+}
+
 double PermutationSymmetry::defect(const OdeSystem& system, const ParameterValues& p,
                                    const Eigen::VectorXd& scale) const {
   const int n = system.dimension();
@@ -247,19 +263,12 @@ double PermutationSymmetry::defect(const OdeSystem& system, const ParameterValue
         throw std::invalid_argument("permutation symmetry: no state component " +
                                     std::to_string(c));
   }
-  std::mt19937 rng(2);
-  std::uniform_real_distribution<double> u(-1.0, 1.0);
+  // The adjacent transpositions generate S_N.
   double worst = 0.0;
-  for (int trial = 0; trial < 3; ++trial) {
-    Eigen::VectorXd z(n);
-    for (int i = 0; i < n; ++i) z[i] = scale[i] * u(rng);
-    const Eigen::VectorXd f = system.rhs(0.0, z, p);
-    const double norm = std::max(f.cwiseAbs().maxCoeff(), 1e-300);
-    for (int a = 0; a + 1 < static_cast<int>(units.size()); ++a) {
-      const Eigen::VectorXd image = system.rhs(0.0, swapped(z, a, a + 1), p);
-      worst = std::max(worst, (image - swapped(f, a, a + 1)).cwiseAbs().maxCoeff() / norm);
-    }
-  }
+  for (int a = 0; a + 1 < static_cast<int>(units.size()); ++a)
+    worst = std::max(worst, equivariance_defect(system, p, scale, [&](const Eigen::VectorXd& z) {
+                       return swapped(z, a, a + 1);
+                     }));
   return worst;
 }
 

@@ -100,6 +100,12 @@ std::vector<Eigen::MatrixXd> quotient_segments(const std::vector<Eigen::MatrixXd
 
 }  // namespace
 
+Eigen::MatrixXd monodromy(const std::vector<Eigen::MatrixXd>& segments) {
+  Eigen::MatrixXd m = segments.front();
+  for (std::size_t k = 1; k < segments.size(); ++k) m = segments[k] * m;
+  return m;
+}
+
 void order_and_summarize(FloquetAnalysis& a, const FloquetOptions& options) {
   // Order by decreasing modulus, keeping track of the trivial one.
   std::stable_sort(a.multipliers.begin(), a.multipliers.end(),
@@ -160,9 +166,8 @@ FloquetAnalysis analyze_floquet(const std::vector<Eigen::MatrixXd>& segments,
   } else {
     // Eigenvectors (to tell the trivial multiplier) come from the formed product; with one
     // segment its eigenvalues are the multipliers too, so one decomposition serves both.
-    Eigen::MatrixXd monodromy = segments.front();
-    for (std::size_t k = 1; k < segments.size(); ++k) monodromy = segments[k] * monodromy;
-    const Eigen::EigenSolver<Eigen::MatrixXd> eig(monodromy);
+    const Eigen::MatrixXd product = monodromy(segments);
+    const Eigen::EigenSolver<Eigen::MatrixXd> eig(product);
     ProductEigenvalues all;
     if (segments.size() > 1) {
       all = product_eigenvalues(segments);
@@ -208,7 +213,7 @@ FloquetAnalysis analyze_floquet(const std::vector<Eigen::MatrixXd>& segments,
     // square root of the monodromy's error (1e-15 puts them 3e-8 apart). Their values then come
     // from the compression of the monodromy onto V (f first), which is triangular with them on
     // its diagonal and first-order accurate, as an accuracy figure must be.
-    const Eigen::MatrixXd compressed = v0.transpose() * monodromy * v0;
+    const Eigen::MatrixXd compressed = v0.transpose() * product * v0;
     int next_structural = autonomous ? 1 : 0;  // V's columns: f (if autonomous), then the family
     for (int i = 0; i < n; ++i) {
       if (used[i]) continue;

@@ -5,6 +5,7 @@
 // directions, which all point out of the subspace.
 #pragma once
 
+#include <functional>
 #include <optional>
 #include <string>
 #include <vector>
@@ -20,6 +21,13 @@ struct ComponentRelation {
   int other = -1;  // -1: component = 0
   double sign = 1.0;
 };
+
+// Largest |f(g z) - g f(z)| relative to |f(z)| at a few sample states z (each component drawn
+// from [-scale_i, scale_i]): about 1e-16 where the linear map g is a symmetry of f at p, O(1)
+// where it is not.
+double equivariance_defect(const OdeSystem& system, const ParameterValues& p,
+                           const Eigen::VectorXd& scale,
+                           const std::function<Eigen::VectorXd(const Eigen::VectorXd&)>& g);
 
 // Units whose every permutation the system keeps (identical metronomes on a platform that treats
 // them alike): each unit's state components, the same number per unit and in the same order.

@@ -68,6 +68,10 @@ struct FloquetAnalysis {
   double symmetry_defect = 0.0;
 };
 
+// The product of the segments' transition matrices, last first: the monodromy matrix (formed;
+// its eigenvalues are for analyze_floquet to take, its eigenvectors for whoever needs them).
+Eigen::MatrixXd monodromy(const std::vector<Eigen::MatrixXd>& segments);
+
 // `segments`: transition matrices of the m shooting segments in order (one: the monodromy).
 // `flow_direction`: f at the orbit's initial point, or empty for a periodically forced
 // (non-autonomous) system, which has no trivial multiplier. `family`: directions at the
