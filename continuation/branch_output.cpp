@@ -63,6 +63,7 @@ nlohmann::json orbit_json(const OdeSystem& system, const PeriodicOrbit& orbit,
     j["multiplier_symmetry"] = symmetry;  // "keeps" or "breaks" the subspace's symmetry
     j["subspace"] = orbit.subspace.description();
   }
+  if (!orbit.reduction.empty()) j["reduction"] = orbit.reduction;  // how a symmetry reduced it
   j["stable"] = f.stability == Stability::Stable;
   j["stability"] = to_string(f.stability);
   j["trivial_multiplier_error"] = f.trivial_error;
