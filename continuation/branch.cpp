@@ -45,6 +45,8 @@ std::string to_string(StopReason r) {
       return "interrupted";
     case StopReason::StartFailed:
       return "start failed";
+    case StopReason::TurnedBack:
+      return "turned back";
   }
   return "?";
 }

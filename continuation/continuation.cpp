@@ -3,6 +3,7 @@
 #include <algorithm>
 #include <cmath>
 #include <limits>
+#include <optional>
 #include <stdexcept>
 
 #include "sympathy/continuation/detection.hpp"
@@ -10,6 +11,7 @@
 #include "sympathy/continuation/multiplier_tracking.hpp"
 #include "sympathy/continuation/predictor.hpp"
 #include "sympathy/continuation/step_control.hpp"
+#include "sympathy/core/csv.hpp"
 #include "sympathy/core/linear_solve.hpp"
 #include "sympathy/core/text.hpp"
 
@@ -307,6 +309,9 @@ Branch Continuation::run_from(const PeriodicOrbit& start, int direction,
       }
     }
     location_retries = 0;
+    std::optional<double> turned_back;  // a fold without its multiplier at +1, in this step
+    for (const auto& e : events)
+      if (e.trust == EventTrust::NoCrossingMultiplier) turned_back = e.parameter;
     branch.points.push_back(std::move(b));
     jacobian_before_ = std::move(chord_jacobian_);
     chord_jacobian_ = std::move(jacobian_b);
@@ -318,6 +323,13 @@ Branch Continuation::run_from(const PeriodicOrbit& start, int direction,
     }
     if (on_bound || added.parameter < options_.lower || added.parameter > options_.upper)
       return finish(StopReason::ParameterBound, "reached the parameter bound");
+    if (turned_back)
+      return finish(StopReason::TurnedBack,
+                    "turned back at " + branch.parameter_name + " = " +
+                        format_double(*turned_back) +
+                        " without a multiplier at +1 (where an orbit shrinks into an "
+                        "equilibrium, a Hopf point, the branch ends there): stopped rather than "
+                        "retrace itself");
     // Scales follow the amplitudes met so far; the tangent stays a unit vector in them.
     try {
       space_->widen_scales(added.orbit.state0, added.orbit.parameters, added.orbit.period,

@@ -70,7 +70,7 @@ std::vector<Bifurcation> detect(const TrackedMultipliers& tracked, const Continu
     const double worst = std::max(
         {a.orbit.floquet.trivial_error, b.orbit.floquet.trivial_error, e.floquet.trivial_error});
     if (worst > trust_limit) {
-      e.trust = EventTrust::TrivialErrorTooLarge;
+      if (e.trust == EventTrust::Trusted) e.trust = EventTrust::TrivialErrorTooLarge;
       std::ostringstream msg;
       msg << "not trusted: trivial-multiplier error " << worst << " above " << trust_limit;
       e.note += (e.note.empty() ? "" : "; ") + msg.str();
@@ -80,8 +80,13 @@ std::vector<Bifurcation> detect(const TrackedMultipliers& tracked, const Continu
   auto plus_groups = clusters(plus);
   if (fold) {
     Bifurcation e = locate(BifurcationType::Fold, 1, {}, {});
-    if (plus_groups.empty())
+    if (plus_groups.empty()) {
+      // A fold of cycles passes a real multiplier through +1; without one the tangent turned
+      // where the branch degenerates (an orbit shrinking into an equilibrium turns it back in
+      // the scaled norm): not a fold to trust, and the continuation stops there.
       e.note = "no multiplier crossing +1 seen between the bracketing points";
+      e.trust = EventTrust::NoCrossingMultiplier;
+    }
     report(e);
     if (!plus_groups.empty()) plus_groups.erase(plus_groups.begin());
   }

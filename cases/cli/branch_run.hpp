@@ -12,6 +12,7 @@
 #include <nlohmann/json.hpp>
 
 #include "cases/cli/common.hpp"
+#include "cases/cli/event_name.hpp"
 #include "sympathy/continuation/branch_run.hpp"
 
 namespace sympathy::cli {
@@ -42,15 +43,6 @@ struct BranchRequest {
 Branch read_branch_json(const std::string& path, const MetronomeModel& model,
                         const InvariantSubspace& subspace);
 
-// The event a name like "BP1" (type, then its 1-based number among the branch's events of that
-// type) picks. parse_event_name checks the name before any work: InputError naming `option`
-// unless it is BP or PD (the events a branch can be switched at) and a positive number.
-struct EventName {
-  BifurcationType type = BifurcationType::BranchPoint;
-  int ordinal = 1;
-  std::string text;
-};
-EventName parse_event_name(const std::string& text, const std::string& option);
 // The event of `branch` so named; InputError listing the branch's events if there is none.
 const Bifurcation& find_event(const Branch& branch, const EventName& name,
                               const std::string& option);

@@ -64,6 +64,33 @@ TEST(Continuation, FoldOfCyclesLocated) {
   EXPECT_TRUE(events_of(branch, BifurcationType::BranchPoint).empty());
 }
 
+// Past the fold the inner cycles (r^2 from 1/2 down to 0) shrink into the equilibrium r = 0 at
+// mu = 0, the Hopf point, where the orbit vanishes. There the tangent turns with no multiplier
+// at +1 (a fold of cycles has one): the branch stops there, the turn flagged as not a fold to
+// trust, rather than retrace itself back through the fold (the reliability issue's "a fold
+// where the orbit vanishes, then 40 points back up").
+TEST(Continuation, BranchShrinkingIntoAnEquilibriumEndsThere) {
+  NormalForm system(Kind::Fold, -0.05);
+  const auto start = circle(system);
+  Continuation c(system, 0, options(-0.5, 0.5));
+  const Branch branch = c.run(start, -1);
+  EXPECT_EQ(branch.stop, StopReason::TurnedBack) << branch.stop_reason;
+  const auto folds = events_of(branch, BifurcationType::Fold);
+  ASSERT_EQ(folds.size(), 2u);
+  EXPECT_NEAR(folds[0].parameter, -0.25, 1e-8);
+  EXPECT_TRUE(folds[0].trusted());
+  EXPECT_EQ(folds[1].trust, EventTrust::NoCrossingMultiplier);
+  EXPECT_NEAR(folds[1].parameter, 0.0, 1e-3);
+  // The last orbits are small (r^2 = mu + r^4 ~ |mu|), and none retraces the outer ones.
+  EXPECT_LT(branch.points.back().orbit.state0.head(2).norm(), 0.05);
+  for (std::size_t i = 1; i < branch.points.size(); ++i)
+    if (branch.points[i].orbit.state0.head(2).norm() < std::sqrt(0.5)) {
+      for (std::size_t j = i; j < branch.points.size(); ++j)
+        EXPECT_LT(branch.points[j].orbit.state0.head(2).norm(), std::sqrt(0.5) + 1e-6) << j;
+      break;
+    }
+}
+
 // The cubic predictor and the chord steps on plain integrations save integrations with
 // sensitivities (the expensive ones) and change no result: the same fold at mu = -1/4 (exact)
 // to 1e-8 either way, with fewer Newton iterations per point with them than with the tangent

@@ -51,6 +51,8 @@ std::string to_string(LocationOutcome o);
 enum class EventTrust {
   Trusted,
   TrivialErrorTooLarge,  // a trivial-multiplier error above the trust limit near it
+  NoCrossingMultiplier,  // a fold with no multiplier through +1: the branch turned back where
+                         // it degenerates (an orbit shrinking into an equilibrium, a Hopf point)
 };
 
 struct Bifurcation {
@@ -105,6 +107,8 @@ enum class StopReason {
   MinimumStep,     // the step fell below min_step (the corrector kept failing)
   Interrupted,     // stop_requested() said so
   StartFailed,     // no starting orbit (not found, not convergent, or not integrable)
+  TurnedBack,      // turned back without a multiplier at +1 (see EventTrust::NoCrossingMultiplier):
+                   // stopped there rather than retrace itself
 };
 std::string to_string(StopReason r);
 
