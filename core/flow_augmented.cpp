@@ -58,8 +58,7 @@ class AugmentedCvode final : public FlowStepper {
                             N_Vector, N_Vector, N_Vector);
   static int roots(sunrealtype t, N_Vector y, sunrealtype* g, void* user);
   void columns_of(const double* v, Eigen::MatrixXd& S) const {
-    const int n = call.system.dimension();
-    S = Eigen::Map<const Eigen::MatrixXd>(v + n, n, columns);
+    augmented_columns(v, call.system.dimension(), columns, S);
   }
   [[noreturn]] void fail(int flag, const char* function);
   void check(int flag, const char* function) {
@@ -171,14 +170,7 @@ int AugmentedCvode::block_jacobian(sunrealtype t, N_Vector y, N_Vector, SUNMatri
 }
 
 int AugmentedCvode::roots(sunrealtype t, N_Vector y, sunrealtype* g, void* user) {
-  auto& call = static_cast<AugmentedCvode*>(user)->call;
-  try {
-    call.system.switching_functions(t, N_VGetArrayPointer(y), call.values.data(), g);
-    return 0;
-  } catch (...) {
-    call.callback_error = std::current_exception();
-    return -1;
-  }
+  return switching_roots(static_cast<AugmentedCvode*>(user)->call, t, N_VGetArrayPointer(y), g);
 }
 
 void AugmentedCvode::fail(int flag, const char* function) {
@@ -193,9 +185,7 @@ void AugmentedCvode::fail(int flag, const char* function) {
 void AugmentedCvode::start(double t0, const double* z0, const Eigen::MatrixXd& seeds) {
   const int n = call.system.dimension();
   t_now = t0;
-  double* v = N_VGetArrayPointer(y);
-  std::copy(z0, z0 + n, v);
-  Eigen::Map<Eigen::MatrixXd>(v + n, n, columns) = seeds;
+  pack_augmented(N_VGetArrayPointer(y), z0, seeds, n);
   check(CVodeReInit(mem, t0, y), "CVodeReInit");
   const int count = call.system.switching_count();
   if (count != root_count) {

@@ -297,14 +297,7 @@ int CvodesCallbacks::sensitivity_rhs(int columns, sunrealtype t, N_Vector y, N_V
 }
 
 int CvodesCallbacks::roots(sunrealtype t, N_Vector y, sunrealtype* g, void* user) {
-  auto& call = static_cast<CvodesStepper*>(user)->call;
-  try {
-    call.system.switching_functions(t, N_VGetArrayPointer(y), call.values.data(), g);
-    return 0;
-  } catch (...) {
-    call.callback_error = std::current_exception();
-    return -1;
-  }
+  return switching_roots(static_cast<CvodesStepper*>(user)->call, t, N_VGetArrayPointer(y), g);
 }
 
 // The Jacobian in low-rank form, written into a LowRankMatrix.

@@ -56,8 +56,7 @@ class ErkStepper final : public FlowStepper {
   static int rhs(sunrealtype t, N_Vector y, N_Vector ydot, void* user);
   static int roots(sunrealtype t, N_Vector y, sunrealtype* g, void* user);
   void columns_of(const double* v, Eigen::MatrixXd& S) const {
-    const int n = call.system.dimension();
-    S = Eigen::Map<const Eigen::MatrixXd>(v + n, n, columns);
+    augmented_columns(v, call.system.dimension(), columns, S);
   }
   [[noreturn]] void fail(int flag, const char* function);
   void check(int flag, const char* function) {
@@ -138,14 +137,7 @@ int ErkStepper::rhs(sunrealtype t, N_Vector y, N_Vector ydot, void* user) {
 }
 
 int ErkStepper::roots(sunrealtype t, N_Vector y, sunrealtype* g, void* user) {
-  auto& call = static_cast<ErkStepper*>(user)->call;
-  try {
-    call.system.switching_functions(t, N_VGetArrayPointer(y), call.values.data(), g);
-    return 0;
-  } catch (...) {
-    call.callback_error = std::current_exception();
-    return -1;
-  }
+  return switching_roots(static_cast<ErkStepper*>(user)->call, t, N_VGetArrayPointer(y), g);
 }
 
 void ErkStepper::fail(int flag, const char* function) {
@@ -162,9 +154,7 @@ void ErkStepper::fail(int flag, const char* function) {
 void ErkStepper::start(double t0, const double* z0, const Eigen::MatrixXd& seeds) {
   const int n = call.system.dimension();
   t_now = t0;
-  double* v = N_VGetArrayPointer(y);
-  std::copy(z0, z0 + n, v);
-  Eigen::Map<Eigen::MatrixXd>(v + n, n, columns) = seeds;
+  pack_augmented(N_VGetArrayPointer(y), z0, seeds, n);
   check(ERKStepReInit(mem, rhs, t0, y), "ERKStepReInit");
   const int count = call.system.switching_count();
   if (count != root_count) {

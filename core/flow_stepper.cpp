@@ -76,6 +76,25 @@ std::unique_ptr<FlowStepper> make_stepper_by_columns(
   return std::make_unique<StepperByColumns>(call, std::move(make));
 }
 
+int switching_roots(FlowCall& call, double t, const double* z, double* g) {
+  try {
+    call.system.switching_functions(t, z, call.values.data(), g);
+    return 0;
+  } catch (...) {
+    call.callback_error = std::current_exception();
+    return -1;
+  }
+}
+
+void pack_augmented(double* v, const double* z0, const Eigen::MatrixXd& seeds, int n) {
+  std::copy(z0, z0 + n, v);
+  Eigen::Map<Eigen::MatrixXd>(v + n, n, seeds.cols()) = seeds;
+}
+
+void augmented_columns(const double* v, int n, int columns, Eigen::MatrixXd& S) {
+  S = Eigen::Map<const Eigen::MatrixXd>(v + n, n, columns);
+}
+
 void rethrow_callback_error(FlowCall& call) {
   if (!call.callback_error) return;
   auto e = call.callback_error;

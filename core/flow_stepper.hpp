@@ -95,6 +95,15 @@ std::unique_ptr<FlowStepper> make_stepper_by_columns(
 int augmented_rhs(FlowCall& call, double t, const double* y, double* ydot,
                   std::vector<const double*>& columns_in, std::vector<double*>& columns_out);
 
+// The system's switching functions at (t, z): the root function every integrator gives SUNDIALS.
+// Returns 0, or -1 (an exception, stored in call.callback_error).
+int switching_roots(FlowCall& call, double t, const double* z, double* g);
+
+// The augmented vector v = [z; S_0; ...; S_(c-1)] of an n-dimensional state: set from z0 and the
+// seed columns, and its columns read back (z is its first n entries).
+void pack_augmented(double* v, const double* z0, const Eigen::MatrixXd& seeds, int n);
+void augmented_columns(const double* v, int n, int columns, Eigen::MatrixXd& S);
+
 // Throws the stored callback exception if there is one.
 void rethrow_callback_error(FlowCall& call);
 
