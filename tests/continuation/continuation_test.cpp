@@ -190,6 +190,24 @@ TEST(Continuation, NeimarkSackerLocated) {
   EXPECT_TRUE(events_of(branch, BifurcationType::BranchPoint).empty());
 }
 
+// The reported uncertainty of a crossing: the bracket plus the multipliers' error over the
+// crossing speed. On the pitchfork the crossing multiplier is exp(2 pi mu), whose |mu| - 1 moves
+// at 2 pi per unit of mu at the crossing; the speed is taken over the step that found it (a few
+// hundredths of mu wide), so within 10% of 2 pi. The error is the located orbit's trivial one.
+TEST(Continuation, UncertaintyIsBracketPlusErrorOverCrossingSpeed) {
+  NormalForm system(Kind::Pitchfork, -0.4);
+  const auto start = circle(system);
+  Continuation c(system, 0, options(-0.5, 0.5));
+  const Branch branch = c.run(start, +1);
+  const auto bps = events_of(branch, BifurcationType::BranchPoint);
+  ASSERT_EQ(bps.size(), 1u);
+  const Bifurcation& bp = bps[0];
+  EXPECT_GT(bp.floquet.trivial_error, 0.0);
+  const double implied_speed = bp.floquet.trivial_error / (bp.uncertainty - bp.bracket);
+  EXPECT_NEAR(implied_speed, 2 * kPi, 0.1 * 2 * kPi);
+  EXPECT_LE(bp.bracket, 1e-8);
+}
+
 // A real multiplier -exp(2 pi mu) crosses -1 at mu = 0: period doubling.
 TEST(Continuation, PeriodDoublingLocated) {
   NormalForm system(Kind::Moebius, -0.3);
