@@ -160,7 +160,12 @@ class TwoHopf final : public AutoDiffSystem<TwoHopf> {
 };
 
 // Normal forms of bifurcations of periodic orbits around the unit circle (theta' = 1, period
-// 2 pi), each with one parameter mu and the bifurcation at an exactly known value.
+// 2 pi), each with one parameter mu and the bifurcation at an exactly known value; a second
+// parameter a (0 by default) moves it along an exactly known curve: the transverse growth rate
+// is mu - a^2 in the pitchfork, rotation and Moebius forms (BP, NS, PD curves mu = a^2), and the
+// fold form's cycles r^2 solve mu + (1 + a) r^2 - r^4 = 0 (LP curve mu = -(1 + a)^2 / 4 at
+// r^2 = (1 + a) / 2). The rotation form's angle per period is 2 pi omega (omega 0.3 by default;
+// the rotation number of its NS pair).
 //   Fold:       r' = r (mu + r^2 - r^4): cycles at mu = r^4 - r^2, a fold at mu = -1/4
 //               (r^2 = 1/2), where the radial multiplier exp(2 pi (2 r^2 - 4 r^4)) is 1.
 //   Pitchfork:  r' = r (1 - r^2), w_k' = mu w_k - w_k^3 for `copies` transverse states: on
@@ -174,8 +179,9 @@ class TwoHopf final : public AutoDiffSystem<TwoHopf> {
 class NormalForm final : public AutoDiffSystem<NormalForm> {
  public:
   enum class Kind { Fold, Pitchfork, Rotation, Moebius };
-  NormalForm(Kind kind, double mu, int copies = 1) : kind_(kind), copies_(copies) {
-    set_parameter_layout({{"mu", {0}}}, {mu});
+  NormalForm(Kind kind, double mu, int copies = 1, double a = 0.0, double omega = 0.3)
+      : kind_(kind), copies_(copies) {
+    set_parameter_layout({{"mu", {0}}, {"a", {1}}, {"omega", {2}}}, {mu, a, omega});
   }
   int dimension() const override {
     switch (kind_) {
@@ -199,7 +205,8 @@ class NormalForm final : public AutoDiffSystem<NormalForm> {
   template <class T, class P>
   void evaluate(double, const T* z, const P* p, T* dz) const {
     using std::sqrt;
-    const P& mu = p[0];
+    const P mu = kind_ == Kind::Fold ? P(p[0]) : P(p[0] - p[1] * p[1]);
+    const P& omega = p[2];
     const T r2 = z[0] * z[0] + z[1] * z[1];
     if (kind_ == Kind::Moebius) {
       const T r = sqrt(r2);
@@ -216,15 +223,15 @@ class NormalForm final : public AutoDiffSystem<NormalForm> {
       dz[2] = dw;
       return;
     }
-    const T g = kind_ == Kind::Fold ? T(mu + r2 - r2 * r2) : T(1.0 - r2);
+    const T g = kind_ == Kind::Fold ? T(mu + (1.0 + p[1]) * r2 - r2 * r2) : T(1.0 - r2);
     dz[0] = -z[1] + z[0] * g;
     dz[1] = z[0] + z[1] * g;
     if (kind_ == Kind::Pitchfork)
       for (int k = 2; k < dimension(); ++k) dz[k] = mu * z[k] - z[k] * z[k] * z[k];
     if (kind_ == Kind::Rotation) {
       const T q = z[2] * z[2] + z[3] * z[3];
-      dz[2] = mu * z[2] - 0.3 * z[3] - z[2] * q;
-      dz[3] = 0.3 * z[2] + mu * z[3] - z[3] * q;
+      dz[2] = mu * z[2] - omega * z[3] - z[2] * q;
+      dz[3] = omega * z[2] + mu * z[3] - z[3] * q;
     }
   }
 

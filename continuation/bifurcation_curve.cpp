@@ -1,0 +1,482 @@
+#include "sympathy/continuation/bifurcation_curve.hpp"
+
+#include <algorithm>
+#include <cmath>
+#include <sstream>
+#include <stdexcept>
+
+#include "curve_system.hpp"
+#include "sympathy/core/text.hpp"
+
+namespace sympathy {
+
+using detail::CriticalBlock;
+using detail::CurveSystem;
+
+OptionCheck CurveOptions::validate() const {
+  if (!(std::isfinite(first_lower) && std::isfinite(first_upper) && first_lower < first_upper))
+    return OptionProblem{"first window", "finite bounds, the lower below the upper"};
+  if (!(std::isfinite(second_lower) && std::isfinite(second_upper) && second_lower < second_upper))
+    return OptionProblem{"second window", "finite bounds, the lower below the upper"};
+  if (!positive(min_step)) return OptionProblem{"min_step", "a positive number"};
+  if (!(positive(initial_step) && initial_step >= min_step))
+    return OptionProblem{"initial_step", "a positive number, at least the minimum step"};
+  if (!(std::isfinite(max_step) && max_step >= initial_step))
+    return OptionProblem{"max_step", "a number at least the initial step"};
+  if (max_points < 2) return OptionProblem{"max_points", "an integer of at least 2"};
+  if (max_iterations < 1) return OptionProblem{"max_iterations", "a positive integer"};
+  if (!positive(tolerance)) return OptionProblem{"tolerance", "a positive number"};
+  if (!(min_tangent_cosine > 0.0 && min_tangent_cosine < 1.0))
+    return OptionProblem{"min_tangent_cosine", "a number in (0, 1)"};
+  if (!positive(location_tolerance))
+    return OptionProblem{"location_tolerance", "a positive number"};
+  return nested("orbit.", orbit.validate());
+}
+
+std::string to_string(CurveStop s) {
+  switch (s) {
+    case CurveStop::WindowEdge:
+      return "window edge";
+    case CurveStop::Closed:
+      return "closed";
+    case CurveStop::PointLimit:
+      return "point limit";
+    case CurveStop::MinimumStep:
+      return "minimum step";
+    case CurveStop::Interrupted:
+      return "interrupted";
+    case CurveStop::StartFailed:
+      return "start failed";
+  }
+  return "?";
+}
+
+namespace {
+
+std::string number(double v) {
+  std::ostringstream s;
+  s.precision(10);
+  s << v;
+  return s.str();
+}
+
+// Scalar functions along a curve whose sign changes mark codimension-two points.
+struct Watch {
+  std::string type, description;
+  // The function's value at a point; NaN where it does not apply.
+  std::function<double(const CurvePoint&)> value;
+};
+
+const char* kind_of_crossing(std::complex<double> mu, SymmetryKind symmetry) {
+  if (std::abs(mu.imag()) > 1e-6) return "NS";
+  if (mu.real() < 0.0) return "PD";
+  return symmetry == SymmetryKind::Breaking ? "BP" : "LP";
+}
+
+class CurveRun {
+ public:
+  CurveRun(CurveSystem& system, const BifurcationCurve& curve, const CurveOptions& options,
+           const CurveCallbacks& callbacks)
+      : system_(system),
+        curve_(curve),
+        options_(options),
+        callbacks_(callbacks),
+        first_weight_(1.0 / (options.first_upper - options.first_lower)),
+        second_weight_(1.0 / (options.second_upper - options.second_lower)) {}
+
+  // From the corrected start (u, its Jacobian), in `direction` of the second parameter.
+  CurveStop run(const CurvePoint& start, const Eigen::MatrixXd& start_jacobian, int direction,
+                std::vector<CurvePoint>& points, std::vector<CurveEvent>& events,
+                std::string& reason);
+
+ private:
+  bool inside(const Eigen::VectorXd& u) const;
+  std::vector<Watch> watches() const;
+  void detect(const CurvePoint& from, const Eigen::MatrixXd& jacobian, const CurvePoint& to,
+              double step, std::vector<CurveEvent>& events);
+  CurveEvent locate(const Watch& w, const CurvePoint& from, const Eigen::MatrixXd& jacobian,
+                    double step, double f0, double f1);
+
+  CurveSystem& system_;
+  const BifurcationCurve& curve_;
+  const CurveOptions& options_;
+  const CurveCallbacks& callbacks_;
+  double first_weight_, second_weight_;
+};
+
+bool CurveRun::inside(const Eigen::VectorXd& u) const {
+  const double p1 = u[system_.first_index()], p2 = u[system_.second_index()];
+  return p1 >= options_.first_lower && p1 <= options_.first_upper && p2 >= options_.second_lower &&
+         p2 <= options_.second_upper;
+}
+
+std::vector<Watch> CurveRun::watches() const {
+  std::vector<Watch> w;
+  if (curve_.kind == BifurcationType::NeimarkSacker) {
+    // kappa = Re of the pair's mean: cos(theta) on the circle, (mu + 1/mu) / 2 on a neutral
+    // saddle; the strong resonances at theta = 0, pi, 2 pi / 3, pi / 2.
+    const auto kappa = [](const CurvePoint& p) {
+      return 0.5 * (p.critical[0] + p.critical[1]).real();
+    };
+    w.push_back({"R1", "1:1 resonance: the pair meets at +1",
+                 [kappa](const CurvePoint& p) { return kappa(p) - 1.0; }});
+    w.push_back({"R2", "1:2 resonance: the pair meets at -1",
+                 [kappa](const CurvePoint& p) { return kappa(p) + 1.0; }});
+    w.push_back(
+        {"R3", "1:3 resonance: the pair at exp(+-2 pi i / 3)", [kappa](const CurvePoint& p) {
+           return p.neutral_saddle ? std::nan("") : kappa(p) + 0.5;
+         }});
+    w.push_back({"R4", "1:4 resonance: the pair at +-i", [kappa](const CurvePoint& p) {
+                   return p.neutral_saddle ? std::nan("") : kappa(p);
+                 }});
+  }
+  // Another multiplier through the unit circle: the one nearest to it, log-modulus signed.
+  w.push_back({"other", "", [this](const CurvePoint& p) {
+                 const auto rest = system_.others(p);
+                 double best = std::nan("");
+                 for (const auto& mu : rest) {
+                   const double d = std::log(std::abs(mu));
+                   if (std::isnan(best) || std::abs(d) < std::abs(best)) best = d;
+                 }
+                 return best;
+               }});
+  return w;
+}
+
+CurveEvent CurveRun::locate(const Watch& w, const CurvePoint& from, const Eigen::MatrixXd& jacobian,
+                            double step, double f0, double f1) {
+  // Regula falsi (Illinois) in the arclength from `from` along its tangent: each probe a point
+  // corrected onto the curve under the arclength condition there.
+  double a = 0.0, b = step, fa = f0, fb = f1;
+  int side = 0;
+  CurveEvent e;
+  e.type = w.type;
+  e.description = w.description;
+  CurvePoint best;
+  bool have = false;
+  for (int probe = 0; probe < 40 && std::abs(b - a) > options_.location_tolerance; ++probe) {
+    const double s = (a * fb - b * fa) / (fb - fa);
+    const double t = std::clamp(s, a + 0.01 * (b - a), b - 0.01 * (b - a));
+    CurveSystem::Condition c;
+    c.tangent = from.tangent;
+    c.from = from.unknowns;
+    c.step = t;
+    auto r = system_.correct(from.unknowns + t * from.tangent, c, jacobian);
+    if (!r.converged) {
+      e.note = "a probe failed: " + r.reason;
+      break;
+    }
+    best = system_.point(r.u, r.evaluation, jacobian, from.tangent);
+    have = true;
+    const double ft = w.value(best);
+    if (!std::isfinite(ft)) break;
+    if ((ft < 0.0) == (fa < 0.0)) {
+      a = t;
+      fa = ft;
+      if (side == -1) fb *= 0.5;
+      side = -1;
+    } else {
+      b = t;
+      fb = ft;
+      if (side == +1) fa *= 0.5;
+      side = +1;
+    }
+    if (ft == 0.0) {
+      a = b = t;
+    }
+  }
+  e.located = have && std::abs(b - a) <= options_.location_tolerance;
+  if (have) {
+    e.at = best;
+    e.first = best.first;
+    e.second = best.second;
+    // The bracket's width in the first parameter, and the point's own uncertainty.
+    const double speed = std::abs(from.tangent[system_.first_index()]);
+    e.uncertainty = std::abs(b - a) * speed + best.uncertainty;
+  }
+  if (w.type == "other" && have) {
+    // Name it by the crossing multiplier.
+    const auto rest = system_.others(best);
+    std::complex<double> nearest = rest.empty() ? 0.0 : rest.front();
+    for (const auto& mu : rest)
+      if (std::abs(std::log(std::abs(mu))) < std::abs(std::log(std::abs(nearest)))) nearest = mu;
+    SymmetryKind symmetry = SymmetryKind::Unlabelled;
+    for (const auto& m : best.floquet.multipliers)
+      if (m.value == nearest) symmetry = m.symmetry;
+    const std::string other = kind_of_crossing(nearest, symmetry);
+    e.type = to_string(curve_.kind) + "-" + other;
+    e.description = "the " + to_string(curve_.kind) + " curve meets an " + other +
+                    " curve: a multiplier " + number(nearest.real()) +
+                    (nearest.imag() >= 0 ? "+" : "") + number(nearest.imag()) +
+                    "i crosses the unit circle";
+  }
+  if (!e.located && e.note.empty()) e.note = "not narrowed to the location tolerance";
+  return e;
+}
+
+void CurveRun::detect(const CurvePoint& from, const Eigen::MatrixXd& jacobian, const CurvePoint& to,
+                      double step, std::vector<CurveEvent>& events) {
+  for (const auto& w : watches()) {
+    const double f0 = w.value(from), f1 = w.value(to);
+    if (!(std::isfinite(f0) && std::isfinite(f1)) || (f0 < 0.0) == (f1 < 0.0)) continue;
+    if (f0 == 0.0) continue;  // found at the previous step
+    CurveEvent e = locate(w, from, jacobian, step, f0, f1);
+    e.after_point = from.index;
+    events.push_back(e);
+    if (callbacks_.on_event) callbacks_.on_event(events.back());
+  }
+  // The curve turning back in a parameter: where the tangent's component changes sign,
+  // interpolated between the points (its error is of the order of the step's square).
+  const int indices[2] = {system_.first_index(), system_.second_index()};
+  const std::string names[2] = {curve_.first_name, curve_.second_name};
+  for (int k = 0; k < 2; ++k) {
+    // In the scaled norm; a curve that runs along the other parameter's direction has this
+    // component at the noise level, and its sign means nothing.
+    const double a = from.tangent[indices[k]] * (k == 0 ? first_weight_ : second_weight_);
+    const double b = to.tangent[indices[k]] * (k == 0 ? first_weight_ : second_weight_);
+    if ((a < 0.0) == (b < 0.0) || std::max(std::abs(a), std::abs(b)) < 1e-3) continue;
+    const double t = a / (a - b);
+    CurveEvent e;
+    e.type = "turn in " + names[k];
+    e.description = "the curve turns back in " + names[k];
+    e.first = from.first + t * (to.first - from.first);
+    e.second = from.second + t * (to.second - from.second);
+    e.uncertainty = std::abs(to.first - from.first);
+    e.at = t < 0.5 ? from : to;
+    e.located = false;
+    e.after_point = from.index;
+    e.note = "interpolated between points";
+    events.push_back(e);
+    if (callbacks_.on_event) callbacks_.on_event(events.back());
+  }
+}
+
+CurveStop CurveRun::run(const CurvePoint& start, const Eigen::MatrixXd& start_jacobian,
+                        int direction, std::vector<CurvePoint>& points,
+                        std::vector<CurveEvent>& events, std::string& reason) {
+  CurvePoint here = start;
+  Eigen::MatrixXd jacobian = start_jacobian;
+  here.tangent = system_.tangent(jacobian, Eigen::VectorXd(), direction);
+  double step = options_.initial_step;
+  double farthest = 0.0;
+  for (int count = 1;; ++count) {
+    if (callbacks_.stop_requested && callbacks_.stop_requested()) {
+      reason = "interrupted";
+      return CurveStop::Interrupted;
+    }
+    if (count > options_.max_points) {
+      reason = "reached the point limit (" + std::to_string(options_.max_points) + ")";
+      return CurveStop::PointLimit;
+    }
+    system_.set_section(here.unknowns);
+    CurveSystem::Correction r;
+    bool edge = false;
+    while (true) {
+      if (step < options_.min_step) {
+        reason = "the step fell below the minimum at " + curve_.first_name + " = " +
+                 number(here.first) + ", " + curve_.second_name + " = " + number(here.second) +
+                 (r.reason.empty() ? "" : " (" + r.reason + ")");
+        return CurveStop::MinimumStep;
+      }
+      CurveSystem::Condition c;
+      c.tangent = here.tangent;
+      c.from = here.unknowns;
+      c.step = step;
+      r = system_.correct(here.unknowns + step * here.tangent, c, jacobian);
+      if (r.converged && !inside(r.u)) {
+        // Onto the window's edge: the parameter that left it, held at its bound.
+        const Eigen::VectorXd& u = r.u;
+        const int i1 = system_.first_index(), i2 = system_.second_index();
+        CurveSystem::Condition e;
+        if (u[i1] < options_.first_lower || u[i1] > options_.first_upper) {
+          e.index = i1;
+          e.value = u[i1] < options_.first_lower ? options_.first_lower : options_.first_upper;
+        } else {
+          e.index = i2;
+          e.value = u[i2] < options_.second_lower ? options_.second_lower : options_.second_upper;
+        }
+        const double t = (e.value - here.unknowns[e.index]) / (u[e.index] - here.unknowns[e.index]);
+        r = system_.correct(here.unknowns + t * (u - here.unknowns), e, jacobian);
+        edge = r.converged;
+        if (!r.converged) {
+          step *= 0.5;
+          continue;
+        }
+      }
+      if (!r.converged) {
+        step *= 0.5;
+        continue;
+      }
+      break;
+    }
+    auto next_jacobian = system_.jacobian(r.u, r.evaluation);
+    if (!next_jacobian) {
+      step *= 0.5;
+      if (step < options_.min_step) {
+        reason = "a difference of the Jacobian could not be integrated";
+        return CurveStop::MinimumStep;
+      }
+      continue;
+    }
+    system_.update_borders(r.evaluation);
+    system_.assemble(r.u, r.evaluation);
+    // Rows of g again under the new borders (the shooting rows do not depend on them).
+    next_jacobian = system_.jacobian(r.u, r.evaluation);
+    if (!next_jacobian) {
+      reason = "a difference of the Jacobian could not be integrated";
+      return CurveStop::MinimumStep;
+    }
+    const Eigen::VectorXd t = system_.tangent(*next_jacobian, here.tangent);
+    if (!edge && system_.dot(t, here.tangent) < options_.min_tangent_cosine &&
+        step > options_.min_step * 2) {
+      step *= 0.5;
+      continue;
+    }
+    CurvePoint next = system_.point(r.u, r.evaluation, *next_jacobian, t);
+    next.index = direction * static_cast<int>(points.size() + 1);
+    next.step = edge ? system_.norm(r.u - here.unknowns) : step;
+    next.iterations = r.iterations;
+    if (options_.detect) detect(here, jacobian, next, next.step, events);
+    points.push_back(next);
+    if (callbacks_.on_point) callbacks_.on_point(points.back());
+    if (edge) {
+      reason = "reached the edge of the window at " + curve_.first_name + " = " +
+               number(next.first) + ", " + curve_.second_name + " = " + number(next.second);
+      return CurveStop::WindowEdge;
+    }
+    // Back at the start: the distance from it grew and now falls within a step.
+    const double distance = system_.norm(next.unknowns - start.unknowns);
+    farthest = std::max(farthest, distance);
+    if (farthest > 4.0 * options_.max_step && distance < 1.5 * step) {
+      reason = "closed: back at the start";
+      return CurveStop::Closed;
+    }
+    here = next;
+    jacobian = *next_jacobian;
+    if (r.iterations <= 3) step = std::min(step * 1.5, options_.max_step);
+    if (r.iterations >= 7) step *= 0.7;
+  }
+}
+
+}  // namespace
+
+BifurcationCurve continue_curve(const OdeSystem& system, const Branch& branch,
+                                const Bifurcation& event, int second, const CurveOptions& options,
+                                const CurveCallbacks& callbacks) {
+  const Stopwatch clock;
+  if (const auto problem = options.validate())
+    throw std::invalid_argument("curve options: " + problem->message());
+  const auto names = system.parameter_names();
+  if (second < 0 || second >= static_cast<int>(names.size()))
+    throw std::invalid_argument("curve: the second parameter is not a parameter of the system");
+  if (second == branch.parameter)
+    throw std::invalid_argument("curve: the second parameter (" + names[second] +
+                                ") is the branch's own; expected another one");
+  if (!event.located())
+    throw std::invalid_argument("curve: the " + to_string(event.type) + " at " +
+                                branch.parameter_name + " = " + number(event.parameter) +
+                                " is not located");
+  if (event.trust == EventTrust::NoCrossingMultiplier)
+    throw std::invalid_argument("curve: the " + to_string(event.type) + " at " +
+                                branch.parameter_name + " = " + number(event.parameter) +
+                                " is where the branch turned back without a multiplier at +1 "
+                                "(an orbit shrinking into an equilibrium), not a fold of cycles");
+  const InvariantSubspace subspace =
+      branch.points.empty() ? InvariantSubspace() : branch.points.front().orbit.subspace;
+  CriticalBlock block = CriticalBlock::Inside;
+  switch (event.type) {
+    case BifurcationType::Fold:
+      block = CriticalBlock::Shooting;
+      break;
+    case BifurcationType::BranchPoint:
+      if (subspace.is_whole_space() || event.symmetry != SymmetryKind::Breaking)
+        throw std::invalid_argument(
+            "curve: a BP curve follows a symmetry-breaking branch point, and this BP breaks no "
+            "declared symmetry (the branch's start must declare the subspace it leaves)");
+      block = CriticalBlock::Across;
+      break;
+    default:
+      block =
+          event.symmetry == SymmetryKind::Breaking ? CriticalBlock::Across : CriticalBlock::Inside;
+  }
+  const ParameterValues base =
+      system.with_parameter(branch.start_values, branch.parameter, event.parameter);
+  const double p2 = system.parameter(base, second);
+  if (event.parameter < options.first_lower || event.parameter > options.first_upper ||
+      p2 < options.second_lower || p2 > options.second_upper)
+    throw std::invalid_argument("curve: the window does not contain the event (" +
+                                branch.parameter_name + " = " + number(event.parameter) + ", " +
+                                names[second] + " = " + number(p2) + ")");
+
+  BifurcationCurve curve;
+  curve.kind = event.type;
+  curve.first = branch.parameter;
+  curve.second = second;
+  curve.first_name = branch.parameter_name;
+  curve.second_name = names[second];
+  curve.state_names = system.state_names();
+  curve.subspace = subspace.description();
+  curve.options = options;
+  curve.start_values = base;
+  curve.origin =
+      to_string(event.type) + " at " + branch.parameter_name + " = " + number(event.parameter);
+
+  CurveSystem s(system, event.type, subspace, block, branch.parameter, second, base, options);
+  Eigen::VectorXd u = s.unknowns_of(event.state0, event.period, event.parameter, p2);
+  s.set_scales(u);
+  s.set_section(u);
+  const auto finish = [&](CurveStop stop, std::string reason) {
+    curve.stop = stop;
+    curve.stop_reason = std::move(reason);
+    curve.flow = s.statistics();
+    curve.evaluations = s.evaluations();
+    curve.seconds = clock.seconds();
+    return curve;
+  };
+  // The event onto the augmented system at its own second parameter: only the first moves.
+  auto e = s.evaluate(u);
+  if (!e.ok) return finish(CurveStop::StartFailed, "the event cannot be integrated: " + e.failure);
+  auto j = s.jacobian(u, e);
+  if (!j) return finish(CurveStop::StartFailed, "the event's Jacobian cannot be integrated");
+  CurveSystem::Condition hold;
+  hold.index = s.second_index();
+  hold.value = p2;
+  auto r = s.correct(u, hold, *j);
+  if (!r.converged)
+    return finish(CurveStop::StartFailed, "the event is not corrected onto the " +
+                                              to_string(event.type) + " curve: " + r.reason);
+  s.update_borders(r.evaluation);
+  s.assemble(r.u, r.evaluation);
+  j = s.jacobian(r.u, r.evaluation);
+  if (!j) return finish(CurveStop::StartFailed, "the start's Jacobian cannot be integrated");
+  CurvePoint start = s.point(r.u, r.evaluation, *j, s.tangent(*j, Eigen::VectorXd(), +1));
+  start.iterations = r.iterations;
+
+  CurveCallbacks quiet = callbacks;
+  CurveRun run(s, curve, options, quiet);
+  std::vector<CurvePoint> backward, forward;
+  std::vector<CurveEvent> backward_events, forward_events;
+  std::string forward_reason, backward_reason;
+  if (callbacks.on_point) callbacks.on_point(start);
+  const CurveStop forward_stop = run.run(start, *j, +1, forward, forward_events, forward_reason);
+  CurveStop backward_stop = CurveStop::Closed;
+  if (forward_stop != CurveStop::Closed && forward_stop != CurveStop::Interrupted) {
+    s.set_section(start.unknowns);
+    backward_stop = run.run(start, *j, -1, backward, backward_events, backward_reason);
+  }
+  // One curve: the backward half reversed, the start, the forward half.
+  for (auto it = backward.rbegin(); it != backward.rend(); ++it) curve.points.push_back(*it);
+  curve.points.push_back(start);
+  for (auto& p : forward) curve.points.push_back(p);
+  for (auto it = backward_events.rbegin(); it != backward_events.rend(); ++it)
+    curve.events.push_back(*it);
+  for (auto& ev : forward_events) curve.events.push_back(ev);
+  if (forward_stop == CurveStop::Closed || forward_stop == CurveStop::Interrupted)
+    return finish(forward_stop, forward_reason);
+  curve.backward_stop = backward_stop;
+  const CurveStop stop =
+      backward_stop == CurveStop::Interrupted ? CurveStop::Interrupted : forward_stop;
+  return finish(stop, "backward: " + backward_reason + "; forward: " + forward_reason);
+}
+
+}  // namespace sympathy

@@ -1,0 +1,225 @@
+// Two-parameter curves (continuation/bifurcation_curve.hpp) on normal forms whose curves are
+// known in closed form (tests/support/test_systems.hpp): with the second parameter a, the
+// transverse growth rate is mu - a^2, so the BP, NS and PD curves are mu = a^2 exactly, and the
+// fold form's LP curve is mu = -(1 + a)^2 / 4 with r^2 = (1 + a) / 2. Tolerance 1e-8: the orbits'
+// and multipliers' accuracy at rtol 1e-11. And the test functions' algebra against exact
+// eigenvalues.
+#include "sympathy/continuation/bifurcation_curve.hpp"
+
+#include <gtest/gtest.h>
+
+#include <algorithm>
+#include <cmath>
+#include <numbers>
+#include <random>
+
+#include "sympathy/continuation/continuation.hpp"
+#include "sympathy/continuation/curve_test_function.hpp"
+#include "tests/support/test_systems.hpp"
+
+namespace sympathy {
+namespace {
+
+using testing::NormalForm;
+using Kind = NormalForm::Kind;
+constexpr double kPi = std::numbers::pi;
+
+// The exterior square's eigenvalues are the products of pairs: for a triangular B with diagonal
+// 2, 3, 5, 7 they are 6, 10, 14, 15, 21, 35 exactly (to rounding).
+TEST(CurveTestFunction, ExteriorSquareHasThePairProducts) {
+  Eigen::MatrixXd b = Eigen::MatrixXd::Zero(4, 4);
+  b.diagonal() << 2, 3, 5, 7;
+  b(0, 1) = 0.3;
+  b(1, 3) = -1.1;
+  b(0, 2) = 0.7;
+  // Similar to a triangular matrix: the same eigenvalues.
+  std::mt19937 random(3);
+  std::uniform_real_distribution<double> u(-1, 1);
+  Eigen::MatrixXd s(4, 4);
+  for (int i = 0; i < 16; ++i) s(i) = u(random);
+  s += 3 * Eigen::MatrixXd::Identity(4, 4);
+  const Eigen::MatrixXd similar = s * b * s.inverse();
+  Eigen::VectorXd mu = exterior_square(similar).eigenvalues().real();
+  std::sort(mu.data(), mu.data() + mu.size());
+  const double expected[] = {6, 10, 14, 15, 21, 35};
+  for (int i = 0; i < 6; ++i) EXPECT_NEAR(mu[i], expected[i], 1e-10 * expected[i]);
+}
+
+// g vanishes where the matrix is singular and moves at -(w^T v) times the critical eigenvalue:
+// A(t) = S diag(t, 1, 2) S^-1, g(t) ~ -(w^T v) t near t = 0 (w^T v from the solve at t = 0).
+TEST(CurveTestFunction, BorderedValueIsRegularAtTheSingularity) {
+  Eigen::MatrixXd s(3, 3);
+  s << 2, 1, 0, 0.5, 1, 0.3, -0.2, 0.4, 1;
+  const auto a = [&](double t) {
+    return Eigen::MatrixXd(s * Eigen::Vector3d(t, 1, 2).asDiagonal() * s.inverse());
+  };
+  const BorderedSingularity test(a(0.01));
+  EXPECT_NEAR(test.value(a(0.0)).g, 0.0, 1e-14);
+  const double rate = test.value(a(0.0)).eigenvalue_rate();
+  const double h = 1e-6;
+  const double slope = (test.value(a(h)).g - test.value(a(-h)).g) / (2 * h);
+  EXPECT_NEAR(std::abs(slope), rate, 1e-6 * rate);
+}
+
+struct Start {
+  Branch branch;
+  const Bifurcation* event = nullptr;
+};
+
+// The one-parameter branch in mu through the circle (r^2 = r2) from mu = from in `direction`,
+// and its event of `type`.
+Start branch_to(const NormalForm& system, double from, double lower, double upper, double r2,
+                BifurcationType type, const InvariantSubspace& subspace = {}, int direction = +1) {
+  Eigen::VectorXd z = Eigen::VectorXd::Zero(system.dimension());
+  z[0] = std::sqrt(r2);
+  if (system.dimension() == 3) z[2] = 0.0;
+  ParameterValues p = system.with_parameter(system.default_parameters(), 0, from);
+  const auto orbit = solve_periodic_orbit(system, p, z, 2 * kPi, subspace, OrbitOptions{});
+  EXPECT_TRUE(orbit.converged()) << orbit.newton.reason;
+  ContinuationOptions o;
+  o.lower = lower;
+  o.upper = upper;
+  Continuation c(system, 0, o);
+  Start s;
+  s.branch = c.run(orbit, direction);
+  for (const auto& e : s.branch.events)
+    if (e.type == type && !s.event) s.event = &e;
+  return s;
+}
+
+CurveOptions window(double mu_lower, double mu_upper, double a_lower, double a_upper) {
+  CurveOptions o;
+  o.first_lower = mu_lower;
+  o.first_upper = mu_upper;
+  o.second_lower = a_lower;
+  o.second_upper = a_upper;
+  return o;
+}
+
+// BP of the transverse pitchfork, in (mu, a): mu = a^2 on every point, period 2 pi, the
+// breaking multiplier 1; both halves out to the window's edges, the last points on them.
+TEST(BifurcationCurve, BranchPointCurveIsTheParabola) {
+  const NormalForm system(Kind::Pitchfork, -0.3);
+  const InvariantSubspace subspace(3, {{2, -1, 1.0}}, "w1 = 0");
+  const Start s = branch_to(system, -0.3, -0.5, 0.5, 1.0, BifurcationType::BranchPoint, subspace);
+  ASSERT_NE(s.event, nullptr);
+  const BifurcationCurve curve =
+      continue_curve(system, s.branch, *s.event, 1, window(-1.0, 2.0, -0.8, 1.2));
+  ASSERT_TRUE(curve.started()) << curve.stop_reason;
+  EXPECT_EQ(curve.stop, CurveStop::WindowEdge) << curve.stop_reason;
+  ASSERT_GE(curve.points.size(), 10u);
+  for (const auto& p : curve.points) {
+    EXPECT_NEAR(p.first, p.second * p.second, 1e-8) << "a = " << p.second;
+    EXPECT_NEAR(p.period, 2 * kPi, 1e-8);
+    ASSERT_EQ(p.critical.size(), 1u);
+    EXPECT_NEAR(std::abs(p.critical[0] - 1.0), 0.0, 1e-8);
+    EXPECT_LT(p.floquet.trivial_error, 1e-8);
+    EXPECT_LT(p.uncertainty, 1e-7);
+  }
+  // Both ends on the window's edge: a = -0.8 and mu = 2 (a = sqrt 2) or a = 1.2.
+  EXPECT_NEAR(curve.points.front().second, -0.8, 1e-12);
+  EXPECT_NEAR(curve.points.back().second, 1.2, 1e-12);
+  EXPECT_EQ(curve.origin.rfind("BP at mu = ", 0), 0u) << curve.origin;
+}
+
+// NS of the rotation form in (mu, omega): the curve is mu = 0 for every omega (a = 0), and the
+// rotation number is omega; the strong resonances 1:4 and 1:3 at omega = 1/4 and 1/3, located.
+TEST(BifurcationCurve, NeimarkSackerCurveAndItsResonances) {
+  const NormalForm system(Kind::Rotation, -0.3);
+  const InvariantSubspace subspace(4, {{2, -1, 1.0}, {3, -1, 1.0}}, "u = 0, v = 0");
+  const Start s = branch_to(system, -0.3, -0.5, 0.5, 1.0, BifurcationType::NeimarkSacker, subspace);
+  ASSERT_NE(s.event, nullptr);
+  const BifurcationCurve curve =
+      continue_curve(system, s.branch, *s.event, 2, window(-0.5, 0.5, 0.2, 0.45));
+  ASSERT_TRUE(curve.started()) << curve.stop_reason;
+  ASSERT_GE(curve.points.size(), 5u);
+  for (const auto& p : curve.points) {
+    EXPECT_NEAR(p.first, 0.0, 1e-8) << "omega = " << p.second;
+    EXPECT_NEAR(p.rotation, p.second, 1e-8);
+    EXPECT_FALSE(p.neutral_saddle);
+  }
+  EXPECT_NEAR(curve.points.front().second, 0.2, 1e-12);
+  EXPECT_NEAR(curve.points.back().second, 0.45, 1e-12);
+  int found = 0;
+  for (const auto& e : curve.events) {
+    if (e.type == "R4") {
+      EXPECT_NEAR(e.second, 0.25, 1e-7);
+      ++found;
+    }
+    if (e.type == "R3") {
+      EXPECT_NEAR(e.second, 1.0 / 3.0, 1e-7);
+      ++found;
+    }
+    EXPECT_TRUE(e.located) << e.type << " " << e.note;
+  }
+  EXPECT_EQ(found, 2);
+}
+
+// PD of the Moebius twist in (mu, a): mu = a^2, the critical multiplier -1.
+TEST(BifurcationCurve, PeriodDoublingCurveIsTheParabola) {
+  const NormalForm system(Kind::Moebius, -0.3);
+  const Start s = branch_to(system, -0.3, -0.5, 0.5, 1.0, BifurcationType::PeriodDoubling);
+  ASSERT_NE(s.event, nullptr);
+  const BifurcationCurve curve =
+      continue_curve(system, s.branch, *s.event, 1, window(-1.0, 1.0, -0.6, 0.7));
+  ASSERT_TRUE(curve.started()) << curve.stop_reason;
+  ASSERT_GE(curve.points.size(), 8u);
+  for (const auto& p : curve.points) {
+    EXPECT_NEAR(p.first, p.second * p.second, 1e-8) << "a = " << p.second;
+    EXPECT_NEAR(std::abs(p.critical[0] + 1.0), 0.0, 1e-8);
+  }
+}
+
+// LP of the fold form in (mu, a): mu = -(1 + a)^2 / 4 with the orbit at r^2 = (1 + a) / 2, the
+// fold's Jordan partner of the trivial multiplier at 1 (to the square root of the error).
+TEST(BifurcationCurve, FoldCurveIsTheParabola) {
+  const NormalForm system(Kind::Fold, -0.2);
+  const Start s = branch_to(system, -0.2, -0.5, 0.5, 0.7236, BifurcationType::Fold, {}, -1);
+  ASSERT_NE(s.event, nullptr);
+  const BifurcationCurve curve =
+      continue_curve(system, s.branch, *s.event, 1, window(-1.0, 0.0, -0.5, 0.5));
+  ASSERT_TRUE(curve.started()) << curve.stop_reason;
+  ASSERT_GE(curve.points.size(), 8u);
+  for (const auto& p : curve.points) {
+    const double b = 1.0 + p.second;
+    EXPECT_NEAR(p.first, -b * b / 4.0, 1e-8) << "a = " << p.second;
+    EXPECT_NEAR(p.state0.head(2).squaredNorm(), b / 2.0, 1e-7) << "a = " << p.second;
+    EXPECT_NEAR(p.period, 2 * kPi, 1e-8);
+  }
+}
+
+// Bad requests are refused before any work, saying what was expected.
+TEST(BifurcationCurve, RefusesWhatItCannotFollow) {
+  const NormalForm system(Kind::Pitchfork, -0.3);
+  const Start s = branch_to(system, -0.3, -0.5, 0.5, 1.0, BifurcationType::BranchPoint);
+  ASSERT_NE(s.event, nullptr);
+  const auto message = [&](int second, const CurveOptions& o) {
+    try {
+      continue_curve(system, s.branch, *s.event, second, o);
+    } catch (const std::invalid_argument& e) {
+      return std::string(e.what());
+    }
+    return std::string("accepted");
+  };
+  // No subspace declared: the BP breaks no symmetry the curve could keep.
+  EXPECT_NE(message(1, window(-1, 1, -1, 1)).find("breaks no declared symmetry"),
+            std::string::npos);
+  const InvariantSubspace subspace(3, {{2, -1, 1.0}}, "w1 = 0");
+  const Start t = branch_to(system, -0.3, -0.5, 0.5, 1.0, BifurcationType::BranchPoint, subspace);
+  ASSERT_NE(t.event, nullptr);
+  const auto message2 = [&](int second, const CurveOptions& o) {
+    try {
+      continue_curve(system, t.branch, *t.event, second, o);
+    } catch (const std::invalid_argument& e) {
+      return std::string(e.what());
+    }
+    return std::string("accepted");
+  };
+  EXPECT_NE(message2(0, window(-1, 1, -1, 1)).find("the branch's own"), std::string::npos);
+  EXPECT_NE(message2(1, window(0.5, 1, -1, 1)).find("does not contain the event"),
+            std::string::npos);
+  EXPECT_NE(message2(1, window(1, -1, -1, 1)).find("first window"), std::string::npos);
+}
+
+}  // namespace
+}  // namespace sympathy
