@@ -353,8 +353,10 @@ CurveStop CurveRun::run(const CurvePoint& start, const Eigen::MatrixXd& start_ja
     }
     here = next;
     jacobian = *next_jacobian;
-    if (r.iterations <= 3) step = std::min(step * 1.5, options_.max_step);
-    if (r.iterations >= 7) step *= 0.7;
+    // A chord from the previous point's Jacobian contracts more slowly the longer the step:
+    // four or five iterations are its normal pace at steps of a few hundredths.
+    if (r.iterations <= 4) step = std::min(step * 1.5, options_.max_step);
+    if (r.iterations >= 8) step *= 0.7;
   }
 }
 
@@ -449,6 +451,7 @@ BifurcationCurve continue_curve(const OdeSystem& system, const Branch& branch,
   s.assemble(r.u, r.evaluation);
   j = s.jacobian(r.u, r.evaluation);
   if (!j) return finish(CurveStop::StartFailed, "the start's Jacobian cannot be integrated");
+  const BorderedSingularity start_borders = s.borders();
   CurvePoint start = s.point(r.u, r.evaluation, *j, s.tangent(*j, Eigen::VectorXd(), +1));
   start.iterations = r.iterations;
 
@@ -462,6 +465,7 @@ BifurcationCurve continue_curve(const OdeSystem& system, const Branch& branch,
   CurveStop backward_stop = CurveStop::Closed;
   if (forward_stop != CurveStop::Closed && forward_stop != CurveStop::Interrupted) {
     s.set_section(start.unknowns);
+    s.set_borders(start_borders);
     backward_stop = run.run(start, *j, -1, backward, backward_events, backward_reason);
   }
   // One curve: the backward half reversed, the start, the forward half.

@@ -14,9 +14,10 @@ namespace {
 // Forward-difference step in the scaled norm: g carries the monodromy's error of about 1e-9, so
 // its differences are good to about 1e-4, enough for a chord that only has to converge.
 constexpr double kDifferenceStep = 1e-5;
-// A corrected point: the scaled Newton step below this (a tenth of the location tolerance the
-// branches use, 1e-8 relative) ...
-constexpr double kStepTolerance = 1e-9;
+// A corrected point: the scaled Newton step below this. The chord contracts by about a tenth
+// per step, so the point is then within about 1e-9 of the curve in the scaled norm (the first
+// parameter by its window's width: 1e-7 N/m on the k-branch's 1-100 N/m, 2e-9 relative) ...
+constexpr double kStepTolerance = 1e-8;
 // ... or, where the integration's noise stops the chord contracting, below this.
 constexpr double kNoiseStep = 1e-7;
 

@@ -85,6 +85,10 @@ class CurveSystem {
   // The phase section through the orbit at u; the borders to the null vectors at e.
   void set_section(const Eigen::VectorXd& u);
   void update_borders(const Evaluation& e);
+  // The borders as they are, and back to saved ones (a second half of a curve starts from the
+  // borders its start was corrected with, not those the first half ended with).
+  const BorderedSingularity& borders() const { return *borders_; }
+  void set_borders(const BorderedSingularity& b) { borders_ = b; }
 
   // The point at u (converged: e), with its multipliers and critical ones.
   CurvePoint point(const Eigen::VectorXd& u, const Evaluation& e, const Eigen::MatrixXd& jacobian,

@@ -1,0 +1,209 @@
+// sympathy curve: the two-parameter curve of a bifurcation located on a branch (LP, BP, PD, NS),
+// followed in a second parameter; the branch computed as `continue` computes it, or read from
+// its JSON.
+#include <algorithm>
+#include <cmath>
+#include <cstdio>
+#include <memory>
+
+#include "cases/cli/branch_run.hpp"
+#include "cases/cli/commands.hpp"
+#include "sympathy/continuation/bifurcation_curve.hpp"
+#include "sympathy/continuation/branch_output.hpp"
+#include "sympathy/continuation/curve_output.hpp"
+#include "sympathy/core/csv.hpp"
+#include "sympathy/core/output_file.hpp"
+
+namespace sympathy::cli {
+
+namespace {
+
+void print_curve_events(std::FILE* out, const BifurcationCurve& curve) {
+  if (curve.events.empty()) {
+    std::fprintf(out, "  none\n");
+    return;
+  }
+  std::fprintf(out, "  %-10s %-20s %-20s %-11s %s\n", "type", curve.first_name.c_str(),
+               curve.second_name.c_str(), "uncertainty", "note");
+  for (const auto& e : curve.events)
+    std::fprintf(out, "  %-10s %-20.12g %-20.12g %-11.1e %s%s%s\n", e.type.c_str(), e.first,
+                 e.second, e.uncertainty, e.description.c_str(), e.note.empty() ? "" : "; ",
+                 e.note.c_str());
+}
+
+}  // namespace
+
+int run_curve(const std::vector<std::string>& argv) {
+  auto options = case_options();
+  options.insert(
+      options.end(),
+      {{"--start", "NAME", false, "named start of the case (required)"},
+       {"--param", "P", false, "the branch's parameter, the curve's first (required)"},
+       {"--from", "A", false, "the branch's first value, one end of the window (required)"},
+       {"--to", "B", false, "the branch's last value, the window's other end (required)"},
+       {"--initial", "VAR=VALUE", true, "initial state value (on top of --start)"},
+       {"--transient", "SECONDS", false, "integration before the first Newton (default 60)"},
+       {"--parent", "FILE", false, "the branch from this JSON (continue --json) instead"},
+       {"--event", "EVENT", false,
+        "the event whose curve to follow (required): LP1, BP1, NS2, ..."},
+       {"--second", "Q", false, "the second parameter (required)"},
+       {"--second-from", "A", false, "the window in the second parameter (required) ..."},
+       {"--second-to", "B", false, "... and its other end (required)"},
+       {"--step", "DS", false, "initial arclength step, scaled (default 0.01)"},
+       {"--max-step", "DS", false, "largest arclength step, scaled (default 0.05)"},
+       {"--max-points", "N", false, "point limit per direction (default 200)"},
+       {"--csv", "FILE", false, "stream every curve point to this CSV"},
+       {"--json", "FILE", false, "write the curve and its codimension-two points as JSON"},
+       {"--quiet", "", false, "no progress lines"}});
+  const auto integrator = integrator_options();
+  options.insert(options.end(), integrator.begin(), integrator.end());
+  options.push_back(accuracy_option());
+  Arguments args("curve", argv, options, {"CASE"});
+
+  Stopwatch clock;
+  const LoadedCase c = load_case(args);
+  for (const char* required : {"--start", "--param", "--from", "--to", "--event", "--second",
+                               "--second-from", "--second-to"})
+    if (!args.has(required)) throw InputError(std::string(required) + " is required");
+  BranchRequest request;
+  request.start = *args.value("--start");
+  c.file.start(request.start);
+  request.parameter = *args.value("--param");
+  for (const char* option : {"--param", "--second"})
+    if (!c.spec.has_parameter(*args.value(option)))
+      throw InputError(std::string(option) + " " + *args.value(option) + ": not a parameter of " +
+                       c.file.path() + "; expected one of: " + join(c.spec.parameter_names()));
+  const std::string second = *args.value("--second");
+  if (second == request.parameter)
+    throw InputError("--second " + second + ": expected a parameter other than --param");
+  const EventName name = parse_event_name(
+      *args.value("--event"), "--event",
+      {BifurcationType::Fold, BifurcationType::BranchPoint, BifurcationType::PeriodDoubling,
+       BifurcationType::NeimarkSacker},
+      "a located bifurcation, LP, BP, PD or NS followed by its number along the branch (e.g. "
+      "BP1)");
+  request.from = args.number("--from", 0.0);
+  request.to = args.number("--to", 0.0);
+  if (request.from == request.to) throw InputError("--from and --to: expected different values");
+  request.initial = args.assignments("--initial");
+  request.progress = nullptr;
+  request.parent_path = args.text("--parent", "");
+  auto& o = request.continuation;
+  o.orbit.transient = args.number("--transient", o.orbit.transient);
+  apply_accuracy(accuracy(args), o.orbit);
+  o.orbit.shooting.flow = flow_options(args, o.orbit.shooting.flow);
+  o.orbit.transient_flow.linear_solver = o.orbit.shooting.flow.linear_solver;
+  check_options(o.validate(), "");
+
+  CurveOptions curve_options;
+  curve_options.first_lower = std::min(request.from, request.to);
+  curve_options.first_upper = std::max(request.from, request.to);
+  curve_options.second_lower = args.number("--second-from", 0.0);
+  curve_options.second_upper = args.number("--second-to", 0.0);
+  if (curve_options.second_lower > curve_options.second_upper)
+    std::swap(curve_options.second_lower, curve_options.second_upper);
+  if (curve_options.second_lower == curve_options.second_upper)
+    throw InputError("--second-from and --second-to: expected different values");
+  curve_options.initial_step = args.number("--step", curve_options.initial_step);
+  curve_options.max_step = args.number("--max-step", curve_options.max_step);
+  curve_options.max_points = args.integer("--max-points", curve_options.max_points);
+  curve_options.orbit = o.orbit;
+  if (const auto problem = curve_options.validate()) {
+    if (problem->field == "initial_step") throw InputError("--step: expected " + problem->expected);
+    if (problem->field == "max_step") throw InputError("--max-step: expected " + problem->expected);
+    if (problem->field == "max_points")
+      throw InputError("--max-points: expected " + problem->expected);
+    check_options(problem, "");
+  }
+  check_parameter_range(c.spec, request.parameter, {request.from, request.to}, "--from, --to: ");
+  check_parameter_range(c.spec, second, {curve_options.second_lower, curve_options.second_upper},
+                        "--second-from, --second-to: ");
+  const auto json_path = args.value("--json");
+  const std::string csv_path = args.text("--csv", "");
+  if (json_path) check_writable(*json_path, "--json");
+  if (!csv_path.empty()) check_writable(csv_path, "--csv");
+  check_distinct_outputs({{"--csv", csv_path}, {"--json", json_path.value_or("")}},
+                         {{"case file", c.file.path()}, {"--parent", request.parent_path}});
+
+  std::printf(
+      "sympathy curve %s  params %s  start %s  %s of the %s-branch (%g to %g) in %s "
+      "(%g to %g)\n",
+      c.file.path().c_str(), c.params.empty() ? "(none)" : c.params.c_str(), request.start.c_str(),
+      name.text.c_str(), request.parameter.c_str(), request.from, request.to, second.c_str(),
+      curve_options.second_lower, curve_options.second_upper);
+  std::fflush(stdout);
+  const MetronomeModel model(c.spec);
+  Branch parent;
+  if (request.parent_path.empty()) {
+    parent = run_branch(c, model, request, interrupt_flag());
+  } else {
+    const auto& start = c.file.start(request.start);
+    parent = read_branch_json(request.parent_path, model, c.file.invariant_subspace(start, model));
+    if (parent.parameter_name != request.parameter)
+      throw InputError("--parent " + request.parent_path + ": a branch in " +
+                       parent.parameter_name + "; expected one in --param " + request.parameter);
+  }
+  if (!parent.started()) {
+    std::printf("  the branch: %s\n  run time %.3f s\n", parent.stop_reason.c_str(),
+                clock.seconds());
+    return 4;
+  }
+  if (interrupt_flag()->load()) return kInterrupted;
+  const Bifurcation& event = find_event(parent, name, "--event");
+  std::printf("  the branch: %zu points %s; %s at %s = %.10g\n", parent.points.size(),
+              request.parent_path.empty() ? ("in " + format_double(parent.seconds) + " s").c_str()
+                                          : ("from " + request.parent_path).c_str(),
+              name.text.c_str(), request.parameter.c_str(), event.parameter);
+  std::fflush(stdout);
+
+  std::unique_ptr<CurveCsvWriter> csv;
+  if (!csv_path.empty())
+    csv = std::make_unique<CurveCsvWriter>(csv_path, model, request.parameter, second);
+  const bool quiet = args.flag("--quiet");
+  CurveCallbacks callbacks;
+  callbacks.on_point = [&](const CurvePoint& p) {
+    if (csv) csv->write(p);
+    if (!quiet) {
+      std::fprintf(stderr, "  [%4d] %s = %-14.9g %s = %-14.9g T = %.9f s  critical %.6f%+.6fi",
+                   p.index, request.parameter.c_str(), p.first, second.c_str(), p.second, p.period,
+                   p.critical.empty() ? NAN : p.critical[0].real(),
+                   p.critical.empty() ? NAN : p.critical[0].imag());
+      if (std::isfinite(p.rotation)) std::fprintf(stderr, "  rotation %.6f", p.rotation);
+      std::fprintf(stderr, "  (%d it)\n", p.iterations);
+    }
+  };
+  callbacks.on_event = [&](const CurveEvent& e) {
+    if (!quiet)
+      std::fprintf(stderr, "  >> %s at %s = %.10g, %s = %.10g\n", e.type.c_str(),
+                   request.parameter.c_str(), e.first, second.c_str(), e.second);
+  };
+  callbacks.stop_requested = [] { return interrupt_flag()->load(); };
+  BifurcationCurve curve;
+  try {
+    const auto names = model.parameter_names();
+    const int index =
+        static_cast<int>(std::find(names.begin(), names.end(), second) - names.begin());
+    curve = continue_curve(model, parent, event, index, curve_options, callbacks);
+  } catch (const std::invalid_argument& e) {
+    throw InputError("--event " + name.text + ": " + e.what());
+  }
+  if (csv) csv->close();
+  std::printf("  %zu points; stopped: %s\n", curve.points.size(), curve.stop_reason.c_str());
+  std::printf("codimension-two points and turns:\n");
+  print_curve_events(stdout, curve);
+  std::printf("  run time %.3f s (the curve %.3f s: %d monodromies, %ld steps)\n", clock.seconds(),
+              curve.seconds, curve.evaluations, curve.flow.steps);
+  if (json_path) {
+    nlohmann::json j = curve_json(curve);
+    j["case"] = c.file.path();
+    j["params_set"] = c.params;
+    j["start"] = request.start;
+    j["event"] = name.text;
+    j["seconds"] = clock.seconds();
+    write_json(*json_path, j);
+  }
+  if (!curve.started()) return 4;
+  return curve.stop == CurveStop::Interrupted ? kInterrupted : 0;
+}
+
+}  // namespace sympathy::cli
