@@ -118,6 +118,13 @@ int run_curve(const std::vector<std::string>& argv) {
   check_parameter_range(c.spec, request.parameter, {request.from, request.to}, "--from, --to: ");
   check_parameter_range(c.spec, second, {curve_options.second_lower, curve_options.second_upper},
                         "--second-from, --second-to: ");
+  // The curve starts at the branch's value of the second parameter: the window must hold it.
+  const double base_second = c.spec.get(second);
+  if (base_second < curve_options.second_lower || base_second > curve_options.second_upper)
+    throw InputError("--second-from, --second-to: the window " +
+                     format_double(curve_options.second_lower) + " to " +
+                     format_double(curve_options.second_upper) + " does not contain the event (" +
+                     second + " = " + format_double(base_second) + " on the branch)");
   const auto json_path = args.value("--json");
   const std::string csv_path = args.text("--csv", "");
   if (json_path) check_writable(*json_path, "--json");
