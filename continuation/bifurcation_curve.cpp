@@ -2,7 +2,7 @@
 
 #include <algorithm>
 #include <cmath>
-#include <sstream>
+#include <memory>
 #include <stdexcept>
 
 #include "curve_system.hpp"
@@ -53,18 +53,13 @@ std::string to_string(CurveStop s) {
 
 namespace {
 
-std::string number(double v) {
-  std::ostringstream s;
-  s.precision(10);
-  s << v;
-  return s.str();
-}
-
 // Scalar functions along a curve whose sign changes mark codimension-two points.
 struct Watch {
   std::string type, description;
   // The function's value at a point; NaN where it does not apply.
   std::function<double(const CurvePoint&)> value;
+  // A multiplier followed from probe to probe (another one crossing the unit circle).
+  std::shared_ptr<std::complex<double>> tracked = nullptr;
 };
 
 const char* kind_of_crossing(std::complex<double> mu, SymmetryKind symmetry) {
@@ -95,7 +90,7 @@ class CurveRun {
   void detect(const CurvePoint& from, const Eigen::MatrixXd& jacobian, const CurvePoint& to,
               double step, std::vector<CurveEvent>& events);
   CurveEvent locate(const Watch& w, const CurvePoint& from, const Eigen::MatrixXd& jacobian,
-                    double step, double f0, double f1);
+                    const CurvePoint& to, double step, double f0, double f1);
 
   CurveSystem& system_;
   const BifurcationCurve& curve_;
@@ -130,21 +125,11 @@ std::vector<Watch> CurveRun::watches() const {
                    return p.neutral_saddle ? std::nan("") : kappa(p);
                  }});
   }
-  // Another multiplier through the unit circle: the one nearest to it, log-modulus signed.
-  w.push_back({"other", "", [this](const CurvePoint& p) {
-                 const auto rest = system_.others(p);
-                 double best = std::nan("");
-                 for (const auto& mu : rest) {
-                   const double d = std::log(std::abs(mu));
-                   if (std::isnan(best) || std::abs(d) < std::abs(best)) best = d;
-                 }
-                 return best;
-               }});
   return w;
 }
 
 CurveEvent CurveRun::locate(const Watch& w, const CurvePoint& from, const Eigen::MatrixXd& jacobian,
-                            double step, double f0, double f1) {
+                            const CurvePoint& to, double step, double f0, double f1) {
   // Regula falsi (Illinois) in the arclength from `from` along its tangent: each probe a point
   // corrected onto the curve under the arclength condition there.
   double a = 0.0, b = step, fa = f0, fb = f1;
@@ -186,6 +171,14 @@ CurveEvent CurveRun::locate(const Watch& w, const CurvePoint& from, const Eigen:
     }
   }
   e.located = have && std::abs(b - a) <= options_.location_tolerance;
+  if (!have) {
+    // No probe converged: where the watched function's chord between the points is zero.
+    const double t = f0 / (f0 - f1);
+    e.at = t < 0.5 ? from : to;
+    e.first = from.first + t * (to.first - from.first);
+    e.second = from.second + t * (to.second - from.second);
+    e.uncertainty = std::abs(to.first - from.first);
+  }
   if (have) {
     e.at = best;
     e.first = best.first;
@@ -194,20 +187,23 @@ CurveEvent CurveRun::locate(const Watch& w, const CurvePoint& from, const Eigen:
     const double speed = std::abs(from.tangent[system_.first_index()]);
     e.uncertainty = std::abs(b - a) * speed + best.uncertainty;
   }
-  if (w.type == "other" && have) {
-    // Name it by the crossing multiplier.
-    const auto rest = system_.others(best);
+  if (w.type == "other") {
+    // Name it by the crossing multiplier (at the point after it, where no probe converged).
+    const CurvePoint& named = have ? best : to;
+    const auto rest = system_.others(named);
     std::complex<double> nearest = rest.empty() ? 0.0 : rest.front();
     for (const auto& mu : rest)
       if (std::abs(std::log(std::abs(mu))) < std::abs(std::log(std::abs(nearest)))) nearest = mu;
+    if (w.tracked) nearest = *w.tracked;  // the multiplier followed, where the last probe had it
     SymmetryKind symmetry = SymmetryKind::Unlabelled;
-    for (const auto& m : best.floquet.multipliers)
+    for (const auto& m : named.floquet.multipliers)
       if (m.value == nearest) symmetry = m.symmetry;
     const std::string other = kind_of_crossing(nearest, symmetry);
+    e.crossing_symmetry = symmetry;
     e.type = to_string(curve_.kind) + "-" + other;
     e.description = "the " + to_string(curve_.kind) + " curve meets an " + other +
-                    " curve: a multiplier " + number(nearest.real()) +
-                    (nearest.imag() >= 0 ? "+" : "") + number(nearest.imag()) +
+                    " curve: a multiplier " + format_number(nearest.real()) +
+                    (nearest.imag() >= 0 ? "+" : "") + format_number(nearest.imag()) +
                     "i crosses the unit circle";
   }
   if (!e.located && e.note.empty()) e.note = "not narrowed to the location tolerance";
@@ -220,10 +216,45 @@ void CurveRun::detect(const CurvePoint& from, const Eigen::MatrixXd& jacobian, c
     const double f0 = w.value(from), f1 = w.value(to);
     if (!(std::isfinite(f0) && std::isfinite(f1)) || (f0 < 0.0) == (f1 < 0.0)) continue;
     if (f0 == 0.0) continue;  // found at the previous step
-    CurveEvent e = locate(w, from, jacobian, step, f0, f1);
+    CurveEvent e = locate(w, from, jacobian, to, step, f0, f1);
     e.after_point = from.index;
     events.push_back(e);
     if (callbacks_.on_event) callbacks_.on_event(events.back());
+  }
+  // Another multiplier through the unit circle: the number outside it changed. Each multiplier
+  // of `to` is paired with the nearest of `from`'s; one whose modulus crossed 1 is followed, by
+  // continuity from probe to probe (the one nearest to where it was), and its log-modulus
+  // located. Watching whichever multiplier is nearest to the circle instead would see sign
+  // changes where that role passes from one multiplier to another.
+  const auto outside = [](const std::vector<std::complex<double>>& mu) {
+    return std::count_if(mu.begin(), mu.end(), [](auto m) { return std::abs(m) > 1.0; });
+  };
+  const auto before = system_.others(from), after = system_.others(to);
+  if (outside(before) != outside(after)) {
+    for (const auto& m1 : after) {
+      const auto m0 = *std::min_element(before.begin(), before.end(), [&](auto a, auto b) {
+        return std::abs(a - m1) < std::abs(b - m1);
+      });
+      if ((std::abs(m0) > 1.0) == (std::abs(m1) > 1.0)) continue;
+      if (m1.imag() < 0.0) continue;  // a complex pair once, by its upper member
+      auto tracked = std::make_shared<std::complex<double>>(m0);
+      Watch w{"other", "",
+              [this, tracked](const CurvePoint& p) {
+                const auto rest = system_.others(p);
+                if (rest.empty()) return std::nan("");
+                const auto m = *std::min_element(rest.begin(), rest.end(), [&](auto a, auto b) {
+                  return std::abs(a - *tracked) < std::abs(b - *tracked);
+                });
+                *tracked = m;
+                return std::log(std::abs(m));
+              },
+              tracked};
+      const double f0 = std::log(std::abs(m0)), f1 = std::log(std::abs(m1));
+      CurveEvent e = locate(w, from, jacobian, to, step, f0, f1);
+      e.after_point = from.index;
+      events.push_back(e);
+      if (callbacks_.on_event) callbacks_.on_event(events.back());
+    }
   }
   // The curve turning back in a parameter: where the tangent's component changes sign,
   // interpolated between the points (its error is of the order of the step's square).
@@ -274,8 +305,8 @@ CurveStop CurveRun::run(const CurvePoint& start, const Eigen::MatrixXd& start_ja
     while (true) {
       if (step < options_.min_step) {
         reason = "the step fell below the minimum at " + curve_.first_name + " = " +
-                 number(here.first) + ", " + curve_.second_name + " = " + number(here.second) +
-                 (r.reason.empty() ? "" : " (" + r.reason + ")");
+                 format_number(here.first) + ", " + curve_.second_name + " = " +
+                 format_number(here.second) + (r.reason.empty() ? "" : " (" + r.reason + ")");
         return CurveStop::MinimumStep;
       }
       CurveSystem::Condition c;
@@ -341,13 +372,21 @@ CurveStop CurveRun::run(const CurvePoint& start, const Eigen::MatrixXd& start_ja
     if (callbacks_.on_point) callbacks_.on_point(points.back());
     if (edge) {
       reason = "reached the edge of the window at " + curve_.first_name + " = " +
-               number(next.first) + ", " + curve_.second_name + " = " + number(next.second);
+               format_number(next.first) + ", " + curve_.second_name + " = " +
+               format_number(next.second);
       return CurveStop::WindowEdge;
     }
-    // Back at the start: the distance from it grew and now falls within a step.
+    // Back at the start: the curve went away from it and the last step passed through it
+    // (within a tenth of the step: a curve's chord misses it by about step^2 times its
+    // curvature). A point merely near the start in the scaled norm is not enough: two NS points
+    // 6 N/m apart on a 1-100 N/m window are 0.06 apart, about one step.
     const double distance = system_.norm(next.unknowns - start.unknowns);
     farthest = std::max(farthest, distance);
-    if (farthest > 4.0 * options_.max_step && distance < 1.5 * step) {
+    const Eigen::VectorXd chord = next.unknowns - here.unknowns;
+    const double along = std::clamp(
+        system_.dot(start.unknowns - here.unknowns, chord) / system_.dot(chord, chord), 0.0, 1.0);
+    const double miss = system_.norm(here.unknowns + along * chord - start.unknowns);
+    if (farthest > 4.0 * options_.max_step && miss < 0.1 * system_.norm(chord)) {
       reason = "closed: back at the start";
       return CurveStop::Closed;
     }
@@ -376,11 +415,11 @@ BifurcationCurve continue_curve(const OdeSystem& system, const Branch& branch,
                                 ") is the branch's own; expected another one");
   if (!event.located())
     throw std::invalid_argument("curve: the " + to_string(event.type) + " at " +
-                                branch.parameter_name + " = " + number(event.parameter) +
+                                branch.parameter_name + " = " + format_number(event.parameter) +
                                 " is not located");
   if (event.trust == EventTrust::NoCrossingMultiplier)
     throw std::invalid_argument("curve: the " + to_string(event.type) + " at " +
-                                branch.parameter_name + " = " + number(event.parameter) +
+                                branch.parameter_name + " = " + format_number(event.parameter) +
                                 " is where the branch turned back without a multiplier at +1 "
                                 "(an orbit shrinking into an equilibrium), not a fold of cycles");
   const InvariantSubspace subspace =
@@ -407,8 +446,8 @@ BifurcationCurve continue_curve(const OdeSystem& system, const Branch& branch,
   if (event.parameter < options.first_lower || event.parameter > options.first_upper ||
       p2 < options.second_lower || p2 > options.second_upper)
     throw std::invalid_argument("curve: the window does not contain the event (" +
-                                branch.parameter_name + " = " + number(event.parameter) + ", " +
-                                names[second] + " = " + number(p2) + ")");
+                                branch.parameter_name + " = " + format_number(event.parameter) +
+                                ", " + names[second] + " = " + format_number(p2) + ")");
 
   BifurcationCurve curve;
   curve.kind = event.type;
@@ -420,8 +459,8 @@ BifurcationCurve continue_curve(const OdeSystem& system, const Branch& branch,
   curve.subspace = subspace.description();
   curve.options = options;
   curve.start_values = base;
-  curve.origin =
-      to_string(event.type) + " at " + branch.parameter_name + " = " + number(event.parameter);
+  curve.origin = to_string(event.type) + " at " + branch.parameter_name + " = " +
+                 format_number(event.parameter);
 
   CurveSystem s(system, event.type, subspace, block, branch.parameter, second, base, options);
   Eigen::VectorXd u = s.unknowns_of(event.state0, event.period, event.parameter, p2);
@@ -461,12 +500,26 @@ BifurcationCurve continue_curve(const OdeSystem& system, const Branch& branch,
   std::vector<CurveEvent> backward_events, forward_events;
   std::string forward_reason, backward_reason;
   if (callbacks.on_point) callbacks.on_point(start);
-  const CurveStop forward_stop = run.run(start, *j, +1, forward, forward_events, forward_reason);
+  // A half that would begin by leaving the window (the start on its edge in the second
+  // parameter, the direction each half is oriented by) is not run.
+  const auto on_edge = [&](int direction) {
+    return direction > 0 ? p2 >= options.second_upper : p2 <= options.second_lower;
+  };
+  const std::string edge_reason = "the start lies on the window's edge";
+  CurveStop forward_stop = CurveStop::WindowEdge;
+  if (on_edge(+1))
+    forward_reason = edge_reason;
+  else
+    forward_stop = run.run(start, *j, +1, forward, forward_events, forward_reason);
   CurveStop backward_stop = CurveStop::Closed;
   if (forward_stop != CurveStop::Closed && forward_stop != CurveStop::Interrupted) {
     s.set_section(start.unknowns);
     s.set_borders(start_borders);
-    backward_stop = run.run(start, *j, -1, backward, backward_events, backward_reason);
+    backward_stop = CurveStop::WindowEdge;
+    if (on_edge(-1))
+      backward_reason = edge_reason;
+    else
+      backward_stop = run.run(start, *j, -1, backward, backward_events, backward_reason);
   }
   // One curve: the backward half reversed, the start, the forward half.
   for (auto it = backward.rbegin(); it != backward.rend(); ++it) curve.points.push_back(*it);

@@ -10,6 +10,7 @@ int run_simulate(const std::vector<std::string>& args);
 int run_orbit(const std::vector<std::string>& args);
 int run_continue(const std::vector<std::string>& args);
 int run_curve(const std::vector<std::string>& args);
+int run_map(const std::vector<std::string>& args);
 int run_study(const std::vector<std::string>& args);
 int run_bench(const std::vector<std::string>& args);
 int run_fit(const std::vector<std::string>& args);

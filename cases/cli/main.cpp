@@ -20,6 +20,7 @@ void print_usage() {
       "  orbit      a periodic orbit from a start: period, Floquet multipliers, stability\n"
       "  continue   a branch of orbits in one parameter, with its bifurcations\n"
       "  curve      the curve of a branch's bifurcation in two parameters\n"
+      "  map        where orbits are stable in two parameters: curves and a grid\n"
       "  study      the branches of a figure (cases/figures/*.toml), side by side\n"
       "  bench      error against run time over integrator settings (the accuracy report)\n"
       "  fit        parameters fitted to a recorded time series (least squares)\n"
@@ -41,6 +42,7 @@ int main(int argc, char** argv) {
     if (command == "orbit") return sympathy::cli::run_orbit(args);
     if (command == "continue") return sympathy::cli::run_continue(args);
     if (command == "curve") return sympathy::cli::run_curve(args);
+    if (command == "map") return sympathy::cli::run_map(args);
     if (command == "study") return sympathy::cli::run_study(args);
     if (command == "bench") return sympathy::cli::run_bench(args);
     if (command == "fit") return sympathy::cli::run_fit(args);

@@ -122,6 +122,30 @@ TEST(BifurcationCurve, BranchPointCurveIsTheParabola) {
   EXPECT_EQ(curve.origin.rfind("BP at mu = ", 0), 0u) << curve.origin;
 }
 
+// Another multiplier crossing the unit circle along a curve is located and named: on the BP
+// curve mu = a^2 of the pitchfork beside s' = (a - 1/2) s, the s-multiplier exp(2 pi (a - 1/2))
+// crosses +1 at a = 1/2 exactly (mu = 1/4), inside the subspace w = 0 (so named "LP").
+TEST(BifurcationCurve, AnotherCrossingOnTheCurveIsLocated) {
+  const NormalForm system(Kind::PitchforkAndGrowth, -0.3);
+  const InvariantSubspace subspace(4, {{2, -1, 1.0}}, "w1 = 0");
+  const Start s = branch_to(system, -0.3, -0.5, 0.5, 1.0, BifurcationType::BranchPoint, subspace);
+  ASSERT_NE(s.event, nullptr);
+  const BifurcationCurve curve =
+      continue_curve(system, s.branch, *s.event, 1, window(-1.0, 1.0, -0.2, 0.8));
+  ASSERT_TRUE(curve.started()) << curve.stop_reason;
+  int found = 0;
+  for (const auto& e : curve.events) {
+    if (e.type.rfind("turn", 0) == 0) continue;
+    EXPECT_EQ(e.type, "BP-LP");
+    EXPECT_TRUE(e.located) << e.note;
+    EXPECT_NEAR(e.second, 0.5, 1e-7);
+    EXPECT_NEAR(e.first, 0.25, 1e-7);
+    EXPECT_EQ(e.crossing_symmetry, SymmetryKind::Keeping);
+    ++found;
+  }
+  EXPECT_EQ(found, 1);
+}
+
 // NS of the rotation form in (mu, omega): the curve is mu = 0 for every omega (a = 0), and the
 // rotation number is omega; the strong resonances 1:4 and 1:3 at omega = 1/4 and 1/3, located.
 TEST(BifurcationCurve, NeimarkSackerCurveAndItsResonances) {

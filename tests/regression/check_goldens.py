@@ -1,5 +1,6 @@
 #!/usr/bin/python3
-"""Compares the bifurcation points of computed studies with the goldens.
+"""Compares the bifurcation points of computed studies, and the ends of computed two-parameter
+curves, with the goldens.
 
 usage: check_goldens.py GOLDENS.json STUDY_DIR [--perturb]
 
@@ -52,6 +53,33 @@ def main():
                 failures += not ok
                 print(f"{'ok    ' if ok else 'FAILED'} {study}/{name} {t} {v:.10g} golden {w:.10g} "
                       f"diff {v - w:+.2e} tolerance {tol:.1e}")
+    # Two-parameter curves (tests/regression/curves.sh): the kind, and the first and the last
+    # point, each at its golden second-parameter value (the start's and the window's edge), the
+    # first parameter within twice its reported uncertainty.
+    for name, expected in goldens.get("curves", {}).items():
+        path = os.path.join(folder, f"curve-{name}.json")
+        if not os.path.exists(path):
+            print(f"FAILED curve {name}: no computed {path}")
+            failures += 1
+            continue
+        with open(path) as f:
+            curve = json.load(f)
+        if curve["kind"] != expected["kind"] or not curve["points"]:
+            print(f"FAILED curve {name}: kind {curve['kind']} != {expected['kind']} or no points")
+            failures += 1
+            continue
+        for end, point in (("start", curve["points"][0]), ("end", curve["points"][-1])):
+            want = expected[end]
+            tol = max(2.0 * (point["uncertainty"] or 0.0), absolute)
+            w = want["first"]
+            if perturb:
+                w += 10 * tol
+                perturb = False
+            ok = abs(point["first"] - w) <= tol and abs(point["second"] - want["second"]) <= absolute
+            failures += not ok
+            print(f"{'ok    ' if ok else 'FAILED'} curve {name} {end} at {point['second']:.10g}: "
+                  f"{point['first']:.10g} golden {w:.10g} diff {point['first'] - w:+.2e} "
+                  f"tolerance {tol:.1e}")
     print(f"{failures} failure(s)")
     sys.exit(1 if failures else 0)
 

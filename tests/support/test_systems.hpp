@@ -172,13 +172,16 @@ class TwoHopf final : public AutoDiffSystem<TwoHopf> {
 //               w = 0 the multipliers exp(2 pi mu) cross +1 at mu = 0 (together if copies = 2).
 //   Rotation:   r' = r (1 - r^2), (u, v) rotating at 0.3 and growing at mu, cubically
 //               saturated: multipliers exp(2 pi (mu +- 0.3 i)), a Neimark-Sacker pair at mu = 0.
+//   PitchforkAndGrowth: the pitchfork's w1 beside s' = (a - 1/2) s - s^3, whose multiplier
+//               exp(2 pi (a - 1/2)) crosses +1 at a = 1/2: on the BP curve mu = a^2, at
+//               (mu, a) = (1/4, 1/2), another multiplier crosses the unit circle.
 //   Moebius:    r' from a transverse plane (a = r - 1, z) that turns half a revolution per
 //               period: in the frame turning with theta / 2, xi' = mu xi - xi^3 and eta' = -eta,
 //               so the multipliers are -exp(2 pi mu) and -exp(-2 pi): period doubling at
 //               mu = 0, the doubled orbit xi = +-sqrt(mu) of period 4 pi beyond it.
 class NormalForm final : public AutoDiffSystem<NormalForm> {
  public:
-  enum class Kind { Fold, Pitchfork, Rotation, Moebius };
+  enum class Kind { Fold, Pitchfork, Rotation, Moebius, PitchforkAndGrowth };
   NormalForm(Kind kind, double mu, int copies = 1, double a = 0.0, double omega = 0.3)
       : kind_(kind), copies_(copies) {
     set_parameter_layout({{"mu", {0}}, {"a", {1}}, {"omega", {2}}}, {mu, a, omega});
@@ -193,6 +196,8 @@ class NormalForm final : public AutoDiffSystem<NormalForm> {
         return 4;
       case Kind::Moebius:
         return 3;
+      case Kind::PitchforkAndGrowth:
+        return 4;
     }
     return 2;
   }
@@ -228,6 +233,10 @@ class NormalForm final : public AutoDiffSystem<NormalForm> {
     dz[1] = z[0] + z[1] * g;
     if (kind_ == Kind::Pitchfork)
       for (int k = 2; k < dimension(); ++k) dz[k] = mu * z[k] - z[k] * z[k] * z[k];
+    if (kind_ == Kind::PitchforkAndGrowth) {
+      dz[2] = mu * z[2] - z[2] * z[2] * z[2];
+      dz[3] = (p[1] - 0.5) * z[3] - z[3] * z[3] * z[3];
+    }
     if (kind_ == Kind::Rotation) {
       const T q = z[2] * z[2] + z[3] * z[3];
       dz[2] = mu * z[2] - omega * z[3] - z[2] * q;

@@ -105,6 +105,9 @@ struct CurveEvent {
   double first = 0.0, second = 0.0;
   double uncertainty = 0.0;  // in the first parameter: bracket and the multipliers' error
   CurvePoint at;             // the located point
+  // Where another multiplier crosses ("BP-NS"): the symmetry of its perturbations, which says
+  // in which block the other curve through the point lives.
+  SymmetryKind crossing_symmetry = SymmetryKind::Unlabelled;
   bool located = false;
   int after_point = 0;
   std::string note;

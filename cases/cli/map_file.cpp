@@ -1,0 +1,91 @@
+#include "cases/cli/map_file.hpp"
+
+#include <toml++/toml.h>
+
+#include <filesystem>
+#include <set>
+
+#include "sympathy/cases/toml_reader.hpp"
+
+namespace sympathy::cli {
+
+namespace {
+
+MapAxis read_axis(const TomlReader& in, const toml::table& root, const std::string& key) {
+  const toml::node* n = root.get(key);
+  if (!n) throw InputError(in.path() + ": key '" + key + "' is missing");
+  const toml::table& t = in.table(*n, key);
+  in.only(t, key + ".", {"parameter", "from", "to", "points"});
+  for (const char* k : {"parameter", "from", "to"})
+    if (!t.get(k)) throw InputError(in.where(*n) + ": key '" + key + "." + k + "' is missing");
+  MapAxis a;
+  a.parameter = in.string(*t.get("parameter"), key + ".parameter");
+  a.from = in.number(*t.get("from"), key + ".from");
+  a.to = in.number(*t.get("to"), key + ".to");
+  if (!(a.from < a.to)) in.fail(*t.get("to"), key + ".to", "a value above " + key + ".from");
+  a.points = 25;
+  if (const toml::node* p = t.get("points")) {
+    a.points = in.integer(*p, key + ".points");
+    if (a.points != 0 && (a.points < 2 || a.points > 400))
+      in.fail(*p, key + ".points", "0 (no stability grid) or an integer from 2 to 400");
+  }
+  return a;
+}
+
+}  // namespace
+
+MapStudy load_map(const std::string& path) {
+  const toml::table root = read_toml(path, "map file");
+  const TomlReader in(path);
+  in.only(root, "", {"title", "case", "params", "accuracy", "first", "second", "orbits", "marks"});
+  MapStudy s;
+  s.path = path;
+  s.name = std::filesystem::path(path).stem().string();
+  s.title = root.get("title") ? in.string(*root.get("title"), "title") : s.name;
+  const toml::node* c = root.get("case");
+  if (!c) throw InputError(path + ": key 'case' is missing");
+  s.case_path = (std::filesystem::path(path).parent_path() / in.string(*c, "case"))
+                    .lexically_normal()
+                    .string();
+  if (root.get("params")) s.params = in.string(*root.get("params"), "params");
+  if (const toml::node* n = root.get("accuracy")) {
+    const std::string text = in.string(*n, "accuracy");
+    if (text != "fast" && text != "default" && text != "high")
+      in.fail(*n, "accuracy", "\"fast\", \"default\" or \"high\"");
+    s.accuracy = parse_accuracy(text, "accuracy");
+  }
+  s.first = read_axis(in, root, "first");
+  s.second = read_axis(in, root, "second");
+  if (s.first.parameter == s.second.parameter)
+    in.fail(*root.get("second"), "second.parameter", "a parameter other than first.parameter");
+  if ((s.first.points == 0) != (s.second.points == 0))
+    in.fail(*root.get("second"), "second.points", "0 on both axes or on neither");
+  const toml::node* list = root.get("orbits");
+  if (!list) throw InputError(path + ": key 'orbits' is missing");
+  if (!list->is_array_of_tables() || list->as_array()->empty())
+    in.fail(*list, "orbits", "one or more [[orbits]] tables");
+  std::set<std::string> names;
+  int index = 0;
+  for (const auto& entry : *list->as_array()) {
+    const std::string prefix = "orbits[" + std::to_string(++index) + "].";
+    const auto& t = *entry.as_table();
+    in.only(t, prefix, {"name", "start"});
+    for (const char* key : {"name", "start"})
+      if (!t.get(key))
+        throw InputError(in.where(entry) + ": key '" + prefix + key + "' is missing");
+    MapOrbit o{in.string(*t.get("name"), prefix + "name"),
+               in.string(*t.get("start"), prefix + "start")};
+    if (o.name.empty() || o.name.find_first_of("/\\") != std::string::npos)
+      in.fail(*t.get("name"), prefix + "name", "a name without slashes (it names files)");
+    if (!names.insert(o.name).second)
+      in.fail(*t.get("name"), prefix + "name", "a name no other orbit has");
+    s.orbits.push_back(o);
+  }
+  if (const toml::node* n = root.get("marks")) {
+    if (!n->is_array()) in.fail(*n, "marks", "a list of the case's parameter sets");
+    for (const auto& m : *n->as_array()) s.marks.push_back(in.string(m, "marks"));
+  }
+  return s;
+}
+
+}  // namespace sympathy::cli

@@ -1,0 +1,35 @@
+// Map files (cases/figures/map_*.toml): the orbits whose stability a two-parameter map shows,
+// the two parameters with their windows, the grid that shades it and the case's parameter sets
+// to mark. Read by `sympathy map` (cases/cli/map.cpp).
+#pragma once
+
+#include <string>
+#include <vector>
+
+#include "cases/cli/common.hpp"
+
+namespace sympathy::cli {
+
+struct MapAxis {
+  std::string parameter;
+  double from = 0.0, to = 0.0;
+  int points = 0;  // of the stability grid along it
+};
+
+struct MapOrbit {
+  std::string name, start;
+};
+
+struct MapStudy {
+  std::string path, name, title, case_path, params;
+  Accuracy accuracy = Accuracy::Default;
+  MapAxis first, second;
+  std::vector<MapOrbit> orbits;
+  std::vector<std::string> marks;  // parameter sets of the case, marked on the map
+};
+
+// Reads and checks a map file (keys, types, windows, names; not yet its case); throws
+// InputError naming the file, the line and the key.
+MapStudy load_map(const std::string& path);
+
+}  // namespace sympathy::cli

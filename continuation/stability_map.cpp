@@ -1,0 +1,165 @@
+#include "sympathy/continuation/stability_map.hpp"
+
+#include <algorithm>
+#include <cmath>
+#include <complex>
+#include <iterator>
+#include <stdexcept>
+
+#include "sympathy/core/text.hpp"
+
+namespace sympathy {
+
+namespace {
+
+// Whether `curve` crosses `value` of its second parameter at `first`: within 1e-4 relative of it
+// or, where the points lie far apart, within half their distance (the chord between two points
+// 0.47 N/m apart missed the anti-phase NS point at k = 56.11 by 0.067 N/m on the (k, c) map).
+// On an NS curve the rotation number must match too (within 2e-3): the row setup's two
+// in-phase NS points at k = 84.93 and 85.01 lie closer than the NS curve's points, but their
+// pairs turn by 0.2328 and 0.2401 of a revolution.
+bool passes_through(const BifurcationCurve& curve, double first, double value,
+                    double rotation = std::nan("")) {
+  for (std::size_t i = 0; i + 1 < curve.points.size(); ++i) {
+    const CurvePoint &a = curve.points[i], &b = curve.points[i + 1];
+    if ((a.second - value) * (b.second - value) > 0.0) continue;
+    const double t = a.second == b.second ? 0.0 : (value - a.second) / (b.second - a.second);
+    const double at = a.first + t * (b.first - a.first);
+    const double tolerance =
+        std::max(1e-4 * std::max(1.0, std::abs(first)), 0.5 * std::abs(b.first - a.first));
+    if (std::abs(at - first) > tolerance) continue;
+    if (std::isnan(rotation)) return true;
+    const double turn = a.rotation + t * (b.rotation - a.rotation);
+    if (std::abs(turn - rotation) <= 2e-3) return true;
+  }
+  return false;
+}
+
+double rotation_of(const Bifurcation& e) {
+  return e.type == BifurcationType::NeimarkSacker ? std::abs(std::arg(e.crossing)) / (2 * M_PI)
+                                                  : std::nan("");
+}
+
+}  // namespace
+
+std::vector<BifurcationCurve> event_curves(const OdeSystem& system, const Branch& branch,
+                                           int second, const CurveOptions& options,
+                                           const CurveCallbacks& callbacks) {
+  std::vector<BifurcationCurve> curves;
+  for (const auto& e : branch.events) {
+    if (!e.located() || e.trust == EventTrust::NoCrossingMultiplier) continue;
+    if (e.type == BifurcationType::BranchPoint && e.symmetry != SymmetryKind::Breaking) continue;
+    const double value = system.parameter(branch.start_values, second);
+    const bool covered = std::any_of(curves.begin(), curves.end(), [&](const BifurcationCurve& c) {
+      return c.kind == e.type && passes_through(c, e.parameter, value, rotation_of(e));
+    });
+    if (covered) continue;
+    if (callbacks.stop_requested && callbacks.stop_requested()) break;
+    curves.push_back(continue_curve(system, branch, e, second, options, callbacks));
+  }
+  // One generation more: where a curve met another bifurcation ("NS-LP": another multiplier
+  // crossed the unit circle there), the other curve through that point, unless already followed.
+  const std::size_t first_generation = curves.size();
+  for (std::size_t c = 0; c < first_generation; ++c) {
+    for (const CurveEvent& meeting : std::vector<CurveEvent>(curves[c].events)) {
+      const auto dash = meeting.type.find('-');
+      if (!meeting.located || dash == std::string::npos || meeting.type.rfind("turn", 0) == 0)
+        continue;
+      const std::string other = meeting.type.substr(dash + 1);
+      const BifurcationType kinds[] = {BifurcationType::Fold, BifurcationType::BranchPoint,
+                                       BifurcationType::PeriodDoubling,
+                                       BifurcationType::NeimarkSacker};
+      const auto kind = std::find_if(std::begin(kinds), std::end(kinds),
+                                     [&](BifurcationType t) { return to_string(t) == other; });
+      if (kind == std::end(kinds)) continue;
+      const bool covered =
+          std::any_of(curves.begin(), curves.end(), [&](const BifurcationCurve& k) {
+            return k.kind == *kind &&
+                   passes_through(k, meeting.first, meeting.second,
+                                  *kind == BifurcationType::NeimarkSacker ? meeting.at.rotation
+                                                                          : std::nan(""));
+          });
+      if (covered) continue;
+      if (callbacks.stop_requested && callbacks.stop_requested()) return curves;
+      // The meeting point as an event of a one-point branch at its second parameter's value.
+      Branch at;
+      at.parameter = branch.parameter;
+      at.parameter_name = branch.parameter_name;
+      at.start_values = system.with_parameter(branch.start_values, second, meeting.second);
+      at.points.resize(1);
+      at.points[0].orbit.subspace = branch.points.front().orbit.subspace;
+      Bifurcation e;
+      e.type = *kind;
+      e.parameter = meeting.first;
+      e.period = meeting.at.period;
+      e.state0 = meeting.at.state0;
+      e.floquet = meeting.at.floquet;
+      e.location = LocationOutcome::Located;
+      e.symmetry = meeting.crossing_symmetry;
+      try {
+        BifurcationCurve born = continue_curve(system, at, e, second, options, callbacks);
+        born.origin = meeting.type + " point at " + branch.parameter_name + " = " +
+                      format_number(meeting.first) + ", " + curves[c].second_name + " = " +
+                      format_number(meeting.second);
+        curves.push_back(std::move(born));
+      } catch (const std::invalid_argument&) {
+        // A meeting the curve code cannot start from (a BP of no declared symmetry): skipped.
+      }
+    }
+  }
+  return curves;
+}
+
+StabilityGrid stability_grid(const OdeSystem& system, const Branch& branch, int second,
+                             double first_lower, double first_upper, double second_lower,
+                             double second_upper, int first_points, int second_points,
+                             const OrbitOptions& options,
+                             const std::function<bool()>& stop_requested) {
+  const Stopwatch clock;
+  if (first_points < 2 || second_points < 2)
+    throw std::invalid_argument("stability grid: expected at least 2 x 2 points");
+  if (branch.points.empty()) throw std::invalid_argument("stability grid: the branch is empty");
+  StabilityGrid g;
+  for (int j = 0; j < first_points; ++j)
+    g.first.push_back(first_lower + (first_upper - first_lower) * j / (first_points - 1));
+  for (int i = 0; i < second_points; ++i)
+    g.second.push_back(second_lower + (second_upper - second_lower) * i / (second_points - 1));
+  g.unstable_count.assign(second_points, std::vector<int>(first_points, -1));
+  g.max_modulus.assign(second_points, std::vector<double>(first_points, NAN));
+  const InvariantSubspace& subspace = branch.points.front().orbit.subspace;
+  const double base = system.parameter(branch.start_values, second);
+  // The rows in the order they are reached from the branch's value: upwards, then downwards.
+  std::vector<int> up, down;
+  for (int i = 0; i < second_points; ++i) (g.second[i] >= base ? up : down).push_back(i);
+  std::reverse(down.begin(), down.end());
+  for (int j = 0; j < first_points; ++j) {
+    if (stop_requested && stop_requested()) break;
+    const auto nearest = std::min_element(
+        branch.points.begin(), branch.points.end(), [&](const auto& a, const auto& b) {
+          return std::abs(a.parameter - g.first[j]) < std::abs(b.parameter - g.first[j]);
+        });
+    const ParameterValues at_base =
+        system.with_parameter(branch.start_values, branch.parameter, g.first[j]);
+    const PeriodicOrbit start = solve_periodic_orbit(system, at_base, nearest->orbit.state0,
+                                                     nearest->orbit.period, subspace, options);
+    for (const auto* rows : {&up, &down}) {
+      if (!start.converged()) break;
+      PeriodicOrbit previous = start;
+      for (int i : *rows) {
+        const ParameterValues p = system.with_parameter(at_base, second, g.second[i]);
+        PeriodicOrbit o =
+            solve_periodic_orbit(system, p, previous.state0, previous.period, subspace, options);
+        if (!o.converged()) break;  // the rest of this direction stays unknown
+        g.unstable_count[i][j] = o.floquet.unstable_count;
+        g.max_modulus[i][j] = o.floquet.max_modulus;
+        previous = std::move(o);
+      }
+    }
+  }
+  for (const auto& row : g.unstable_count)
+    g.failures += static_cast<int>(std::count(row.begin(), row.end(), -1));
+  g.seconds = clock.seconds();
+  return g;
+}
+
+}  // namespace sympathy

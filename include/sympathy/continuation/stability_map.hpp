@@ -1,0 +1,48 @@
+// Stability maps of one periodic orbit in two parameters: the bifurcation curves through every
+// event located on its one-parameter branch (bifurcation_curve.hpp), each followed once, and the
+// orbit's stability sampled on a grid, which shades the regions the curves bound. The grid's
+// orbits come from Newton on the shooting problem, each started from its neighbour in the second
+// parameter (the first of each column from the branch's nearest point): one to three iterations
+// a point where the orbit changes smoothly, as the paper's synchronized orbits do.
+#pragma once
+
+#include <functional>
+#include <vector>
+
+#include "sympathy/continuation/bifurcation_curve.hpp"
+#include "sympathy/continuation/branch.hpp"
+
+namespace sympathy {
+
+// The curves of every located event of `branch` (LP, BP, PD, NS; not the ends of a branch that
+// turned back without a multiplier at +1) in the branch's parameter and `second`, in `options`'
+// window: an event that lies on a curve already followed (the same kind, crossing the branch's
+// value of `second` there: the second NS point of an NS curve through both) is not followed
+// again. A curve that cannot start is kept, with its reason (stop StartFailed). Then one
+// generation more: at each point where one of these curves meets another bifurcation (a
+// located "NS-LP", "BP-NS", ...), the other curve through it, unless already followed; its
+// origin names the meeting point.
+std::vector<BifurcationCurve> event_curves(const OdeSystem& system, const Branch& branch,
+                                           int second, const CurveOptions& options,
+                                           const CurveCallbacks& callbacks = {});
+
+struct StabilityGrid {
+  std::vector<double> first, second;  // the grid's values of the two parameters
+  // Per point [i][j] (second i, first j): the number of multipliers outside the unit circle
+  // (0: stable), -1 where no orbit was found; the largest modulus but the trivial one's.
+  std::vector<std::vector<int>> unstable_count;
+  std::vector<std::vector<double>> max_modulus;
+  int failures = 0;  // grid points without an orbit
+  double seconds = 0.0;
+};
+
+// The orbit's stability on a first_points x second_points grid over the window (both ends
+// included), the orbits continued from `branch` (its subspace kept). `stop_requested` (may be
+// empty) is polled between columns; an interrupted grid has -1 where it did not reach.
+StabilityGrid stability_grid(const OdeSystem& system, const Branch& branch, int second,
+                             double first_lower, double first_upper, double second_lower,
+                             double second_upper, int first_points, int second_points,
+                             const OrbitOptions& options,
+                             const std::function<bool()>& stop_requested = {});
+
+}  // namespace sympathy
