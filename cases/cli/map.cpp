@@ -112,6 +112,7 @@ int run_map(const std::vector<std::string>& argv) {
         request.parameter = map.first.parameter;
         request.from = map.first.from;
         request.to = map.first.to;
+        request.at = o.at;
         request.progress = nullptr;
         apply_accuracy(args.has("--accuracy") ? accuracy(args) : map.accuracy,
                        request.continuation.orbit);
@@ -201,8 +202,8 @@ int run_map(const std::vector<std::string>& argv) {
       std::string codim2;
       for (const auto& e : curve.events)
         if (e.type.rfind("turn", 0) != 0)
-          codim2 += (codim2.empty() ? "" : ", ") + e.type + " at " + format_double(e.first) + ", " +
-                    format_double(e.second);
+          codim2 += (codim2.empty() ? "" : ", ") + e.type + " at " + format_number(e.first) + ", " +
+                    format_number(e.second);
       const std::string stops =
           (curve.backward_stop ? to_string(*curve.backward_stop) + " / " : std::string()) +
           to_string(curve.stop);

@@ -69,14 +69,20 @@ MapStudy load_map(const std::string& path) {
   for (const auto& entry : *list->as_array()) {
     const std::string prefix = "orbits[" + std::to_string(++index) + "].";
     const auto& t = *entry.as_table();
-    in.only(t, prefix, {"name", "start"});
+    in.only(t, prefix, {"name", "start", "at"});
     for (const char* key : {"name", "start"})
       if (!t.get(key))
         throw InputError(in.where(entry) + ": key '" + prefix + key + "' is missing");
-    MapOrbit o{in.string(*t.get("name"), prefix + "name"),
-               in.string(*t.get("start"), prefix + "start")};
+    MapOrbit o;
+    o.name = in.string(*t.get("name"), prefix + "name");
+    o.start = in.string(*t.get("start"), prefix + "start");
     if (o.name.empty() || o.name.find_first_of("/\\") != std::string::npos)
       in.fail(*t.get("name"), prefix + "name", "a name without slashes (it names files)");
+    if (const toml::node* at = t.get("at")) {
+      o.at = in.number(*at, prefix + "at");
+      if (!(*o.at > s.first.from && *o.at < s.first.to))
+        in.fail(*at, prefix + "at", "a value between first.from and first.to");
+    }
     if (!names.insert(o.name).second)
       in.fail(*t.get("name"), prefix + "name", "a name no other orbit has");
     s.orbits.push_back(o);

@@ -3,6 +3,7 @@
 // to mark. Read by `sympathy map` (cases/cli/map.cpp).
 #pragma once
 
+#include <optional>
 #include <string>
 #include <vector>
 
@@ -18,6 +19,7 @@ struct MapAxis {
 
 struct MapOrbit {
   std::string name, start;
+  std::optional<double> at;  // the branch found here and followed both ways (else from `from`)
 };
 
 struct MapStudy {

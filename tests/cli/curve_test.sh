@@ -49,4 +49,40 @@ check "... naming the window and the branch's value" \
 "$bin" curve "$row2" --start anti-phase --param k --from 40 --to 55 --parent "$work/anti.json" \
   --event BP1 --second c --second-from -0.1 --second-to 0.2 > /dev/null 2> "$work/bad.err"
 check "a window outside the parameter's domain is refused" grep -q -- "--second-from, --second-to: " "$work/bad.err"
+
+# A small map: the anti-phase orbit near its BP, the BP curve in c and a 3 x 2 stability grid.
+cat > "$work/map_small.toml" <<TOML
+title = "small"
+case = "$row2"
+params = "table2"
+marks = ["table2"]
+[first]
+parameter = "k"
+from = 45.0
+to = 49.0
+points = 3
+[second]
+parameter = "c"
+from = 0.0185
+to = 0.03
+points = 2
+[[orbits]]
+name = "anti-phase"
+start = "anti-phase"
+TOML
+"$bin" map "$work/map_small.toml" --out "$work" --quiet > "$work/map.out" 2>&1
+check "map exits 0" test $? -eq 0
+check "map: one BP curve from the branch's BP, a CSV of it" test -s "$work/map_small-anti-phase-BP1.csv"
+check "map JSON: the curve, the grid (unstable at k = 45 and 47, left of the BP curve at 47.07 and 47.04 N/m; stable at 49), the mark" \
+  test "$(json "$work/map_small.json" "[c['kind'] for c in j['orbits'][0]['curves']] == ['BP'] and j['orbits'][0]['grid']['unstable_count'] == [[1, 1, 0], [1, 1, 0]] and j['marks'][0]['name'] == 'table2'")" = True
+printf 'case = "%s"\n[first]\nparameter = "k"\nfrom = 1.0\nto = 2.0\n[second]\nparameter = "k"\nfrom = 0.0\nto = 1.0\n[[orbits]]\nname = "a"\nstart = "anti-phase"\n' "$row2" > "$work/bad_map.toml"
+"$bin" map "$work/bad_map.toml" --out "$work" 2> "$work/bad.err"
+check "a map with the same parameter twice exits 2" test $? -eq 2
+check "... naming the file, the line and the key" grep -q "bad_map.toml:6: key 'second.parameter': expected a parameter other than first.parameter" "$work/bad.err"
+printf 'case = "%s"\n[first]\nparameter = "k"\nfrom = 1.0\nto = 2.0\n[second]\nparameter = "c"\nfrom = 0.1\nto = 1.0\n[[orbits]]\nname = "a"\nstart = "anti-phase"\n' "$row2" > "$work/bad_map.toml"
+"$bin" map "$work/bad_map.toml" --out "$work" 2> "$work/bad.err"
+check "a map window without the start's value is refused" grep -q "does not contain c = 0.0185" "$work/bad.err"
+printf 'case = "%s"\ncolour = 1\n' "$row2" > "$work/bad_map.toml"
+"$bin" map "$work/bad_map.toml" --out "$work" 2> "$work/bad.err"
+check "a map with an unknown key is refused" grep -q "bad_map.toml:2: key 'colour'" "$work/bad.err"
 exit "$failures"
