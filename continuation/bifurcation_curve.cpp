@@ -457,6 +457,7 @@ BifurcationCurve continue_curve(const OdeSystem& system, const Branch& branch,
   curve.second_name = names[second];
   curve.state_names = system.state_names();
   curve.subspace = subspace.description();
+  curve.symmetry = event.symmetry;
   curve.options = options;
   curve.start_values = base;
   curve.origin = to_string(event.type) + " at " + branch.parameter_name + " = " +

@@ -48,7 +48,10 @@ nlohmann::json curve_json(const BifurcationCurve& curve) {
   j["first"] = curve.first_name;
   j["second"] = curve.second_name;
   j["origin"] = curve.origin;
-  if (!curve.subspace.empty()) j["subspace"] = curve.subspace;
+  if (!curve.subspace.empty()) {
+    j["subspace"] = curve.subspace;
+    j["symmetry"] = to_string(curve.symmetry);  // the critical multipliers: "breaks", "keeps"
+  }
   j["stop"] = to_string(curve.stop);
   j["stop_reason"] = curve.stop_reason;
   j["state_names"] = curve.state_names;

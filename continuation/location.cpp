@@ -46,7 +46,9 @@ Bifurcation locate(const ContinuationPoint& a, const ContinuationPoint& b, Bifur
   double s_best = std::abs(f_lo) < std::abs(f_hi) ? 0.0 : sb;
   int side = 0;  // Illinois: which end was kept last time
   for (int iteration = 0; iteration < 30; ++iteration) {
-    const double scale = std::max(std::abs(best.parameter), 1.0);
+    // Relative to the parameter itself: with a floor of 1 the M-branch's points (M about 0.1
+    // kg) were located only to 1e-7 relative.
+    const double scale = std::max(std::abs(best.parameter), 1e-9);
     const bool narrow = std::abs(hi.parameter - lo.parameter) <= tolerance * scale;
     const bool tight = (s_hi - s_lo) <= 1e-7 * sb;  // folds: the parameter is flat there
     if ((narrow && (type != BifurcationType::Fold || tight)) || f_best == 0.0) {

@@ -5,6 +5,7 @@
 #include <complex>
 #include <iterator>
 #include <stdexcept>
+#include <utility>
 
 #include "sympathy/core/text.hpp"
 
@@ -60,12 +61,30 @@ std::vector<BifurcationCurve> event_curves(const OdeSystem& system, const Branch
   // One generation more: where a curve met another bifurcation ("NS-LP": another multiplier
   // crossed the unit circle there), the other curve through that point, unless already followed.
   const std::size_t first_generation = curves.size();
+  std::vector<std::pair<double, double>> tried;
   for (std::size_t c = 0; c < first_generation; ++c) {
     for (const CurveEvent& meeting : std::vector<CurveEvent>(curves[c].events)) {
-      const auto dash = meeting.type.find('-');
-      if (!meeting.located || dash == std::string::npos || meeting.type.rfind("turn", 0) == 0)
-        continue;
-      const std::string other = meeting.type.substr(dash + 1);
+      // At a 1:1 resonance an NS curve's pair meets at +1 and one multiplier goes on through
+      // it: a BP curve (breaking block) or an LP curve starts there; at 1:2, a PD curve.
+      std::string other;
+      SymmetryKind symmetry = meeting.crossing_symmetry;
+      if (meeting.type == "R1" || meeting.type == "R2") {
+        symmetry = curves[c].symmetry;
+        other = meeting.type == "R2" ? "PD" : symmetry == SymmetryKind::Breaking ? "BP" : "LP";
+      } else {
+        const auto dash = meeting.type.find('-');
+        if (dash == std::string::npos || meeting.type.rfind("turn", 0) == 0) continue;
+        other = meeting.type.substr(dash + 1);
+      }
+      if (!meeting.located) continue;
+      // A point tried already (located again from another probe sequence, or a start that
+      // failed) is not tried twice.
+      const auto same = [&](const std::pair<double, double>& t) {
+        return std::abs(t.first - meeting.first) <= 1e-6 * std::max(1.0, std::abs(t.first)) &&
+               std::abs(t.second - meeting.second) <= 1e-6 * std::max(1.0, std::abs(t.second));
+      };
+      if (std::any_of(tried.begin(), tried.end(), same)) continue;
+      tried.emplace_back(meeting.first, meeting.second);
       const BifurcationType kinds[] = {BifurcationType::Fold, BifurcationType::BranchPoint,
                                        BifurcationType::PeriodDoubling,
                                        BifurcationType::NeimarkSacker};
@@ -95,7 +114,7 @@ std::vector<BifurcationCurve> event_curves(const OdeSystem& system, const Branch
       e.state0 = meeting.at.state0;
       e.floquet = meeting.at.floquet;
       e.location = LocationOutcome::Located;
-      e.symmetry = meeting.crossing_symmetry;
+      e.symmetry = symmetry;
       try {
         BifurcationCurve born = continue_curve(system, at, e, second, options, callbacks);
         born.origin = meeting.type + " point at " + branch.parameter_name + " = " +

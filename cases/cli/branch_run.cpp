@@ -84,7 +84,8 @@ Branch run_branch(const LoadedCase& c, const MetronomeModel& model, const Branch
     };
   }
   const Branch parent =
-      request.parent_path.empty()
+      request.parent_branch ? *request.parent_branch
+      : request.parent_path.empty()
           ? continue_branch(model, problem, request.continuation, parent_callbacks)
           : read_branch_json(request.parent_path, model, problem.subspace);
   if (!parent.started()) return parent;

@@ -32,8 +32,10 @@ struct BranchRequest {
   // points and events are what the CSV, the events file and the result hold).
   std::string switch_at;
   // With switch_at: the parent branch read from this JSON (written by continue --json) instead
-  // of computed.
+  // of computed ...
   std::string parent_path;
+  // ... or this one, already computed (a study branch that switches at an event of another).
+  const Branch* parent_branch = nullptr;
 };
 
 // A branch read back from the JSON `continue --json` wrote, with what switching at its events

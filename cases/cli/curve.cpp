@@ -158,8 +158,9 @@ int run_curve(const std::vector<std::string>& argv) {
   if (interrupt_flag()->load()) return kInterrupted;
   const Bifurcation& event = find_event(parent, name, "--event");
   std::printf("  the branch: %zu points %s; %s at %s = %.10g\n", parent.points.size(),
-              request.parent_path.empty() ? ("in " + format_double(parent.seconds) + " s").c_str()
-                                          : ("from " + request.parent_path).c_str(),
+              request.parent_path.empty()
+                  ? ("in " + format_number(std::round(parent.seconds * 100) / 100) + " s").c_str()
+                  : ("from " + request.parent_path).c_str(),
               name.text.c_str(), request.parameter.c_str(), event.parameter);
   std::fflush(stdout);
 

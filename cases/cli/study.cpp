@@ -75,18 +75,33 @@ int run_study(const std::vector<std::string>& argv) {
     r.progress = nullptr;
     requests.push_back(r);
   }
+  // Branches switched at another's event run after the others, from that branch's result.
+  std::vector<std::size_t> order;
+  for (int chained = 0; chained < 2; ++chained)
+    for (std::size_t i = 0; i < study.branches.size(); ++i)
+      if (study.branches[i].parent.empty() == (chained == 0)) order.push_back(i);
+  const std::size_t independent = static_cast<std::size_t>(
+      std::count_if(study.branches.begin(), study.branches.end(),
+                    [](const StudyBranch& b) { return b.parent.empty(); }));
   std::mutex print;
   std::size_t next = 0;
   std::vector<std::string> errors(study.branches.size());
-  auto worker = [&] {
+  auto worker = [&](std::size_t end) {
     for (;;) {
       std::size_t i;
       {
         std::lock_guard<std::mutex> lock(print);
-        if (next >= study.branches.size()) return;
-        i = next++;
+        if (next >= end) return;
+        i = order[next++];
       }
       try {
+        if (const auto& parent = study.branches[i].parent; !parent.empty()) {
+          std::size_t p = 0;
+          while (study.branches[p].name != parent) ++p;
+          if (!errors[p].empty() || !results[p].started())
+            throw std::runtime_error("its parent branch '" + parent + "' has no result");
+          requests[i].parent_branch = &results[p];
+        }
         results[i] = run_branch(cases[i], *models[i], requests[i], stop);
       } catch (const std::exception& e) {
         errors[i] = e.what();
@@ -98,10 +113,12 @@ int run_study(const std::vector<std::string>& argv) {
       std::fflush(stdout);
     }
   };
-  std::vector<std::thread> threads;
-  for (int t = 0; t < std::min<int>(jobs, static_cast<int>(study.branches.size())); ++t)
-    threads.emplace_back(worker);
-  for (auto& t : threads) t.join();
+  for (const std::size_t end : {independent, order.size()}) {
+    std::vector<std::thread> threads;
+    for (int t = 0; t < std::min<int>(jobs, static_cast<int>(study.branches.size())); ++t)
+      threads.emplace_back(worker, end);
+    for (auto& t : threads) t.join();
+  }
 
   nlohmann::json j;
   j["study"] = study.name;

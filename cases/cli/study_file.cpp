@@ -49,18 +49,40 @@ Study load_study(const std::string& path) {
             {"name", "start", "from", "to", "at", "set", "initial", "max_points", "step",
              "max_step", "transient", "switch_at"});
     StudyBranch b;
+    // A branch switched at another's event may leave out its start: the parent's.
+    const toml::node* switch_node = t.get("switch_at");
+    const bool chained = switch_node && switch_node->is_string() &&
+                         switch_node->as_string()->get().find(':') != std::string::npos;
     for (const char* key : {"name", "start", "from", "to"})
-      if (!t.get(key))
+      if (!t.get(key) && !(chained && std::string(key) == "start"))
         throw InputError(path + ":" + std::to_string(entry.source().begin.line) + ": key '" +
                          prefix + key + "' is missing");
     b.name = in.string(*t.get("name"), prefix + "name");
-    b.request.start = in.string(*t.get("start"), prefix + "start");
+    if (t.get("start")) b.request.start = in.string(*t.get("start"), prefix + "start");
     b.request.parameter = s.parameter;
     b.request.from = in.number(*t.get("from"), prefix + "from");
     b.request.to = in.number(*t.get("to"), prefix + "to");
     if (auto* n = t.get("at")) b.request.at = in.number(*n, prefix + "at");
     if (auto* n = t.get("switch_at")) {
-      b.request.switch_at = in.string(*n, prefix + "switch_at");
+      std::string text = in.string(*n, prefix + "switch_at");
+      if (const auto colon = text.find(':'); colon != std::string::npos) {
+        b.parent = text.substr(0, colon);
+        text = text.substr(colon + 1);
+        const bool known = std::any_of(s.branches.begin(), s.branches.end(),
+                                       [&](const StudyBranch& o) { return o.name == b.parent; });
+        if (!known)
+          in.fail(*n, prefix + "switch_at",
+                  "an event of this branch (BP1) or of a branch listed before it (NAME:BP1); '" +
+                      b.parent + "' is not one");
+        const auto& parent =
+            *std::find_if(s.branches.begin(), s.branches.end(),
+                          [&](const StudyBranch& o) { return o.name == b.parent; });
+        if (!parent.parent.empty() || !parent.request.switch_at.empty())
+          in.fail(*n, prefix + "switch_at",
+                  "a branch that is not itself switched ('" + b.parent + "' is)");
+        if (b.request.start.empty()) b.request.start = parent.request.start;
+      }
+      b.request.switch_at = text;
       parse_event_name(b.request.switch_at, in.where(*n) + ": key '" + prefix + "switch_at'");
     }
     auto& o = b.request.continuation;

@@ -11,6 +11,10 @@ namespace sympathy::cli {
 
 struct StudyBranch {
   std::string name;
+  // switch_at = "PARENT:BP1": the branch born at that event of the study's branch PARENT (which
+  // is computed first and not again); empty when the branch switches at an event of its own
+  // parent run (switch_at = "BP1") or not at all.
+  std::string parent;
   BranchRequest request;
   std::vector<Assignment> sets;  // on top of the study's parameter set
 };

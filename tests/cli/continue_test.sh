@@ -93,4 +93,12 @@ check "switching at an NS says where a branch is born" grep -q "BP or PD followe
 check "switching at a missing event exits 2" test $? -eq 2
 check "a missing event is named with the branch's events" grep -q "PD1: the branch has no such event; it has BP1 at 47.06" "$work/bad.err"
 
+# Chained study branches: switch_at = "NAME:EVENT" names a branch listed before, not switched.
+printf 'case = "%s"\nparameter = "k"\n[[branches]]\nname = "a"\nstart = "anti-phase"\nfrom = 41.0\nto = 48.0\n[[branches]]\nname = "b"\nfrom = 41.0\nto = 48.0\nswitch_at = "z:BP1"\n' "$src/cases/row2.toml" > "$work/bad.toml"
+"$bin" study "$work/bad.toml" --out "$work" 2> "$work/bad.err"
+check "a chained branch naming no earlier branch is refused, file, line and key named" \
+  grep -q "bad.toml:12: key 'branches\[2\].switch_at': expected an event of this branch (BP1) or of a branch listed before it (NAME:BP1); 'z' is not one" "$work/bad.err"
+printf 'case = "%s"\nparameter = "k"\n[[branches]]\nname = "a"\nstart = "anti-phase"\nfrom = 41.0\nto = 48.0\nswitch_at = "BP1"\n[[branches]]\nname = "b"\nfrom = 41.0\nto = 48.0\nswitch_at = "a:BP1"\n' "$src/cases/row2.toml" > "$work/bad.toml"
+"$bin" study "$work/bad.toml" --out "$work" 2> "$work/bad.err"
+check "a chain of two switches is refused" grep -q "expected a branch that is not itself switched ('a' is)" "$work/bad.err"
 exit $failures

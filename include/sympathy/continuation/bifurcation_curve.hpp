@@ -124,7 +124,9 @@ struct BifurcationCurve {
   std::string first_name, second_name;
   int first = -1, second = -1;  // parameter indices
   std::vector<std::string> state_names;
-  std::string subspace;            // the subspace the orbits are kept in ("" for the whole space)
+  std::string subspace;  // the subspace the orbits are kept in ("" for the whole space)
+  // Whether the critical multipliers break the subspace's symmetry (the event's label).
+  SymmetryKind symmetry = SymmetryKind::Unlabelled;
   std::vector<CurvePoint> points;  // in order along the curve
   std::vector<CurveEvent> events;
   CurveStop stop = CurveStop::WindowEdge;

@@ -20,8 +20,9 @@ namespace sympathy {
 // value of `second` there: the second NS point of an NS curve through both) is not followed
 // again. A curve that cannot start is kept, with its reason (stop StartFailed). Then one
 // generation more: at each point where one of these curves meets another bifurcation (a
-// located "NS-LP", "BP-NS", ...), the other curve through it, unless already followed; its
-// origin names the meeting point.
+// located "NS-LP", "BP-NS", ...) and at each 1:1 and 1:2 resonance of an NS curve (a BP or LP
+// curve, a PD curve), the other curve through it, unless already followed; its origin names the
+// point.
 std::vector<BifurcationCurve> event_curves(const OdeSystem& system, const Branch& branch,
                                            int second, const CurveOptions& options,
                                            const CurveCallbacks& callbacks = {});
