@@ -340,8 +340,14 @@ CurveStop CurveRun::run(const CurvePoint& start, const Eigen::MatrixXd& start_ja
       }
       break;
     }
-    auto next_jacobian = system_.jacobian(r.u, r.evaluation);
+    // The borders moved to the new point's null vectors first, so that its Jacobian (the chord
+    // of the next step) has g's row under the borders that step will use.
+    const BorderedSingularity previous_borders = system_.borders();
+    system_.update_borders(r.evaluation);
+    system_.assemble(r.u, r.evaluation);
+    const auto next_jacobian = system_.jacobian(r.u, r.evaluation);
     if (!next_jacobian) {
+      system_.set_borders(previous_borders);
       step *= 0.5;
       if (step < options_.min_step) {
         reason = "a difference of the Jacobian could not be integrated";
@@ -349,17 +355,10 @@ CurveStop CurveRun::run(const CurvePoint& start, const Eigen::MatrixXd& start_ja
       }
       continue;
     }
-    system_.update_borders(r.evaluation);
-    system_.assemble(r.u, r.evaluation);
-    // Rows of g again under the new borders (the shooting rows do not depend on them).
-    next_jacobian = system_.jacobian(r.u, r.evaluation);
-    if (!next_jacobian) {
-      reason = "a difference of the Jacobian could not be integrated";
-      return CurveStop::MinimumStep;
-    }
     const Eigen::VectorXd t = system_.tangent(*next_jacobian, here.tangent);
     if (!edge && system_.dot(t, here.tangent) < options_.min_tangent_cosine &&
         step > options_.min_step * 2) {
+      system_.set_borders(previous_borders);
       step *= 0.5;
       continue;
     }
