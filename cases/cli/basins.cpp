@@ -1,0 +1,339 @@
+// sympathy basins: how often each synchronized state wins from random starts, over a grid of one
+// or two parameters (cases/basin_study.hpp), run on every core (continuation/task_runner.hpp),
+// every finished run streamed to a journal that a resumed run does not compute again
+// (continuation/task_journal.hpp). Files, in --out DIR: basins_journal.csv (the runs as they
+// finish), and at the end, in task order whatever the threads, basins_runs.csv, basins_shares.csv
+// and basins.json (per grid point, each state's share with its 95% Wilson interval).
+#include <cstdio>
+#include <filesystem>
+#include <thread>
+
+#include <nlohmann/json.hpp>
+
+#include "cases/cli/commands.hpp"
+#include "cases/cli/common.hpp"
+#include "sympathy/cases/basin_study.hpp"
+#include "sympathy/continuation/task_journal.hpp"
+#include "sympathy/continuation/task_runner.hpp"
+#include "sympathy/core/csv.hpp"
+#include "sympathy/core/output_file.hpp"
+#include "sympathy/core/text.hpp"
+
+namespace sympathy::cli {
+
+namespace {
+
+// "NAME=FROM:TO:COUNT" (COUNT values from FROM to TO); throws InputError naming --grid.
+GridAxis parse_grid(const std::string& text) {
+  const auto fail = [&] {
+    return InputError(
+        "--grid " + text +
+        ": expected NAME=FROM:TO:COUNT (e.g. k=40:90:6), or NAME=VALUE for one value");
+  };
+  const auto eq = text.find('=');
+  if (eq == std::string::npos || eq == 0) throw fail();
+  GridAxis a;
+  a.parameter = text.substr(0, eq);
+  std::vector<std::string> parts;
+  std::size_t from = eq + 1;
+  for (std::size_t colon; (colon = text.find(':', from)) != std::string::npos; from = colon + 1)
+    parts.push_back(text.substr(from, colon - from));
+  parts.push_back(text.substr(from));
+  const auto number = [&](const std::string& s) {
+    std::size_t used = 0;
+    double v = 0.0;
+    try {
+      v = std::stod(s, &used);
+    } catch (const std::exception&) {
+      throw fail();
+    }
+    if (used != s.size() || !std::isfinite(v)) throw fail();
+    return v;
+  };
+  if (parts.size() == 1) {
+    a.from = a.to = number(parts[0]);
+    a.count = 1;
+    return a;
+  }
+  if (parts.size() != 3) throw fail();
+  a.from = number(parts[0]);
+  a.to = number(parts[1]);
+  const double count = number(parts[2]);
+  if (count != std::floor(count) || count < 0 || count > 1e6) throw fail();
+  a.count = static_cast<int>(count);
+  return a;
+}
+
+// The command line's option for a field of BasinOptions.
+std::string option_of(const std::string& field) {
+  if (field.rfind("grid", 0) == 0) return "--grid";
+  if (field == "starts") return "--starts";
+  if (field == "angle_min" || field == "angle_max") return "--angles";
+  if (field == "t_end") return "--t-end";
+  if (field == "dt") return "--dt";
+  if (field == "classifier.window") return "--window";
+  if (field == "classifier.phase_tolerance") return "--phase-tolerance";
+  if (field == "classifier.lock_tolerance") return "--lock-tolerance";
+  if (field.rfind("flow.", 0) == 0) return "--" + field.substr(5);
+  return field;
+}
+
+std::vector<std::string> journal_header(const BasinStudy& study) {
+  std::vector<std::string> h{"point"};
+  for (const auto& a : study.options().grid) h.push_back(a.parameter);
+  h.push_back("start");
+  for (int i = 1; i <= study.pendula(); ++i) h.push_back("th" + std::to_string(i) + "_0");
+  h.insert(h.end(), {"class", "t_sync", "frequency"});
+  for (int i = 2; i <= study.pendula(); ++i) h.push_back("phase_th" + std::to_string(i));
+  for (int i = 1; i <= study.pendula(); ++i) h.push_back("amp_th" + std::to_string(i));
+  return h;
+}
+
+// The fields that say which run a row is: point, grid values, start, start angles.
+std::vector<std::string> task_fields(const BasinTask& t) {
+  std::vector<std::string> f{std::to_string(t.point)};
+  for (double v : t.values) f.push_back(format_double(v));
+  f.push_back(std::to_string(t.start));
+  for (double a : t.angles) f.push_back(format_double(a));
+  return f;
+}
+
+std::vector<std::string> row_of(const BasinTask& t, const SyncResult& r) {
+  auto f = task_fields(t);
+  f.insert(f.end(), {r.name, format_double(r.time_to_sync), format_double(r.frequency)});
+  for (double v : r.phase_differences) f.push_back(format_double(v));
+  for (double v : r.amplitudes) f.push_back(format_double(v));
+  return f;
+}
+
+}  // namespace
+
+int run_basins(const std::vector<std::string>& argv) {
+  auto options = case_options();
+  options.insert(
+      options.end(),
+      {{"--grid", "NAME=FROM:TO:COUNT", true,
+        "a parameter's grid, COUNT values from FROM to TO (NAME=VALUE: one value); once or twice"},
+       {"--starts", "N", false, "random starts per grid point (default 100)"},
+       {"--angles", "MIN:MAX", false,
+        "the pendula's start angles, uniform in [MIN, MAX] rad (default -0.6:0.6)"},
+       {"--initial", "VAR=VALUE", true,
+        "a state value every start shares (x, vx, ...: the platform moving; default at rest)"},
+       {"--seed", "N", false, "seed of the starts (default 1): task i draws from seed and i alone"},
+       {"--t-end", "SECONDS", false, "length of each simulation (default 100)"},
+       {"--dt", "SECONDS", false, "sampling interval of the classifier (default 0.01)"},
+       {"--window", "SECONDS", false, "the end of a run its class is judged on (default 10)"},
+       {"--phase-tolerance", "RAD", false,
+        "in or anti-phase: within this of 0 or pi; also time to sync (default 0.1)"},
+       {"--lock-tolerance", "RAD", false,
+        "locked: each phase difference within this of its mean over the window (default 0.1)"},
+       {"--threads", "N", false, "simulations run side by side (default: one per core)"},
+       {"--out", "DIR", false, "where the files go (default out/basins)"},
+       {"--resume", "", false, "continue the journal in DIR: its runs are not computed again"}});
+  const auto integrator = integrator_options();
+  options.insert(options.end(), integrator.begin(), integrator.end());
+  Arguments args("basins", argv, options, {"CASE"});
+
+  // Everything checked before any work.
+  Stopwatch clock;
+  const LoadedCase c = load_case(args);
+  BasinOptions o;
+  const auto grids = args.values("--grid");
+  if (grids.empty())
+    throw InputError("--grid: expected one or two parameter grids, e.g. k=40:90:6");
+  for (const auto& g : grids) o.grid.push_back(parse_grid(g));
+  o.starts = args.integer("--starts", o.starts);
+  if (const auto angles = args.value("--angles")) {
+    const auto colon = angles->find(':');
+    const auto fail =
+        InputError("--angles " + *angles + ": expected MIN:MAX in rad, e.g. -0.6:0.6");
+    if (colon == std::string::npos) throw fail;
+    try {
+      std::size_t u1 = 0, u2 = 0;
+      const std::string lo = angles->substr(0, colon), hi = angles->substr(colon + 1);
+      o.angle_min = std::stod(lo, &u1);
+      o.angle_max = std::stod(hi, &u2);
+      if (u1 != lo.size() || u2 != hi.size()) throw fail;
+    } catch (const std::logic_error&) {
+      throw fail;
+    }
+    if (!(o.angle_max > o.angle_min))
+      throw InputError("--angles " + *angles + ": the bounds are reversed or equal; expected " +
+                       "MIN below MAX");
+  }
+  const int seed = args.integer("--seed", 1);
+  if (seed < 0) throw InputError("--seed: expected a non-negative integer");
+  o.seed = static_cast<std::uint64_t>(seed);
+  o.t_end = args.number("--t-end", o.t_end);
+  o.dt = args.number("--dt", o.dt);
+  o.classifier.window = args.number("--window", o.classifier.window);
+  o.classifier.phase_tolerance = args.number("--phase-tolerance", o.classifier.phase_tolerance);
+  o.classifier.lock_tolerance = args.number("--lock-tolerance", o.classifier.lock_tolerance);
+  o.flow = flow_options(args, BasinOptions::default_flow());
+  if (const auto problem = o.validate())
+    throw InputError(option_of(problem->field) + ": expected " + problem->expected);
+  TaskRunOptions run;
+  run.threads = args.integer("--threads", 0);
+  if (args.has("--threads") && run.threads < 1)
+    throw InputError("--threads: expected a positive number of threads");
+
+  const auto initial = args.assignments("--initial");
+  const MetronomeModel model(c.spec);
+  const auto names = model.state_names();
+  for (const auto& a : initial)
+    for (int i = 0; i < model.metronome_count(); ++i)
+      if (a.key == names[model.angle_index(i)])
+        throw InputError(a.source +
+                         ": the pendula's start angles are drawn at random (--angles); " +
+                         "expected a platform state or a velocity");
+  const Eigen::VectorXd z0 = c.file.initial_state(nullptr, initial);
+  const BasinStudy study(c.spec, z0, o);
+
+  const std::string out = args.text("--out", "out/basins");
+  std::filesystem::create_directories(out);
+  const std::string journal_path = out + "/basins_journal.csv";
+  const std::string runs_path = out + "/basins_runs.csv";
+  const std::string shares_path = out + "/basins_shares.csv";
+  const std::string json_path = out + "/basins.json";
+  check_distinct_outputs({{"journal", journal_path},
+                          {"runs", runs_path},
+                          {"shares", shares_path},
+                          {"json", json_path}},
+                         {{"case file", c.file.path()}});
+  for (const auto& p : {journal_path, runs_path, shares_path, json_path})
+    check_writable(p, "--out");
+  const bool resume = args.flag("--resume");
+  if (!resume && std::filesystem::exists(journal_path))
+    throw InputError("--out " + out + ": " + journal_path + " is the journal of an earlier run; " +
+                     "expected --resume to continue it, or another --out (or remove the file)");
+  const auto header = journal_header(study);
+  TaskJournal journal(journal_path, header, study.tasks(), resume);
+  // A resumed journal must be of this study: each row's run (point, values, start, angles) the
+  // one its task index gives now.
+  const std::size_t identity_fields = task_fields(study.task(0)).size();
+  for (const auto& [index, row] : journal.rows()) {
+    const auto expected = task_fields(study.task(index));
+    if (!std::equal(expected.begin(), expected.end(), row.begin()))
+      throw InputError(journal_path + ": task " + std::to_string(index) + " is the run " +
+                       join({row.begin(), row.begin() + identity_fields}, ",") +
+                       "; this study's is " + join(expected, ",") +
+                       " (expected a journal of the same case, grid, starts, angles and seed)");
+  }
+
+  const int threads = run.resolved_threads(study.tasks() - journal.resumed());
+  std::fprintf(stderr, "sympathy basins %s  params %s  escapement %s\n", c.file.path().c_str(),
+               c.params.empty() ? "(none)" : c.params.c_str(),
+               to_string(c.spec.escapement).c_str());
+  std::string grid_text;
+  for (const auto& a : o.grid)
+    grid_text += "  " + a.parameter + " " + format_number(a.from) + " .. " + format_number(a.to) +
+                 " (" + std::to_string(a.count) + (a.count == 1 ? " value)" : " values)");
+  std::fprintf(stderr,
+               "  grid%s; %d starts a point, angles in [%g, %g] rad, seed %llu; %g s each\n",
+               grid_text.c_str(), o.starts, o.angle_min, o.angle_max,
+               static_cast<unsigned long long>(o.seed), o.t_end);
+  std::fprintf(stderr, "  %zu runs: %zu in the journal, %zu to compute on %d thread%s\n",
+               study.tasks(), journal.resumed(), study.tasks() - journal.resumed(), threads,
+               threads == 1 ? "" : "s");
+
+  const auto* stop = interrupt_flag();
+  const auto summary = run_tasks<std::vector<std::string>>(
+      study.tasks(), journal.done(),
+      [&](std::size_t index) -> std::optional<std::vector<std::string>> {
+        const BasinTask task = study.task(index);
+        const auto result = study.run(task, stop);
+        if (!result) return std::nullopt;
+        return row_of(task, *result);
+      },
+      [&](std::size_t index, std::vector<std::string>&& row) {
+        journal.append(index, std::move(row));
+      },
+      run, stop);
+  journal.close();
+
+  // The final files, in task order, from the journal.
+  std::vector<std::pair<std::size_t, std::string>> outcomes;
+  const std::size_t class_field = identity_fields;
+  for (const auto& [index, row] : journal.rows())
+    outcomes.emplace_back(study.task(index).point, row[class_field]);
+  const auto shares = basin_shares(study.points(), outcomes);
+  write_file_atomically(runs_path, journal.table());
+
+  std::vector<std::string> share_header{"point"};
+  for (const auto& a : o.grid) share_header.push_back(a.parameter);
+  share_header.insert(share_header.end(), {"class", "count", "runs", "share", "lower", "upper"});
+  std::string share_table = join(share_header, ",") + "\n";
+  nlohmann::ordered_json json;
+  json["case"] = c.file.path();
+  json["params"] = c.params;
+  json["escapement"] = to_string(c.spec.escapement);
+  for (const auto& a : o.grid)
+    json["grid"].push_back(
+        {{"parameter", a.parameter}, {"from", a.from}, {"to", a.to}, {"count", a.count}});
+  json["starts"] = o.starts;
+  json["angles"] = {o.angle_min, o.angle_max};
+  json["initial"] = nlohmann::ordered_json::object();
+  for (const auto& a : initial) json["initial"][a.key] = a.value;
+  json["seed"] = o.seed;
+  json["t_end"] = o.t_end;
+  json["dt"] = o.dt;
+  json["classifier"] = {{"window", o.classifier.window},
+                        {"phase_tolerance", o.classifier.phase_tolerance},
+                        {"lock_tolerance", o.classifier.lock_tolerance},
+                        {"stopped_amplitude", study.options().classifier.stopped_amplitude}};
+  json["integrator"] = {
+      {"method", to_string(o.flow.method)}, {"rtol", o.flow.rtol}, {"atol", o.flow.atol}};
+  json["tasks"] = study.tasks();
+  json["done"] = journal.rows().size();
+  json["complete"] = journal.rows().size() == study.tasks();
+  json["runs_csv"] = std::filesystem::path(runs_path).filename().string();
+  json["points"] = nlohmann::ordered_json::array();
+  for (std::size_t p = 0; p < study.points(); ++p) {
+    const auto values = study.values(p);
+    nlohmann::ordered_json point;
+    point["point"] = p;
+    for (std::size_t a = 0; a < values.size(); ++a)
+      point["values"][o.grid[a].parameter] = values[a];
+    point["runs"] = shares[p].empty() ? 0 : shares[p].front().proportion.trials;
+    point["shares"] = nlohmann::ordered_json::object();
+    for (const auto& s : shares[p]) {
+      const auto& q = s.proportion;
+      point["shares"][s.state] = {
+          {"count", q.count}, {"share", q.share}, {"lower", q.lower}, {"upper", q.upper}};
+      std::vector<std::string> fields{std::to_string(p)};
+      for (double v : values) fields.push_back(format_double(v));
+      fields.insert(fields.end(),
+                    {s.state, std::to_string(q.count), std::to_string(q.trials),
+                     format_double(q.share), format_double(q.lower), format_double(q.upper)});
+      share_table += join(fields, ",") + "\n";
+    }
+    json["points"].push_back(point);
+  }
+  write_file_atomically(shares_path, share_table);
+  write_file_atomically(json_path, json.dump(2) + "\n");
+
+  // The shares, one line a grid point.
+  for (std::size_t p = 0; p < study.points(); ++p) {
+    const auto values = study.values(p);
+    std::string at;
+    for (std::size_t a = 0; a < values.size(); ++a)
+      at += (a ? ", " : "") + o.grid[a].parameter + " = " + format_number(values[a]);
+    const std::size_t runs = shares[p].empty() ? 0 : shares[p].front().proportion.trials;
+    std::fprintf(stderr, "  %s (%zu runs):", at.c_str(), runs);
+    for (const auto& s : shares[p])
+      if (s.proportion.count > 0)
+        std::fprintf(stderr, "  %s %.3f [%.3f, %.3f]", s.state.c_str(), s.proportion.share,
+                     s.proportion.lower, s.proportion.upper);
+    std::fprintf(stderr, "\n");
+  }
+  if (summary.interrupted)
+    std::fprintf(stderr, "  INTERRUPTED: %zu of %zu runs done; --resume continues the journal\n",
+                 journal.rows().size(), study.tasks());
+  std::fprintf(stderr,
+               "  wrote %s, %s, %s (journal %s); %zu runs computed in %.2f s, run time %.2f s\n",
+               runs_path.c_str(), shares_path.c_str(), json_path.c_str(), journal_path.c_str(),
+               summary.computed, summary.seconds, clock.seconds());
+  return summary.interrupted ? kInterrupted : 0;
+}
+
+}  // namespace sympathy::cli
