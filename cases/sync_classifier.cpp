@@ -204,10 +204,15 @@ SyncResult SyncClassifier::classify() const {
     for (int i = 1; i < pendula_; ++i) targets.push_back({i, 0, mean[i]});
   }
   r.name = to_string(r.state);
+  // A locked state's name: its phase differences rounded to multiples of pi/16 (0.196 rad), so
+  // that runs ending on one orbit share a name. (Rounded to 0.01 rad, the row setup's two orbits
+  // born at the anti-phase BP split into "locked+2.94" and "locked+2.95" at k = 45 N/m.)
   if (r.state == SyncState::Locked)
     for (int i = 1; i < pendula_; ++i) {
+      const double quantum = kPi / 16.0;
+      const double named = wrap(std::round(mean[i] / quantum) * quantum);
       char text[32];
-      std::snprintf(text, sizeof text, "%s%+.2f", i > 1 ? "/" : "", mean[i]);
+      std::snprintf(text, sizeof text, "%s%+.2f", i > 1 ? "/" : "", named);
       r.name += text;
     }
 

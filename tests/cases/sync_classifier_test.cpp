@@ -55,10 +55,13 @@ TEST(SyncClassifier, ConstantLeadsAreInPhaseAntiPhaseOrLocked) {
   EXPECT_EQ(anti.state, SyncState::AntiPhase);
   EXPECT_NEAR(std::abs(anti.phase_differences[0]), kPi, 2e-3);
 
-  // Pendulum 2 leads by 1 rad.
+  // Pendulum 2 leads by 1 rad: named by the nearest multiple of pi/16, 5 pi/16 = 0.98 rad.
   const auto locked = classify(kRow, {}, [](int i, double) { return i * 1.0; });
   EXPECT_EQ(locked.state, SyncState::Locked);
-  EXPECT_EQ(locked.name, "locked+1.00");
+  EXPECT_EQ(locked.name, "locked+0.98");
+  // 2.94 and 2.95 rad (the two ends seen on one BP-born orbit) share the name of 15 pi/16.
+  for (double lead : {2.94, 2.95})
+    EXPECT_EQ(classify(kRow, {}, [lead](int i, double) { return i * lead; }).name, "locked+2.95");
   EXPECT_NEAR(locked.phase_differences[0], 1.0, 2e-3);
 }
 

@@ -19,7 +19,8 @@
 //     mean phase difference to its first member is within phase_tolerance (0.1 rad) of 0, "anti"
 //     (a pair) when within phase_tolerance of pi. One group: in-phase or anti-phase; two groups:
 //     in-in, anti-anti or in-anti (either pair in phase). Any other locked state: "locked" with
-//     its mean phase differences to pendulum 1, e.g. "locked+1.57".
+//     its mean phase differences to pendulum 1 rounded to multiples of pi/16, e.g. "locked+2.95"
+//     (15 pi/16: one of the two orbits born at the row setup's anti-phase BP, k = 45 N/m).
 // Time to synchronize: the first crossing of pendulum 1 after which the phase differences that
 // define the state (each group's, against 0 or pi; a "locked" state's, against its means) stay
 // within phase_tolerance to the end of the run; NaN for a state that is not locked.
@@ -66,7 +67,7 @@ struct SyncClassifierOptions {
 
 struct SyncResult {
   SyncState state = SyncState::Undetermined;
-  std::string name;                       // to_string(state), or "locked+1.57" (with its phases)
+  std::string name;                       // to_string(state), or "locked+2.95" (phases to pi/16)
   double time_to_sync = std::nan("");     // s
   double frequency = std::nan("");        // Hz, pendulum 1's over the window
   std::vector<double> phase_differences;  // pendula 2..N to 1, means over the window, rad
