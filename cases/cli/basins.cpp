@@ -3,15 +3,19 @@
 // every finished run streamed to a journal that a resumed run does not compute again
 // (continuation/task_journal.hpp). Files, in --out DIR: basins_journal.csv (the runs as they
 // finish), and at the end, in task order whatever the threads, basins_runs.csv, basins_shares.csv
-// and basins.json (per grid point, each state's share with its 95% Wilson interval).
+// and basins.json (per grid point, each state's share with its 95% Wilson interval). Under mpirun
+// the same across the ranks of an MPI job (continuation/task_runner_mpi.hpp), with the same files.
 #include <cstdio>
 #include <filesystem>
+#include <memory>
+#include <optional>
 #include <thread>
 
 #include <nlohmann/json.hpp>
 
 #include "cases/cli/commands.hpp"
 #include "cases/cli/common.hpp"
+#include "continuation/task_runner_mpi.hpp"
 #include "sympathy/cases/basin_study.hpp"
 #include "sympathy/continuation/task_journal.hpp"
 #include "sympathy/continuation/task_runner.hpp"
@@ -106,9 +110,19 @@ std::vector<std::string> row_of(const BasinTask& t, const SyncResult& r) {
   return f;
 }
 
-}  // namespace
+// Everything a basins run needs, checked before any work.
+struct Basins {
+  LoadedCase c;
+  BasinOptions o;
+  TaskRunOptions run;
+  std::vector<Assignment> initial;
+  std::unique_ptr<BasinStudy> study;
+  std::string out, journal_path, runs_path, shares_path, json_path;
+  std::unique_ptr<TaskJournal> journal;
+  std::size_t identity_fields = 0;
+};
 
-int run_basins(const std::vector<std::string>& argv) {
+std::vector<OptionSpec> basins_options() {
   auto options = case_options();
   options.insert(
       options.end(),
@@ -127,17 +141,19 @@ int run_basins(const std::vector<std::string>& argv) {
         "in or anti-phase: within this of 0 or pi; also time to sync (default 0.1)"},
        {"--lock-tolerance", "RAD", false,
         "locked: each phase difference within this of its mean over the window (default 0.1)"},
-       {"--threads", "N", false, "simulations run side by side (default: one per core)"},
+       {"--threads", "N", false,
+        "simulations run side by side (default: one per core; under mpirun one per rank)"},
        {"--out", "DIR", false, "where the files go (default out/basins)"},
        {"--resume", "", false, "continue the journal in DIR: its runs are not computed again"}});
   const auto integrator = integrator_options();
   options.insert(options.end(), integrator.begin(), integrator.end());
-  Arguments args("basins", argv, options, {"CASE"});
+  return options;
+}
 
-  // Everything checked before any work.
-  Stopwatch clock;
-  const LoadedCase c = load_case(args);
-  BasinOptions o;
+// The options and the study, checked; no file touched. `ranks`: the MPI job's size (1 without).
+Basins prepare(const Arguments& args, int ranks) {
+  Basins b{load_case(args), {}, {}, {}, nullptr, {}, {}, {}, {}, {}, nullptr, 0};
+  BasinOptions& o = b.o;
   const auto grids = args.values("--grid");
   if (grids.empty())
     throw InputError("--grid: expected one or two parameter grids, e.g. k=40:90:6");
@@ -172,108 +188,91 @@ int run_basins(const std::vector<std::string>& argv) {
   o.flow = flow_options(args, BasinOptions::default_flow());
   if (const auto problem = o.validate())
     throw InputError(option_of(problem->field) + ": expected " + problem->expected);
-  TaskRunOptions run;
-  run.threads = args.integer("--threads", 0);
-  if (args.has("--threads") && run.threads < 1)
+  b.run.threads = args.integer("--threads", 0);
+  if (args.has("--threads") && b.run.threads < 1)
     throw InputError("--threads: expected a positive number of threads");
 
-  const auto initial = args.assignments("--initial");
-  const MetronomeModel model(c.spec);
+  b.initial = args.assignments("--initial");
+  const MetronomeModel model(b.c.spec);
   const auto names = model.state_names();
-  for (const auto& a : initial)
+  for (const auto& a : b.initial)
     for (int i = 0; i < model.metronome_count(); ++i)
       if (a.key == names[model.angle_index(i)])
         throw InputError(a.source +
                          ": the pendula's start angles are drawn at random (--angles); " +
                          "expected a platform state or a velocity");
-  const Eigen::VectorXd z0 = c.file.initial_state(nullptr, initial);
-  const BasinStudy study(c.spec, z0, o);
+  const Eigen::VectorXd z0 = b.c.file.initial_state(nullptr, b.initial);
+  b.study = std::make_unique<BasinStudy>(b.c.spec, z0, o);
+  b.identity_fields = task_fields(b.study->task(0)).size();
+  if (ranks > 1 && static_cast<std::size_t>(ranks - 1) > b.study->tasks())
+    throw InputError("mpirun -np " + std::to_string(ranks) + ": " + std::to_string(ranks - 1) +
+                     " workers for " + std::to_string(b.study->tasks()) + " runs; expected at " +
+                     "most " + std::to_string(b.study->tasks() + 1) + " ranks (one manager)");
 
-  const std::string out = args.text("--out", "out/basins");
-  std::filesystem::create_directories(out);
-  const std::string journal_path = out + "/basins_journal.csv";
-  const std::string runs_path = out + "/basins_runs.csv";
-  const std::string shares_path = out + "/basins_shares.csv";
-  const std::string json_path = out + "/basins.json";
-  check_distinct_outputs({{"journal", journal_path},
-                          {"runs", runs_path},
-                          {"shares", shares_path},
-                          {"json", json_path}},
-                         {{"case file", c.file.path()}});
-  for (const auto& p : {journal_path, runs_path, shares_path, json_path})
+  b.out = args.text("--out", "out/basins");
+  b.journal_path = b.out + "/basins_journal.csv";
+  b.runs_path = b.out + "/basins_runs.csv";
+  b.shares_path = b.out + "/basins_shares.csv";
+  b.json_path = b.out + "/basins.json";
+  check_distinct_outputs({{"journal", b.journal_path},
+                          {"runs", b.runs_path},
+                          {"shares", b.shares_path},
+                          {"json", b.json_path}},
+                         {{"case file", b.c.file.path()}});
+  return b;
+}
+
+// The output directory and the journal (new, or resumed and checked to be of this study).
+// Rank 0's alone: the other ranks of an MPI job write nothing.
+void open_outputs(Basins& b, bool resume) {
+  if (!resume && std::filesystem::exists(b.journal_path))
+    throw InputError(
+        "--out " + b.out + ": " + b.journal_path + " is the journal of an earlier " +
+        "run; expected --resume to continue it, or another --out (or remove the file)");
+  std::filesystem::create_directories(b.out);
+  for (const auto& p : {b.journal_path, b.runs_path, b.shares_path, b.json_path})
     check_writable(p, "--out");
-  const bool resume = args.flag("--resume");
-  if (!resume && std::filesystem::exists(journal_path))
-    throw InputError("--out " + out + ": " + journal_path + " is the journal of an earlier run; " +
-                     "expected --resume to continue it, or another --out (or remove the file)");
-  const auto header = journal_header(study);
-  TaskJournal journal(journal_path, header, study.tasks(), resume);
+  const BasinStudy& study = *b.study;
+  b.journal =
+      std::make_unique<TaskJournal>(b.journal_path, journal_header(study), study.tasks(), resume);
   // A resumed journal must be of this study: each row's run (point, values, start, angles) the
   // one its task index gives now.
-  const std::size_t identity_fields = task_fields(study.task(0)).size();
-  for (const auto& [index, row] : journal.rows()) {
+  for (const auto& [index, row] : b.journal->rows()) {
     const auto expected = task_fields(study.task(index));
     if (!std::equal(expected.begin(), expected.end(), row.begin()))
-      throw InputError(journal_path + ": task " + std::to_string(index) + " is the run " +
-                       join({row.begin(), row.begin() + identity_fields}, ",") +
+      throw InputError(b.journal_path + ": task " + std::to_string(index) + " is the run " +
+                       join({row.begin(), row.begin() + b.identity_fields}, ",") +
                        "; this study's is " + join(expected, ",") +
                        " (expected a journal of the same case, grid, starts, angles and seed)");
   }
+}
 
-  const int threads = run.resolved_threads(study.tasks() - journal.resumed());
-  std::fprintf(stderr, "sympathy basins %s  params %s  escapement %s\n", c.file.path().c_str(),
-               c.params.empty() ? "(none)" : c.params.c_str(),
-               to_string(c.spec.escapement).c_str());
-  std::string grid_text;
-  for (const auto& a : o.grid)
-    grid_text += "  " + a.parameter + " " + format_number(a.from) + " .. " + format_number(a.to) +
-                 " (" + std::to_string(a.count) + (a.count == 1 ? " value)" : " values)");
-  std::fprintf(stderr,
-               "  grid%s; %d starts a point, angles in [%g, %g] rad, seed %llu; %g s each\n",
-               grid_text.c_str(), o.starts, o.angle_min, o.angle_max,
-               static_cast<unsigned long long>(o.seed), o.t_end);
-  std::fprintf(stderr, "  %zu runs: %zu in the journal, %zu to compute on %d thread%s\n",
-               study.tasks(), journal.resumed(), study.tasks() - journal.resumed(), threads,
-               threads == 1 ? "" : "s");
-
-  const auto* stop = interrupt_flag();
-  const auto summary = run_tasks<std::vector<std::string>>(
-      study.tasks(), journal.done(),
-      [&](std::size_t index) -> std::optional<std::vector<std::string>> {
-        const BasinTask task = study.task(index);
-        const auto result = study.run(task, stop);
-        if (!result) return std::nullopt;
-        return row_of(task, *result);
-      },
-      [&](std::size_t index, std::vector<std::string>&& row) {
-        journal.append(index, std::move(row));
-      },
-      run, stop);
-  journal.close();
-
-  // The final files, in task order, from the journal.
+// The final files, in task order, from the journal; the shares printed.
+void write_results(const Basins& b, const TaskRunSummary& summary, const Stopwatch& clock) {
+  const BasinStudy& study = *b.study;
+  const BasinOptions& o = b.o;
+  const TaskJournal& journal = *b.journal;
   std::vector<std::pair<std::size_t, std::string>> outcomes;
-  const std::size_t class_field = identity_fields;
   for (const auto& [index, row] : journal.rows())
-    outcomes.emplace_back(study.task(index).point, row[class_field]);
+    outcomes.emplace_back(study.task(index).point, row[b.identity_fields]);
   const auto shares = basin_shares(study.points(), outcomes);
-  write_file_atomically(runs_path, journal.table());
+  write_file_atomically(b.runs_path, journal.table());
 
   std::vector<std::string> share_header{"point"};
   for (const auto& a : o.grid) share_header.push_back(a.parameter);
   share_header.insert(share_header.end(), {"class", "count", "runs", "share", "lower", "upper"});
   std::string share_table = join(share_header, ",") + "\n";
   nlohmann::ordered_json json;
-  json["case"] = c.file.path();
-  json["params"] = c.params;
-  json["escapement"] = to_string(c.spec.escapement);
+  json["case"] = b.c.file.path();
+  json["params"] = b.c.params;
+  json["escapement"] = to_string(b.c.spec.escapement);
   for (const auto& a : o.grid)
     json["grid"].push_back(
         {{"parameter", a.parameter}, {"from", a.from}, {"to", a.to}, {"count", a.count}});
   json["starts"] = o.starts;
   json["angles"] = {o.angle_min, o.angle_max};
   json["initial"] = nlohmann::ordered_json::object();
-  for (const auto& a : initial) json["initial"][a.key] = a.value;
+  for (const auto& a : b.initial) json["initial"][a.key] = a.value;
   json["seed"] = o.seed;
   json["t_end"] = o.t_end;
   json["dt"] = o.dt;
@@ -286,7 +285,7 @@ int run_basins(const std::vector<std::string>& argv) {
   json["tasks"] = study.tasks();
   json["done"] = journal.rows().size();
   json["complete"] = journal.rows().size() == study.tasks();
-  json["runs_csv"] = std::filesystem::path(runs_path).filename().string();
+  json["runs_csv"] = std::filesystem::path(b.runs_path).filename().string();
   json["points"] = nlohmann::ordered_json::array();
   for (std::size_t p = 0; p < study.points(); ++p) {
     const auto values = study.values(p);
@@ -309,10 +308,9 @@ int run_basins(const std::vector<std::string>& argv) {
     }
     json["points"].push_back(point);
   }
-  write_file_atomically(shares_path, share_table);
-  write_file_atomically(json_path, json.dump(2) + "\n");
+  write_file_atomically(b.shares_path, share_table);
+  write_file_atomically(b.json_path, json.dump(2) + "\n");
 
-  // The shares, one line a grid point.
   for (std::size_t p = 0; p < study.points(); ++p) {
     const auto values = study.values(p);
     std::string at;
@@ -331,8 +329,82 @@ int run_basins(const std::vector<std::string>& argv) {
                  journal.rows().size(), study.tasks());
   std::fprintf(stderr,
                "  wrote %s, %s, %s (journal %s); %zu runs computed in %.2f s, run time %.2f s\n",
-               runs_path.c_str(), shares_path.c_str(), json_path.c_str(), journal_path.c_str(),
-               summary.computed, summary.seconds, clock.seconds());
+               b.runs_path.c_str(), b.shares_path.c_str(), b.json_path.c_str(),
+               b.journal_path.c_str(), summary.computed, summary.seconds, clock.seconds());
+}
+
+}  // namespace
+
+int run_basins(const std::vector<std::string>& argv) {
+  Arguments args("basins", argv, basins_options(), {"CASE"});
+  Stopwatch clock;
+  // Under mpirun: rank 0 manages (journal, files, messages), the others simulate. Every rank
+  // checks the input; a failure on any rank ends every rank before any work, reported once.
+  const MpiSession mpi;
+  const bool distributed = mpi.size() > 1;
+  std::optional<Basins> b;
+  std::exception_ptr failure;
+  try {
+    b.emplace(prepare(args, mpi.size()));
+    if (mpi.rank() == 0) open_outputs(*b, args.flag("--resume"));
+  } catch (...) {
+    failure = std::current_exception();
+  }
+  if (distributed) {
+    const auto ok = mpi.all(!failure);
+    if (failure && (mpi.rank() == 0 || ok[0])) std::rethrow_exception(failure);
+    // Rank 0 reports the same error and gives the job its exit code (a worker exiting non-zero
+    // first would make mpirun end rank 0 before it prints).
+    if (failure) return 0;
+    for (int r = 1; r < mpi.size(); ++r)
+      if (!ok[r]) {
+        if (mpi.rank() == 0)
+          throw InputError("rank " + std::to_string(r) + " failed before any work (above)");
+        return 2;
+      }
+  } else if (failure) {
+    std::rethrow_exception(failure);
+  }
+  const BasinStudy& study = *b->study;
+  const auto* stop = interrupt_flag();
+  const auto work = [&](std::size_t index) -> std::optional<std::vector<std::string>> {
+    const BasinTask task = study.task(index);
+    const auto result = study.run(task, stop);
+    if (!result) return std::nullopt;
+    return row_of(task, *result);
+  };
+  if (distributed && mpi.rank() > 0) {
+    run_tasks_mpi(mpi, study.tasks(), {}, work, {}, stop);
+    return 0;
+  }
+
+  TaskJournal& journal = *b->journal;
+  const std::size_t to_compute = study.tasks() - journal.resumed();
+  const int workers = distributed ? mpi.size() - 1 : b->run.resolved_threads(to_compute);
+  std::fprintf(stderr, "sympathy basins %s  params %s  escapement %s\n", b->c.file.path().c_str(),
+               b->c.params.empty() ? "(none)" : b->c.params.c_str(),
+               to_string(b->c.spec.escapement).c_str());
+  std::string grid_text;
+  for (const auto& a : b->o.grid)
+    grid_text += "  " + a.parameter + " " + format_number(a.from) + " .. " + format_number(a.to) +
+                 " (" + std::to_string(a.count) + (a.count == 1 ? " value)" : " values)");
+  std::fprintf(stderr,
+               "  grid%s; %d starts a point, angles in [%g, %g] rad, seed %llu; %g s each\n",
+               grid_text.c_str(), b->o.starts, b->o.angle_min, b->o.angle_max,
+               static_cast<unsigned long long>(b->o.seed), b->o.t_end);
+  std::fprintf(stderr, "  %zu runs: %zu in the journal, %zu to compute on %d %s%s\n", study.tasks(),
+               journal.resumed(), to_compute, workers, distributed ? "MPI worker" : "thread",
+               workers == 1 ? "" : "s");
+
+  const auto record = [&](std::size_t index, std::vector<std::string>&& row) {
+    journal.append(index, std::move(row));
+  };
+  const auto summary = distributed
+                           ? run_tasks_mpi(mpi, study.tasks(), journal.done(), work, record, stop)
+                           : run_tasks<std::vector<std::string>>(study.tasks(), journal.done(),
+                                                                 work, record, b->run, stop);
+  journal.close();
+  write_results(*b, summary, clock);
   return summary.interrupted ? kInterrupted : 0;
 }
 

@@ -3,9 +3,10 @@
 # resumed from its journal gives the files of an uninterrupted one without recomputing, bad
 # options refused before any work. Small on purpose (about 3 s on two cores): 2 grid points of
 # 3 starts, 30 s simulations of the row setup.
-# Usage: basins_test.sh SYMPATHY_BINARY SOURCE_DIR WORK_DIR
+# With MPIRUN (built with MPI), the same study under mpirun with 2 and 3 ranks gives the same files.
+# Usage: basins_test.sh SYMPATHY_BINARY SOURCE_DIR WORK_DIR [MPIRUN]
 set -u
-bin=$1 src=$2 work=$3
+bin=$1 src=$2 work=$3 mpirun=${4:-}
 rm -rf "$work"
 mkdir -p "$work"
 . "$(dirname "$0")/check.sh"
@@ -24,6 +25,27 @@ check "runs header" test "$(head -1 "$work/one/basins_runs.csv")" = \
 check "runs in task order" test "$(cut -d, -f1 "$work/one/basins_runs.csv" | tail -n +2 | tr '\n' ' ')" = "0 1 2 3 4 5 "
 check "shares header" grep -q '^point,k,class,count,runs,share,lower,upper$' "$work/one/basins_shares.csv"
 check "summary prints the run time" grep -q 'run time' "$work/one.err"
+
+# Under mpirun: rank 0 manages, the others simulate; the files are the same. As root in a
+# container Open MPI wants --allow-run-as-root (or OMPI_ALLOW_RUN_AS_ROOT=1 and
+# OMPI_ALLOW_RUN_AS_ROOT_CONFIRM=1), and --oversubscribe for more ranks than cores.
+if [ -n "$mpirun" ]; then
+  for np in 2 3; do
+    "$mpirun" --allow-run-as-root --oversubscribe -np $np "${run[@]}" --out "$work/mpi$np" \
+      2> "$work/mpi$np.err"
+    check "mpirun -np $np exits 0" test $? -eq 0
+    for f in basins_runs.csv basins_shares.csv basins.json; do
+      check "$f identical with mpirun -np $np and 1 thread" cmp -s "$work/one/$f" "$work/mpi$np/$f"
+    done
+  done
+  check "mpirun -np 3 runs on 2 workers" grep -q 'on 2 MPI workers' "$work/mpi3.err"
+  "$mpirun" --allow-run-as-root --oversubscribe -np 8 "${run[@]}" --out "$work/mpi8" \
+    2> "$work/mpi8.err"
+  check "more ranks than runs exits 2" test $? -eq 2
+  check "more ranks than runs: message" grep -q 'mpirun -np 8: 7 workers for 6 runs' "$work/mpi8.err"
+  test ! -e "$work/mpi8/basins_journal.csv"
+  check "more ranks than runs: nothing written" test $? -eq 0
+fi
 
 # Resume: a journal holding some of the runs (as an interrupted run leaves it) is continued:
 # only the others are computed, and the final files equal the uninterrupted run's.
