@@ -13,6 +13,7 @@
 
 #include <nlohmann/json.hpp>
 
+#include "cases/cli/basins_file.hpp"
 #include "cases/cli/commands.hpp"
 #include "cases/cli/common.hpp"
 #include "continuation/task_runner_mpi.hpp"
@@ -117,6 +118,7 @@ struct Basins {
   TaskRunOptions run;
   std::vector<Assignment> initial;
   std::unique_ptr<BasinStudy> study;
+  std::string study_path, title;  // a basins study file's, if the study came from one
   std::string out, journal_path, runs_path, shares_path, json_path;
   std::unique_ptr<TaskJournal> journal;
   std::size_t identity_fields = 0;
@@ -150,9 +152,79 @@ std::vector<OptionSpec> basins_options() {
   return options;
 }
 
+void parse_study_options(const Arguments& args, Basins& b);
+
+// The case of a basins study file, with its parameter set and `set` values.
+LoadedCase load_case_of(const BasinsFile& f) {
+  LoadedCase c{CaseFile::load(f.case_path), "", {}};
+  c.params = f.params.empty() ? c.file.default_parameter_set() : f.params;
+  c.spec = c.file.spec(c.params, f.sets);
+  return c;
+}
+
 // The options and the study, checked; no file touched. `ranks`: the MPI job's size (1 without).
 Basins prepare(const Arguments& args, int ranks) {
-  Basins b{load_case(args), {}, {}, {}, nullptr, {}, {}, {}, {}, {}, nullptr, 0};
+  // A basins study file sets the study; the command line then only says where and how to run it.
+  const std::string input = args.positional(0);
+  std::optional<BasinsFile> study_file;
+  if (is_basins_file(input)) {
+    study_file = load_basins_file(input);
+    for (const char* option :
+         {"--params", "--set", "--grid", "--starts", "--angles", "--initial", "--seed", "--t-end",
+          "--dt", "--window", "--phase-tolerance", "--lock-tolerance"})
+      if (args.has(option))
+        throw InputError(std::string(option) + ": given with the basins study file " + input +
+                         ", which sets the study; expected it in the file");
+  }
+  Basins b;
+  b.c = study_file ? load_case_of(*study_file) : load_case(args);
+  BasinOptions& o = b.o;
+  if (study_file) {
+    b.study_path = study_file->path;
+    b.title = study_file->title;
+    o = study_file->options;
+    b.initial = study_file->initial;
+  } else {
+    parse_study_options(args, b);
+  }
+  o.flow = flow_options(args, BasinOptions::default_flow());
+  if (const auto problem = o.validate())
+    throw InputError(option_of(problem->field) + ": expected " + problem->expected);
+  b.run.threads = args.integer("--threads", 0);
+  if (args.has("--threads") && b.run.threads < 1)
+    throw InputError("--threads: expected a positive number of threads");
+
+  const MetronomeModel model(b.c.spec);
+  const auto names = model.state_names();
+  for (const auto& a : b.initial)
+    for (int i = 0; i < model.metronome_count(); ++i)
+      if (a.key == names[model.angle_index(i)])
+        throw InputError(a.source + ": the pendula's start angles are drawn at random (" +
+                         (study_file ? "angles" : "--angles") +
+                         "); expected a platform state or a velocity");
+  const Eigen::VectorXd z0 = b.c.file.initial_state(nullptr, b.initial);
+  b.study = std::make_unique<BasinStudy>(b.c.spec, z0, o);
+  b.identity_fields = task_fields(b.study->task(0)).size();
+  if (ranks > 1 && static_cast<std::size_t>(ranks - 1) > b.study->tasks())
+    throw InputError("mpirun -np " + std::to_string(ranks) + ": " + std::to_string(ranks - 1) +
+                     " workers for " + std::to_string(b.study->tasks()) + " runs; expected at " +
+                     "most " + std::to_string(b.study->tasks() + 1) + " ranks (one manager)");
+
+  b.out = args.text("--out", "out/basins");
+  b.journal_path = b.out + "/basins_journal.csv";
+  b.runs_path = b.out + "/basins_runs.csv";
+  b.shares_path = b.out + "/basins_shares.csv";
+  b.json_path = b.out + "/basins.json";
+  check_distinct_outputs({{"journal", b.journal_path},
+                          {"runs", b.runs_path},
+                          {"shares", b.shares_path},
+                          {"json", b.json_path}},
+                         {{"case file", b.c.file.path()}, {"basins study file", b.study_path}});
+  return b;
+}
+
+// The study as the command line gives it (no study file).
+void parse_study_options(const Arguments& args, Basins& b) {
   BasinOptions& o = b.o;
   const auto grids = args.values("--grid");
   if (grids.empty())
@@ -185,41 +257,7 @@ Basins prepare(const Arguments& args, int ranks) {
   o.classifier.window = args.number("--window", o.classifier.window);
   o.classifier.phase_tolerance = args.number("--phase-tolerance", o.classifier.phase_tolerance);
   o.classifier.lock_tolerance = args.number("--lock-tolerance", o.classifier.lock_tolerance);
-  o.flow = flow_options(args, BasinOptions::default_flow());
-  if (const auto problem = o.validate())
-    throw InputError(option_of(problem->field) + ": expected " + problem->expected);
-  b.run.threads = args.integer("--threads", 0);
-  if (args.has("--threads") && b.run.threads < 1)
-    throw InputError("--threads: expected a positive number of threads");
-
   b.initial = args.assignments("--initial");
-  const MetronomeModel model(b.c.spec);
-  const auto names = model.state_names();
-  for (const auto& a : b.initial)
-    for (int i = 0; i < model.metronome_count(); ++i)
-      if (a.key == names[model.angle_index(i)])
-        throw InputError(a.source +
-                         ": the pendula's start angles are drawn at random (--angles); " +
-                         "expected a platform state or a velocity");
-  const Eigen::VectorXd z0 = b.c.file.initial_state(nullptr, b.initial);
-  b.study = std::make_unique<BasinStudy>(b.c.spec, z0, o);
-  b.identity_fields = task_fields(b.study->task(0)).size();
-  if (ranks > 1 && static_cast<std::size_t>(ranks - 1) > b.study->tasks())
-    throw InputError("mpirun -np " + std::to_string(ranks) + ": " + std::to_string(ranks - 1) +
-                     " workers for " + std::to_string(b.study->tasks()) + " runs; expected at " +
-                     "most " + std::to_string(b.study->tasks() + 1) + " ranks (one manager)");
-
-  b.out = args.text("--out", "out/basins");
-  b.journal_path = b.out + "/basins_journal.csv";
-  b.runs_path = b.out + "/basins_runs.csv";
-  b.shares_path = b.out + "/basins_shares.csv";
-  b.json_path = b.out + "/basins.json";
-  check_distinct_outputs({{"journal", b.journal_path},
-                          {"runs", b.runs_path},
-                          {"shares", b.shares_path},
-                          {"json", b.json_path}},
-                         {{"case file", b.c.file.path()}});
-  return b;
 }
 
 // The output directory and the journal (new, or resumed and checked to be of this study).
@@ -263,6 +301,10 @@ void write_results(const Basins& b, const TaskRunSummary& summary, const Stopwat
   share_header.insert(share_header.end(), {"class", "count", "runs", "share", "lower", "upper"});
   std::string share_table = join(share_header, ",") + "\n";
   nlohmann::ordered_json json;
+  if (!b.study_path.empty()) {
+    json["study"] = b.study_path;
+    json["title"] = b.title;
+  }
   json["case"] = b.c.file.path();
   json["params"] = b.c.params;
   json["escapement"] = to_string(b.c.spec.escapement);
@@ -336,7 +378,7 @@ void write_results(const Basins& b, const TaskRunSummary& summary, const Stopwat
 }  // namespace
 
 int run_basins(const std::vector<std::string>& argv) {
-  Arguments args("basins", argv, basins_options(), {"CASE"});
+  Arguments args("basins", argv, basins_options(), {"CASE|STUDY.toml"});
   Stopwatch clock;
   // Under mpirun: rank 0 manages (journal, files, messages), the others simulate. Every rank
   // checks the input; a failure on any rank ends every rank before any work, reported once.
@@ -381,7 +423,10 @@ int run_basins(const std::vector<std::string>& argv) {
   TaskJournal& journal = *b->journal;
   const std::size_t to_compute = study.tasks() - journal.resumed();
   const int workers = distributed ? mpi.size() - 1 : b->run.resolved_threads(to_compute);
-  std::fprintf(stderr, "sympathy basins %s  params %s  escapement %s\n", b->c.file.path().c_str(),
+  if (!b->study_path.empty())
+    std::fprintf(stderr, "sympathy basins %s: %s\n", b->study_path.c_str(), b->title.c_str());
+  std::fprintf(stderr, "%s%s  params %s  escapement %s\n",
+               b->study_path.empty() ? "sympathy basins " : "  case ", b->c.file.path().c_str(),
                b->c.params.empty() ? "(none)" : b->c.params.c_str(),
                to_string(b->c.spec.escapement).c_str());
   std::string grid_text;

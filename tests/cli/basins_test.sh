@@ -80,6 +80,38 @@ check "interrupted run's JSON is valid and says it is incomplete" python3 -c \
   "import json,sys; d=json.load(open(sys.argv[1])); sys.exit(0 if not d['complete'] else 1)" \
   "$work/signal/basins.json"
 
+# A basins study file (a TOML file with a `case` key) gives the same study as the options.
+cat > "$work/small.toml" <<EOF
+title = "small"
+case = "$src/cases/row2.toml"
+starts = 3
+t_end = 30.0
+[[grid]]
+parameter = "k"
+from = 14.7467
+to = 20
+count = 2
+EOF
+"$bin" basins "$work/small.toml" --threads 2 --out "$work/file" 2> "$work/file.err"
+check "study file exits 0" test $? -eq 0
+for f in basins_runs.csv basins_shares.csv; do
+  check "$f of the study file equals the options' run" cmp -s "$work/one/$f" "$work/file/$f"
+done
+check "study file run names its title" grep -q "small.toml: small" "$work/file.err"
+"$bin" basins "$work/small.toml" --starts 5 --out "$work/bad" 2> "$work/bad.err"
+check "an option the study file sets exits 2" test $? -eq 2
+check "an option the study file sets is named" \
+  grep -q -- "--starts: given with the basins study file" "$work/bad.err"
+sed 's/^count = 2$/count = 0/' "$work/small.toml" > "$work/bad.toml"
+"$bin" basins "$work/bad.toml" --out "$work/bad" 2> "$work/bad.err"
+check "bad study file value exits 2" test $? -eq 2
+check "bad study file value: file, line and key" \
+  grep -q "bad.toml:9: key 'grid\[1\].count': expected at least one value" "$work/bad.err"
+sed 's/^starts = 3$/start = 3/' "$work/small.toml" > "$work/bad.toml"
+"$bin" basins "$work/bad.toml" --out "$work/bad" 2> "$work/bad.err"
+check "unknown study file key: file, line and key" \
+  grep -q "bad.toml:3: key 'start': expected one of the keys" "$work/bad.err"
+
 # Bad input: refused before any work (exit 2), naming the option.
 bad() {  # bad DESCRIPTION PATTERN ARGS... (--out DIR: the last one given)
   local what=$1 pattern=$2; shift 2
