@@ -54,6 +54,8 @@ OptionCheck BasinOptions::validate() const {
                                       format_number(classifier.window) + " s)"};
   if (dt > 0.05) return OptionProblem{"dt", "at most 0.05 s (a tenth of a period)"};
   if (auto p = nested("classifier.", classifier.validate())) return p;
+  if (confirm)
+    if (auto p = nested("orbit.", orbit.validate())) return p;
   return nested("flow.", flow.validate());
 }
 
@@ -111,8 +113,22 @@ BasinTask BasinStudy::task(std::size_t index) const {
   return t;
 }
 
-std::optional<SyncResult> BasinStudy::run(const BasinTask& task,
-                                          const std::atomic<bool>* stop) const {
+bool is_locked(SyncState state) {
+  switch (state) {
+    case SyncState::InPhase:
+    case SyncState::AntiPhase:
+    case SyncState::InIn:
+    case SyncState::AntiAnti:
+    case SyncState::InAnti:
+    case SyncState::Locked:
+      return true;
+    default:
+      return false;
+  }
+}
+
+std::optional<BasinRun> BasinStudy::run(const BasinTask& task,
+                                        const std::atomic<bool>* stop) const {
   ModelSpec spec = spec_;
   for (std::size_t a = 0; a < options_.grid.size(); ++a)
     spec.set(options_.grid[a].parameter, task.values[a]);
@@ -128,6 +144,7 @@ std::optional<SyncResult> BasinStudy::run(const BasinTask& task,
   for (long i = 0; i <= count; ++i) times.push_back(i * options_.dt);
   if (options_.t_end - times.back() > 1e-12) times.push_back(options_.t_end);
   std::vector<double> angles(pendula());
+  BasinRun run;
   bool stopped = false;
   try {
     stopped = flow.sample_until(z0, model.default_parameters(), 0.0, times,
@@ -135,18 +152,39 @@ std::optional<SyncResult> BasinStudy::run(const BasinTask& task,
                                   for (int i = 0; i < pendula(); ++i)
                                     angles[i] = z[angle_index_[i]];
                                   classifier.add(t, angles);
+                                  run.end_state = z;
                                   return stop && stop->load();
                                 });
   } catch (const IntegrationError&) {
-    SyncResult failed;
+    SyncResult& failed = run.sync;
     failed.state = SyncState::Failed;
     failed.name = to_string(SyncState::Failed);
     failed.phase_differences.assign(pendula() - 1, std::nan(""));
     failed.amplitudes.assign(pendula(), std::nan(""));
-    return failed;
+    return run;
   }
   if (stopped) return std::nullopt;
-  return classifier.classify();
+  run.sync = classifier.classify();
+  if (options_.confirm && is_locked(run.sync.state)) {
+    // Newton from the run's end with the period it measured; its failures are results.
+    OrbitConfirmation c;
+    try {
+      const PeriodicOrbit orbit =
+          solve_periodic_orbit(model, model.default_parameters(), run.end_state,
+                               1.0 / run.sync.frequency, InvariantSubspace{}, options_.orbit);
+      c.outcome = orbit.newton.outcome;
+      c.converged = orbit.converged();
+      if (c.converged) {
+        c.period = orbit.period;
+        c.stability = orbit.floquet.stability;
+        c.max_modulus = orbit.floquet.max_modulus;
+      }
+    } catch (const IntegrationError&) {
+      c.outcome = NewtonOutcome::GuessNotIntegrable;
+    }
+    run.orbit = c;
+  }
+  return run;
 }
 
 namespace {

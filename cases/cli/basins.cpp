@@ -80,6 +80,7 @@ std::string option_of(const std::string& field) {
   if (field == "classifier.phase_tolerance") return "--phase-tolerance";
   if (field == "classifier.lock_tolerance") return "--lock-tolerance";
   if (field.rfind("flow.", 0) == 0) return "--" + field.substr(5);
+  if (field.rfind("orbit.", 0) == 0) return "--accuracy (" + field + ")";
   return field;
 }
 
@@ -91,6 +92,8 @@ std::vector<std::string> journal_header(const BasinStudy& study) {
   h.insert(h.end(), {"class", "t_sync", "frequency"});
   for (int i = 2; i <= study.pendula(); ++i) h.push_back("phase_th" + std::to_string(i));
   for (int i = 1; i <= study.pendula(); ++i) h.push_back("amp_th" + std::to_string(i));
+  if (study.options().confirm)
+    h.insert(h.end(), {"orbit", "orbit_period", "orbit_stability", "orbit_max_multiplier"});
   return h;
 }
 
@@ -103,11 +106,22 @@ std::vector<std::string> task_fields(const BasinTask& t) {
   return f;
 }
 
-std::vector<std::string> row_of(const BasinTask& t, const SyncResult& r) {
+std::vector<std::string> row_of(const BasinTask& t, const BasinRun& run, bool confirm) {
+  const SyncResult& r = run.sync;
   auto f = task_fields(t);
   f.insert(f.end(), {r.name, format_double(r.time_to_sync), format_double(r.frequency)});
   for (double v : r.phase_differences) f.push_back(format_double(v));
   for (double v : r.amplitudes) f.push_back(format_double(v));
+  if (confirm) {
+    // The orbit Newton converged to from the run's end, or why not; "-" where nothing was locked.
+    if (!run.orbit) {
+      f.insert(f.end(), {"-", "nan", "-", "nan"});
+    } else {
+      const OrbitConfirmation& c = *run.orbit;
+      f.insert(f.end(), {c.converged ? "converged" : to_string(c.outcome), format_double(c.period),
+                         c.converged ? to_string(c.stability) : "-", format_double(c.max_modulus)});
+    }
+  }
   return f;
 }
 
@@ -146,7 +160,10 @@ std::vector<OptionSpec> basins_options() {
        {"--threads", "N", false,
         "simulations run side by side (default: one per core; under mpirun one per rank)"},
        {"--out", "DIR", false, "where the files go (default out/basins)"},
-       {"--resume", "", false, "continue the journal in DIR: its runs are not computed again"}});
+       {"--resume", "", false, "continue the journal in DIR: its runs are not computed again"},
+       {"--confirm", "", false,
+        "confirm each locked end by Newton to a periodic orbit (its period and stability)"},
+       accuracy_option()});
   const auto integrator = integrator_options();
   options.insert(options.end(), integrator.begin(), integrator.end());
   return options;
@@ -171,7 +188,7 @@ Basins prepare(const Arguments& args, int ranks) {
     study_file = load_basins_file(input);
     for (const char* option :
          {"--params", "--set", "--grid", "--starts", "--angles", "--initial", "--seed", "--t-end",
-          "--dt", "--window", "--phase-tolerance", "--lock-tolerance"})
+          "--dt", "--window", "--phase-tolerance", "--lock-tolerance", "--confirm"})
       if (args.has(option))
         throw InputError(std::string(option) + ": given with the basins study file " + input +
                          ", which sets the study; expected it in the file");
@@ -188,6 +205,7 @@ Basins prepare(const Arguments& args, int ranks) {
     parse_study_options(args, b);
   }
   o.flow = flow_options(args, BasinOptions::default_flow());
+  apply_accuracy(accuracy(args), o.orbit);
   if (const auto problem = o.validate())
     throw InputError(option_of(problem->field) + ": expected " + problem->expected);
   b.run.threads = args.integer("--threads", 0);
@@ -257,6 +275,7 @@ void parse_study_options(const Arguments& args, Basins& b) {
   o.classifier.window = args.number("--window", o.classifier.window);
   o.classifier.phase_tolerance = args.number("--phase-tolerance", o.classifier.phase_tolerance);
   o.classifier.lock_tolerance = args.number("--lock-tolerance", o.classifier.lock_tolerance);
+  o.confirm = args.flag("--confirm");
   b.initial = args.assignments("--initial");
 }
 
@@ -413,7 +432,7 @@ int run_basins(const std::vector<std::string>& argv) {
     const BasinTask task = study.task(index);
     const auto result = study.run(task, stop);
     if (!result) return std::nullopt;
-    return row_of(task, *result);
+    return row_of(task, *result, study.options().confirm);
   };
   if (distributed && mpi.rank() > 0) {
     run_tasks_mpi(mpi, study.tasks(), {}, work, {}, stop);

@@ -39,7 +39,7 @@ BasinsFile load_basins_file(const std::string& path) {
   const TomlReader in(path);
   in.only(root, "",
           {"title", "case", "params", "set", "initial", "grid", "starts", "angles", "seed", "t_end",
-           "dt", "classifier"});
+           "dt", "classifier", "confirm"});
   BasinsFile f;
   f.path = path;
   BasinOptions& o = f.options;
@@ -103,6 +103,10 @@ BasinsFile load_basins_file(const std::string& path) {
     o.seed = static_cast<std::uint64_t>(seed);
   }
   if (const auto* n = root.get("t_end")) o.t_end = in.number(*n, "t_end");
+  if (const auto* n = root.get("confirm")) {
+    if (!n->is_boolean()) in.fail(*n, "confirm", "true or false");
+    o.confirm = **n->as_boolean();
+  }
   if (const auto* n = root.get("dt")) o.dt = in.number(*n, "dt");
   if (const auto* n = root.get("classifier")) {
     const auto& t = in.table(*n, "classifier");

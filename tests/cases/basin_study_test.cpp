@@ -70,10 +70,34 @@ TEST(BasinStudy, RowSetupAtTableTwoEndsInPhaseFromEveryStart) {
   for (std::size_t i = 0; i < study.tasks(); ++i) {
     const auto r = study.run(study.task(i));
     ASSERT_TRUE(r);
-    EXPECT_EQ(r->state, SyncState::InPhase) << "task " << i << ": " << r->name;
-    EXPECT_NEAR(r->frequency, 1.73296, 1e-3);
-    EXPECT_LT(r->time_to_sync, 90.0);
+    EXPECT_EQ(r->sync.state, SyncState::InPhase) << "task " << i << ": " << r->sync.name;
+    EXPECT_NEAR(r->sync.frequency, 1.73296, 1e-3);
+    EXPECT_LT(r->sync.time_to_sync, 90.0);
+    EXPECT_FALSE(r->orbit);  // not asked to confirm
   }
+}
+
+// Confirmation by Newton from a run's end: at Table III the anti-phase orbit is stable
+// (README, "Worked example": stable above k = 56.11 and on 47.07-49.69, Table III's k being
+// 47.09), and a start of opposite angles (seed 1, task 0: -0.07 and -0.21 rad, which ends
+// anti-phase, README "Basins") converges to it: the period of the anti-phase orbit, 0.5814490514 s
+// (README, Fig. 8's events: it does not depend on k), within 1e-6 s (the orbit's Newton residual
+// is below 1e-9 at the default OrbitOptions, the shooting flow at rtol 1e-11), and stable.
+TEST(BasinStudy, ConfirmsALockedEndByNewton) {
+  BasinOptions o;
+  o.grid = {{"k", 47.0899, 47.0899, 1}};
+  o.starts = 1;
+  o.t_end = 60.0;
+  o.confirm = true;
+  const BasinStudy study(testing::load_spec("row2", "table3"), Eigen::VectorXd::Zero(6), o);
+  const auto r = study.run(study.task(0));
+  ASSERT_TRUE(r);
+  ASSERT_EQ(r->sync.state, SyncState::AntiPhase);
+  ASSERT_TRUE(r->orbit);
+  EXPECT_TRUE(r->orbit->converged);
+  EXPECT_NEAR(r->orbit->period, 0.5814490514, 1e-6);
+  EXPECT_EQ(r->orbit->stability, Stability::Stable);
+  EXPECT_LT(r->orbit->max_modulus, 1.0);
 }
 
 TEST(BasinShares, EveryPointListsEveryStateWithItsWilsonInterval) {

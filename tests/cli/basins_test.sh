@@ -135,6 +135,8 @@ bad "zero threads" "--threads: expected a positive number" --grid k=40 --threads
 bad "run shorter than the window" "--t-end: expected a time longer than the classifier's window" --grid k=40 --t-end 5
 bad "journal of an earlier run without --resume" "is the journal of an earlier run" --grid k=14.7467:20:2 --out "$work/one"
 bad "journal of another study" "expected a journal of the same case" --grid k=14.7467:20:2 --starts 3 --seed 2 --out "$work/one" --resume
+bad "a journal without the orbit columns resumed with --confirm" "the journal's header is" \
+  --grid k=14.7467:20:2 --starts 3 --t-end 30 --confirm --out "$work/one" --resume
 test ! -e "$work/bad/basins_journal.csv"
 check "nothing written on bad input" test $? -eq 0
 

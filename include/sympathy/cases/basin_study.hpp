@@ -25,6 +25,7 @@
 
 #include "sympathy/cases/metronome_model.hpp"
 #include "sympathy/cases/sync_classifier.hpp"
+#include "sympathy/continuation/periodic_orbit.hpp"
 #include "sympathy/core/flow.hpp"
 #include "sympathy/core/option_check.hpp"
 #include "sympathy/core/proportion.hpp"
@@ -51,6 +52,11 @@ struct BasinOptions {
   double dt = 0.01;                  // s, the classifier's sampling interval
   SyncClassifierOptions classifier;  // stopped_amplitude empty: each metronome's ths
   FlowOptions flow = default_flow();
+  // Confirmation of a locked end state by Newton on the shooting problem, from the run's end and
+  // the period it measured (solve_periodic_orbit, in the whole state space): the orbit it ends
+  // near, and its stability. Off by default (it adds a monodromy per locked run).
+  bool confirm = false;
+  OrbitOptions orbit;
 
   // Simulation's accuracy: BDF at rtol 1e-8, atol 1e-10, as `sympathy simulate`.
   static FlowOptions default_flow();
@@ -65,6 +71,24 @@ struct BasinTask {
   std::vector<double> values;  // the grid parameters' values
   std::vector<double> angles;  // the pendula's start angles, rad
 };
+
+// What Newton found from a locked run's end (BasinOptions::confirm).
+struct OrbitConfirmation {
+  bool converged = false;
+  double period = std::nan("");  // s, the orbit's
+  Stability stability = Stability::Marginal;
+  double max_modulus = std::nan("");  // the largest non-trivial multiplier's modulus
+  NewtonOutcome outcome = NewtonOutcome::NotRun;
+};
+
+struct BasinRun {
+  SyncResult sync;
+  Eigen::VectorXd end_state;               // the state at t_end
+  std::optional<OrbitConfirmation> orbit;  // with BasinOptions::confirm, for a locked state
+};
+
+// Whether a state is locked (a periodic orbit to confirm): in-phase ... locked.
+bool is_locked(SyncState state);
 
 class BasinStudy {
  public:
@@ -83,10 +107,10 @@ class BasinStudy {
   std::vector<double> values(std::size_t point) const;
   BasinTask task(std::size_t index) const;
 
-  // Simulates and classifies one task; no result when `stop` became true during it. An
-  // integration failure is the result SyncState::Failed.
-  std::optional<SyncResult> run(const BasinTask& task,
-                                const std::atomic<bool>* stop = nullptr) const;
+  // Simulates and classifies one task (and with options().confirm, confirms a locked end by
+  // Newton); no result when `stop` became true during it. An integration failure is the result
+  // SyncState::Failed.
+  std::optional<BasinRun> run(const BasinTask& task, const std::atomic<bool>* stop = nullptr) const;
 
  private:
   ModelSpec spec_;
