@@ -18,8 +18,8 @@ namespace {
 
 }  // namespace
 
-StreamFile::StreamFile(const std::string& path) : path_(path) {
-  file_ = std::fopen(path.c_str(), "w");
+StreamFile::StreamFile(const std::string& path, Mode mode) : path_(path) {
+  file_ = std::fopen(path.c_str(), mode == Mode::Append ? "a" : "w");
   if (!file_) fail(path, "open for writing", errno);
 }
 

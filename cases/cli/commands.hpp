@@ -14,5 +14,6 @@ int run_map(const std::vector<std::string>& args);
 int run_study(const std::vector<std::string>& args);
 int run_bench(const std::vector<std::string>& args);
 int run_fit(const std::vector<std::string>& args);
+int run_basins(const std::vector<std::string>& args);
 
 }  // namespace sympathy::cli

@@ -24,6 +24,7 @@ void print_usage() {
       "  study      the branches of a figure (cases/figures/*.toml), side by side\n"
       "  bench      error against run time over integrator settings (the accuracy report)\n"
       "  fit        parameters fitted to a recorded time series (least squares)\n"
+      "  basins     shares of the synchronized states from random starts, over a grid\n"
       "run 'sympathy COMMAND --help' for the options of a command\n",
       stderr);
 }
@@ -46,6 +47,7 @@ int main(int argc, char** argv) {
     if (command == "study") return sympathy::cli::run_study(args);
     if (command == "bench") return sympathy::cli::run_bench(args);
     if (command == "fit") return sympathy::cli::run_fit(args);
+    if (command == "basins") return sympathy::cli::run_basins(args);
     std::fprintf(stderr, "sympathy: unknown command '%s'\n", command.c_str());
     print_usage();
     return 2;

@@ -6,7 +6,8 @@
 // temporary beside its target and renamed over it only when complete, so a failure or a signal
 // leaves the earlier file of that name as it was, never a truncated one. Either failure is an
 // OutputError naming the path and the operating system's reason (e.g. "No space left on device"
-// from /dev/full).
+// from /dev/full). A stream may also be opened to append (a journal that a resumed run extends:
+// continuation/task_journal).
 #pragma once
 
 #include <cstdio>
@@ -16,8 +17,10 @@ namespace sympathy {
 
 class StreamFile {
  public:
-  // Opens (truncates) `path`; throws OutputError if it cannot.
-  explicit StreamFile(const std::string& path);
+  enum class Mode { Truncate, Append };
+  // Opens `path`, truncated (or, with Mode::Append, created if absent and written at its end);
+  // throws OutputError if it cannot.
+  explicit StreamFile(const std::string& path, Mode mode = Mode::Truncate);
   ~StreamFile();
   StreamFile(const StreamFile&) = delete;
   StreamFile& operator=(const StreamFile&) = delete;
