@@ -4,6 +4,7 @@
 #include <cmath>
 #include <complex>
 #include <iterator>
+#include <optional>
 #include <stdexcept>
 #include <utility>
 
@@ -151,6 +152,7 @@ StabilityGrid stability_grid(const OdeSystem& system, const Branch& branch, int 
   std::vector<int> up, down;
   for (int i = 0; i < second_points; ++i) (g.second[i] >= base ? up : down).push_back(i);
   std::reverse(down.begin(), down.end());
+  std::optional<PeriodicOrbit> previous_column;
   for (int j = 0; j < first_points; ++j) {
     if (stop_requested && stop_requested()) break;
     const auto nearest = std::min_element(
@@ -159,8 +161,14 @@ StabilityGrid stability_grid(const OdeSystem& system, const Branch& branch, int 
         });
     const ParameterValues at_base =
         system.with_parameter(branch.start_values, branch.parameter, g.first[j]);
-    const PeriodicOrbit start = solve_periodic_orbit(system, at_base, nearest->orbit.state0,
-                                                     nearest->orbit.period, subspace, options);
+    PeriodicOrbit start = solve_periodic_orbit(system, at_base, nearest->orbit.state0,
+                                               nearest->orbit.period, subspace, options);
+    // Beyond the branch's end (it stopped short of the window) the nearest point can be far:
+    // the previous column's orbit is then the better guess.
+    if (!start.converged() && previous_column)
+      start = solve_periodic_orbit(system, at_base, previous_column->state0,
+                                   previous_column->period, subspace, options);
+    if (start.converged()) previous_column = start;
     for (const auto* rows : {&up, &down}) {
       if (!start.converged()) break;
       PeriodicOrbit previous = start;

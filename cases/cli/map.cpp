@@ -112,7 +112,12 @@ int run_map(const std::vector<std::string>& argv) {
         request.parameter = map.first.parameter;
         request.from = map.first.from;
         request.to = map.first.to;
+        // The branch starts at the orbit's `at`, else at the case's own value where the window
+        // holds it (the orbit the case's start reaches there, as the curves' seeds should be),
+        // else at the window's `from`.
+        const double own = c.spec.get(map.first.parameter);
         request.at = o.at;
+        if (!request.at && own > map.first.from && own < map.first.to) request.at = own;
         request.progress = nullptr;
         apply_accuracy(args.has("--accuracy") ? accuracy(args) : map.accuracy,
                        request.continuation.orbit);
