@@ -41,6 +41,13 @@ check "lcbp: the circle r = 2 has period 1" grep -q '^  period       1 s' "$work
 # Radial multiplier exp(-p (p - p1)) of the circle r = p = p2 = 2 at p1 = 1: exp(-2) = 0.135335283.
 check "lcbp: its multiplier exp(-2)" grep -q '^    0.13533528' "$work/lcbp.out"
 
+# abc at p1 = 0.25 (the file's value), the stable orbit of the family born at the first Hopf
+# point: T = 6.53496 in AUTO-07p's regression log (test/hyper.all; trust about 1e-4 relative at
+# its NTST 25), here to the digits AUTO prints.
+"$bin" orbit "$src/cases/examples/abc.toml" --json "$work/abc.json" > "$work/abc.out"
+check "abc: orbit exits 0" test $? -eq 0
+check "abc at p1 = 0.25: T = 6.53496 (AUTO-07p)" test "$(json_value "$work/abc.json" "round(j['period'], 5)")" = 6.53496
+
 cat > "$work/bad.toml" <<'TOML'
 kind = "equations"
 [states]
@@ -53,7 +60,7 @@ TOML
 "$bin" simulate "$work/bad.toml" 2> "$work/bad.err"
 check "a bad file exits 2" test $? -eq 2
 check "its error is located and says what was expected" grep -q "bad.toml:7:9: key 'equations.x': expected an operator (+ - \* / ^) or the end of the expression, got ';'" "$work/bad.err"
-check "nothing was compiled for it" test "$(ls "$work/cache"/*.so | wc -l)" -eq 2
+check "nothing was compiled for it" test "$(ls "$work/cache"/*.so | wc -l)" -eq 3
 check "nothing ran" test ! -e SMUGGLED -a ! -e "$work/SMUGGLED"
 
 "$bin" continue "$src/cases/examples/hopf.toml" --param mu --from 0.1 --to 0.2 2> "$work/cont.err"
