@@ -110,9 +110,10 @@ int run(const std::vector<std::string>& argv, const fs::path& log) {
   return WIFEXITED(status) ? WEXITSTATUS(status) : -1;
 }
 
-// Compiles `source` into the cache entry `key` (KEY.cpp, KEY.so, KEY.manifest).
-void compile(const fs::path& dir, const std::string& key, const std::string& source) {
-  const std::string include = engine_include_dir();
+// Compiles `source` into the cache entry `key` (KEY.cpp, KEY.so, KEY.manifest) against the
+// engine headers in `include`.
+void compile(const fs::path& dir, const std::string& key, const std::string& source,
+             const std::string& include) {
   write_file_atomically((dir / (key + ".cpp")).string(), source);
   const std::string unique = key + "." + std::to_string(::getpid());
   const fs::path library = dir / (unique + ".so.tmp");
@@ -225,7 +226,8 @@ EquationBuild build_equation_system(const EquationCase& equations, const Eigen::
     if (problem.empty()) lib = open_library(build.library, build.key, problem);
     if (!lib) {
       if (problem != "absent") build.rebuilt_because = problem;
-      compile(dir, build.key, source);
+      build.include_dir = engine_include_dir();
+      compile(dir, build.key, source, build.include_dir);
       build.compiled = true;
       problem = entry_problem(dir, build.key);
       if (problem.empty()) lib = open_library(build.library, build.key, problem);

@@ -25,7 +25,8 @@ LoadedEquations load_equations(const Arguments& args) {
 std::string describe_build(const EquationBuild& build) {
   char seconds[32];
   std::snprintf(seconds, sizeof seconds, "%.2f", build.seconds);
-  std::string s = build.compiled ? "system compiled in " + std::string(seconds) + " s"
+  std::string s = build.compiled ? "system compiled in " + std::string(seconds) +
+                                       " s against the headers in " + build.include_dir
                                  : std::string("system from the cache");
   s += " (" + build.library + ")";
   if (!build.rebuilt_because.empty()) s += "; the entry was rebuilt: " + build.rebuilt_because;

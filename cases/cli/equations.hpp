@@ -22,8 +22,8 @@ struct LoadedEquations {
 // The file of positional 0, the parameter values of --params and --set, and its system.
 LoadedEquations load_equations(const Arguments& args);
 
-// "system compiled in 1.23 s (CACHE/KEY.so)" or "system from the cache (...)", with why an
-// entry present was rebuilt.
+// "system compiled in 1.23 s against the headers in DIR (CACHE/KEY.so)" or "system from the
+// cache (CACHE/KEY.so)", with why an entry present was rebuilt.
 std::string describe_build(const EquationBuild& build);
 
 // sympathy orbit on an equation case file: the whole state space (no symmetry), amplitudes of

@@ -34,6 +34,7 @@ struct EquationBuild {
   std::string key;                          // the cache key
   std::string library;                      // the path of the library loaded
   bool compiled = false;                    // false: taken from the cache
+  std::string include_dir;                  // compiled: the engine headers it was compiled with
   std::string rebuilt_because;              // why an entry present was not used ("" if none)
   double seconds = 0.0;                     // generating, compiling (if) and loading
 };
