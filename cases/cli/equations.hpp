@@ -1,7 +1,7 @@
 // Equation case files (kind = "equations") in the commands: loading one with --params and --set,
 // its system compiled or taken from the cache (equation_compiler.hpp), and the orbit command on
-// it. simulate and orbit read them; continue and study do not yet (CaseFile refuses them, naming
-// the kind).
+// it. simulate, orbit and continue read them (continue through run_branch's BranchSource); study
+// and fit do not yet (CaseFile refuses them, naming the kind).
 #pragma once
 
 #include <string>

@@ -63,6 +63,33 @@ check "its error is located and says what was expected" grep -q "bad.toml:7:9: k
 check "nothing was compiled for it" test "$(ls "$work/cache"/*.so | wc -l)" -eq 3
 check "nothing ran" test ! -e SMUGGLED -a ! -e "$work/SMUGGLED"
 
-"$bin" continue "$src/cases/examples/hopf.toml" --param mu --from 0.1 --to 0.2 2> "$work/cont.err"
-check "continue refuses an equation case file for now, naming the kind" grep -q "key 'kind': expected a metronome case file here" "$work/cont.err"
+# continue: lcbp along the circle r = p2 = 2 from p1 = 1 to 3 meets the circle r = p1 at the
+# branch point p1 = 2 exactly (cases/examples/lcbp.toml); to 1e-6 (the located BP's reported
+# uncertainty is 1e-8).
+"$bin" continue "$src/cases/examples/lcbp.toml" --param p1 --from 1 --to 3 --quiet --json "$work/lcbp.json" > "$work/lcbp_branch.out"
+check "continue on an equation case file exits 0" test $? -eq 0
+check "lcbp: one event, a BP at p1 = 2" test "$(json_value "$work/lcbp.json" "[(e['type'], abs(e['value'] - 2) < 1e-6) for e in j['events']]")" = "[('BP', True)]"
+check "lcbp: the period stays 1 along r = 2" test "$(json_value "$work/lcbp.json" "max(abs(p['period'] - 1) for p in j['points']) < 1e-8")" = True
+# abc from p1 = 0.25 down to 0.205: the folds of AUTO-07p's log (test/hyper.all) at
+# p1 = 0.213697 (T 7.61104) and 0.211903 (T 8.28914), to the digits AUTO prints (its trust: about
+# 1e-4 relative at NTST 25; the periods here are 7.611039 and 8.289204).
+"$bin" continue "$src/cases/examples/abc.toml" --param p1 --from 0.25 --to 0.205 --quiet --json "$work/abc_branch.json" > "$work/abc_branch.out"
+check "abc: two folds at AUTO's p1" test "$(json_value "$work/abc_branch.json" "sorted(round(e['value'], 6) for e in j['events'] if e['type'] == 'LP')")" = "[0.211903, 0.213697]"
+check "abc: their periods to 1e-4 relative" test "$(json_value "$work/abc_branch.json" "sorted(round(e['period'], 3) for e in j['events'] if e['type'] == 'LP')")" = "[7.611, 8.289]"
+
+"$bin" continue "$src/cases/examples/hopf.toml" --param mu --from 0.25 --to -1 --quiet 2> "$work/cont.err"
+check "a continuation range outside the parameter's bounds is refused" grep -q -- "--to -1: expected a value of mu within \[0, inf\]" "$work/cont.err"
+cat > "$work/study.toml" <<TOML
+title = "hopf"
+case = "$src/cases/examples/hopf.toml"
+parameter = "mu"
+axis = "frequency"
+[[branches]]
+name = "hopf"
+start = "outside"
+from = 0.25
+to = 0.1
+TOML
+"$bin" study "$work/study.toml" --out "$work/study" 2> "$work/study.err"
+check "study refuses an equation case file for now, naming the kind" grep -q "key 'kind': expected a metronome case file here" "$work/study.err"
 exit "$failures"
