@@ -427,8 +427,8 @@ EquationCase EquationCase::load(const std::string& path) {
   std::stable_sort(c.starts_.begin(), c.starts_.end(), [&](const auto& a, const auto& b) {
     return line_of(a.source) < line_of(b.source);
   });
-  // The default set must respect the bounds too.
-  if (!c.default_params_.empty()) c.parameter_values();
+  // Every parameter set must respect the bounds too, used or not.
+  for (const auto& set : c.parameter_sets_) c.parameter_values(set.name);
   return c;
 }
 

@@ -81,11 +81,25 @@ class Emitter {
     identifiers_["pi"] = literal(std::numbers::pi);
   }
 
-  const std::string& identifier(const std::string& name) const { return identifiers_.at(name); }
+  using K = Expression::Kind;
+
+  // a OP b without its own parentheses. A left operand of the same precedence goes without
+  // parentheses too (C++ groups a + b - c as (a + b) - c, as the tree does), so a sum of 2000
+  // terms is not 2000 nested parentheses (compilers limit nesting: clang at 256 by default).
+  std::string binary(const Expression& e) const {
+    const char* op = e.kind == K::Add        ? " + "
+                     : e.kind == K::Subtract ? " - "
+                     : e.kind == K::Multiply ? " * "
+                                             : " / ";
+    const auto& left = e.operands[0];
+    const bool additive = e.kind == K::Add || e.kind == K::Subtract;
+    const bool same = additive ? (left.kind == K::Add || left.kind == K::Subtract)
+                               : (left.kind == K::Multiply || left.kind == K::Divide);
+    return cat(same ? binary(left) : emit(left), op, emit(e.operands[1]));
+  }
 
   // Every subexpression in parentheses: the tree's structure, not C++'s precedence, decides.
   std::string emit(const Expression& e) const {
-    using K = Expression::Kind;
     switch (e.kind) {
       case K::Number:
         return literal(e.number);
@@ -94,13 +108,10 @@ class Emitter {
       case K::Negate:
         return cat("(-", emit(e.operands[0]), ")");
       case K::Add:
-        return cat("(", emit(e.operands[0]), " + ", emit(e.operands[1]), ")");
       case K::Subtract:
-        return cat("(", emit(e.operands[0]), " - ", emit(e.operands[1]), ")");
       case K::Multiply:
-        return cat("(", emit(e.operands[0]), " * ", emit(e.operands[1]), ")");
       case K::Divide:
-        return cat("(", emit(e.operands[0]), " / ", emit(e.operands[1]), ")");
+        return cat("(", binary(e), ")");
       case K::Power: {
         // An integer exponent as products (x^2 = x*x, as a hand-written model has it); any
         // other through pow.

@@ -217,6 +217,9 @@ TEST(EquationCase, BoundsAreChecked) {
       input_error_of([&] { c.parameter_values("", {parse_assignment("q=1", "--set")}); }),
       "--set q=1: unknown parameter 'q'; expected one of: a, b");
   EXPECT_EQ(c.parameter_values("", {parse_assignment("b=3", "--set")})[1], 3.0);
+  // A parameter set out of bounds is refused on load, whether it is used or not.
+  expect_contains(error_of_file(kValid + "[params.wide]\nb = 11.0\n"),
+                  ".toml:14: key 'params.wide.b': expected a value of b within [0, 10]");
 }
 
 TEST(EquationCase, TimeMakesTheSystemNonautonomous) {
