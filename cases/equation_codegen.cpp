@@ -146,6 +146,7 @@ constexpr const char* kPrologue =
 #include <vector>
 
 #include "sympathy/core/autodiff_system.hpp"
+#include "sympathy/core/binary_interface.hpp"
 
 #ifndef SYMPATHY_EQUATIONS_TAG
 #error "SYMPATHY_EQUATIONS_TAG (the cache key) must be defined"
@@ -206,7 +207,11 @@ constexpr const char* kEpilogue = R"(
 extern "C" {
 
 __attribute__((visibility("default"))) int sympathy_equations_abi() {
-  return 1;
+  return 2;
+}
+
+__attribute__((visibility("default"))) const char* sympathy_equations_binary_interface() {
+  return sympathy::kBinaryInterface;
 }
 
 __attribute__((visibility("default"))) const char* sympathy_equations_tag() {
@@ -238,7 +243,7 @@ __attribute__((visibility("default"))) void sympathy_equations_destroy(void* sys
 }  // namespace
 
 std::string generate_equation_source(const EquationSystem& system) {
-  static_assert(kEquationAbi == 1, "the epilogue's sympathy_equations_abi returns 1");
+  static_assert(kEquationAbi == 2, "the epilogue's sympathy_equations_abi returns 2");
   const Emitter emitter(system);
   const std::size_t n = system.states.size(), m = system.parameters.size();
   std::string s = kPrologue;

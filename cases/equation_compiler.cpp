@@ -19,6 +19,7 @@
 #include "sympathy/cases/equation_codegen.hpp"
 #include "sympathy/cases/equation_toolchain.hpp"
 #include "sympathy/cases/sha256.hpp"
+#include "sympathy/core/binary_interface.hpp"
 #include "sympathy/core/output_file.hpp"
 
 extern char** environ;
@@ -77,13 +78,21 @@ std::string engine_include_dir() {
       tried);
 }
 
+// The flags of every compile: kFlags, then the program's own (toolchain::kExtraFlags).
+std::vector<std::string> compile_flags() {
+  std::vector<std::string> flags = kFlags;
+  for (const char* const* f = toolchain::kExtraFlags; *f != nullptr; ++f) flags.emplace_back(*f);
+  return flags;
+}
+
 std::string cache_key(const std::string& source) {
   std::string identity = "sympathy-equations abi " + std::to_string(kEquationAbi) + "\n";
   identity += std::string("sympathy ") + toolchain::kVersion + "\n";
   identity +=
       std::string("compiler ") + toolchain::kCompiler + " (" + toolchain::kCompilerIdentity + ")\n";
-  for (const auto& flag : kFlags) identity += flag + " ";
+  for (const auto& flag : compile_flags()) identity += flag + " ";
   identity += "\n";
+  identity += std::string("binary interface ") + kBinaryInterface + "\n";
   for (const auto& header : toolchain::kEngineHeaders)
     identity += std::string(header.path) + " " + header.sha256 + "\n";
   return sha256_hex(identity + source);
@@ -122,7 +131,8 @@ void compile(const fs::path& dir, const std::string& key, const std::string& sou
   const fs::path library = dir / (unique + ".so.tmp");
   const fs::path log = dir / (unique + ".log.tmp");
   std::vector<std::string> argv{toolchain::kCompiler};
-  argv.insert(argv.end(), kFlags.begin(), kFlags.end());
+  const auto flags = compile_flags();
+  argv.insert(argv.end(), flags.begin(), flags.end());
   argv.insert(argv.end(), {"-DSYMPATHY_EQUATIONS_TAG=\"" + key + "\"", "-I" + include,
                            "-I" + std::string(toolchain::kEigenInclude), "-o", library.string(),
                            (dir / (key + ".cpp")).string()});
@@ -178,10 +188,19 @@ std::optional<Library> open_library(const fs::path& path, const std::string& key
   }
   auto abi = reinterpret_cast<int (*)()>(dlsym(lib.handle, "sympathy_equations_abi"));
   auto tag = reinterpret_cast<const char* (*)()>(dlsym(lib.handle, "sympathy_equations_tag"));
+  auto binary =
+      reinterpret_cast<const char* (*)()>(dlsym(lib.handle, "sympathy_equations_binary_interface"));
   lib.create = reinterpret_cast<Library::Create>(dlsym(lib.handle, "sympathy_equations_create"));
   lib.destroy = reinterpret_cast<Library::Destroy>(dlsym(lib.handle, "sympathy_equations_destroy"));
-  if (!abi || !tag || !lib.create || !lib.destroy || abi() != kEquationAbi || tag() != key) {
+  if (!abi || !tag || !binary || !lib.create || !lib.destroy || abi() != kEquationAbi ||
+      tag() != key) {
     problem = "its library is not the one of this key (tag or ABI differ)";
+    dlclose(lib.handle);
+    return std::nullopt;
+  }
+  if (std::string(binary()) != kBinaryInterface) {
+    problem = std::string("its library was compiled for another binary interface (") + binary() +
+              ") than this program's (" + kBinaryInterface + ")";
     dlclose(lib.handle);
     return std::nullopt;
   }

@@ -10,6 +10,10 @@
 //   int sympathy_equations_abi(void)              kEquationAbi, the layout of what follows
 //   const char* sympathy_equations_tag(void)      the cache key it was built under
 //                                                 (SYMPATHY_EQUATIONS_TAG, given at compile time)
+//   const char* sympathy_equations_binary_interface(void)
+//                                                 kBinaryInterface as the library was compiled
+//                                                 (core/binary_interface.hpp): must equal the
+//                                                 program's
 //   void* sympathy_equations_create(const char* const* states, int n,
 //                                   const char* const* parameters, const double* values, int m)
 //                                                 a new sympathy::OdeSystem (nullptr on a
@@ -23,7 +27,7 @@
 
 namespace sympathy {
 
-constexpr int kEquationAbi = 1;
+constexpr int kEquationAbi = 2;  // 2: with sympathy_equations_binary_interface
 
 std::string generate_equation_source(const EquationSystem& system);
 

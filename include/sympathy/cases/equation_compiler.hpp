@@ -10,7 +10,8 @@
 // equations under other names reuse it). Entries are written atomically (a temporary file in
 // the directory, then rename; the manifest last), so a reader never sees half an entry. Before
 // anything is loaded, the manifest must name KEY and the library's SHA-256 must equal the
-// manifest's; after dlopen, the library's own tag must be KEY and its ABI kEquationAbi. An
+// manifest's; after dlopen, the library's own tag must be KEY, its ABI kEquationAbi and its
+// binary interface (core/binary_interface.hpp: Eigen's allocation, sanitizers) the program's. An
 // entry that fails a check before dlopen is rebuilt, never loaded (a library that fails after
 // it, which its manifest vouched for, is closed and rebuilt).
 //
