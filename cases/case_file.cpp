@@ -70,9 +70,18 @@ CaseFile CaseFile::load(const std::string& path) {
   CaseFile c;
   c.path_ = path;
   c.name_ = std::filesystem::path(path).stem().string();
+  // An equation case file (kind = "equations") is read by EquationCase (equation_case.hpp).
+  if (const auto* kind = root.get("kind")) {
+    const std::string k = in.string(*kind, "kind");
+    if (k == "equations")
+      in.fail(*kind, "kind",
+              "a metronome case file here (this command reads only those for now; simulate, orbit "
+              "and continue read equation case files)");
+    if (k != "metronomes") in.fail(*kind, "kind", "\"equations\" or \"metronomes\"");
+  }
   in.only(root, "",
-          {"name", "description", "escapement", "g", "default_params", "platform", "metronome",
-           "metronomes", "springs", "params", "starts"});
+          {"kind", "name", "description", "escapement", "g", "default_params", "platform",
+           "metronome", "metronomes", "springs", "params", "starts"});
   auto record = [&](const std::string& name, const toml::node& node, const std::string& key) {
     c.provenance_.emplace_back(name, in.where(node) + ": key '" + key + "'");
   };

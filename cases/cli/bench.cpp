@@ -8,7 +8,8 @@
 // (the orbit's state and period moved by 1e-3), so each setting does its own Newton iterations.
 // Sections (d) and (e) measure the cost of a continuation point and of one period against the
 // number of metronomes; (f), the accuracy presets and integrators on a whole branch beside
-// AUTO-07p's measured points, is in bench_branch.cpp.
+// AUTO-07p's measured points, is in bench_branch.cpp; (g) in bench_identical.cpp; (h), equation
+// case files generated against hand-written, in bench_equations.cpp.
 #include <algorithm>
 #include <cmath>
 #include <cstdio>
@@ -18,6 +19,7 @@
 #include <tuple>
 
 #include "cases/cli/bench_branch.hpp"
+#include "cases/cli/bench_equations.hpp"
 #include "cases/cli/bench_identical.hpp"
 #include "cases/cli/commands.hpp"
 #include "cases/cli/common.hpp"
@@ -281,19 +283,20 @@ int run_bench(const std::vector<std::string>& argv) {
       {{"--out", "DIR", false, "where bench.csv and bench.md go (default out/bench)"},
        {"--quick", "", false, "fewer tolerances (for a smoke run)"},
        {"--sections", "LIST", false,
-        "which parts, e.g. abc (default abcdefg): (a)-(c) error against run time, "
+        "which parts, e.g. abc (default abcdefgh): (a)-(c) error against run time, "
         "(d) cost of a continuation point, (e) cost against the number of metronomes, "
         "(f) the anti-phase k-branch per accuracy preset and integrator, with AUTO-07p's "
-        "measured points, (g) identical metronomes in phase, reduced and whole"}},
+        "measured points, (g) identical metronomes in phase, reduced and whole, (h) equation "
+        "case files, generated against hand-written, and their compile time"}},
       {});
   Stopwatch clock;
   const std::string out = args.text("--out", "out/bench");
   std::filesystem::create_directories(out);
   const bool quick = args.flag("--quick");
-  const std::string sections = args.text("--sections", "abcdefg");
+  const std::string sections = args.text("--sections", "abcdefgh");
   for (char ch : sections)
-    if (ch < 'a' || ch > 'g')
-      throw InputError("--sections: expected letters from a to g (e.g. abc), got '" + sections +
+    if (ch < 'a' || ch > 'h')
+      throw InputError("--sections: expected letters from a to h (e.g. abc), got '" + sections +
                        "'");
   auto want = [&](char section) { return sections.find(section) != std::string::npos; };
   const std::string root =
@@ -499,6 +502,7 @@ int run_bench(const std::vector<std::string>& argv) {
   }
   if (want('f')) bench_branch_accuracy(root, quick, csv, md);
   if (want('g')) bench_identical(root, out, quick, md);
+  if (want('h')) bench_equations(root, quick, md);
   std::ofstream(out + "/bench.md") << md.str();
   std::printf("wrote %s/bench.csv and %s/bench.md; run time %.1f s\n", out.c_str(), out.c_str(),
               clock.seconds());

@@ -15,21 +15,34 @@ namespace sympathy::cli {
 Branch run_branch(const LoadedCase& c, const MetronomeModel& model, const BranchRequest& request,
                   const std::atomic<bool>* stop) {
   const StartSpec& start = c.file.start(request.start);
+  const MetronomeDescriber describer(model);
+  const BranchSource source{model,
+                            describer,
+                            model.default_parameters(),
+                            c.file.initial_state(&start, request.initial),
+                            c.file.invariant_subspace(start, model),
+                            start.name};
+  return run_branch(source, request, stop);
+}
+
+Branch run_branch(const BranchSource& source, const BranchRequest& request,
+                  const std::atomic<bool>* stop) {
+  const OdeSystem& model = source.system;
+  const OrbitDescriber& describer = source.describer;
   BranchProblem problem;
   problem.parameter = model.parameter_index(request.parameter);
-  problem.values = model.default_parameters();
+  problem.values = source.values;
   problem.from = request.from;
   problem.to = request.to;
   problem.at = request.at;
-  problem.start_state = c.file.initial_state(&start, request.initial);
-  problem.subspace = c.file.invariant_subspace(start, model);
-  problem.start_name = start.name;
+  problem.start_state = source.start_state;
+  problem.subspace = source.subspace;
+  problem.start_name = source.start_name;
   // The engine's own check of the problem, before any work ("at 3: expected a value between
   // from and to"), in the command line's names.
   if (const std::string wrong = problem.problem_with(model); !wrong.empty())
     throw InputError("--" + wrong);
 
-  const MetronomeDescriber describer(model);
   std::unique_ptr<BranchCsvWriter> csv;
   if (!request.csv_path.empty())
     csv = std::make_unique<BranchCsvWriter>(request.csv_path, model, request.parameter, &describer);
@@ -146,12 +159,12 @@ const nlohmann::json& key(const nlohmann::json& j, const std::string& name,
   return j.at(name);
 }
 
-Branch branch_from_json(const nlohmann::json& j, const std::string& path,
-                        const MetronomeModel& model, const InvariantSubspace& subspace);
+Branch branch_from_json(const nlohmann::json& j, const std::string& path, const OdeSystem& model,
+                        const InvariantSubspace& subspace);
 
 }  // namespace
 
-Branch read_branch_json(const std::string& path, const MetronomeModel& model,
+Branch read_branch_json(const std::string& path, const OdeSystem& model,
                         const InvariantSubspace& subspace) {
   std::ifstream in(path);
   if (!in) throw InputError(path + ": cannot be read");
@@ -171,8 +184,8 @@ Branch read_branch_json(const std::string& path, const MetronomeModel& model,
 
 namespace {
 
-Branch branch_from_json(const nlohmann::json& j, const std::string& path,
-                        const MetronomeModel& model, const InvariantSubspace& subspace) {
+Branch branch_from_json(const nlohmann::json& j, const std::string& path, const OdeSystem& model,
+                        const InvariantSubspace& subspace) {
   Branch b;
   const auto& name = key(j, "parameter", path);
   if (!name.is_string()) throw InputError(path + ": key 'parameter': expected a name");
@@ -273,8 +286,7 @@ void print_events(std::FILE* out, const Branch& branch) {
 }
 
 nlohmann::json branch_json(const Branch& branch, const BranchRequest& request,
-                           const MetronomeModel& model) {
-  const MetronomeDescriber describer(model);
+                           const OrbitDescriber& describer) {
   nlohmann::json j = sympathy::branch_json(branch, &describer);
   j["start"] = request.start;
   j["from"] = request.from;

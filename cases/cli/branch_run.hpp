@@ -14,6 +14,7 @@
 #include "cases/cli/common.hpp"
 #include "cases/cli/event_name.hpp"
 #include "sympathy/continuation/branch_run.hpp"
+#include "sympathy/continuation/orbit_describer.hpp"
 
 namespace sympathy::cli {
 
@@ -38,25 +39,41 @@ struct BranchRequest {
   const Branch* parent_branch = nullptr;
 };
 
+// What a branch needs from a case of either kind (a metronome case file, an equation case
+// file): the system, the parameter values the run starts from, the start's state, name and
+// invariant subspace, and the describer of its orbits.
+struct BranchSource {
+  const OdeSystem& system;
+  const OrbitDescriber& describer;
+  ParameterValues values;
+  Eigen::VectorXd start_state;
+  InvariantSubspace subspace;
+  std::string start_name;
+};
+
 // A branch read back from the JSON `continue --json` wrote, with what switching at its events
 // needs: the parameter, every parameter value, and per event its located orbit, unknowns and
 // tangent; its points carry `subspace` (the start's). InputError naming the file and the key for
 // anything missing or of the wrong size for `model`.
-Branch read_branch_json(const std::string& path, const MetronomeModel& model,
+Branch read_branch_json(const std::string& path, const OdeSystem& model,
                         const InvariantSubspace& subspace);
 
 // The event of `branch` so named; InputError listing the branch's events if there is none.
 const Bifurcation& find_event(const Branch& branch, const EventName& name,
                               const std::string& option);
 
-// Runs the branch; the model must be built from `c.spec`. Throws InputError for a request that
-// does not fit the case, OutputError when the CSV cannot be written.
+// Runs the branch. Throws InputError for a request that does not fit the case, OutputError when
+// the CSV cannot be written.
+Branch run_branch(const BranchSource& source, const BranchRequest& request,
+                  const std::atomic<bool>* stop);
+// The same for a metronome case: the model must be built from `c.spec`; the start is the case's
+// named start request.start, with request.initial on top.
 Branch run_branch(const LoadedCase& c, const MetronomeModel& model, const BranchRequest& request,
                   const std::atomic<bool>* stop);
 
 void print_events(std::FILE* out, const Branch& branch);
 // The engine's branch JSON with the request's start and bounds.
 nlohmann::json branch_json(const Branch& branch, const BranchRequest& request,
-                           const MetronomeModel& model);
+                           const OrbitDescriber& describer);
 
 }  // namespace sympathy::cli

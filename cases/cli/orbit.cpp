@@ -8,6 +8,7 @@
 
 #include "cases/cli/commands.hpp"
 #include "cases/cli/common.hpp"
+#include "cases/cli/equations.hpp"
 #include "cases/cli/report.hpp"
 #include "sympathy/continuation/branch_output.hpp"
 #include "sympathy/continuation/periodic_orbit.hpp"
@@ -17,20 +18,22 @@ namespace sympathy::cli {
 
 int run_orbit(const std::vector<std::string>& argv) {
   auto options = case_options();
-  options.insert(options.end(),
-                 {{"--start", "NAME", false, "named start of the case (required)"},
-                  {"--initial", "VAR=VALUE", true, "initial state value (on top of --start)"},
-                  {"--segments", "M", false, "shooting segments (default 1: single shooting)"},
-                  {"--transient", "SECONDS", false, "integration before Newton (default 60)"},
-                  {"--json", "FILE", false, "write the orbit as JSON"},
-                  {"--whole-state", "", false,
-                   "no symmetry reduction: integrate every metronome (for comparison)"},
-                  {"--verbose", "", false, "the full report: Newton steps, integration work"}});
+  options.insert(
+      options.end(),
+      {{"--start", "NAME", false, "named start of the case (required for a metronome case file)"},
+       {"--initial", "VAR=VALUE", true, "initial state value (on top of --start)"},
+       {"--segments", "M", false, "shooting segments (default 1: single shooting)"},
+       {"--transient", "SECONDS", false, "integration before Newton (default 60)"},
+       {"--json", "FILE", false, "write the orbit as JSON"},
+       {"--whole-state", "", false,
+        "no symmetry reduction: integrate every metronome (for comparison)"},
+       {"--verbose", "", false, "the full report: Newton steps, integration work"}});
   const auto integrator = integrator_options();
   options.insert(options.end(), integrator.begin(), integrator.end());
   options.push_back(accuracy_option());
   Arguments args("orbit", argv, options, {"CASE"});
 
+  if (case_file_kind(args.positional(0)) == "equations") return run_orbit_equations(args);
   Stopwatch clock;
   const LoadedCase c = load_case(args);
   if (!args.has("--start"))
@@ -61,7 +64,7 @@ int run_orbit(const std::vector<std::string>& argv) {
 
   std::printf("sympathy orbit %s  params %s  start %s\n", c.file.path().c_str(),
               c.params.empty() ? "(none)" : c.params.c_str(), start.name.c_str());
-  print_orbit(stdout, model, orbit, report, o);
+  print_orbit(stdout, model, orbit, report.amplitudes, report.phase_differences, o);
   if (args.flag("--verbose")) {
     std::printf("  newton steps");
     for (double step : orbit.newton.step_norms) std::printf(" %.1e", step);

@@ -9,19 +9,20 @@
 
 namespace sympathy::cli {
 
-void print_orbit(std::FILE* out, const MetronomeModel& model, const PeriodicOrbit& orbit,
-                 const MetronomeDescriber::Report& report, const OrbitOptions& options) {
+void print_orbit(std::FILE* out, const OdeSystem& model, const PeriodicOrbit& orbit,
+                 const std::vector<double>& amplitudes,
+                 const std::vector<double>& phase_differences, const OrbitOptions& options) {
   const auto names = model.state_names();
   const auto& f = orbit.floquet;
   std::fprintf(out, "  period       %.12g s    frequency %.9g Hz\n", orbit.period,
                1.0 / orbit.period);
   std::fprintf(out, "  amplitudes  ");
-  for (std::size_t i = 0; i < report.amplitudes.size(); ++i)
-    std::fprintf(out, " %s %.6g", names[i].c_str(), report.amplitudes[i]);
-  if (!report.phase_differences.empty()) {
+  for (std::size_t i = 0; i < amplitudes.size(); ++i)
+    std::fprintf(out, " %s %.6g", names[i].c_str(), amplitudes[i]);
+  if (!phase_differences.empty()) {
     std::fprintf(out, "\n  phases to th1");
-    for (std::size_t i = 0; i < report.phase_differences.size(); ++i)
-      std::fprintf(out, " th%zu %+.6f", i + 2, report.phase_differences[i]);
+    for (std::size_t i = 0; i < phase_differences.size(); ++i)
+      std::fprintf(out, " th%zu %+.6f", i + 2, phase_differences[i]);
   }
   std::fprintf(out, "\n  multipliers  (modulus, argument in rad)\n");
   for (const auto& m : f.multipliers) {

@@ -14,8 +14,11 @@
 
 namespace sympathy::cli {
 
-void print_orbit(std::FILE* out, const MetronomeModel& model, const PeriodicOrbit& orbit,
-                 const MetronomeDescriber::Report& report, const OrbitOptions& options);
+// An orbit of any system: `amplitudes` per state from the first (a metronome model gives its
+// positions'), `phase_differences` of th2, th3, ... to th1 (empty for other systems).
+void print_orbit(std::FILE* out, const OdeSystem& model, const PeriodicOrbit& orbit,
+                 const std::vector<double>& amplitudes,
+                 const std::vector<double>& phase_differences, const OrbitOptions& options);
 
 // The full report of a flow's work (--verbose).
 void print_flow_statistics(std::FILE* out, const FlowStatistics& s);

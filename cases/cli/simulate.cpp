@@ -6,7 +6,9 @@
 
 #include "cases/cli/commands.hpp"
 #include "cases/cli/common.hpp"
+#include "cases/cli/equations.hpp"
 #include "cases/cli/report.hpp"
+#include "sympathy/cases/equation_case.hpp"
 #include "sympathy/cases/platform_model.hpp"
 #include "sympathy/core/csv.hpp"
 #include "sympathy/core/oscillation.hpp"
@@ -29,45 +31,76 @@ int run_simulate(const std::vector<std::string>& argv) {
   Arguments args("simulate", argv, options, {"CASE"});
 
   Stopwatch clock;
-  const LoadedCase c = load_case(args);
-  const StartSpec* start = args.has("--start") ? &c.file.start(*args.value("--start")) : nullptr;
-  if (!start && !args.has("--initial"))
-    throw InputError("give --start NAME (one of: " + join(c.file.start_names()) +
-                     ") or --initial VAR=VALUE");
-  const bool locked = args.flag("--locked-pendula");
-  const Eigen::VectorXd z_case = c.file.initial_state(start, args.assignments("--initial"));
   const double t_end = args.number("--t-end", 60.0);
   const double dt = args.number("--dt", 0.01);
   if (!(t_end > 0.0)) throw InputError("--t-end: expected a positive number of seconds");
   if (!(dt > 0.0 && dt <= t_end)) throw InputError("--dt: expected a positive interval <= --t-end");
+  const bool locked = args.flag("--locked-pendula");
 
-  // The full model, or with --locked-pendula the platform alone (the pendula's states dropped).
-  std::unique_ptr<OdeSystem> system;
+  // The system, its start and what the summary watches: an equation case file's (every state
+  // watched, the frequency from the first), the full metronome model, or with --locked-pendula
+  // the platform alone (the pendula's states dropped).
+  std::shared_ptr<const OdeSystem> system;
+  ParameterValues parameters;
   std::vector<int> angles, watched;
-  Eigen::VectorXd z0 = z_case;
-  if (locked) {
-    auto platform = std::make_unique<PlatformModel>(c.spec);
-    const auto case_names = c.file.state_names();
-    const auto names = platform->state_names();
-    for (const auto& a : args.assignments("--initial"))
-      if (std::find(names.begin(), names.end(), a.key) == names.end())
-        throw InputError(a.source + ": the pendula are locked (--locked-pendula); expected a " +
-                         "state of the platform: " + join(names));
-    z0.resize(platform->dimension());
-    for (int i = 0; i < platform->dimension(); ++i)
-      z0[i] =
-          z_case[std::find(case_names.begin(), case_names.end(), names[i]) - case_names.begin()];
-    for (int a = 0; a < platform->platform_directions(); ++a) watched.push_back(a);
-    angles = {0};  // frequency and phases of x
-    system = std::move(platform);
+  Eigen::VectorXd z0;
+  std::string case_path, params_name, start_name = "(--initial)", model_note;
+  int directions = 0;  // leading states in metres (the platform's); the metronomes' in rad
+  if (case_file_kind(args.positional(0)) == "equations") {
+    if (locked) throw InputError("--locked-pendula: only for a metronome case file");
+    const LoadedEquations e = load_equations(args);
+    const StartSpec* start = args.has("--start") ? &e.file.start(*args.value("--start")) : nullptr;
+    z0 = e.file.initial_state(start, args.assignments("--initial"));
+    if (start)
+      start_name = start->name;
+    else if (!args.has("--initial"))
+      start_name = "(the file's [states])";
+    system = e.build.system;
+    parameters = e.values;
+    angles = {0};
+    for (int i = 0; i < system->dimension(); ++i) watched.push_back(i);
+    case_path = e.file.path();
+    params_name = e.params;
+    model_note = describe_build(e.build);
+    directions = -1;  // no units
   } else {
-    auto model = std::make_unique<MetronomeModel>(c.spec);
-    for (int i = 0; i < model->metronome_count(); ++i) angles.push_back(model->angle_index(i));
-    for (int a = 0; a < model->platform_directions(); ++a) watched.push_back(a);
-    watched.insert(watched.end(), angles.begin(), angles.end());
-    system = std::move(model);
+    const LoadedCase c = load_case(args);
+    const StartSpec* start = args.has("--start") ? &c.file.start(*args.value("--start")) : nullptr;
+    if (!start && !args.has("--initial"))
+      throw InputError("give --start NAME (one of: " + join(c.file.start_names()) +
+                       ") or --initial VAR=VALUE");
+    if (start) start_name = start->name;
+    const Eigen::VectorXd z_case = c.file.initial_state(start, args.assignments("--initial"));
+    z0 = z_case;
+    if (locked) {
+      auto platform = std::make_shared<PlatformModel>(c.spec);
+      const auto case_names = c.file.state_names();
+      const auto names = platform->state_names();
+      for (const auto& a : args.assignments("--initial"))
+        if (std::find(names.begin(), names.end(), a.key) == names.end())
+          throw InputError(a.source + ": the pendula are locked (--locked-pendula); expected a " +
+                           "state of the platform: " + join(names));
+      z0.resize(platform->dimension());
+      for (int i = 0; i < platform->dimension(); ++i)
+        z0[i] =
+            z_case[std::find(case_names.begin(), case_names.end(), names[i]) - case_names.begin()];
+      for (int a = 0; a < platform->platform_directions(); ++a) watched.push_back(a);
+      angles = {0};  // frequency and phases of x
+      system = std::move(platform);
+      model_note = "pendula locked (the platform alone)";
+    } else {
+      auto model = std::make_shared<MetronomeModel>(c.spec);
+      for (int i = 0; i < model->metronome_count(); ++i) angles.push_back(model->angle_index(i));
+      for (int a = 0; a < model->platform_directions(); ++a) watched.push_back(a);
+      watched.insert(watched.end(), angles.begin(), angles.end());
+      system = std::move(model);
+      model_note = "escapement " + to_string(c.spec.escapement);
+    }
+    parameters = system->default_parameters();
+    case_path = c.file.path();
+    params_name = c.params;
+    directions = c.spec.directions;
   }
-  const int directions = c.spec.directions;
   FlowOptions defaults;
   defaults.rtol = 1e-8;
   defaults.atol = 1e-10;
@@ -76,7 +109,7 @@ int run_simulate(const std::vector<std::string>& argv) {
   const auto names = system->state_names();
   std::unique_ptr<CsvWriter> csv;
   if (auto out = args.value("--out")) {
-    check_distinct_outputs({{"--out", *out}}, {{"case file", c.file.path()}});
+    check_distinct_outputs({{"--out", *out}}, {{"case file", case_path}});
     std::vector<std::string> header{"t"};
     header.insert(header.end(), names.begin(), names.end());
     csv = std::make_unique<CsvWriter>(*out, header);
@@ -94,27 +127,25 @@ int run_simulate(const std::vector<std::string>& argv) {
   bool interrupted = false;
   try {
     // A signal stops the run after the current output sample; the rows written are whole.
-    interrupted = flow.sample_until(z0, system->default_parameters(), 0.0, times,
-                                    [&](double t, const Eigen::VectorXd& z) {
-                                      analyzer.add(t, z);
-                                      if (csv) {
-                                        row[0] = t;
-                                        for (int i = 0; i < z.size(); ++i) row[i + 1] = z[i];
-                                        csv->row(row);
-                                      }
-                                      return stop->load();
-                                    });
+    interrupted =
+        flow.sample_until(z0, parameters, 0.0, times, [&](double t, const Eigen::VectorXd& z) {
+          analyzer.add(t, z);
+          if (csv) {
+            row[0] = t;
+            for (int i = 0; i < z.size(); ++i) row[i + 1] = z[i];
+            csv->row(row);
+          }
+          return stop->load();
+        });
   } catch (const IntegrationError& e) {
     failure = e.what();  // keep what was computed; report below
   }
   if (csv) csv->close();
 
   const auto s = analyzer.summary();
-  std::fprintf(stderr, "sympathy simulate %s  params %s  start %s  %s\n", c.file.path().c_str(),
-               c.params.empty() ? "(none)" : c.params.c_str(),
-               start ? start->name.c_str() : "(--initial)",
-               locked ? "pendula locked (the platform alone)"
-                      : ("escapement " + to_string(c.spec.escapement)).c_str());
+  std::fprintf(stderr, "sympathy simulate %s  params %s  start %s  %s\n", case_path.c_str(),
+               params_name.empty() ? "(none)" : params_name.c_str(), start_name.c_str(),
+               model_note.c_str());
   std::fprintf(stderr, "  t = 0 .. %g s, output every %g s%s%s\n", t_end, dt,
                csv ? " -> " : " (no --out: time series not written)",
                csv ? csv->path().c_str() : "");
@@ -129,8 +160,10 @@ int run_simulate(const std::vector<std::string>& argv) {
     std::fprintf(stderr, "    frequency: fewer than two cycles of %s\n", names[angles[0]].c_str());
   std::fprintf(stderr, "    amplitudes:");
   for (std::size_t k = 0; k < watched.size(); ++k)
-    std::fprintf(stderr, " %s %.4g %s", names[watched[k]].c_str(), s.amplitudes[k],
-                 watched[k] < directions ? "m" : "rad");
+    std::fprintf(stderr, " %s %.4g%s", names[watched[k]].c_str(), s.amplitudes[k],
+                 directions < 0            ? ""
+                 : watched[k] < directions ? " m"
+                                           : " rad");
   std::fprintf(stderr, "\n");
   if (!s.phase_differences.empty()) {
     std::fprintf(stderr, "    phase differences to th1:");

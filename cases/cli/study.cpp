@@ -11,6 +11,7 @@
 #include "cases/cli/branch_run.hpp"
 #include "cases/cli/commands.hpp"
 #include "cases/cli/study_file.hpp"
+#include "sympathy/cases/metronome_describer.hpp"
 #include "sympathy/continuation/branch_output.hpp"
 
 namespace sympathy::cli {
@@ -130,7 +131,7 @@ int run_study(const std::vector<std::string>& argv) {
   j["branches"] = nlohmann::json::array();
   bool ok = true;
   for (std::size_t i = 0; i < study.branches.size(); ++i) {
-    nlohmann::json b = branch_json(results[i], requests[i], *models[i]);
+    nlohmann::json b = branch_json(results[i], requests[i], MetronomeDescriber(*models[i]));
     b["name"] = study.branches[i].name;
     b["csv"] = std::filesystem::path(requests[i].csv_path).filename().string();
     if (!errors[i].empty()) b["error"] = errors[i];

@@ -75,9 +75,11 @@ check "(g) identical metronomes: reduced and whole multipliers within 1e-8 at N 
 import csv, sys
 rows = list(csv.DictReader(open('$work/identical.csv')))
 sys.exit(0 if [r['metronomes'] for r in rows] == ['2', '4', '8'] and all(float(r['multiplier_difference']) < 1e-8 for r in rows) else 1)"
+check "(h): generated and hand-written systems compared" grep -q '^(h) lrz   rhs ' "$work/bench.out"
+check "(h): the compile time, first and cached" grep -q '^(h) lrz: compiled in .* s, from the cache in' "$work/bench.out"
 "$bin" bench --bogus > /dev/null 2> "$work/bad.err"
 check "an unknown option exits 2" test $? -eq 2
 "$bin" bench --sections xyz > /dev/null 2> "$work/bad.err"
 check "--sections with an unknown letter exits 2 and says what it expected" \
-  grep -q "expected letters from a to g" "$work/bad.err"
+  grep -q "expected letters from a to h" "$work/bad.err"
 exit $failures

@@ -2,6 +2,9 @@
 
 #include <gtest/gtest.h>
 
+#include <algorithm>
+#include <cmath>
+
 namespace sympathy {
 namespace {
 
@@ -20,6 +23,51 @@ TEST(Dual, ChainRuleMatchesClosedForms) {
       (1 - t * t) * xv / (1 + e) - std::sqrt(xv) * std::sin(yv) + std::sin(xv) / (yv * yv);
   EXPECT_NEAR(f.d[0], dfdx, 1e-14);
   EXPECT_NEAR(f.d[1], dfdy, 1e-14);
+}
+
+// Every function added for equation case files against a central finite difference, step 1e-6:
+// truncation error h^2 |f'''| / 6 ~ 1e-12 and rounding 1e-16 / 1e-6 = 1e-10 relative, so a
+// tolerance of 1e-8 (relative to max(1, |f'|)) holds them all with room.
+TEST(Dual, FunctionsMatchFiniteDifferences) {
+  using D = Dual<1>;
+  struct Case {
+    const char* name;
+    D (*dual)(const D&);
+    double (*plain)(double);
+    double at;
+  };
+  const Case cases[] = {
+      {"tan", [](const D& x) { return tan(x); }, [](double x) { return std::tan(x); }, 0.4},
+      {"atan", [](const D& x) { return atan(x); }, [](double x) { return std::atan(x); }, -1.7},
+      {"asin", [](const D& x) { return asin(x); }, [](double x) { return std::asin(x); }, 0.3},
+      {"acos", [](const D& x) { return acos(x); }, [](double x) { return std::acos(x); }, -0.6},
+      {"sinh", [](const D& x) { return sinh(x); }, [](double x) { return std::sinh(x); }, 1.1},
+      {"cosh", [](const D& x) { return cosh(x); }, [](double x) { return std::cosh(x); }, -0.8},
+      {"abs-", [](const D& x) { return abs(x); }, [](double x) { return std::abs(x); }, -2.5},
+      {"abs+", [](const D& x) { return abs(x); }, [](double x) { return std::abs(x); }, 0.5},
+      {"erf", [](const D& x) { return erf(x); }, [](double x) { return std::erf(x); }, 0.7},
+      {"pow(x, 2.5)", [](const D& x) { return pow(x, 2.5); },
+       [](double x) { return std::pow(x, 2.5); }, 1.3},
+      {"pow(x, 3) at x < 0", [](const D& x) { return pow(x, D(3.0)); },
+       [](double x) { return std::pow(x, 3.0); }, -1.2},
+      {"pow(1.7, x)", [](const D& x) { return pow(1.7, x); },
+       [](double x) { return std::pow(1.7, x); }, 0.9},
+      {"pow(x, x)", [](const D& x) { return pow(x, x); }, [](double x) { return std::pow(x, x); },
+       1.4},
+      {"atan2(x, 0.3)", [](const D& x) { return atan2(x, D(0.3)); },
+       [](double x) { return std::atan2(x, 0.3); }, -0.5},
+      {"atan2(0.3, x)", [](const D& x) { return atan2(D(0.3), x); },
+       [](double x) { return std::atan2(0.3, x); }, -0.5},
+  };
+  const double h = 1e-6;
+  for (const auto& c : cases) {
+    D x(c.at);
+    x.d[0] = 1.0;
+    const D f = c.dual(x);
+    const double fd = (c.plain(c.at + h) - c.plain(c.at - h)) / (2 * h);
+    EXPECT_DOUBLE_EQ(f.v, c.plain(c.at)) << c.name;
+    EXPECT_NEAR(f.d[0], fd, 1e-8 * std::max(1.0, std::abs(fd))) << c.name;
+  }
 }
 
 }  // namespace

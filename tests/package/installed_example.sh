@@ -33,3 +33,17 @@ step "build the example"
 
 step "run the example"
 "$tmp/example-build/fold_of_cycles"
+
+# An equation case file with the installed program, compiling against the installed headers only
+# (SYMPATHY_INCLUDE_DIR: the prefix is temporary, not the configured CMAKE_INSTALL_PREFIX): they
+# must be the ones the program was built with (their SHA-256s, recorded at configure time).
+if [[ -x "$tmp/prefix/bin/sympathy" ]]; then
+  step "the installed program on an equation case file, against the installed headers"
+  SYMPATHY_INCLUDE_DIR="$tmp/prefix/include" SYMPATHY_CACHE_DIR="$tmp/cache" \
+    "$tmp/prefix/bin/sympathy" orbit "$example/../../cases/examples/hopf.toml" > "$tmp/hopf.out"
+  grep -q "system compiled in .* against the headers in $tmp/prefix/include " "$tmp/hopf.out" ||
+    { cat "$tmp/hopf.out"; exit 1; }
+  grep -q '^  period       6.28318530' "$tmp/hopf.out" || { cat "$tmp/hopf.out"; exit 1; }
+  grep -q "$tmp/prefix/include" "$tmp/cache/"*.cpp 2>/dev/null && exit 1  # no paths in the source
+  echo "ok: compiled against $tmp/prefix/include"
+fi

@@ -1,0 +1,89 @@
+#include "cases/cli/equations.hpp"
+
+#include <cstdio>
+
+#include <nlohmann/json.hpp>
+
+#include "cases/cli/common.hpp"
+#include "cases/cli/report.hpp"
+#include "sympathy/cases/state_describer.hpp"
+#include "sympathy/continuation/branch_output.hpp"
+#include "sympathy/core/output_file.hpp"
+
+namespace sympathy::cli {
+
+LoadedEquations load_equations(const Arguments& args) {
+  EquationCase file = EquationCase::load(args.positional(0));
+  const std::string params = args.text("--params", file.default_parameter_set());
+  ParameterValues values = file.parameter_values(params, args.assignments("--set"));
+  // Everything is checked before the compiler runs; a compiler failure is not the user's input
+  // (a missing compiler or headers, or a bug of the generator) and says so.
+  EquationBuild build = build_equation_system(file, values);
+  return {std::move(file), params, std::move(values), std::move(build)};
+}
+
+std::string describe_build(const EquationBuild& build) {
+  char seconds[32];
+  std::snprintf(seconds, sizeof seconds, "%.2f", build.seconds);
+  std::string s = build.compiled ? "system compiled in " + std::string(seconds) +
+                                       " s against the headers in " + build.include_dir
+                                 : std::string("system from the cache");
+  s += " (" + build.library + ")";
+  if (!build.rebuilt_because.empty()) s += "; the entry was rebuilt: " + build.rebuilt_because;
+  return s;
+}
+
+int run_orbit_equations(const Arguments& args) {
+  Stopwatch clock;
+  if (args.flag("--whole-state"))
+    throw InputError(
+        "--whole-state: only for a metronome case file (an equation case file's "
+        "orbits are always computed in the whole state space)");
+  const LoadedEquations e = load_equations(args);
+  const StartSpec* start = args.has("--start") ? &e.file.start(*args.value("--start")) : nullptr;
+  const Eigen::VectorXd z0 = e.file.initial_state(start, args.assignments("--initial"));
+  const OdeSystem& system = *e.build.system;
+
+  OrbitOptions o;
+  o.shooting.segments = args.integer("--segments", 1);
+  o.transient = args.number("--transient", o.transient);
+  apply_accuracy(accuracy(args), o);
+  o.shooting.flow = flow_options(args, o.shooting.flow);
+  o.transient_flow.linear_solver = o.shooting.flow.linear_solver;
+  check_options(o.validate(), "");
+  if (auto path = args.value("--json")) {
+    check_writable(*path, "--json");
+    check_distinct_outputs({{"--json", *path}}, {{"case file", e.file.path()}});
+  }
+
+  const PeriodicOrbit orbit = find_periodic_orbit(system, e.values, z0, InvariantSubspace(), o);
+  const double seconds = clock.seconds();
+  const StateDescriber describer(system);
+  const auto amplitudes = describer.amplitudes(orbit);
+
+  std::printf("sympathy orbit %s  params %s  start %s\n", e.file.path().c_str(),
+              e.params.empty() ? "(none)" : e.params.c_str(),
+              start ? start->name.c_str() : "(the file's [states])");
+  std::printf("  %s\n", describe_build(e.build).c_str());
+  print_orbit(stdout, system, orbit, amplitudes, {}, o);
+  if (args.flag("--verbose")) {
+    std::printf("  newton steps");
+    for (double step : orbit.newton.step_norms) std::printf(" %.1e", step);
+    std::printf(" (|dx|_inf; %d halvings; %s linear solves)\n", orbit.newton.halvings,
+                orbit.newton.sparse ? "sparse LU" : "dense SVD");
+    print_flow_statistics(stdout, orbit.flow);
+  }
+  std::printf("  run time     %.3f s\n", seconds);
+
+  if (auto path = args.value("--json")) {
+    nlohmann::json j = orbit_json(system, orbit, &describer);
+    j["case"] = e.file.path();
+    j["params_set"] = e.params;
+    j["start"] = start ? start->name : "";
+    j["seconds"] = seconds;
+    write_file_atomically(*path, j.dump(2) + "\n");
+  }
+  return orbit.converged() ? 0 : 4;
+}
+
+}  // namespace sympathy::cli

@@ -1,0 +1,33 @@
+// Equation case files (kind = "equations") in the commands: loading one with --params and --set,
+// its system compiled or taken from the cache (equation_compiler.hpp), and the orbit command on
+// it. simulate, orbit and continue read them (continue through run_branch's BranchSource); study
+// and fit do not yet (CaseFile refuses them, naming the kind).
+#pragma once
+
+#include <string>
+
+#include "cases/cli/arguments.hpp"
+#include "sympathy/cases/equation_case.hpp"
+#include "sympathy/cases/equation_compiler.hpp"
+
+namespace sympathy::cli {
+
+struct LoadedEquations {
+  EquationCase file;
+  std::string params;  // the parameter set applied ("" if none)
+  ParameterValues values;
+  EquationBuild build;
+};
+
+// The file of positional 0, the parameter values of --params and --set, and its system.
+LoadedEquations load_equations(const Arguments& args);
+
+// "system compiled in 1.23 s against the headers in DIR (CACHE/KEY.so)" or "system from the
+// cache (CACHE/KEY.so)", with why an entry present was rebuilt.
+std::string describe_build(const EquationBuild& build);
+
+// sympathy orbit on an equation case file: the whole state space (no symmetry), amplitudes of
+// every state.
+int run_orbit_equations(const Arguments& args);
+
+}  // namespace sympathy::cli

@@ -1,0 +1,113 @@
+// Equation case files: a system written as equations in a TOML case file (kind = "equations"),
+// read, parsed (expression.hpp) and checked whole before anything is compiled or run.
+//
+//   kind = "equations"
+//   name = "hopf"                     # optional, as in every case file
+//   description = "..."
+//   [states]                          # the state vector, in the order of the file; initial values
+//   x = 0.1
+//   y = 0.0
+//   [parameters]                      # a value, or a table with value, unit, min, max
+//   mu = 0.25
+//   w = { value = 1.0, unit = "rad/s", min = 0.0 }
+//   [intermediates]                   # optional; evaluated in the order of the file
+//   r2 = "x^2 + y^2"
+//   [equations]                       # one per state: its time derivative
+//   x = "mu*x - w*y - x*r2"
+//   y = "w*x + mu*y - y*r2"
+//   [params.NAME]                     # optional parameter sets, as in metronome case files
+//   [starts.NAME]                     # optional named starts: state values (others: [states])
+//   default_params = "NAME"
+//
+// Names: the time `t` and the constant `pi` are built in. Every name of the file is an ASCII
+// identifier (a letter, then letters, digits and '_'), at most 64 characters, no "__", not a
+// function of the grammar, not t or pi, not a C++ keyword, and unique across states,
+// parameters and intermediates. An intermediate uses only names defined above it. The whole
+// file is ASCII (comments included) and at most kMaxEquationFileBytes. Every error is an
+// InputError "FILE:LINE:COLUMN: key 'KEY': expected WHAT, got WHAT".
+#pragma once
+
+#include <cstddef>
+#include <optional>
+#include <string>
+#include <vector>
+
+#include <Eigen/Dense>
+
+#include "sympathy/cases/case_file.hpp"
+#include "sympathy/cases/expression.hpp"
+#include "sympathy/core/ode_system.hpp"
+
+namespace sympathy {
+
+constexpr std::size_t kMaxEquationFileBytes = 1 << 20;
+
+struct EquationState {
+  std::string name;
+  double initial = 0.0;
+};
+
+struct EquationParameter {
+  std::string name;
+  double value = 0.0;
+  std::string unit;  // as the file says it; "" if not given
+  std::optional<double> min, max;
+  std::string source;  // "FILE:LINE: key 'parameters.NAME'"
+};
+
+struct NamedExpression {
+  std::string name;  // the intermediate's name, or the state whose derivative this is
+  Expression tree;
+};
+
+// A checked system of equations: what code generation needs, and nothing of the file's text.
+struct EquationSystem {
+  std::vector<EquationState> states;
+  std::vector<EquationParameter> parameters;
+  std::vector<NamedExpression> intermediates;  // in evaluation order
+  std::vector<NamedExpression> derivatives;    // one per state, in state order
+  bool uses_time = false;                      // does any expression use t?
+};
+
+class EquationCase {
+ public:
+  // Reads and checks an equation case file; throws InputError.
+  static EquationCase load(const std::string& path);
+
+  const std::string& path() const { return path_; }
+  const std::string& name() const { return name_; }
+  const std::string& description() const { return description_; }
+  const EquationSystem& system() const { return system_; }
+  const std::string& default_parameter_set() const { return default_params_; }
+  std::vector<std::string> parameter_set_names() const;
+  std::vector<std::string> start_names() const;
+  std::vector<std::string> state_names() const;
+  std::vector<std::string> parameter_names() const;
+
+  // The parameter values (in parameter order) of set `params` (empty: the file's default, if
+  // any) with the assignments on top, each checked against the parameter's bounds. Throws
+  // InputError naming where the value came from.
+  Eigen::VectorXd parameter_values(const std::string& params = "",
+                                   const std::vector<Assignment>& sets = {}) const;
+
+  const StartSpec& start(const std::string& name) const;  // throws InputError
+  // The [states] values, then a start's, then the assignments (state names).
+  Eigen::VectorXd initial_state(const StartSpec* start,
+                                const std::vector<Assignment>& initial = {}) const;
+
+ private:
+  std::string path_;
+  std::string name_;
+  std::string description_;
+  std::string default_params_;
+  EquationSystem system_;
+  std::vector<ParameterSet> parameter_sets_;
+  std::vector<StartSpec> starts_;
+};
+
+// What a case file is: "equations" for an equation case file (kind = "equations"), "metronomes"
+// for a metronome-platform case file (no kind key, or kind = "metronomes"). Throws InputError
+// for a missing or unreadable file or another kind.
+std::string case_file_kind(const std::string& path);
+
+}  // namespace sympathy

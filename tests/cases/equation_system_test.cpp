@@ -1,0 +1,226 @@
+// A system generated from an equation case file (equation_codegen.hpp, equation_compiler.hpp)
+// against the same system written by hand, a periodic orbit with a known answer, and the cache:
+// reuse, sharing between equal systems, rebuilding a corrupt entry.
+#include "sympathy/cases/equation_compiler.hpp"
+
+#include <cmath>
+#include <filesystem>
+#include <fstream>
+#include <iterator>
+#include <numbers>
+#include <random>
+
+#include <gtest/gtest.h>
+
+#include "sympathy/cases/equation_codegen.hpp"
+#include "sympathy/continuation/periodic_orbit.hpp"
+#include "sympathy/core/autodiff_system.hpp"
+#include "tests/support/errors.hpp"
+
+namespace sympathy {
+namespace {
+
+namespace fs = std::filesystem;
+
+std::string example(const std::string& name) {
+  return std::string(SYMPATHY_SOURCE_DIR) + "/cases/examples/" + name + ".toml";
+}
+
+// A fresh cache directory per test, removed after it.
+class EquationSystemTest : public ::testing::Test {
+ protected:
+  void SetUp() override {
+    cache_ = fs::temp_directory_path() /
+             ("sympathy_equation_cache_" +
+              std::string(::testing::UnitTest::GetInstance()->current_test_info()->name()));
+    fs::remove_all(cache_);
+  }
+  void TearDown() override { fs::remove_all(cache_); }
+  EquationBuild build(const EquationCase& c) {
+    return build_equation_system(c, c.parameter_values(), cache_.string());
+  }
+  fs::path cache_;
+};
+
+// cases/examples/hopf.toml written by hand.
+class HandHopf final : public AutoDiffSystem<HandHopf> {
+ public:
+  HandHopf(double mu, double w) { set_parameter_layout({{"mu", {0}}, {"w", {1}}}, {mu, w}); }
+  int dimension() const override { return 2; }
+  std::vector<std::string> state_names() const override { return {"x", "y"}; }
+  template <class T, class P>
+  void evaluate(double, const T* z, const P* p, T* dz) const {
+    const T r2 = z[0] * z[0] + z[1] * z[1];
+    dz[0] = p[0] * z[0] - p[1] * z[1] - z[0] * r2;
+    dz[1] = p[1] * z[0] + p[0] * z[1] - z[1] * r2;
+  }
+};
+
+// Right-hand side, Jacobian and df/dp at random points: the same arithmetic in another order
+// (the generated code parenthesizes as the file does), so equal to rounding: 1e-12 absolute on
+// values of order 1.
+TEST_F(EquationSystemTest, HopfMatchesTheHandWrittenSystem) {
+  const auto c = EquationCase::load(example("hopf"));
+  const auto b = build(c);
+  const OdeSystem& generated = *b.system;
+  const HandHopf hand(0.25, 1.0);
+  EXPECT_EQ(generated.dimension(), 2);
+  EXPECT_EQ(generated.state_names(), hand.state_names());
+  EXPECT_EQ(generated.parameter_names(), hand.parameter_names());
+  EXPECT_TRUE(generated.autonomous());
+  const ParameterValues p = generated.default_parameters();
+  EXPECT_EQ(p, hand.default_parameters());
+  std::mt19937 rng(7);
+  std::uniform_real_distribution<double> u(-1.5, 1.5);
+  for (int trial = 0; trial < 20; ++trial) {
+    const Eigen::Vector2d z(u(rng), u(rng));
+    const double t = u(rng);
+    EXPECT_LT((generated.rhs(t, z, p) - hand.rhs(t, z, p)).norm(), 1e-12);
+    EXPECT_LT((generated.jacobian(t, z, p) - hand.jacobian(t, z, p)).norm(), 1e-12);
+    for (int k = 0; k < 2; ++k) {
+      Eigen::Vector2d a, h;
+      generated.parameter_derivative(t, z.data(), p.data(), k, a.data());
+      hand.parameter_derivative(t, z.data(), p.data(), k, h.data());
+      EXPECT_LT((a - h).norm(), 1e-12);
+    }
+  }
+}
+
+// The circle r = sqrt(mu) with T = 2 pi / w and the nontrivial multiplier exp(-4 pi mu / w)
+// (cases/examples/hopf.toml): at mu = 0.25, w = 1, r = 0.5, T = 2 pi, exp(-pi) = 0.0432139.
+// Tolerances: the orbit is computed at the default shooting accuracy (rtol 1e-10 or so), so the
+// period to 1e-8 relative, the radius and the multiplier to 1e-7.
+TEST_F(EquationSystemTest, HopfOrbitHasItsExactPeriodRadiusAndMultiplier) {
+  const auto c = EquationCase::load(example("hopf"));
+  const auto b = build(c);
+  OrbitOptions o;
+  const PeriodicOrbit orbit = find_periodic_orbit(*b.system, b.system->default_parameters(),
+                                                  c.initial_state(nullptr), InvariantSubspace(), o);
+  ASSERT_TRUE(orbit.converged());
+  EXPECT_NEAR(orbit.period, 2 * std::numbers::pi, 2 * std::numbers::pi * 1e-8);
+  EXPECT_NEAR(orbit.state0.norm(), 0.5, 1e-7);
+  double nontrivial = 0.0;
+  for (const auto& m : orbit.floquet.multipliers)
+    if (!m.trivial) nontrivial = m.value.real();
+  EXPECT_NEAR(nontrivial, std::exp(-std::numbers::pi), 1e-7);
+}
+
+TEST_F(EquationSystemTest, CacheIsReusedAndSharedBetweenEqualSystems) {
+  const auto c = EquationCase::load(example("hopf"));
+  const auto first = build(c);
+  EXPECT_TRUE(first.compiled);
+  EXPECT_TRUE(fs::exists(cache_ / (first.key + ".so")));
+  EXPECT_TRUE(fs::exists(cache_ / (first.key + ".manifest")));
+  EXPECT_TRUE(fs::exists(cache_ / (first.key + ".cpp")));
+  const auto second = build(c);
+  EXPECT_FALSE(second.compiled);
+  EXPECT_EQ(second.key, first.key);
+  EXPECT_EQ(second.rebuilt_because, "");
+  // The same equations under other names: the same source, the same entry, its own names.
+  const std::string text = R"(kind = "equations"
+[states]
+u = 0.3
+v = 0.0
+[parameters]
+mu = 0.25
+w = 1.0
+[intermediates]
+r2 = "u^2 + v^2"
+[equations]
+u = "mu*u - w*v - u*r2"
+v = "w*u + mu*v - v*r2"
+)";
+  const auto renamed_path =
+      testing::write_test_file("sympathy_equation_system_test", ".toml", text);
+  const auto renamed = EquationCase::load(renamed_path);
+  ASSERT_EQ(renamed.state_names(), (std::vector<std::string>{"u", "v"}));
+  const auto third = build(renamed);
+  EXPECT_FALSE(third.compiled);
+  EXPECT_EQ(third.key, first.key);
+  EXPECT_EQ(third.system->state_names(), renamed.state_names());
+}
+
+TEST_F(EquationSystemTest, CorruptOrForeignEntryIsRebuiltNotLoaded) {
+  const auto c = EquationCase::load(example("lcbp"));
+  std::string key, library;
+  {
+    const auto b = build(c);
+    key = b.key;
+    library = b.library;
+  }  // the system, and with it the library, released before the file is touched
+  // A flipped byte in the library.
+  {
+    std::fstream f(library, std::ios::in | std::ios::out | std::ios::binary);
+    f.seekp(1000);
+    f.put('\x5a');
+  }
+  {
+    const auto b = build(c);
+    EXPECT_TRUE(b.compiled);
+    EXPECT_EQ(b.rebuilt_because, "its library does not match its manifest (corrupt or foreign)");
+    EXPECT_EQ(b.system->dimension(), 2);
+  }
+  // Another entry's library under this key (with its own, consistent manifest renamed too).
+  const auto hopf = EquationCase::load(example("hopf"));
+  std::string other;
+  {
+    const auto h = build(hopf);
+    other = h.key;
+  }
+  fs::copy_file(cache_ / (other + ".so"), library, fs::copy_options::overwrite_existing);
+  {
+    const auto b = build(c);
+    EXPECT_TRUE(b.compiled);
+    EXPECT_NE(b.rebuilt_because.find("does not match its manifest"), std::string::npos);
+  }
+  // A manifest gone.
+  fs::remove(cache_ / (key + ".manifest"));
+  {
+    const auto b = build(c);
+    EXPECT_TRUE(b.compiled);
+    EXPECT_EQ(b.rebuilt_because, "its manifest is missing");
+  }
+  // Rebuilt, the entry is used again.
+  {
+    const auto b = build(c);
+    EXPECT_FALSE(b.compiled);
+  }
+}
+
+// A sum of 100 terms and a product of 50 factors: no deeper nesting in the source than the tree
+// needs, compiled and right (100 x, and y^50 with its derivative 50 y^49, to 1e-12 relative: 49
+// roundings of 1.1e-16). (Longer is slow to compile rather than wrong: 900 terms took 32 s at
+// -O3, 16 s at -O2, 3.8 s at -O1 on this machine.)
+TEST_F(EquationSystemTest, LongSumsAndProductsCompile) {
+  std::string sum = "x", product = "y";
+  for (int i = 1; i < 100; ++i) sum += " + x";
+  for (int i = 1; i < 50; ++i) product += "*y";
+  const std::string path = testing::write_test_file(
+      "sympathy_equation_system_test", ".toml",
+      "kind = \"equations\"\n[states]\nx = 1.0\ny = 1.001\n[equations]\nx = \"" + sum +
+          "\"\ny = \"" + product + "\"\n");
+  const auto c = EquationCase::load(path);
+  const std::string source = generate_equation_source(c.system());
+  EXPECT_EQ(source.find("(((((((((("), std::string::npos);
+  const auto b = build(c);
+  const Eigen::Vector2d z(1.0, 1.001);
+  const Eigen::VectorXd dz = b.system->rhs(0.0, z, b.system->default_parameters());
+  EXPECT_DOUBLE_EQ(dz[0], 100.0);
+  EXPECT_NEAR(dz[1], std::pow(1.001, 50), 1e-12 * std::pow(1.001, 50));
+  const Eigen::MatrixXd jac = b.system->jacobian(0.0, z, b.system->default_parameters());
+  EXPECT_DOUBLE_EQ(jac(0, 0), 100.0);
+  EXPECT_NEAR(jac(1, 1), 50 * std::pow(1.001, 49), 1e-12 * 50 * std::pow(1.001, 49));
+}
+
+// Generated code names nothing after the file: only s0.., p0.., w0.., numbers and the grammar's
+// functions, whatever the names are.
+TEST_F(EquationSystemTest, GeneratedSourceCarriesNoTextOfTheFile) {
+  const auto c = EquationCase::load(example("lcbp"));
+  const std::string source = generate_equation_source(c.system());
+  for (const char* text : {"lcbp", "Circles", "sqrt(x", "r^2", "\"x\"", "\"p1\""})
+    EXPECT_EQ(source.find(text), std::string::npos) << text;
+  EXPECT_NE(source.find("const S w1 = "), std::string::npos);
+}
+
+}  // namespace
+}  // namespace sympathy

@@ -1,0 +1,95 @@
+#!/usr/bin/env bash
+# Equation case files in the commands: simulate and orbit on cases/examples, CSV columns from the
+# file's names, the cache (compiled once, then reused), located errors before any compiling.
+# Usage: equations_test.sh SYMPATHY_BINARY SOURCE_DIR WORK_DIR
+set -u
+bin=$1 src=$2 work=$3
+rm -rf "$work"
+mkdir -p "$work"
+. "$(dirname "$0")/check.sh"
+export SYMPATHY_CACHE_DIR="$work/cache"  # never the user's cache
+json_value() {
+  /usr/bin/python3 -c "import json,math,sys; j=json.load(open(sys.argv[1])); print($2)" "$1"
+}
+
+"$bin" simulate "$src/cases/examples/hopf.toml" --t-end 20 --out "$work/hopf.csv" 2> "$work/sim.err"
+check "simulate on an equation case file exits 0" test $? -eq 0
+check "CSV columns are the file's states" test "$(head -1 "$work/hopf.csv")" = "t,x,y"
+check "the first run compiles the system" grep -q 'system compiled in' "$work/sim.err"
+check "the cache holds one entry" test "$(ls "$work/cache"/*.so | wc -l)" -eq 1
+# The circle r = sqrt(mu) = 0.5 (cases/examples/hopf.toml), reached from r = 0.3 by t = 20
+# (the radius converges like exp(-2 mu t) = exp(-10)): within 1e-3.
+check "simulate reaches the circle r = 0.5" /usr/bin/python3 -c "
+import csv,math,sys
+rows=list(csv.reader(open(sys.argv[1])))[1:]
+t,x,y=map(float,rows[-1])
+sys.exit(0 if abs(math.hypot(x,y)-0.5) < 1e-3 and t == 20 else 1)" "$work/hopf.csv"
+
+"$bin" orbit "$src/cases/examples/hopf.toml" --set mu=0.16 --json "$work/hopf.json" > "$work/orbit.out"
+check "orbit exits 0" test $? -eq 0
+check "the second run takes the system from the cache" grep -q 'system from the cache' "$work/orbit.out"
+# Exact: T = 2 pi / w = 6.283185307, multiplier exp(-4 pi mu / w) = exp(-0.64 pi) = 0.133888;
+# radius sqrt(0.16) = 0.4; to 1e-8 (the orbit's residual is 1e-12).
+check "period 2 pi" test "$(json_value "$work/hopf.json" "abs(j['period'] - 6.283185307179586) < 1e-8")" = True
+check "multiplier exp(-4 pi mu / w)" test "$(json_value "$work/hopf.json" "min(abs(complex(*m) - math.exp(-0.64 * math.pi)) for m in j['multipliers']) < 1e-8")" = True
+# Amplitudes from 800 samples of the period: the peak missed by at most (pi/800)^2/2 = 7.7e-6.
+check "amplitudes named after the states" test "$(json_value "$work/hopf.json" "abs(j['amplitudes']['x'] - 0.4) < 1e-5")" = True
+check "JSON state names are the file's" test "$(json_value "$work/hopf.json" "','.join(j['state_names'])")" = "x,y"
+
+"$bin" orbit "$src/cases/examples/lcbp.toml" > "$work/lcbp.out"
+check "lcbp: the circle r = 2 has period 1" grep -q '^  period       1 s' "$work/lcbp.out"
+# Radial multiplier exp(-p (p - p1)) of the circle r = p = p2 = 2 at p1 = 1: exp(-2) = 0.135335283.
+check "lcbp: its multiplier exp(-2)" grep -q '^    0.13533528' "$work/lcbp.out"
+
+# abc at p1 = 0.25 (the file's value), the stable orbit of the family born at the first Hopf
+# point: T = 6.53496 in AUTO-07p's regression log (test/hyper.all; trust about 1e-4 relative at
+# its NTST 25), here to the digits AUTO prints.
+"$bin" orbit "$src/cases/examples/abc.toml" --json "$work/abc.json" > "$work/abc.out"
+check "abc: orbit exits 0" test $? -eq 0
+check "abc at p1 = 0.25: T = 6.53496 (AUTO-07p)" test "$(json_value "$work/abc.json" "round(j['period'], 5)")" = 6.53496
+
+cat > "$work/bad.toml" <<'TOML'
+kind = "equations"
+[states]
+x = 1.0
+[parameters]
+a = 1.0
+[equations]
+x = 'a*x; system("touch SMUGGLED")'
+TOML
+"$bin" simulate "$work/bad.toml" 2> "$work/bad.err"
+check "a bad file exits 2" test $? -eq 2
+check "its error is located and says what was expected" grep -q "bad.toml:7:9: key 'equations.x': expected an operator (+ - \* / ^) or the end of the expression, got ';'" "$work/bad.err"
+check "nothing was compiled for it" test "$(ls "$work/cache"/*.so | wc -l)" -eq 3
+check "nothing ran" test ! -e SMUGGLED -a ! -e "$work/SMUGGLED"
+
+# continue: lcbp along the circle r = p2 = 2 from p1 = 1 to 3 meets the circle r = p1 at the
+# branch point p1 = 2 exactly (cases/examples/lcbp.toml); to 1e-6 (the located BP's reported
+# uncertainty is 1e-8).
+"$bin" continue "$src/cases/examples/lcbp.toml" --param p1 --from 1 --to 3 --quiet --json "$work/lcbp.json" > "$work/lcbp_branch.out"
+check "continue on an equation case file exits 0" test $? -eq 0
+check "lcbp: one event, a BP at p1 = 2" test "$(json_value "$work/lcbp.json" "[(e['type'], abs(e['value'] - 2) < 1e-6) for e in j['events']]")" = "[('BP', True)]"
+check "lcbp: the period stays 1 along r = 2" test "$(json_value "$work/lcbp.json" "max(abs(p['period'] - 1) for p in j['points']) < 1e-8")" = True
+# abc from p1 = 0.25 down to 0.205: the folds of AUTO-07p's log (test/hyper.all) at
+# p1 = 0.213697 (T 7.61104) and 0.211903 (T 8.28914), to the digits AUTO prints (its trust: about
+# 1e-4 relative at NTST 25; the periods here are 7.611039 and 8.289204).
+"$bin" continue "$src/cases/examples/abc.toml" --param p1 --from 0.25 --to 0.205 --quiet --json "$work/abc_branch.json" > "$work/abc_branch.out"
+check "abc: two folds at AUTO's p1" test "$(json_value "$work/abc_branch.json" "sorted(round(e['value'], 6) for e in j['events'] if e['type'] == 'LP')")" = "[0.211903, 0.213697]"
+check "abc: their periods to 1e-4 relative" test "$(json_value "$work/abc_branch.json" "sorted(round(e['period'], 3) for e in j['events'] if e['type'] == 'LP')")" = "[7.611, 8.289]"
+
+"$bin" continue "$src/cases/examples/hopf.toml" --param mu --from 0.25 --to -1 --quiet 2> "$work/cont.err"
+check "a continuation range outside the parameter's bounds is refused" grep -q -- "--to -1: expected a value of mu within \[0, inf\]" "$work/cont.err"
+cat > "$work/study.toml" <<TOML
+title = "hopf"
+case = "$src/cases/examples/hopf.toml"
+parameter = "mu"
+axis = "frequency"
+[[branches]]
+name = "hopf"
+start = "outside"
+from = 0.25
+to = 0.1
+TOML
+"$bin" study "$work/study.toml" --out "$work/study" 2> "$work/study.err"
+check "study refuses an equation case file for now, naming the kind" grep -q "key 'kind': expected a metronome case file here" "$work/study.err"
+exit "$failures"
