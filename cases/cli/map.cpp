@@ -69,9 +69,18 @@ int run_map(const std::vector<std::string>& argv) {
   nlohmann::json marks = nlohmann::json::array();
   for (const auto& set : map.marks) {
     const ModelSpec s = file.spec(set);  // throws naming the set if there is none
+    // In the map's plane only where every other parameter is the map's (Table III differs from
+    // Table II in c as well as k: on the (k, M) map it is drawn hollow, off the plane).
+    std::string off;
+    for (const auto& name : c.spec.parameter_names())
+      if (name != map.first.parameter && name != map.second.parameter &&
+          s.get(name) != c.spec.get(name))
+        off += (off.empty() ? "" : ", ") + name + " = " + format_number(s.get(name));
     marks.push_back({{"name", set},
                      {"first", s.get(map.first.parameter)},
-                     {"second", s.get(map.second.parameter)}});
+                     {"second", s.get(map.second.parameter)},
+                     {"in_plane", off.empty()},
+                     {"off_plane", off}});
   }
   std::filesystem::create_directories(out);
   const std::string json_path = out + "/" + map.name + ".json";
