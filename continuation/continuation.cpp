@@ -294,6 +294,7 @@ Branch Continuation::run_from(const PeriodicOrbit& start, int direction,
                                   std::complex<double> mu_b) {
         problem_->set_phase_section(a.section, a.section_normal);
         return locate(a, b, type, multiplicity, mu_a, mu_b, options_.location_tolerance,
+                      0.01 * (options_.upper - options_.lower),
                       [&](double s, std::string& why) { return point_at(a, s, why); });
       };
       events = detect(tracked, a, b, options_.trust_limit, locator);

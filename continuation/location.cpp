@@ -11,7 +11,7 @@ namespace sympathy {
 
 Bifurcation locate(const ContinuationPoint& a, const ContinuationPoint& b, BifurcationType type,
                    int multiplicity, std::complex<double> mu_a, std::complex<double> mu_b,
-                   double tolerance, const PointAt& point_at) {
+                   double tolerance, double scale_floor, const PointAt& point_at) {
   const int N = static_cast<int>(a.unknowns.size());  // the parameter's entry of the tangents
   const double sb = b.step;
   // The multiplier followed across, by continuity: the one nearest the value interpolated
@@ -48,7 +48,7 @@ Bifurcation locate(const ContinuationPoint& a, const ContinuationPoint& b, Bifur
   for (int iteration = 0; iteration < 30; ++iteration) {
     // Relative to the parameter itself: with a floor of 1 the M-branch's points (M about 0.1
     // kg) were located only to 1e-7 relative.
-    const double scale = std::max(std::abs(best.parameter), 1e-9);
+    const double scale = std::max(std::abs(best.parameter), scale_floor);
     const bool narrow = std::abs(hi.parameter - lo.parameter) <= tolerance * scale;
     const bool tight = (s_hi - s_lo) <= 1e-7 * sb;  // folds: the parameter is flat there
     if ((narrow && (type != BifurcationType::Fold || tight)) || f_best == 0.0) {

@@ -452,9 +452,9 @@ TEST(BranchProblem, EachWrongFieldIsNamed) {
   PeriodicOrbit unconverged;
   unconverged.parameters = system.default_parameters();
   const std::vector<Case> cases{
-      {"parameter", [](BranchProblem& p) { p.parameter = 1; }},  // the system has only mu
+      {"parameter", [](BranchProblem& p) { p.parameter = 3; }},  // it has mu, a and omega
       {"parameter", [](BranchProblem& p) { p.parameter = -1; }},
-      {"values", [](BranchProblem& p) { p.values = Eigen::VectorXd::Zero(2); }},
+      {"values", [](BranchProblem& p) { p.values = Eigen::VectorXd::Zero(2); }},  // not 3
       {"from, to", [](BranchProblem& p) { p.to = p.from; }},
       {"from, to", [](BranchProblem& p) { p.from = std::nan(""); }},
       {"at", [](BranchProblem& p) { p.at = -0.5; }},    // outside from..to

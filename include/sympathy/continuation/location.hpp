@@ -20,9 +20,11 @@ namespace sympathy {
 // owns the corrector gives this.
 using PointAt = std::function<std::optional<ContinuationPoint>(double s, std::string& why)>;
 
-// `tolerance`: relative, in the parameter (ContinuationOptions::location_tolerance).
+// `tolerance`: relative, in the parameter (ContinuationOptions::location_tolerance), to the
+// parameter's size but at least `scale_floor` (the continuation passes a hundredth of its range:
+// a point at a parameter value near 0, a Hopf end at mu = 0, needs no 1e-8 of nothing).
 Bifurcation locate(const ContinuationPoint& a, const ContinuationPoint& b, BifurcationType type,
                    int multiplicity, std::complex<double> mu_a, std::complex<double> mu_b,
-                   double tolerance, const PointAt& point_at);
+                   double tolerance, double scale_floor, const PointAt& point_at);
 
 }  // namespace sympathy
