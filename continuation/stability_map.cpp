@@ -57,7 +57,22 @@ std::vector<BifurcationCurve> event_curves(const OdeSystem& system, const Branch
     });
     if (covered) continue;
     if (callbacks.stop_requested && callbacks.stop_requested()) break;
-    curves.push_back(continue_curve(system, branch, e, second, options, callbacks));
+    try {
+      curves.push_back(continue_curve(system, branch, e, second, options, callbacks));
+    } catch (const std::invalid_argument& refused) {
+      // An event no curve can follow (an NS pair in a block of one dimension): kept, refused.
+      BifurcationCurve none;
+      none.kind = e.type;
+      none.first = branch.parameter;
+      none.second = second;
+      none.first_name = branch.parameter_name;
+      none.second_name = system.parameter_names().at(second);
+      none.origin =
+          to_string(e.type) + " at " + branch.parameter_name + " = " + format_number(e.parameter);
+      none.stop = CurveStop::StartFailed;
+      none.stop_reason = refused.what();
+      curves.push_back(std::move(none));
+    }
   }
   // One generation more: where a curve met another bifurcation ("NS-LP": another multiplier
   // crossed the unit circle there), the other curve through that point, unless already followed.
