@@ -6,10 +6,6 @@ namespace sympathy {
 
 namespace {
 
-std::vector<double> as_vector(const Eigen::VectorXd& v) {
-  return std::vector<double>(v.data(), v.data() + v.size());
-}
-
 std::vector<std::string> csv_header(const OdeSystem& system, const std::string& parameter,
                                     const OrbitDescriber* describer) {
   std::vector<std::string> h{
@@ -28,6 +24,10 @@ std::vector<std::string> csv_header(const OdeSystem& system, const std::string& 
 }
 
 }  // namespace
+
+std::vector<double> as_vector(const Eigen::VectorXd& v) {
+  return std::vector<double>(v.data(), v.data() + v.size());
+}
 
 nlohmann::json multipliers_json(const FloquetAnalysis& floquet) {
   nlohmann::json j = nlohmann::json::array();

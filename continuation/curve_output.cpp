@@ -8,10 +8,6 @@ namespace sympathy {
 
 namespace {
 
-std::vector<double> as_vector(const Eigen::VectorXd& v) {
-  return std::vector<double>(v.data(), v.data() + v.size());
-}
-
 nlohmann::json complex_list(const std::vector<std::complex<double>>& values) {
   nlohmann::json j = nlohmann::json::array();
   for (const auto& c : values) j.push_back({c.real(), c.imag()});

@@ -108,13 +108,7 @@ int run_curve(const std::vector<std::string>& argv) {
   curve_options.max_step = args.number("--max-step", curve_options.max_step);
   curve_options.max_points = args.integer("--max-points", curve_options.max_points);
   curve_options.orbit = o.orbit;
-  if (const auto problem = curve_options.validate()) {
-    if (problem->field == "initial_step") throw InputError("--step: expected " + problem->expected);
-    if (problem->field == "max_step") throw InputError("--max-step: expected " + problem->expected);
-    if (problem->field == "max_points")
-      throw InputError("--max-points: expected " + problem->expected);
-    check_options(problem, "");
-  }
+  check_options(curve_options.validate(), "");  // names initial_step --step, ...
   check_parameter_range(c.spec, request.parameter, {request.from, request.to}, "--from, --to: ");
   check_parameter_range(c.spec, second, {curve_options.second_lower, curve_options.second_upper},
                         "--second-from, --second-to: ");

@@ -66,24 +66,8 @@ int run_orbit_equations(const Arguments& args) {
               start ? start->name.c_str() : "(the file's [states])");
   std::printf("  %s\n", describe_build(e.build).c_str());
   print_orbit(stdout, system, orbit, amplitudes, {}, o);
-  if (args.flag("--verbose")) {
-    std::printf("  newton steps");
-    for (double step : orbit.newton.step_norms) std::printf(" %.1e", step);
-    std::printf(" (|dx|_inf; %d halvings; %s linear solves)\n", orbit.newton.halvings,
-                orbit.newton.sparse ? "sparse LU" : "dense SVD");
-    print_flow_statistics(stdout, orbit.flow);
-  }
-  std::printf("  run time     %.3f s\n", seconds);
-
-  if (auto path = args.value("--json")) {
-    nlohmann::json j = orbit_json(system, orbit, &describer);
-    j["case"] = e.file.path();
-    j["params_set"] = e.params;
-    j["start"] = start ? start->name : "";
-    j["seconds"] = seconds;
-    write_file_atomically(*path, j.dump(2) + "\n");
-  }
-  return orbit.converged() ? 0 : 4;
+  return finish_orbit_report(system, orbit, describer, args.flag("--verbose"), args.value("--json"),
+                             e.file.path(), e.params, start ? start->name : "", seconds);
 }
 
 }  // namespace sympathy::cli

@@ -65,24 +65,8 @@ int run_orbit(const std::vector<std::string>& argv) {
   std::printf("sympathy orbit %s  params %s  start %s\n", c.file.path().c_str(),
               c.params.empty() ? "(none)" : c.params.c_str(), start.name.c_str());
   print_orbit(stdout, model, orbit, report.amplitudes, report.phase_differences, o);
-  if (args.flag("--verbose")) {
-    std::printf("  newton steps");
-    for (double step : orbit.newton.step_norms) std::printf(" %.1e", step);
-    std::printf(" (|dx|_inf; %d halvings; %s linear solves)\n", orbit.newton.halvings,
-                orbit.newton.sparse ? "sparse LU" : "dense SVD");
-    print_flow_statistics(stdout, orbit.flow);
-  }
-  std::printf("  run time     %.3f s\n", seconds);
-
-  if (auto path = args.value("--json")) {
-    nlohmann::json j = orbit_json(model, orbit, &describer);
-    j["case"] = c.file.path();
-    j["params_set"] = c.params;
-    j["start"] = start.name;
-    j["seconds"] = seconds;
-    write_file_atomically(*path, j.dump(2) + "\n");
-  }
-  return orbit.converged() ? 0 : 4;
+  return finish_orbit_report(model, orbit, describer, args.flag("--verbose"), args.value("--json"),
+                             c.file.path(), c.params, start.name, seconds);
 }
 
 }  // namespace sympathy::cli

@@ -18,6 +18,8 @@ namespace sympathy {
 
 // [[re, im], ...]
 nlohmann::json multipliers_json(const FloquetAnalysis& floquet);
+// [v0, v1, ...]: a state, a tangent, parameter values.
+std::vector<double> as_vector(const Eigen::VectorXd& v);
 // {name: value} of every named parameter of the system at p.
 nlohmann::json parameters_json(const OdeSystem& system, const ParameterValues& p);
 
