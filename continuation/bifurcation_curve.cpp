@@ -72,12 +72,7 @@ class CurveRun {
  public:
   CurveRun(CurveSystem& system, const BifurcationCurve& curve, const CurveOptions& options,
            const CurveCallbacks& callbacks)
-      : system_(system),
-        curve_(curve),
-        options_(options),
-        callbacks_(callbacks),
-        first_weight_(1.0 / (options.first_upper - options.first_lower)),
-        second_weight_(1.0 / (options.second_upper - options.second_lower)) {}
+      : system_(system), curve_(curve), options_(options), callbacks_(callbacks) {}
 
   // From the corrected start (u, its Jacobian), in `direction` of the second parameter.
   CurveStop run(const CurvePoint& start, const Eigen::MatrixXd& start_jacobian, int direction,
@@ -96,7 +91,6 @@ class CurveRun {
   const BifurcationCurve& curve_;
   const CurveOptions& options_;
   const CurveCallbacks& callbacks_;
-  double first_weight_, second_weight_;
 };
 
 bool CurveRun::inside(const Eigen::VectorXd& u) const {
@@ -263,8 +257,8 @@ void CurveRun::detect(const CurvePoint& from, const Eigen::MatrixXd& jacobian, c
   for (int k = 0; k < 2; ++k) {
     // In the scaled norm; a curve that runs along the other parameter's direction has this
     // component at the noise level, and its sign means nothing.
-    const double a = from.tangent[indices[k]] * (k == 0 ? first_weight_ : second_weight_);
-    const double b = to.tangent[indices[k]] * (k == 0 ? first_weight_ : second_weight_);
+    const double a = from.tangent[indices[k]] * system_.weight(indices[k]);
+    const double b = to.tangent[indices[k]] * system_.weight(indices[k]);
     if ((a < 0.0) == (b < 0.0) || std::max(std::abs(a), std::abs(b)) < 1e-3) continue;
     const double t = a / (a - b);
     CurveEvent e;

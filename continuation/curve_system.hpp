@@ -60,6 +60,7 @@ class CurveSystem {
                           int direction = +1) const;
   double dot(const Eigen::VectorXd& a, const Eigen::VectorXd& b) const;
   double norm(const Eigen::VectorXd& a) const { return std::sqrt(dot(a, a)); }
+  double weight(int unknown) const { return weights_[unknown]; }  // of the scaled norm
 
   // Chord Newton from `guess` with `jacobian`, under one more condition: the arclength
   // <tau, U - from> = ds (tau given), or U[index] = value (index >= 0).
