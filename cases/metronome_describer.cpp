@@ -14,29 +14,21 @@ MetronomeDescriber::Report MetronomeDescriber::report(const PeriodicOrbit& orbit
   r.amplitudes.assign(positions, 0.0);
   r.phase_differences.assign(pendula - 1, std::nan(""));
   if (!(orbit.period > 0.0)) return r;
-  FlowOptions o;
-  o.rtol = 1e-9;
-  o.atol = 1e-12;
-  Flow flow(model_, o);
-  const int samples = 800;
-  std::vector<double> times;
-  for (int k = 0; k <= samples; ++k) times.push_back(orbit.period * k / samples);
   Eigen::VectorXd lo = orbit.state0, hi = orbit.state0, previous = orbit.state0;
   std::vector<double> crossing(pendula, std::nan(""));
   double t_previous = 0.0;
   try {
-    flow.sample(
-        orbit.state0, orbit.parameters, 0.0, times, [&](double t, const Eigen::VectorXd& z) {
-          lo = lo.cwiseMin(z);
-          hi = hi.cwiseMax(z);
-          for (int i = 0; i < pendula; ++i) {
-            const int c = model_.angle_index(i);
-            if (t > 0.0 && previous[c] < 0.0 && z[c] >= 0.0 && std::isnan(crossing[i]))
-              crossing[i] = t_previous + (t - t_previous) * (-previous[c]) / (z[c] - previous[c]);
-          }
-          previous = z;
-          t_previous = t;
-        });
+    sample_period(model_, orbit, [&](double t, const Eigen::VectorXd& z) {
+      lo = lo.cwiseMin(z);
+      hi = hi.cwiseMax(z);
+      for (int i = 0; i < pendula; ++i) {
+        const int c = model_.angle_index(i);
+        if (t > 0.0 && previous[c] < 0.0 && z[c] >= 0.0 && std::isnan(crossing[i]))
+          crossing[i] = t_previous + (t - t_previous) * (-previous[c]) / (z[c] - previous[c]);
+      }
+      previous = z;
+      t_previous = t;
+    });
   } catch (const IntegrationError&) {
     return r;  // amplitudes unknown; the orbit's own figures still stand
   }

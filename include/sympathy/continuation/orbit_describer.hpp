@@ -4,6 +4,7 @@
 // branch run describes each point once, as it is found.
 #pragma once
 
+#include <functional>
 #include <string>
 #include <vector>
 
@@ -27,5 +28,12 @@ class OrbitDescriber {
   // several threads at once when branches run side by side.
   virtual std::vector<double> describe(const PeriodicOrbit& orbit) const = 0;
 };
+
+// One period of `orbit` sampled 801 times (both ends included) by a plain flow at rtol 1e-9,
+// atol 1e-12: what describers take amplitudes and phases from (the samples' spacing, T / 800,
+// bounds the error of an interpolated zero crossing well below a describer's digits). Throws
+// IntegrationError where the period cannot be integrated.
+void sample_period(const OdeSystem& system, const PeriodicOrbit& orbit,
+                   const std::function<void(double, const Eigen::VectorXd&)>& at);
 
 }  // namespace sympathy
