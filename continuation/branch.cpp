@@ -47,6 +47,8 @@ std::string to_string(StopReason r) {
       return "start failed";
     case StopReason::TurnedBack:
       return "turned back";
+    case StopReason::HopfPoint:
+      return "Hopf point";
   }
   return "?";
 }

@@ -89,12 +89,27 @@ nlohmann::json orbit_json(const OdeSystem& system, const PeriodicOrbit& orbit,
   return j;
 }
 
+nlohmann::json hopf_json(const HopfPoint& h) {
+  nlohmann::json j;
+  j["value"] = h.parameter;
+  j["uncertainty"] = h.uncertainty;
+  j["omega"] = h.omega;
+  j["period"] = h.period;
+  j["state"] = as_vector(h.state);
+  j["eigenvector_re"] = as_vector(h.eigenvector.real());
+  j["eigenvector_im"] = as_vector(h.eigenvector.imag());
+  if (h.lyapunov) j["lyapunov"] = *h.lyapunov;
+  j["criticality"] = describe_criticality(h.lyapunov);
+  return j;
+}
+
 nlohmann::json branch_json(const Branch& branch, const OrbitDescriber* describer) {
   nlohmann::json j;
   j["parameter"] = branch.parameter_name;
   j["stop_reason"] = branch.stop_reason;
   if (!branch.origin.empty()) j["origin"] = branch.origin;  // a switched branch: its event
   j["stop"] = to_string(branch.stop);
+  if (branch.hopf_end) j["hopf_end"] = hopf_json(*branch.hopf_end);
   j["state_names"] = branch.state_names;
   j["parameter_values"] = as_vector(branch.start_values);  // every raw value the branch kept
   const auto layout = describer ? describer->layout() : std::vector<OrbitDescriber::Group>{};

@@ -2,11 +2,14 @@
 
 #include <algorithm>
 #include <cmath>
+#include <cstdio>
 #include <limits>
+#include <numbers>
 #include <optional>
 #include <stdexcept>
 
 #include "sympathy/continuation/detection.hpp"
+#include "sympathy/continuation/hopf.hpp"
 #include "sympathy/continuation/location.hpp"
 #include "sympathy/continuation/multiplier_tracking.hpp"
 #include "sympathy/continuation/predictor.hpp"
@@ -97,6 +100,21 @@ ContinuationPoint Continuation::make_point(const Correction& c, const Eigen::Vec
   o.newton.iterations = c.iterations;
   o.newton.reason = "corrector converged";
   return p;
+}
+
+std::optional<HopfPoint> Continuation::hopf_end(const Bifurcation& turn) const {
+  // The turn is located where the orbit is smallest: nearly the equilibrium, its period nearly
+  // 2 pi / omega. Accepted as the family's end only where the equilibrium there has that pair and
+  // its Hopf point lies within 2% of the window of the turn, with the period within 5%.
+  const double range = options_.upper - options_.lower;
+  std::string why;
+  auto hopf = hopf_point_near(system_, parameter_, space_->values_at(turn.parameter), turn.state0,
+                              2 * std::numbers::pi / turn.period, 1e-4 * range, why);
+  if (!hopf) return std::nullopt;
+  if (std::abs(hopf->parameter - turn.parameter) > 0.02 * range ||
+      std::abs(hopf->period - turn.period) > 0.05 * hopf->period)
+    return std::nullopt;
+  return hopf;
 }
 
 std::optional<ContinuationPoint> Continuation::point_on_bound(const ContinuationPoint& a,
@@ -313,6 +331,29 @@ Branch Continuation::run_from(const PeriodicOrbit& start, int direction,
     std::optional<double> turned_back;  // a fold without its multiplier at +1, in this step
     for (const auto& e : events)
       if (e.trust == EventTrust::NoCrossingMultiplier) turned_back = e.parameter;
+    if (turned_back) {
+      // Where the orbits shrink into an equilibrium the branch turns at its Hopf point: that
+      // point, located on the equilibria, ends the family (and the turn is no fold to report).
+      const auto turn = std::find_if(events.begin(), events.end(), [](const auto& e) {
+        return e.trust == EventTrust::NoCrossingMultiplier;
+      });
+      if (auto hopf = hopf_end(*turn)) {
+        events.erase(turn);
+        for (auto& e : events) {
+          branch.events.push_back(std::move(e));
+          if (callbacks.on_event) callbacks.on_event(branch.events.back());
+        }
+        branch.hopf_end = hopf;
+        char omega[96];
+        std::snprintf(omega, sizeof omega, "omega %.10g, period 2 pi / omega = %.10g", hopf->omega,
+                      hopf->period);
+        return finish(StopReason::HopfPoint, "ended at the Hopf point of the equilibrium at " +
+                                                 branch.parameter_name + " = " +
+                                                 format_double(hopf->parameter) + " (" + omega +
+                                                 ", " + describe_criticality(hopf->lyapunov) +
+                                                 "): the orbits shrink into the equilibrium there");
+      }
+    }
     branch.points.push_back(std::move(b));
     jacobian_before_ = std::move(chord_jacobian_);
     chord_jacobian_ = std::move(jacobian_b);

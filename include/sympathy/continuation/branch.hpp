@@ -11,6 +11,7 @@
 #include <Eigen/Dense>
 
 #include "sympathy/continuation/continuation_options.hpp"
+#include "sympathy/continuation/equilibrium.hpp"
 #include "sympathy/continuation/periodic_orbit.hpp"
 
 namespace sympathy {
@@ -109,6 +110,7 @@ enum class StopReason {
   StartFailed,     // no starting orbit (not found, not convergent, or not integrable)
   TurnedBack,      // turned back without a multiplier at +1 (see EventTrust::NoCrossingMultiplier):
                    // stopped there rather than retrace itself
+  HopfPoint,       // the orbits shrank into an equilibrium at its Hopf point (Branch::hopf_end)
 };
 std::string to_string(StopReason r);
 
@@ -128,6 +130,9 @@ struct Branch {
   // What made it: the options (bounds included) and the parameter values it started from.
   ContinuationOptions options;
   ParameterValues start_values;
+  // Where the family ended, its orbits shrinking into an equilibrium (stop is HopfPoint): the
+  // equilibrium's Hopf point, located on the equilibria (hopf.hpp).
+  std::optional<HopfPoint> hopf_end;
   // Where it was born, for a switched branch ("BP at k = 47.0655622538"); empty otherwise.
   std::string origin;
   // Whether the run had a starting orbit (false: stop is StartFailed, and nothing was continued).

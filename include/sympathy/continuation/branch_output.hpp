@@ -23,6 +23,10 @@ std::vector<double> as_vector(const Eigen::VectorXd& v);
 // {name: value} of every named parameter of the system at p.
 nlohmann::json parameters_json(const OdeSystem& system, const ParameterValues& p);
 
+// A Hopf point: its parameter value and uncertainty, omega, period, state, eigenvector (real and
+// imaginary parts), first Lyapunov coefficient and criticality.
+nlohmann::json hopf_json(const HopfPoint& hopf);
+
 // An orbit: period, multipliers (with moduli and kinds), stability, accuracy, state, parameter
 // values, Newton's summary, and the describer's groups as objects {label: value}.
 nlohmann::json orbit_json(const OdeSystem& system, const PeriodicOrbit& orbit,

@@ -78,6 +78,10 @@ class Continuation {
   std::optional<ContinuationPoint> point_on_bound(const ContinuationPoint& a,
                                                   const ContinuationPoint& b, double bound) const;
 
+  // The Hopf point where a branch that turned back at `turn` (no multiplier at +1) ends, if its
+  // orbits shrank into an equilibrium there (hopf.hpp); nullopt otherwise.
+  std::optional<HopfPoint> hopf_end(const Bifurcation& turn) const;
+
   const OdeSystem& system_;
   int parameter_;
   ContinuationOptions options_;

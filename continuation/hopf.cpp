@@ -1,0 +1,132 @@
+#include "sympathy/continuation/hopf.hpp"
+
+#include <cmath>
+#include <stdexcept>
+
+#include "sympathy/continuation/shooting.hpp"
+#include "sympathy/core/csv.hpp"
+
+namespace sympathy {
+
+OptionCheck HopfStartOptions::validate() const {
+  if (!non_negative(amplitude)) return OptionProblem{"amplitude", "a number >= 0 (0: automatic)"};
+  if (max_iterations < 1 || max_iterations > 100)
+    return OptionProblem{"max_iterations", "an integer from 1 to 100"};
+  return std::nullopt;
+}
+
+namespace {
+
+// The eigenvalue of `e` nearest `target`.
+std::complex<double> nearest(const Eigen::VectorXcd& eigenvalues, std::complex<double> target) {
+  std::complex<double> best = eigenvalues[0];
+  for (const auto& l : eigenvalues)
+    if (std::abs(l - target) < std::abs(best - target)) best = l;
+  return best;
+}
+
+}  // namespace
+
+std::optional<HopfPoint> hopf_point_near(const OdeSystem& system, int parameter,
+                                         const ParameterValues& p, const Eigen::VectorXd& guess,
+                                         double omega_guess, double step, std::string& why) {
+  const double p0 = system.parameter(p, parameter);
+  Equilibrium e0 = solve_equilibrium(system, p, guess);
+  if (!e0.converged) {
+    why = "no equilibrium near the orbit: " + e0.reason;
+    return std::nullopt;
+  }
+  std::complex<double> l0 = nearest(e0.eigenvalues, {0.0, omega_guess});
+  if (std::abs(l0.imag() - omega_guess) > 0.2 * omega_guess) {
+    why = "the equilibrium near the orbit has no pair of eigenvalues near +-i " +
+          format_double(omega_guess) + " (nearest " + format_double(l0.real()) + " + " +
+          format_double(l0.imag()) + "i)";
+    return std::nullopt;
+  }
+  double pa = p0, ga = l0.real();
+  double pb = p0 + step;
+  Eigen::VectorXd x = e0.state;
+  std::complex<double> followed = l0;
+  for (int k = 0; k < 40; ++k) {
+    const Equilibrium e = solve_equilibrium(system, system.with_parameter(p, parameter, pb), x);
+    if (!e.converged) {
+      why = "the equilibrium could not be followed to " + format_double(pb) + ": " + e.reason;
+      return std::nullopt;
+    }
+    x = e.state;
+    followed = nearest(e.eigenvalues, followed);
+    const double gb = followed.real();
+    const double scale = std::max(std::abs(pb), std::abs(step));
+    if (gb == ga || std::abs(pb - pa) <= 1e-13 * scale || gb == 0.0) {
+      HopfPoint h = describe_hopf(system, e.parameters, e.state, followed.imag());
+      h.parameter = pb;
+      h.uncertainty = std::abs(pb - pa);
+      return h;
+    }
+    const double next = pb - gb * (pb - pa) / (gb - ga);
+    pa = pb;
+    ga = gb;
+    pb = next;
+    if (!std::isfinite(pb)) break;
+  }
+  why = "the real part of the pair was not driven to zero in 40 secant steps";
+  return std::nullopt;
+}
+
+PeriodicOrbit orbit_from_hopf(const OdeSystem& system, int parameter, const HopfPoint& hopf,
+                              const OrbitOptions& options, const HopfStartOptions& start) {
+  if (auto wrong = start.validate()) throw std::invalid_argument("Hopf start: " + wrong->message());
+  if (!(hopf.omega > 0.0) || hopf.eigenvector.size() != system.dimension())
+    throw std::invalid_argument("Hopf start: the Hopf point has no frequency or eigenvector");
+  const Eigen::VectorXd qr = hopf.eigenvector.real(), qi = hopf.eigenvector.imag();
+  const double eps = start.amplitude > 0.0
+                         ? start.amplitude / qr.lpNorm<Eigen::Infinity>()
+                         : 0.02 * std::max(1.0, hopf.state.lpNorm<Eigen::Infinity>()) /
+                               qr.lpNorm<Eigen::Infinity>();
+  ShootingProblem problem(system, options.shooting);
+  const int n = system.dimension();
+  const int N = problem.unknowns();
+  const Eigen::VectorXd z_ref = hopf.state + eps * qr;
+  problem.set_phase_section(z_ref, qi);
+  double p = hopf.parameter;
+  ParameterValues values = hopf.values;
+  Eigen::VectorXd x = problem.unknowns_from(z_ref, values, hopf.period);
+  const double tolerance = attainable_tolerance(options.newton.residual_tolerance,
+                                                options.newton.rtol_factor, options.shooting.flow);
+  double residual = 0.0;
+  bool converged = false;
+  for (int it = 0; it < start.max_iterations; ++it) {
+    values = system.with_parameter(hopf.values, parameter, p);
+    const auto e = problem.evaluate(x, values, true, parameter);
+    Eigen::VectorXd g(N + 1);
+    g.head(N) = e.residual;
+    g[N] = qr.dot(x.head(n) - hopf.state) - eps * qr.squaredNorm();
+    residual = g.lpNorm<Eigen::Infinity>();
+    if (!g.allFinite()) break;
+    if (residual <= tolerance) {
+      converged = true;
+      break;
+    }
+    Eigen::MatrixXd m = Eigen::MatrixXd::Zero(N + 1, N + 1);
+    m.topRows(N) = Eigen::MatrixXd(problem.jacobian(e, true));
+    m.row(N).head(n) = qr.transpose();
+    const Eigen::VectorXd dy = m.fullPivLu().solve(-g);
+    x += dy.head(N);
+    p += dy[N];
+  }
+  if (!converged)
+    throw std::runtime_error("no orbit near the Hopf point at " +
+                             system.parameter_names()[parameter] + " = " +
+                             format_double(hopf.parameter) + " with amplitude " +
+                             format_double(eps * qr.lpNorm<Eigen::Infinity>()) + " (residual " +
+                             format_double(residual) + ")");
+  PeriodicOrbit orbit =
+      solve_periodic_orbit(system, values, x.head(n), problem.period(x), {}, options);
+  if (!orbit.converged())
+    throw std::runtime_error("the orbit near the Hopf point does not converge at fixed " +
+                             system.parameter_names()[parameter] + " = " + format_double(p) + ": " +
+                             orbit.newton.reason);
+  return orbit;
+}
+
+}  // namespace sympathy

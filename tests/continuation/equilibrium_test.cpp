@@ -1,0 +1,194 @@
+// Equilibria, their branches and events, and Hopf points (start and end of families of orbits),
+// each against an exactly known answer.
+#include "sympathy/continuation/equilibrium_branch.hpp"
+
+#include <gtest/gtest.h>
+
+#include <numbers>
+
+#include "sympathy/continuation/continuation.hpp"
+#include "sympathy/continuation/hopf.hpp"
+#include "tests/support/test_systems.hpp"
+
+namespace sympathy {
+namespace {
+
+using testing::Abc;
+using testing::Equilibria1D;
+using testing::Lorenz;
+using testing::NormalForm;
+constexpr double kPi = std::numbers::pi;
+
+EquilibriumProblem problem_of(const OdeSystem& system, double from, double to,
+                              Eigen::VectorXd start) {
+  EquilibriumProblem p;
+  p.parameter = 0;
+  p.values = system.default_parameters();
+  p.from = from;
+  p.to = to;
+  p.start_state = std::move(start);
+  return p;
+}
+
+std::vector<EquilibriumEvent> events_of(const EquilibriumBranch& b, EquilibriumEventType type) {
+  std::vector<EquilibriumEvent> out;
+  for (const auto& e : b.events)
+    if (e.type == type) out.push_back(e);
+  return out;
+}
+
+// Newton's tolerance is relative: an equilibrium with states near 1e3 converges (an absolute
+// bound on |f| would stall at the rounding of f, about 1e-13 * 1e3 * |f_x|).
+TEST(Equilibrium, NewtonScalesWithTheState) {
+  Lorenz lorenz(1e3 + 1.0);  // C+ = (sqrt(beta 1e3), same, 1e3)
+  const double c = std::sqrt(8.0 / 3.0 * 1e3);
+  const Equilibrium e = solve_equilibrium(lorenz, lorenz.default_parameters(),
+                                          Eigen::Vector3d(1.01 * c, 0.99 * c, 1.01e3));
+  ASSERT_TRUE(e.converged) << e.reason;
+  EXPECT_NEAR(e.state[0], c, 1e-12 * c);
+  EXPECT_NEAR(e.state[2], 1e3, 1e-12 * 1e3);
+}
+
+// x' = p - x^2: from x = 1 at p = 1 down to the fold at p = 0 exactly (x = 0), then back up on
+// x = -sqrt(p); stable (eigenvalue -2x) before the fold, unstable after.
+TEST(EquilibriumBranch, FoldLocatedExactly) {
+  Equilibria1D system(Equilibria1D::Kind::SaddleNode);
+  const auto branch =
+      continue_equilibria(system, problem_of(system, 1.0, -1.0, Eigen::Vector2d(0.9, 0.1)), {});
+  ASSERT_TRUE(branch.started()) << branch.stop_reason;
+  const auto folds = events_of(branch, EquilibriumEventType::Fold);
+  ASSERT_EQ(folds.size(), 1u);
+  EXPECT_TRUE(folds[0].located);
+  EXPECT_NEAR(folds[0].parameter, 0.0, 1e-10);
+  EXPECT_NEAR(folds[0].state[0], 0.0, 1e-5);  // x ~ sqrt(p): the location's error, square-rooted
+  EXPECT_TRUE(events_of(branch, EquilibriumEventType::BranchPoint).empty());
+  EXPECT_TRUE(events_of(branch, EquilibriumEventType::Hopf).empty());
+  EXPECT_EQ(branch.stop, EquilibriumStop::ParameterBound) << branch.stop_reason;
+  EXPECT_EQ(branch.points.front().unstable, 0);
+  EXPECT_EQ(branch.points.back().unstable, 1);
+  EXPECT_NEAR(branch.points.back().parameter, 1.0, 1e-14);  // on the bound, after the fold
+  EXPECT_NEAR(branch.points.back().state[0], -1.0, 1e-10);
+  for (const auto& pt : branch.points)
+    EXPECT_NEAR(pt.state[0] * pt.state[0], pt.parameter, 1e-11) << pt.index;
+}
+
+// x' = p x - x^2: along x = p from p = 1 down, the branch x = 0 crosses at p = 0 exactly.
+TEST(EquilibriumBranch, BranchPointLocatedExactly) {
+  Equilibria1D system(Equilibria1D::Kind::Transcritical);
+  const auto branch =
+      continue_equilibria(system, problem_of(system, 1.0, -1.0, Eigen::Vector2d(1.0, 0.0)), {});
+  const auto bps = events_of(branch, EquilibriumEventType::BranchPoint);
+  ASSERT_EQ(bps.size(), 1u) << branch.stop_reason;
+  EXPECT_TRUE(bps[0].located);
+  EXPECT_NEAR(bps[0].parameter, 0.0, 1e-10);
+  EXPECT_TRUE(events_of(branch, EquilibriumEventType::Fold).empty());
+  // x = p is stable for p > 0 (eigenvalue -p) and unstable below.
+  EXPECT_EQ(branch.points.front().unstable, 0);
+  EXPECT_EQ(branch.points.back().unstable, 1);
+}
+
+// The origin of x' = -y + x g, y' = x + y g, g = mu + (1 + a) r^2 - r^4 has eigenvalues mu +- i:
+// a Hopf point at mu = 0, omega 1. In z = x + i y, z' = (mu + i) z + (1 + a) |z|^2 z + ..., and
+// with |q| = 1 (q = (1, -i) / sqrt 2, z = sqrt 2 times Kuznetsov's coordinate) the first
+// Lyapunov coefficient is 2 (1 + a) exactly: subcritical for a = 0, supercritical for a = -2.
+TEST(EquilibriumBranch, HopfPointWithItsLyapunovCoefficient) {
+  for (const double a : {0.0, -2.0}) {
+    NormalForm system(NormalForm::Kind::Fold, -0.5, 1, a);
+    const auto branch =
+        continue_equilibria(system, problem_of(system, -0.5, 0.5, Eigen::Vector2d(0.01, 0)), {});
+    const auto hopf = events_of(branch, EquilibriumEventType::Hopf);
+    ASSERT_EQ(hopf.size(), 1u) << branch.stop_reason;
+    EXPECT_TRUE(hopf[0].located);
+    EXPECT_NEAR(hopf[0].parameter, 0.0, 1e-10);
+    ASSERT_TRUE(hopf[0].hopf.has_value());
+    EXPECT_NEAR(hopf[0].hopf->omega, 1.0, 1e-10);
+    EXPECT_NEAR(hopf[0].hopf->period, 2 * kPi, 1e-9);
+    ASSERT_TRUE(hopf[0].hopf->lyapunov.has_value());
+    EXPECT_NEAR(*hopf[0].hopf->lyapunov, 2 * (1 + a), 1e-5) << "a = " << a;
+    EXPECT_EQ(branch.points.front().unstable, 0);
+    EXPECT_EQ(branch.points.back().unstable, 2);
+  }
+}
+
+// Lorenz (AUTO's lrz): from C+ at rho = 28 down, the Hopf point at rho = 470 / 19 (sigma 10,
+// beta 8/3: sigma (sigma + beta + 3) / (sigma - beta - 1)), omega^2 = beta (sigma + rho_H) =
+// 1760 / 19, subcritical.
+TEST(EquilibriumBranch, LorenzHopfPointExact) {
+  Lorenz system;
+  const auto branch = continue_equilibria(
+      system, problem_of(system, 28.0, 20.0, Eigen::Vector3d(8.5, 8.5, 27.0)), {});
+  const auto hopf = events_of(branch, EquilibriumEventType::Hopf);
+  ASSERT_EQ(hopf.size(), 1u) << branch.stop_reason;
+  EXPECT_NEAR(hopf[0].parameter, 470.0 / 19.0, 1e-8);
+  EXPECT_NEAR(hopf[0].hopf->omega, std::sqrt(1760.0 / 19.0), 1e-8);
+  ASSERT_TRUE(hopf[0].hopf->lyapunov.has_value());
+  EXPECT_GT(*hopf[0].hopf->lyapunov, 0.0);
+}
+
+// abc (AUTO's demo): the equilibria from u = 0 at p1 = 0 have four Hopf points, at p1 =
+// 0.204184536, 0.229839038, 0.259957854, 0.346208522 (the Hopf conditions solved directly; the
+// issue's reference values).
+TEST(EquilibriumBranch, AbcHopfPoints) {
+  Abc system;
+  const auto branch =
+      continue_equilibria(system, problem_of(system, 0.0, 0.4, Eigen::Vector3d::Zero()), {});
+  const auto hopf = events_of(branch, EquilibriumEventType::Hopf);
+  ASSERT_EQ(hopf.size(), 4u) << branch.stop_reason;
+  const double expected[] = {0.204184536, 0.229839038, 0.259957854, 0.346208522};
+  std::vector<double> found;
+  for (const auto& e : hopf) found.push_back(e.parameter);
+  std::sort(found.begin(), found.end());
+  for (int k = 0; k < 4; ++k) EXPECT_NEAR(found[k], expected[k], 1e-8) << k;
+}
+
+// A two-way run from the middle: one branch in parameter order, the start once.
+TEST(EquilibriumBranch, TwoWayRunJoinedInOrder) {
+  Equilibria1D system(Equilibria1D::Kind::Transcritical);
+  auto problem = problem_of(system, -1.0, 1.0, Eigen::Vector2d(0.5, 0.0));
+  problem.at = 0.5;
+  const auto branch = continue_equilibria(system, problem, {});
+  ASSERT_GE(branch.points.size(), 4u);
+  int zeros = 0;
+  for (std::size_t i = 1; i < branch.points.size(); ++i) {
+    EXPECT_EQ(branch.points[i].index, branch.points[i - 1].index + 1);
+    zeros += branch.points[i].index == 0;
+  }
+  EXPECT_EQ(zeros, 1);
+  EXPECT_NEAR(branch.points.front().parameter, -1.0, 1e-14);
+  EXPECT_NEAR(branch.points.back().parameter, 1.0, 1e-14);
+  EXPECT_EQ(events_of(branch, EquilibriumEventType::BranchPoint).size(), 1u);
+}
+
+// The small orbit at a supercritical Hopf point (a = -2: r' = r (mu - r^2 - r^4)) lies on the
+// family mu = r^2 + r^4 exactly, period 2 pi; continued, the family stays on it.
+TEST(HopfStart, SmallOrbitOnTheExactFamily) {
+  NormalForm system(NormalForm::Kind::Fold, -0.5, 1, -2.0);
+  const auto branch =
+      continue_equilibria(system, problem_of(system, -0.5, 0.5, Eigen::Vector2d(0.01, 0)), {});
+  const auto hopf = events_of(branch, EquilibriumEventType::Hopf);
+  ASSERT_EQ(hopf.size(), 1u);
+  OrbitOptions o;
+  const PeriodicOrbit orbit = orbit_from_hopf(system, 0, *hopf[0].hopf, o);
+  ASSERT_TRUE(orbit.converged());
+  const double r2 = orbit.state0.head(2).squaredNorm();
+  const double mu = system.parameter(orbit.parameters, 0);
+  EXPECT_NEAR(r2, 0.02 * 0.02, 2e-5);  // the amplitude asked for, to first order
+  EXPECT_NEAR(mu, r2 + r2 * r2, 1e-9);
+  EXPECT_NEAR(orbit.period, 2 * kPi, 1e-8);
+  EXPECT_EQ(orbit.floquet.stability, Stability::Stable);
+
+  ContinuationOptions co;
+  co.lower = -0.5;
+  co.upper = 0.5;
+  Continuation c(system, 0, co);
+  const Branch family = c.run(orbit, +1);
+  EXPECT_EQ(family.stop, StopReason::ParameterBound) << family.stop_reason;
+  for (const auto& p : family.points) {
+    const double r = p.orbit.state0.head(2).squaredNorm();
+    EXPECT_NEAR(p.parameter, r + r * r, 1e-8) << p.index;
+  }
+  EXPECT_NEAR(family.points.back().parameter, 0.5, 1e-12);
+}
+
+}  // namespace
+}  // namespace sympathy
