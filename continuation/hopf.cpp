@@ -129,4 +129,16 @@ PeriodicOrbit orbit_from_hopf(const OdeSystem& system, int parameter, const Hopf
   return orbit;
 }
 
+Branch continue_from_hopf(const OdeSystem& system, int parameter, const HopfPoint& hopf,
+                          const ContinuationOptions& options,
+                          const ContinuationCallbacks& callbacks, const HopfStartOptions& start) {
+  const PeriodicOrbit orbit = orbit_from_hopf(system, parameter, hopf, options.orbit, start);
+  const double p = system.parameter(orbit.parameters, parameter);
+  Continuation continuation(system, parameter, options);
+  Branch branch = continuation.run(orbit, p >= hopf.parameter ? 1 : -1, callbacks);
+  branch.origin =
+      "HB at " + system.parameter_names()[parameter] + " = " + format_double(hopf.parameter);
+  return branch;
+}
+
 }  // namespace sympathy

@@ -5,6 +5,7 @@
 #include <map>
 #include <memory>
 
+#include "cases/cli/hopf_switch.hpp"
 #include "sympathy/cases/metronome_describer.hpp"
 #include "sympathy/continuation/branch_output.hpp"
 #include "sympathy/continuation/branch_switching.hpp"
@@ -79,6 +80,21 @@ Branch run_branch(const BranchSource& source, const BranchRequest& request,
     if (csv) csv->close();
     if (events) events->close();
     return branch;
+  }
+
+  if (const auto hb = parse_hopf_name(request.switch_at, "--switch-at")) {
+    // The family born at a Hopf point of the equilibria: its points described as they come.
+    ContinuationCallbacks described = callbacks;
+    described.on_point = [&](const ContinuationPoint& p) {
+      ContinuationPoint q = p;
+      q.description = describer.describe(q.orbit);
+      callbacks.on_point(q);
+    };
+    Branch born = run_hopf_branch(source, request, *hb, described, stop);
+    for (auto& p : born.points) p.description = describer.describe(p.orbit);
+    if (csv) csv->close();
+    if (events) events->close();
+    return born;
   }
 
   // The branch asked for, with its progress only; then the one born at the named event.

@@ -9,6 +9,7 @@ namespace sympathy::cli {
 int run_simulate(const std::vector<std::string>& args);
 int run_orbit(const std::vector<std::string>& args);
 int run_continue(const std::vector<std::string>& args);
+int run_equilibria(const std::vector<std::string>& args);
 int run_curve(const std::vector<std::string>& args);
 int run_map(const std::vector<std::string>& args);
 int run_study(const std::vector<std::string>& args);

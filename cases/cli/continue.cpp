@@ -8,6 +8,7 @@
 #include "cases/cli/branch_run.hpp"
 #include "cases/cli/commands.hpp"
 #include "cases/cli/equations.hpp"
+#include "cases/cli/hopf_switch.hpp"
 #include "cases/cli/report.hpp"
 #include "sympathy/cases/equation_case.hpp"
 #include "sympathy/cases/state_describer.hpp"
@@ -37,9 +38,11 @@ int run_continue(const std::vector<std::string>& argv) {
        {"--json", "FILE", false, "write the branch and its bifurcations as JSON"},
        {"--events", "FILE", false, "stream each bifurcation to this CSV as it is located"},
        {"--switch-at", "EVENT", false,
-        "continue the branch born at this event instead (BP1, PD1, ...: the first BP, ...)"},
+        "continue the branch born at this event instead (BP1, PD1, ...: the first BP, ...; "
+        "HB1: the family born at the first Hopf point of the equilibria through the start)"},
        {"--parent", "FILE", false,
-        "with --switch-at: the parent branch from this JSON (continue --json) instead of computed"},
+        "with --switch-at: the parent branch from this JSON (continue --json; for HB, equilibria "
+        "--json) instead of computed"},
        {"--whole-state", "", false,
         "no symmetry reduction: integrate every metronome (for comparison)"},
        {"--quiet", "", false, "no progress lines"},
@@ -86,7 +89,12 @@ int run_continue(const std::vector<std::string>& argv) {
   request.initial = args.assignments("--initial");
   request.csv_path = args.text("--csv", "");
   request.switch_at = args.text("--switch-at", "");
-  if (!request.switch_at.empty()) parse_event_name(request.switch_at, "--switch-at");
+  if (!request.switch_at.empty() && !parse_hopf_name(request.switch_at, "--switch-at"))
+    parse_event_name(request.switch_at, "--switch-at",
+                     {BifurcationType::BranchPoint, BifurcationType::PeriodDoubling},
+                     "a branch point or period doubling of the branch, or a Hopf point of the "
+                     "equilibria (BP, PD or HB followed by its number, e.g. BP1 or HB1): only "
+                     "there is a branch born");
   request.parent_path = args.text("--parent", "");
   if (!request.parent_path.empty() && request.switch_at.empty())
     throw InputError("--parent " + request.parent_path +
@@ -166,7 +174,9 @@ int run_continue(const std::vector<std::string>& argv) {
       branch.points.size(), branch.stop_reason.c_str(), rj.corrector, rj.turn, rj.multipliers,
       rj.location);
   if (!branch.origin.empty())
-    std::printf("  born at the parent branch's %s\n", branch.origin.c_str());
+    std::printf("  born at the %s %s\n",
+                branch.origin.rfind("HB", 0) == 0 ? "equilibria's" : "parent branch's",
+                branch.origin.c_str());
   std::printf("bifurcations:\n");
   print_events(stdout, branch);
   if (request.verbose) print_flow_statistics(stdout, branch.flow);

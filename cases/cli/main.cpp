@@ -19,6 +19,7 @@ void print_usage() {
       "  simulate   integrate from a start; time series to CSV, summary of the end state\n"
       "  orbit      a periodic orbit from a start: period, Floquet multipliers, stability\n"
       "  continue   a branch of orbits in one parameter, with its bifurcations\n"
+      "  equilibria a branch of equilibria in one parameter: folds, branch points, Hopf points\n"
       "  curve      the curve of a branch's bifurcation in two parameters\n"
       "  map        where orbits are stable in two parameters: curves and a grid\n"
       "  study      the branches of a figure (cases/figures/*.toml), side by side\n"
@@ -42,6 +43,7 @@ int main(int argc, char** argv) {
     if (command == "simulate") return sympathy::cli::run_simulate(args);
     if (command == "orbit") return sympathy::cli::run_orbit(args);
     if (command == "continue") return sympathy::cli::run_continue(args);
+    if (command == "equilibria") return sympathy::cli::run_equilibria(args);
     if (command == "curve") return sympathy::cli::run_curve(args);
     if (command == "map") return sympathy::cli::run_map(args);
     if (command == "study") return sympathy::cli::run_study(args);

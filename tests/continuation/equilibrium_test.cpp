@@ -190,5 +190,110 @@ TEST(HopfStart, SmallOrbitOnTheExactFamily) {
   EXPECT_NEAR(family.points.back().parameter, 0.5, 1e-12);
 }
 
+EquilibriumEvent first_hopf(const OdeSystem& system, double from, double to,
+                            const Eigen::VectorXd& start) {
+  const auto branch = continue_equilibria(system, problem_of(system, from, to, start), {});
+  const auto hopf = events_of(branch, EquilibriumEventType::Hopf);
+  EXPECT_FALSE(hopf.empty()) << branch.stop_reason;
+  return hopf.empty() ? EquilibriumEvent{} : hopf.front();
+}
+
+// abc's family from its first Hopf point (AUTO's demo, numbers from its regression log
+// test/hyper.all, trusted by AUTO at NTST 25 to about 1e-4 relative): folds of cycles at p1 =
+// 0.213697 (T 7.61104) and 0.211903 (T 8.28914), T = 6.53496 at p1 = 0.25. Back down from
+// p1 = 0.25 the family ends at the Hopf point it was born at (0.204184536, to 1e-8), each fold
+// reported once and no turn taken for a fold.
+TEST(HopfFamily, AbcFoldsAndItsEndAtTheHopfPoint) {
+  Abc system;
+  const EquilibriumEvent hb = first_hopf(system, 0.0, 0.4, Eigen::Vector3d::Zero());
+  ASSERT_TRUE(hb.hopf.has_value());
+  ContinuationOptions o;
+  o.lower = 0.2;
+  o.upper = 0.25;
+  const Branch up = continue_from_hopf(system, 0, *hb.hopf, o);
+  ASSERT_EQ(up.stop, StopReason::ParameterBound) << up.stop_reason;
+  auto folds_of = [](const Branch& b) {
+    std::vector<Bifurcation> folds;
+    for (const auto& e : b.events) {
+      EXPECT_EQ(e.type, BifurcationType::Fold);
+      EXPECT_NE(e.trust, EventTrust::NoCrossingMultiplier);
+      folds.push_back(e);
+    }
+    std::sort(folds.begin(), folds.end(),
+              [](const auto& x, const auto& y) { return x.parameter < y.parameter; });
+    return folds;
+  };
+  const auto folds = folds_of(up);
+  ASSERT_EQ(folds.size(), 2u);
+  EXPECT_NEAR(folds[0].parameter, 0.211903, 5e-7);  // AUTO's six digits
+  EXPECT_NEAR(folds[0].period, 8.28914, 1e-4 * 8.28914);
+  EXPECT_NEAR(folds[1].parameter, 0.213697, 5e-7);
+  EXPECT_NEAR(folds[1].period, 7.61104, 1e-4 * 7.61104);
+  const auto& end = up.points.back();
+  EXPECT_NEAR(end.parameter, 0.25, 1e-14);
+  EXPECT_NEAR(end.orbit.period, 6.53496, 1e-4 * 6.53496);
+
+  Continuation down(system, 0, o);
+  const Branch back = down.run(end.orbit, -1);
+  ASSERT_EQ(back.stop, StopReason::HopfPoint) << back.stop_reason;
+  EXPECT_NEAR(back.hopf_end->parameter, 0.204184536, 1e-8);
+  const auto back_folds = folds_of(back);
+  ASSERT_EQ(back_folds.size(), 2u);
+  EXPECT_NEAR(back_folds[0].parameter, folds[0].parameter, 1e-8);
+  EXPECT_NEAR(back_folds[1].parameter, folds[1].parameter, 1e-8);
+}
+
+// Lorenz (AUTO's lrz): the family born at the subcritical Hopf point, by (rho, T) from AUTO's
+// regression log: each AUTO point's rho solved for with the branch's nearest orbit as the guess.
+// AUTO prints six digits of rho and T: the tolerance is half a unit of T's last digit plus
+// |dT/drho| (measured here) times half a unit of rho's, plus 1e-6 relative for AUTO's own error.
+// Four shooting segments: on one, the orbits near the homoclinic one (T > 2) do not converge.
+// The family is followed down to rho = 13.96.
+TEST(HopfFamily, LorenzPeriodsMatchAuto) {
+  Lorenz system;
+  const EquilibriumEvent hb = first_hopf(system, 28.0, 20.0, Eigen::Vector3d(8.5, 8.5, 27.0));
+  ASSERT_TRUE(hb.hopf.has_value());
+  EXPECT_NEAR(hb.hopf->period, 0.65283, 5e-6);
+  ContinuationOptions o;
+  o.lower = 13.96;
+  o.upper = 28.0;
+  o.orbit.shooting.segments = 4;
+  const Branch family = continue_from_hopf(system, 0, *hb.hopf, o);
+  ASSERT_EQ(family.stop, StopReason::ParameterBound) << family.stop_reason;
+  const std::pair<double, double> auto_points[] = {{24.7263, 0.653196},
+                                                   {23.8815, 0.683815},
+                                                   {20.6702, 0.835069},
+                                                   {16.7353, 1.18330},
+                                                   {14.8138, 1.62929}};
+  OrbitOptions orbit_options = o.orbit;
+  auto period_at = [&](double rho, const ContinuationPoint& guess) {
+    const PeriodicOrbit orbit =
+        solve_periodic_orbit(system, system.with_parameter(guess.orbit.parameters, 0, rho),
+                             guess.orbit.state0, guess.orbit.period, {}, orbit_options);
+    EXPECT_TRUE(orbit.converged()) << rho;
+    return orbit.period;
+  };
+  for (const auto& [rho, period] : auto_points) {
+    const auto nearest = std::min_element(
+        family.points.begin(), family.points.end(), [&](const auto& a, const auto& b) {
+          return std::abs(a.parameter - rho) < std::abs(b.parameter - rho);
+        });
+    const double t = period_at(rho, *nearest);
+    const double slope = (period_at(rho + 1e-4, *nearest) - period_at(rho - 1e-4, *nearest)) / 2e-4;
+    const double digits = period < 1.0 ? 5e-7 : 5e-6;
+    EXPECT_NEAR(t, period, digits + std::abs(slope) * 5e-5 + 1e-6 * period) << "rho " << rho;
+  }
+  // AUTO's last point, (13.9678, 2.78130), where T grows by about 10 per unit of rho: between
+  // the branch's two points around it, linearly interpolated (to 0.5%: the steps there are about
+  // 0.007 in rho, and T's curvature over them is a few tenths of a percent).
+  for (std::size_t i = 1; i < family.points.size(); ++i) {
+    const auto& a = family.points[i - 1];
+    const auto& b = family.points[i];
+    if ((a.parameter - 13.9678) * (b.parameter - 13.9678) > 0) continue;
+    const double w = (13.9678 - a.parameter) / (b.parameter - a.parameter);
+    EXPECT_NEAR((1 - w) * a.orbit.period + w * b.orbit.period, 2.78130, 0.005 * 2.78130);
+  }
+}
+
 }  // namespace
 }  // namespace sympathy

@@ -15,6 +15,7 @@
 #include <optional>
 #include <string>
 
+#include "sympathy/continuation/continuation.hpp"
 #include "sympathy/continuation/equilibrium.hpp"
 #include "sympathy/continuation/periodic_orbit.hpp"
 
@@ -42,5 +43,14 @@ std::optional<HopfPoint> hopf_point_near(const OdeSystem& system, int parameter,
 // above. Throws std::runtime_error naming what failed.
 PeriodicOrbit orbit_from_hopf(const OdeSystem& system, int parameter, const HopfPoint& hopf,
                               const OrbitOptions& options, const HopfStartOptions& start = {});
+
+// The family of periodic orbits born at `hopf`: its small orbit (orbit_from_hopf), continued in
+// `parameter` within the options' bounds, away from the Hopf point (the side the small orbit lies
+// on); the branch's origin names the Hopf point. Throws std::runtime_error where no orbit near the
+// Hopf point converges.
+Branch continue_from_hopf(const OdeSystem& system, int parameter, const HopfPoint& hopf,
+                          const ContinuationOptions& options,
+                          const ContinuationCallbacks& callbacks = {},
+                          const HopfStartOptions& start = {});
 
 }  // namespace sympathy

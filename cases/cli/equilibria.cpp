@@ -1,0 +1,196 @@
+// sympathy equilibria: a branch of equilibria in one parameter, with its folds (LP), branch points
+// (BP) and Hopf points (HB), for either kind of case file.
+#include <cstdio>
+
+#include <algorithm>
+#include <memory>
+#include <optional>
+
+#include "cases/cli/commands.hpp"
+#include "cases/cli/common.hpp"
+#include "cases/cli/equations.hpp"
+#include "sympathy/cases/metronome_model.hpp"
+#include "sympathy/continuation/branch_output.hpp"
+#include "sympathy/continuation/equilibrium_output.hpp"
+
+namespace sympathy::cli {
+
+namespace {
+
+std::string eigenvalue_text(std::complex<double> l) {
+  char text[64];
+  std::snprintf(text, sizeof text, "%.6g%+.6gi", l.real(), l.imag());
+  return text;
+}
+
+// The eigenvalue nearest the imaginary axis: what crosses it at an event.
+std::complex<double> critical(const Eigen::VectorXcd& eigenvalues) {
+  std::complex<double> best = eigenvalues[0];
+  for (const auto& l : eigenvalues)
+    if (std::abs(l.real()) < std::abs(best.real())) best = l;
+  return best;
+}
+
+void print_equilibrium_events(const EquilibriumBranch& branch) {
+  if (branch.events.empty()) {
+    std::printf("  no bifurcations on this branch\n");
+    return;
+  }
+  std::printf("  %-4s %-20s %-11s %-28s %s\n", "type", branch.parameter_name.c_str(), "uncertainty",
+              "critical eigenvalue", "note");
+  for (const auto& e : branch.events) {
+    std::string note = e.note;
+    if (e.hopf) {
+      char text[160];
+      std::snprintf(text, sizeof text, "omega %.10g, period %.10g, %s", e.hopf->omega,
+                    e.hopf->period, describe_criticality(e.hopf->lyapunov).c_str());
+      note = text + (note.empty() ? "" : "; " + note);
+    }
+    std::printf("  %-4s %-20.12g %-11.1e %-28s %s\n",
+                (to_string(e.type) + (e.located ? "" : "?")).c_str(), e.parameter, e.uncertainty,
+                eigenvalue_text(critical(e.eigenvalues)).c_str(), note.c_str());
+  }
+}
+
+}  // namespace
+
+int run_equilibria(const std::vector<std::string>& argv) {
+  auto options = case_options();
+  options.insert(
+      options.end(),
+      {{"--start", "NAME", false,
+        "named start of the case, Newton's first guess (required for a metronome case file; an "
+        "equation case file's default: its [states])"},
+       {"--param", "P", false, "the continuation parameter (required)"},
+       {"--from", "A", false, "first parameter value (required): the branch starts here"},
+       {"--to", "B", false, "last parameter value (required)"},
+       {"--at", "V", false, "start at V instead and continue both ways, to A and to B"},
+       {"--initial", "VAR=VALUE", true, "initial state value (on top of --start)"},
+       {"--step", "DS", false, "initial arclength step, scaled (default 0.01)"},
+       {"--max-step", "DS", false, "largest arclength step, scaled (default 0.05)"},
+       {"--max-points", "N", false, "point limit per direction (default 1000)"},
+       {"--csv", "FILE", false, "stream every point to this CSV"},
+       {"--json", "FILE", false,
+        "write the branch and its events as JSON (continue --switch-at HB1 --parent reads it)"},
+       {"--quiet", "", false, "no progress lines"}});
+  Arguments args("equilibria", argv, options, {"CASE"});
+
+  Stopwatch clock;
+  const bool equations = case_file_kind(args.positional(0)) == "equations";
+  std::optional<LoadedCase> metronomes;
+  std::optional<LoadedEquations> system_file;
+  std::unique_ptr<MetronomeModel> model;
+  if (equations) {
+    system_file.emplace(load_equations(args));
+  } else {
+    metronomes.emplace(load_case(args));
+    model = std::make_unique<MetronomeModel>(metronomes->spec);
+  }
+  const std::string case_path = equations ? system_file->file.path() : metronomes->file.path();
+  const std::string params = equations ? system_file->params : metronomes->params;
+  const OdeSystem& system =
+      equations ? *system_file->build.system : static_cast<const OdeSystem&>(*model);
+  for (const char* required : {"--param", "--from", "--to"})
+    if (!args.has(required)) throw InputError(std::string(required) + " is required");
+  if (!equations && !args.has("--start")) throw InputError("--start is required");
+  const std::string start_name = args.text("--start", "");
+  const std::string parameter = *args.value("--param");
+  const auto names = system.parameter_names();
+  if (std::find(names.begin(), names.end(), parameter) == names.end())
+    throw InputError("--param " + parameter + ": not a parameter of " + case_path +
+                     "; expected one of: " + join(names));
+
+  EquilibriumProblem problem;
+  problem.parameter = system.parameter_index(parameter);
+  problem.from = args.number("--from", 0.0);
+  problem.to = args.number("--to", 0.0);
+  if (problem.from == problem.to) throw InputError("--from and --to: expected different values");
+  if (args.has("--at")) problem.at = args.number("--at", 0.0);
+  const auto initial = args.assignments("--initial");
+  if (equations) {
+    const StartSpec* start = start_name.empty() ? nullptr : &system_file->file.start(start_name);
+    problem.start_state = system_file->file.initial_state(start, initial);
+    problem.values = system_file->values;
+    for (const auto& [option, value] : std::vector<std::pair<std::string, std::optional<double>>>{
+             {"--from", problem.from}, {"--to", problem.to}, {"--at", problem.at}}) {
+      if (!value) continue;
+      auto sets = args.assignments("--set");
+      sets.push_back({parameter, *value, option + " " + format_number(*value)});
+      system_file->file.parameter_values(params, sets);
+    }
+  } else {
+    const StartSpec& start = metronomes->file.start(start_name);
+    problem.start_state = metronomes->file.initial_state(&start, initial);
+    problem.values = model->default_parameters();
+    std::vector<double> ends{problem.from, problem.to};
+    if (problem.at) ends.push_back(*problem.at);
+    check_parameter_range(metronomes->spec, parameter, ends, "--from, --to: ");
+  }
+  if (const std::string wrong = problem.problem_with(system); !wrong.empty())
+    throw InputError("--" + wrong);
+  EquilibriumOptions o;
+  o.initial_step = args.number("--step", o.initial_step);
+  o.max_step = args.number("--max-step", o.max_step);
+  o.max_points = args.integer("--max-points", o.max_points);
+  o.lower = std::min(problem.from, problem.to);
+  o.upper = std::max(problem.from, problem.to);
+  check_options(o.validate(), "");
+  const std::string csv_path = args.text("--csv", "");
+  const auto json_path = args.value("--json");
+  if (!csv_path.empty()) check_writable(csv_path, "--csv");
+  if (json_path) check_writable(*json_path, "--json");
+  check_distinct_outputs({{"--csv", csv_path}, {"--json", json_path.value_or("")}},
+                         {{"case file", case_path}});
+
+  std::printf("sympathy equilibria %s  params %s  start %s  %s from %g to %g\n", case_path.c_str(),
+              params.empty() ? "(none)" : params.c_str(),
+              start_name.empty() ? "(the file's [states])" : start_name.c_str(), parameter.c_str(),
+              problem.from, problem.to);
+  if (equations) std::printf("  %s\n", describe_build(system_file->build).c_str());
+  std::fflush(stdout);
+  std::unique_ptr<EquilibriumCsvWriter> csv;
+  if (!csv_path.empty()) csv = std::make_unique<EquilibriumCsvWriter>(csv_path, system, parameter);
+  const bool quiet = args.flag("--quiet");
+  const auto* stop = interrupt_flag();
+  EquilibriumCallbacks callbacks;
+  callbacks.on_point = [&](const EquilibriumPoint& p) {
+    if (csv) csv->write(p);
+    if (!quiet)
+      std::fprintf(stderr, "  [%4d] %s = %-14.9g |x| = %-12.6g %d unstable  ds %.2g (%d it)\n",
+                   p.index, parameter.c_str(), p.parameter, p.state.lpNorm<Eigen::Infinity>(),
+                   p.unstable, p.step, p.iterations);
+  };
+  callbacks.on_event = [&](const EquilibriumEvent& e) {
+    if (!quiet)
+      std::fprintf(stderr, "  >> %s at %s = %.10g (+- %.1e)\n", to_string(e.type).c_str(),
+                   parameter.c_str(), e.parameter, e.uncertainty);
+  };
+  callbacks.stop_requested = [&] { return stop && stop->load(); };
+  const EquilibriumBranch branch = continue_equilibria(system, problem, o, callbacks);
+  if (csv) csv->close();
+  if (!branch.started()) {
+    std::printf("  %s\n  run time %.3f s\n", branch.stop_reason.c_str(), clock.seconds());
+    return 4;
+  }
+  const auto& first = branch.points.front();
+  const auto& last = branch.points.back();
+  std::printf("  %zu points; stopped: %s\n", branch.points.size(), branch.stop_reason.c_str());
+  std::printf("  from %s = %.10g (%d unstable) to %s = %.10g (%d unstable)\n", parameter.c_str(),
+              first.parameter, first.unstable, parameter.c_str(), last.parameter, last.unstable);
+  std::printf("bifurcations:\n");
+  print_equilibrium_events(branch);
+  std::printf("  run time %.3f s\n", clock.seconds());
+  if (json_path) {
+    nlohmann::json j = equilibrium_branch_json(branch);
+    j["case"] = case_path;
+    j["params_set"] = params;
+    j["start"] = start_name;
+    j["from"] = problem.from;
+    j["to"] = problem.to;
+    j["seconds"] = clock.seconds();
+    write_json(*json_path, j);
+  }
+  return branch.stop == EquilibriumStop::Interrupted ? kInterrupted : 0;
+}
+
+}  // namespace sympathy::cli

@@ -1,0 +1,167 @@
+#include "cases/cli/hopf_switch.hpp"
+
+#include <fstream>
+
+#include "sympathy/continuation/hopf.hpp"
+#include "sympathy/core/csv.hpp"
+
+namespace sympathy::cli {
+
+std::optional<int> parse_hopf_name(const std::string& text, const std::string& option) {
+  if (text.rfind("HB", 0) != 0) return std::nullopt;
+  const std::string number = text.substr(2);
+  if (number.empty() || number.size() > 8 ||
+      number.find_first_not_of("0123456789") != std::string::npos || std::stoi(number) < 1)
+    throw InputError(option + " " + text +
+                     ": expected HB followed by a positive number (e.g. HB1)");
+  return std::stoi(number);
+}
+
+namespace {
+
+const nlohmann::json& key(const nlohmann::json& j, const std::string& name,
+                          const std::string& where) {
+  if (!j.is_object() || !j.contains(name))
+    throw InputError(where + ": key '" + name +
+                     "' is missing; expected equilibria written by sympathy equilibria --json");
+  return j.at(name);
+}
+
+Eigen::VectorXd numbers(const nlohmann::json& j, const std::string& where, int size) {
+  if (!j.is_array() || static_cast<int>(j.size()) != size)
+    throw InputError(where + ": expected a list of " + std::to_string(size) + " numbers");
+  Eigen::VectorXd v(size);
+  for (int i = 0; i < size; ++i) {
+    if (!j[i].is_number()) throw InputError(where + ": expected a list of numbers");
+    v[i] = j[i].get<double>();
+  }
+  return v;
+}
+
+}  // namespace
+
+EquilibriumBranch read_equilibria_json(const std::string& path, const OdeSystem& system) {
+  std::ifstream in(path);
+  if (!in) throw InputError(path + ": cannot be read");
+  nlohmann::json j;
+  try {
+    j = nlohmann::json::parse(in);
+  } catch (const nlohmann::json::exception& e) {
+    throw InputError(path + ": not JSON (" + e.what() + ")");
+  }
+  const int n = system.dimension();
+  EquilibriumBranch b;
+  try {
+    if (key(j, "kind", path) != "equilibria")
+      throw InputError(path +
+                       ": key 'kind': expected \"equilibria\" (written by sympathy "
+                       "equilibria --json)");
+    b.parameter_name = key(j, "parameter", path).get<std::string>();
+    try {
+      b.parameter = system.parameter_index(b.parameter_name);
+    } catch (const std::invalid_argument& e) {
+      throw InputError(path + ": key 'parameter': " + e.what());
+    }
+    b.start_values = numbers(key(j, "parameter_values", path), path + ": key 'parameter_values'",
+                             system.parameter_values_size());
+    const auto& events = key(j, "events", path);
+    for (std::size_t i = 0; i < events.size(); ++i) {
+      const std::string where = path + ": events[" + std::to_string(i) + "]";
+      EquilibriumEvent e;
+      const std::string type = key(events[i], "type", where).get<std::string>();
+      e.type = type == "HB"   ? EquilibriumEventType::Hopf
+               : type == "BP" ? EquilibriumEventType::BranchPoint
+                              : EquilibriumEventType::Fold;
+      e.parameter = key(events[i], "value", where).get<double>();
+      e.state = numbers(key(events[i], "state", where), where + ".state", n);
+      if (e.type == EquilibriumEventType::Hopf) {
+        const auto& h = key(events[i], "hopf", where);
+        HopfPoint hp;
+        hp.parameter = e.parameter;
+        hp.state = e.state;
+        hp.values = system.with_parameter(b.start_values, b.parameter, e.parameter);
+        hp.omega = key(h, "omega", where + ".hopf").get<double>();
+        hp.period = key(h, "period", where + ".hopf").get<double>();
+        hp.uncertainty = key(h, "uncertainty", where + ".hopf").get<double>();
+        const Eigen::VectorXd re = numbers(key(h, "eigenvector_re", where), where + ".hopf", n);
+        const Eigen::VectorXd im = numbers(key(h, "eigenvector_im", where), where + ".hopf", n);
+        hp.eigenvector = re.cast<std::complex<double>>() +
+                         std::complex<double>(0, 1) * im.cast<std::complex<double>>();
+        if (h.contains("lyapunov")) hp.lyapunov = h.at("lyapunov").get<double>();
+        e.hopf = hp;
+      }
+      b.events.push_back(std::move(e));
+    }
+  } catch (const nlohmann::json::exception& e) {
+    throw InputError(path + ": a value of the wrong type (" + e.what() +
+                     "); expected equilibria written by sympathy equilibria --json");
+  }
+  return b;
+}
+
+Branch run_hopf_branch(const BranchSource& source, const BranchRequest& request, int ordinal,
+                       const ContinuationCallbacks& callbacks, const std::atomic<bool>* stop) {
+  const OdeSystem& system = source.system;
+  const int parameter = system.parameter_index(request.parameter);
+  EquilibriumBranch parent;
+  if (!request.parent_path.empty()) {
+    parent = read_equilibria_json(request.parent_path, system);
+    if (parent.parameter_name != request.parameter)
+      throw InputError("--parent " + request.parent_path + ": equilibria in " +
+                       parent.parameter_name + "; expected them in --param " + request.parameter);
+  } else {
+    EquilibriumProblem problem;
+    problem.parameter = parameter;
+    problem.values = source.values;
+    problem.from = request.from;
+    problem.to = request.to;
+    problem.at = request.at;
+    problem.start_state = source.start_state;
+    EquilibriumCallbacks cb;
+    cb.stop_requested = [&] { return stop && stop->load(); };
+    if (request.progress)
+      cb.on_event = [&](const EquilibriumEvent& e) {
+        std::fprintf(request.progress, "  (equilibria) >> %s at %s = %.10g\n",
+                     to_string(e.type).c_str(), request.parameter.c_str(), e.parameter);
+      };
+    parent = continue_equilibria(system, problem, {}, cb);
+  }
+  Branch born;
+  born.parameter_name = request.parameter;
+  born.parameter = parameter;
+  born.state_names = system.state_names();
+  if (!parent.started()) {
+    born.stop = StopReason::StartFailed;
+    born.stop_reason = "no equilibria to switch at: " + parent.stop_reason;
+    return born;
+  }
+  int seen = 0;
+  const EquilibriumEvent* hopf = nullptr;
+  std::string list;
+  for (const auto& e : parent.events) {
+    if (e.type != EquilibriumEventType::Hopf) continue;
+    list += (list.empty() ? "" : ", ") + std::string("HB") + std::to_string(seen + 1) + " at " +
+            format_double(e.parameter);
+    if (++seen == ordinal) hopf = &e;
+  }
+  if (!hopf || !hopf->hopf)
+    throw InputError("--switch-at " + request.switch_at +
+                     ": the equilibria have no such Hopf point; they have " +
+                     (list.empty() ? std::string("none") : list));
+  if (request.progress)
+    std::fprintf(request.progress, "  switching at %s: %s = %.10g (%s)\n",
+                 request.switch_at.c_str(), request.parameter.c_str(), hopf->parameter,
+                 describe_criticality(hopf->hopf->lyapunov).c_str());
+  ContinuationOptions window = request.continuation;
+  window.lower = std::min(request.from, request.to);
+  window.upper = std::max(request.from, request.to);
+  try {
+    born = continue_from_hopf(system, parameter, *hopf->hopf, window, callbacks);
+  } catch (const std::runtime_error& e) {
+    born.stop = StopReason::StartFailed;
+    born.stop_reason = "no family born at " + request.switch_at + ": " + e.what();
+  }
+  return born;
+}
+
+}  // namespace sympathy::cli

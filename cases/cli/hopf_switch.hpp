@@ -1,0 +1,28 @@
+// Families of periodic orbits born at Hopf points, on the command line: `continue --switch-at HB1`
+// computes the equilibria through the case's start over --from .. --to (or reads them from
+// `equilibria --json`, with --parent), and continues the family born at their first Hopf point.
+#pragma once
+
+#include <atomic>
+#include <optional>
+#include <string>
+
+#include "cases/cli/branch_run.hpp"
+#include "sympathy/continuation/equilibrium_branch.hpp"
+
+namespace sympathy::cli {
+
+// "HB3" -> 3; nullopt when `text` does not start with "HB"; InputError naming `option` for a
+// number that is not a positive integer.
+std::optional<int> parse_hopf_name(const std::string& text, const std::string& option);
+
+// The equilibria `sympathy equilibria --json` wrote, with their Hopf points; InputError naming the
+// file and key for anything missing or of the wrong size for `system`.
+EquilibriumBranch read_equilibria_json(const std::string& path, const OdeSystem& system);
+
+// The family born at the `ordinal`-th Hopf point of the equilibria of `source` over the request's
+// window; points and events reach `callbacks` (the CSV and progress of run_branch).
+Branch run_hopf_branch(const BranchSource& source, const BranchRequest& request, int ordinal,
+                       const ContinuationCallbacks& callbacks, const std::atomic<bool>* stop);
+
+}  // namespace sympathy::cli
