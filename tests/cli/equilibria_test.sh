@@ -1,0 +1,73 @@
+#!/usr/bin/env bash
+# Equilibria and Hopf starts end to end on AUTO's demos (cases/examples): abc's four Hopf points
+# (exact values to 1e-8), its family born at the first (AUTO's folds of cycles) from equilibria
+# computed or read back from JSON, the family ending at its Hopf point, and bad requests refused
+# before any work.
+# Usage: equilibria_test.sh SYMPATHY_BINARY SOURCE_DIR WORK_DIR
+set -u
+bin=$1 src=$2 work=$3
+rm -rf "$work"
+mkdir -p "$work"
+. "$(dirname "$0")/check.sh"
+export SYMPATHY_CACHE_DIR="$work/cache"  # never the user's cache
+json() { /usr/bin/python3 -c "import json,sys; j=json.load(open(sys.argv[1])); print($2)" "$1"; }
+abc=$src/cases/examples/abc.toml
+
+"$bin" equilibria "$abc" --param p1 --from 0 --to 0.4 --csv "$work/eq.csv" --json "$work/eq.json" \
+  > "$work/eq.out" 2> "$work/eq.err"
+check "equilibria exits 0" test $? -eq 0
+check "run time printed" grep -q 'run time' "$work/eq.out"
+check "progress lines on stderr" grep -q '^  \[   1\] p1 = ' "$work/eq.err"
+# The Hopf conditions solved directly (issue 16's reference values).
+check "four Hopf points, each within 1e-8 of the exact value" test "$(json "$work/eq.json" "
+[e['value'] for e in j['events'] if e['type'] == 'HB'] and all(abs(a - b) < 1e-8 for a, b in zip(
+  [e['value'] for e in j['events'] if e['type'] == 'HB'],
+  [0.204184536, 0.229839038, 0.259957854, 0.346208522])) and len(j['events']) == 4")" = True
+check "each with omega, period 2 pi / omega and its criticality" test "$(json "$work/eq.json" "
+all(abs(e['hopf']['period'] * e['hopf']['omega'] - 6.283185307179586) < 1e-12 and
+    e['hopf']['criticality'].split()[0] in ('supercritical', 'subcritical') for e in j['events'])")" = True
+check "the events table names HB with omega" grep -q '^  HB   0.2041845357.*omega 0.797303' "$work/eq.out"
+check "CSV has a row per point" test "$(($(wc -l < "$work/eq.csv") - 1))" -eq "$(json "$work/eq.json" "len(j['points'])")"
+check "CSV header: states, then eigenvalues" grep -q '^index,p1,u1,u2,u3,unstable,residual,lambda1_re' "$work/eq.csv"
+
+# The family born at HB1, from the saved equilibria: AUTO's folds of cycles (test/hyper.all).
+"$bin" continue "$abc" --param p1 --from 0.2 --to 0.25 --switch-at HB1 --parent "$work/eq.json" \
+  --json "$work/hb1.json" --quiet > "$work/hb1.out" 2>&1
+check "the Hopf family exits 0" test $? -eq 0
+check "born at the equilibria's HB" grep -q "born at the equilibria's HB at p1 = 0.20418453" "$work/hb1.out"
+check "two folds at AUTO's p1 = 0.211903 and 0.213697 (six digits)" test "$(json "$work/hb1.json" "
+sorted(round(e['value'], 6) for e in j['events'] if e['type'] == 'LP') == [0.211903, 0.213697]")" = True
+# The same with the equilibria computed on the way.
+"$bin" continue "$abc" --param p1 --from 0.2 --to 0.25 --switch-at HB1 --quiet \
+  --json "$work/hb1b.json" > /dev/null 2>&1
+check "computed equilibria give the same family" test "$(json "$work/hb1b.json" "len(j['points'])")" = \
+  "$(json "$work/hb1.json" "len(j['points'])")"
+
+# From p1 = 0.25 down, the family ends at the Hopf point it was born at.
+"$bin" continue "$abc" --param p1 --from 0.25 --to 0.2 --json "$work/down.json" --quiet \
+  > "$work/down.out" 2>&1
+check "the family down exits 0" test $? -eq 0
+check "stopped at the Hopf point" test "$(json "$work/down.json" "
+j['stop'] == 'Hopf point' and abs(j['hopf_end']['value'] - 0.204184536) < 1e-8")" = True
+check "each fold once, no turn taken for a fold" test "$(json "$work/down.json" "
+sorted(round(e['value'], 6) for e in j['events']) == [0.211903, 0.213697]")" = True
+
+# Bad requests: named, exit 2, before any work.
+"$bin" equilibria "$abc" --param p9 --from 0 --to 1 > /dev/null 2> "$work/bad.err"
+check "an unknown parameter exits 2" test $? -eq 2
+check "... naming the known ones" grep -q -- "--param p9: not a parameter of .*abc.toml; expected one of: p1" "$work/bad.err"
+"$bin" equilibria "$abc" --param p1 --from 0 --to 0.4 --max-step 0.001 > /dev/null 2> "$work/bad.err"
+check "a largest step below the first exits 2" grep -q -- "--max-step: expected a number no smaller than" "$work/bad.err"
+"$bin" continue "$abc" --param p1 --from 0.2 --to 0.25 --switch-at HB0 > /dev/null 2> "$work/bad.err"
+check "HB0 exits 2 saying what is expected" grep -q -- "--switch-at HB0: expected HB followed by a positive number" "$work/bad.err"
+"$bin" continue "$abc" --param p1 --from 0.2 --to 0.25 --switch-at HB7 --parent "$work/eq.json" \
+  > /dev/null 2> "$work/bad.err"
+check "a Hopf point the equilibria do not have exits 2, listing theirs" \
+  grep -q -- "--switch-at HB7: the equilibria have no such Hopf point; they have HB1 at 0.2041" "$work/bad.err"
+"$bin" continue "$abc" --param p1 --from 0.2 --to 0.25 --switch-at HB1 --parent "$work/hb1.json" \
+  > /dev/null 2> "$work/bad.err"
+check "a branch JSON as --parent of an HB switch exits 2" \
+  grep -q -- "key 'kind' is missing; expected equilibria written by sympathy equilibria --json" "$work/bad.err"
+"$bin" equilibria "$abc" --param p1 --from 0 --to 0.4 --json "$abc" > /dev/null 2> "$work/bad.err"
+check "the case file as --json exits 2" test $? -eq 2
+exit "$failures"
