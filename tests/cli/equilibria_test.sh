@@ -52,6 +52,22 @@ j['stop'] == 'Hopf point' and abs(j['hopf_end']['value'] - 0.204184536) < 1e-8")
 check "each fold once, no turn taken for a fold" test "$(json "$work/down.json" "
 sorted(round(e['value'], 6) for e in j['events']) == [0.211903, 0.213697]")" = True
 
+# The metronomes (the reliability issue's s -> 0 branch): the in-phase orbit shrinks into the
+# hanging equilibrium as the escapement torque s goes to 0, and its branch ends at the in-phase
+# mode's Hopf point near s = 2.4e-9 N m (no fold, no retrace); the equilibria have it too, beside
+# the anti-phase mode's.
+row2=$src/cases/row2.toml
+"$bin" continue "$row2" --start in-phase --param s --from 4.51e-5 --to 0 --json "$work/s.json" \
+  --quiet > "$work/s.out" 2>&1
+check "the s -> 0 branch exits 0" test $? -eq 0
+check "it ends at the Hopf point at s = 2.40e-9 N m, with no event" test "$(json "$work/s.json" "
+j['stop'] == 'Hopf point' and abs(j['hopf_end']['value'] - 2.4011e-9) < 1e-12 and not j['events']")" = True
+"$bin" equilibria "$row2" --start in-phase --param s --from 1e-8 --to 0 --json "$work/s_eq.json" \
+  --quiet > /dev/null 2>&1
+check "the hanging equilibria: two Hopf points, the in-phase one where the branch ended" \
+  test "$(json "$work/s_eq.json" "
+len(j['events']) == 2 and min(abs(e['value'] - $(json "$work/s.json" "j['hopf_end']['value']")) for e in j['events']) < 1e-20")" = True
+
 # Bad requests: named, exit 2, before any work.
 "$bin" equilibria "$abc" --param p9 --from 0 --to 1 > /dev/null 2> "$work/bad.err"
 check "an unknown parameter exits 2" test $? -eq 2
