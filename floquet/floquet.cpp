@@ -212,7 +212,11 @@ FloquetAnalysis analyze_floquet(const std::vector<Eigen::MatrixXd>& segments,
     // along the family changes the period: M v = v + alpha f), whose eigenvalues split like the
     // square root of the monodromy's error (1e-15 puts them 3e-8 apart). Their values then come
     // from the compression of the monodromy onto V (f first), which is triangular with them on
-    // its diagonal and first-order accurate, as an accuracy figure must be.
+    // its diagonal and first-order accurate, as an accuracy figure must be. So does the trivial
+    // one's always: at a generic fold of cycles it is in such a cluster with the multiplier
+    // passing through 1 (the period changes along the branch), and its eigenvalue there was
+    // 1e-5 to 1e-3 from 1 on AUTO's demos with the orbit right to 1e-10; away from clusters
+    // f^T M f / f^T f and the eigenvalue agree to the monodromy's error.
     const Eigen::MatrixXd compressed = v0.transpose() * product * v0;
     int next_structural = autonomous ? 1 : 0;  // V's columns: f (if autonomous), then the family
     for (int i = 0; i < n; ++i) {
@@ -220,7 +224,7 @@ FloquetAnalysis analyze_floquet(const std::vector<Eigen::MatrixXd>& segments,
       Multiplier mu{all.values[i], all.log_moduli[i]};
       mu.trivial = i == trivial;
       mu.structural = !mu.trivial;
-      if (d > 1) {
+      if (d > 1 || mu.trivial) {
         const int k = std::min(mu.trivial ? 0 : next_structural++, d - 1);
         mu.value = compressed(k, k);
         mu.log_modulus = std::log(std::abs(mu.value));

@@ -64,6 +64,27 @@ TEST(Continuation, FoldOfCyclesLocated) {
   EXPECT_TRUE(events_of(branch, BifurcationType::BranchPoint).empty());
 }
 
+// The generic fold of cycles: the period changes along the family (theta' = 1 + r^2), so at the
+// fold the multiplier 1 is a Jordan block, whose eigenvalues split like the square root of the
+// monodromy's error. The trivial multiplier measured on f (the compression of the monodromy onto
+// the flow direction, first-order accurate) keeps the fold trusted; located at mu = -1/4 exactly,
+// period 2 pi / (1 + 1/2).
+TEST(Continuation, GenericFoldOfCyclesTrusted) {
+  NormalForm system(Kind::ShearedFold, -0.05, 1, 0.0, 1.0);
+  Eigen::Vector2d z(1.0, 0.0);
+  const auto start =
+      solve_periodic_orbit(system, system.default_parameters(), z, kPi, {}, OrbitOptions{});
+  ASSERT_TRUE(start.converged()) << start.newton.reason;
+  Continuation c(system, 0, options(-0.5, -0.02));
+  Branch branch = c.run(start, -1);
+  const auto folds = events_of(branch, BifurcationType::Fold);
+  ASSERT_EQ(folds.size(), 1u) << branch.stop_reason;
+  EXPECT_NEAR(folds[0].parameter, -0.25, 1e-8);
+  EXPECT_NEAR(folds[0].period, 2 * kPi / 1.5, 1e-8);
+  EXPECT_TRUE(folds[0].trusted()) << folds[0].note;
+  EXPECT_LT(folds[0].floquet.trivial_error, 1e-8);
+}
+
 // Past the fold the inner cycles (r^2 from 1/2 down to 0) shrink into the equilibrium r = 0 at
 // mu = 0, the Hopf point, where the orbit vanishes. There the tangent turns with no multiplier
 // at +1 (a fold of cycles has one): the branch ends there, at the equilibrium's Hopf point

@@ -168,6 +168,9 @@ class TwoHopf final : public AutoDiffSystem<TwoHopf> {
 // the rotation number of its NS pair).
 //   Fold:       r' = r (mu + r^2 - r^4): cycles at mu = r^4 - r^2, a fold at mu = -1/4
 //               (r^2 = 1/2), where the radial multiplier exp(2 pi (2 r^2 - 4 r^4)) is 1.
+//   ShearedFold: the same with theta' = 1 + omega r^2: the period 2 pi / (1 + omega r^2)
+//               changes along the family, so at the fold the multiplier 1 is a 2x2 Jordan
+//               block (M v = v + alpha f), the generic fold of cycles.
 //   Pitchfork:  r' = r (1 - r^2), w_k' = mu w_k - w_k^3 for `copies` transverse states: on
 //               w = 0 the multipliers exp(2 pi mu) cross +1 at mu = 0 (together if copies = 2).
 //   Rotation:   r' = r (1 - r^2), (u, v) rotating at 0.3 and growing at mu, cubically
@@ -181,7 +184,7 @@ class TwoHopf final : public AutoDiffSystem<TwoHopf> {
 //               mu = 0, the doubled orbit xi = +-sqrt(mu) of period 4 pi beyond it.
 class NormalForm final : public AutoDiffSystem<NormalForm> {
  public:
-  enum class Kind { Fold, Pitchfork, Rotation, Moebius, PitchforkAndGrowth };
+  enum class Kind { Fold, Pitchfork, Rotation, Moebius, PitchforkAndGrowth, ShearedFold };
   NormalForm(Kind kind, double mu, int copies = 1, double a = 0.0, double omega = 0.3)
       : kind_(kind), copies_(copies) {
     set_parameter_layout({{"mu", {0}}, {"a", {1}}, {"omega", {2}}}, {mu, a, omega});
@@ -189,6 +192,7 @@ class NormalForm final : public AutoDiffSystem<NormalForm> {
   int dimension() const override {
     switch (kind_) {
       case Kind::Fold:
+      case Kind::ShearedFold:
         return 2;
       case Kind::Pitchfork:
         return 2 + copies_;
@@ -210,7 +214,8 @@ class NormalForm final : public AutoDiffSystem<NormalForm> {
   template <class T, class P>
   void evaluate(double, const T* z, const P* p, T* dz) const {
     using std::sqrt;
-    const P mu = kind_ == Kind::Fold ? P(p[0]) : P(p[0] - p[1] * p[1]);
+    const bool fold = kind_ == Kind::Fold || kind_ == Kind::ShearedFold;
+    const P mu = fold ? P(p[0]) : P(p[0] - p[1] * p[1]);
     const P& omega = p[2];
     const T r2 = z[0] * z[0] + z[1] * z[1];
     if (kind_ == Kind::Moebius) {
@@ -228,7 +233,13 @@ class NormalForm final : public AutoDiffSystem<NormalForm> {
       dz[2] = dw;
       return;
     }
-    const T g = kind_ == Kind::Fold ? T(mu + (1.0 + p[1]) * r2 - r2 * r2) : T(1.0 - r2);
+    const T g = fold ? T(mu + (1.0 + p[1]) * r2 - r2 * r2) : T(1.0 - r2);
+    if (kind_ == Kind::ShearedFold) {
+      const T w = 1.0 + omega * r2;  // the angular speed grows with the radius
+      dz[0] = -w * z[1] + z[0] * g;
+      dz[1] = w * z[0] + z[1] * g;
+      return;
+    }
     dz[0] = -z[1] + z[0] * g;
     dz[1] = z[0] + z[1] * g;
     if (kind_ == Kind::Pitchfork)
