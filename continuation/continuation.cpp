@@ -69,7 +69,7 @@ Correction Continuation::correct_step(const Eigen::VectorXd& from, const Eigen::
   corrector.max_chord_steps = options_.max_chord_steps;
   corrector.tolerance =
       attainable_tolerance(options_.corrector_tolerance, options_.orbit.newton.rtol_factor,
-                           options_.orbit.shooting.flow);
+                           options_.orbit.shooting.flow, space_->sizes().maxCoeff());
   return correct(*problem_, *space_, parameter_, corrector, from, tangent, step, guess, chord);
 }
 

@@ -91,8 +91,9 @@ PeriodicOrbit orbit_from_hopf(const OdeSystem& system, int parameter, const Hopf
   double p = hopf.parameter;
   ParameterValues values = hopf.values;
   Eigen::VectorXd x = problem.unknowns_from(z_ref, values, hopf.period);
-  const double tolerance = attainable_tolerance(options.newton.residual_tolerance,
-                                                options.newton.rtol_factor, options.shooting.flow);
+  const double tolerance =
+      attainable_tolerance(options.newton.residual_tolerance, options.newton.rtol_factor,
+                           options.shooting.flow, hopf.state.lpNorm<Eigen::Infinity>());
   double residual = 0.0;
   bool converged = false;
   for (int it = 0; it < start.max_iterations; ++it) {

@@ -145,8 +145,9 @@ PeriodicOrbit solve_periodic_orbit(const OdeSystem& system, const ParameterValue
   }
   double norm = inf_norm(e.residual);
   s.residual_norms.push_back(norm);
-  const double tolerance = attainable_tolerance(options.newton.residual_tolerance,
-                                                options.newton.rtol_factor, options.shooting.flow);
+  const double tolerance =
+      attainable_tolerance(options.newton.residual_tolerance, options.newton.rtol_factor,
+                           options.shooting.flow, inf_norm(x.head(n)));
   for (;;) {
     if (norm <= tolerance) {
       s.converged = true;

@@ -87,7 +87,7 @@ check "a parent JSON without its values exits 2 naming the key" grep -q "half.js
 "$bin" continue "$src/cases/row2.toml" --start anti-phase --param k --from 45 --to 49 \
   --switch-at NS1 2> "$work/bad.err"
 check "switching at an NS exits 2 before any work" test $? -eq 2
-check "switching at an NS says where a branch is born" grep -q "BP or PD followed by its number" "$work/bad.err"
+check "switching at an NS says where a branch is born" grep -q "BP, PD or HB followed by its number" "$work/bad.err"
 "$bin" continue "$src/cases/row2.toml" --start anti-phase --param k --from 45 --to 49 \
   --switch-at PD1 --quiet 2> "$work/bad.err"
 check "switching at a missing event exits 2" test $? -eq 2

@@ -64,6 +64,28 @@ TEST(Continuation, FoldOfCyclesLocated) {
   EXPECT_TRUE(events_of(branch, BifurcationType::BranchPoint).empty());
 }
 
+// States of order 300: the attainable residual grows with the state (the integration's error is
+// relative, about 20 rtol |z|), so the orbit and the branch converge at the defaults (with an
+// absolute 1e-9 a converged start was refused: "corrector diverged, residual 1.1e-8"). Exact:
+// r = 300 sqrt(1 + mu), period 2 pi.
+TEST(Continuation, LargeStatesConvergeAtTheDefaults) {
+  testing::ScaledCircle system(300.0);
+  const auto start = solve_periodic_orbit(system, system.default_parameters(),
+                                          Eigen::Vector2d(301.0, 0.0), 2 * kPi, {}, OrbitOptions{});
+  ASSERT_TRUE(start.converged()) << start.newton.reason;
+  EXPECT_NEAR(start.state0.norm(), 300.0, 1e-6 * 300.0);
+  ContinuationOptions o;
+  o.lower = 0.0;
+  o.upper = 0.5;
+  Continuation c(system, 0, o);
+  const Branch branch = c.run(start, +1);
+  ASSERT_EQ(branch.stop, StopReason::ParameterBound) << branch.stop_reason;
+  for (const auto& p : branch.points) {
+    EXPECT_NEAR(p.orbit.state0.norm(), 300.0 * std::sqrt(1.0 + p.parameter), 1e-6 * 300.0);
+    EXPECT_NEAR(p.orbit.period, 2 * kPi, 1e-8);
+  }
+}
+
 // The generic fold of cycles: the period changes along the family (theta' = 1 + r^2), so at the
 // fold the multiplier 1 is a Jordan block, whose eigenvalues split like the square root of the
 // monodromy's error. The trivial multiplier measured on f (the compression of the monodromy onto

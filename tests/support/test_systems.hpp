@@ -276,6 +276,28 @@ class ForcedFloquet final : public AutoDiffSystem<ForcedFloquet> {
   }
 };
 
+// The Hopf cycle scaled to radius R: x' = -y + x (1 - r^2 / R^2), y' = x + y (1 - r^2 / R^2),
+// its limit cycle the circle r = R, period 2 pi, radial multiplier exp(-4 pi) for every R; with
+// the parameter mu the growth is 1 + mu - r^2 / R^2 and the cycle r = R sqrt(1 + mu): a branch
+// in mu whose states are of order R.
+class ScaledCircle final : public AutoDiffSystem<ScaledCircle> {
+ public:
+  explicit ScaledCircle(double radius) : radius_(radius) {
+    set_parameter_layout({{"mu", {0}}}, {0.0});
+  }
+  int dimension() const override { return 2; }
+  std::vector<std::string> state_names() const override { return {"x", "y"}; }
+  template <class T, class P>
+  void evaluate(double, const T* z, const P* p, T* dz) const {
+    const T g = 1.0 + p[0] - (z[0] * z[0] + z[1] * z[1]) / (radius_ * radius_);
+    dz[0] = -z[1] + z[0] * g;
+    dz[1] = z[0] + z[1] * g;
+  }
+
+ private:
+  double radius_;
+};
+
 // Branches of equilibria with exactly known events, a second state y' = -y beside them:
 //   SaddleNode:    x' = p - x^2: x = +-sqrt(p), a fold at p = 0 (x = 0);
 //   Transcritical: x' = p x - x^2: the branches x = 0 and x = p cross at p = 0, a branch point.

@@ -31,9 +31,13 @@ struct NewtonOptions {
   OptionCheck validate() const;
 };
 
-// The residual tolerance an integration at `flow` settings can meet.
-inline double attainable_tolerance(double tolerance, double rtol_factor, const FlowOptions& flow) {
-  return std::max(tolerance, rtol_factor * flow.rtol);
+// The residual tolerance an integration at `flow` settings can meet: the integration's error is
+// relative, so the noise floor of |Phi_T(z0) - z0|_inf grows with the state's size
+// (`state_size`, its largest |z_i|): rtol_factor * rtol * max(1, state_size). An absolute floor
+// refused converged orbits whose states are of order 100 (residual 1.1e-8 at rtol 5e-12).
+inline double attainable_tolerance(double tolerance, double rtol_factor, const FlowOptions& flow,
+                                   double state_size = 1.0) {
+  return std::max(tolerance, rtol_factor * flow.rtol * std::max(1.0, state_size));
 }
 
 // How a search for an orbit ended, for programs to switch on (the summary's reason says it for
