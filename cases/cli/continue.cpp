@@ -9,6 +9,7 @@
 #include "cases/cli/commands.hpp"
 #include "cases/cli/equations.hpp"
 #include "cases/cli/hopf_switch.hpp"
+#include "cases/cli/loaded_system.hpp"
 #include "cases/cli/report.hpp"
 #include "sympathy/cases/equation_case.hpp"
 #include "sympathy/cases/state_describer.hpp"
@@ -55,33 +56,14 @@ int run_continue(const std::vector<std::string>& argv) {
   Stopwatch clock;
   // The case: a metronome case file, or an equation case file (its system compiled or from the
   // cache; its start the file's [states] unless --start names one).
-  const bool equations = case_file_kind(args.positional(0)) == "equations";
-  std::optional<LoadedCase> metronomes;
-  std::optional<LoadedEquations> system_file;
-  if (equations)
-    system_file.emplace(load_equations(args));
-  else
-    metronomes.emplace(load_case(args));
-  const std::string case_path = equations ? system_file->file.path() : metronomes->file.path();
-  const std::string params = equations ? system_file->params : metronomes->params;
+  const LoadedSystem c(args);
   for (const char* required : {"--param", "--from", "--to"})
     if (!args.has(required)) throw InputError(std::string(required) + " is required");
-  if (!equations && !args.has("--start")) throw InputError("--start is required");
+  if (!c.equations() && !args.has("--start")) throw InputError("--start is required");
   BranchRequest request;
   request.start = args.text("--start", "");
-  if (!request.start.empty()) {  // fails early with the list of starts
-    if (equations)
-      system_file->file.start(request.start);
-    else
-      metronomes->file.start(request.start);
-  }
   request.parameter = *args.value("--param");
-  const std::vector<std::string> parameter_names =
-      equations ? system_file->file.parameter_names() : metronomes->spec.parameter_names();
-  if (std::find(parameter_names.begin(), parameter_names.end(), request.parameter) ==
-      parameter_names.end())
-    throw InputError("--param " + request.parameter + ": not a parameter of " + case_path +
-                     "; expected one of: " + join(parameter_names));
+  c.require_parameter("--param", request.parameter);
   request.from = args.number("--from", 0.0);
   request.to = args.number("--to", 0.0);
   if (request.from == request.to) throw InputError("--from and --to: expected different values");
@@ -113,20 +95,11 @@ int run_continue(const std::vector<std::string>& argv) {
   o.orbit.transient_flow.linear_solver = o.orbit.shooting.flow.linear_solver;
   o.orbit.use_symmetry = !args.flag("--whole-state");
   check_options(o.validate(), "");
-  std::vector<double> ends{request.from, request.to};
-  if (request.at) ends.push_back(*request.at);
-  if (equations) {
-    // Each end within the parameter's bounds (the file's min and max), named as given.
-    for (const auto& [option, value] : std::vector<std::pair<std::string, std::optional<double>>>{
-             {"--from", request.from}, {"--to", request.to}, {"--at", request.at}}) {
-      if (!value) continue;
-      auto sets = args.assignments("--set");
-      sets.push_back({request.parameter, *value, option + " " + format_number(*value)});
-      system_file->file.parameter_values(params, sets);
-    }
-  } else {
-    check_parameter_range(metronomes->spec, request.parameter, ends, "--from, --to: ");
-  }
+  std::vector<std::pair<std::string, double>> ends{{"--from", request.from}, {"--to", request.to}};
+  if (request.at) ends.push_back({"--at", *request.at});
+  c.check_range(request.parameter, ends);
+  // The start (fails early with the list of starts).
+  const BranchSource source = c.source(request.start, request.initial);
   const auto json_path = args.value("--json");
   if (json_path) check_writable(*json_path, "--json");
   request.events_path = args.text("--events", "");
@@ -135,34 +108,15 @@ int run_continue(const std::vector<std::string>& argv) {
   check_distinct_outputs({{"--csv", request.csv_path},
                           {"--events", request.events_path},
                           {"--json", json_path.value_or("")}},
-                         {{"case file", case_path}, {"--parent", request.parent_path}});
+                         {{"case file", c.path()}, {"--parent", request.parent_path}});
 
-  std::printf("sympathy continue %s  params %s  start %s  %s from %g to %g\n", case_path.c_str(),
-              params.empty() ? "(none)" : params.c_str(),
+  std::printf("sympathy continue %s  params %s  start %s  %s from %g to %g\n", c.path().c_str(),
+              c.params().empty() ? "(none)" : c.params().c_str(),
               request.start.empty() ? "(the file's [states])" : request.start.c_str(),
               request.parameter.c_str(), request.from, request.to);
-  if (equations) std::printf("  %s\n", describe_build(system_file->build).c_str());
+  if (c.equations()) std::printf("  %s\n", c.build_note().c_str());
   std::fflush(stdout);
-  std::unique_ptr<MetronomeModel> model;
-  std::unique_ptr<OrbitDescriber> describer;
-  Branch branch;
-  if (equations) {
-    const EquationCase& file = system_file->file;
-    const OdeSystem& system = *system_file->build.system;
-    describer = std::make_unique<StateDescriber>(system);
-    const StartSpec* start = request.start.empty() ? nullptr : &file.start(request.start);
-    const BranchSource source{system,
-                              *describer,
-                              system_file->values,
-                              file.initial_state(start, request.initial),
-                              InvariantSubspace(),
-                              request.start.empty() ? std::string("states") : request.start};
-    branch = run_branch(source, request, interrupt_flag());
-  } else {
-    model = std::make_unique<MetronomeModel>(metronomes->spec);
-    describer = std::make_unique<MetronomeDescriber>(*model);
-    branch = run_branch(*metronomes, *model, request, interrupt_flag());
-  }
+  const Branch branch = run_branch(source, request, interrupt_flag());
   if (!branch.started()) {
     std::printf("  %s\n  run time %.3f s\n", branch.stop_reason.c_str(), clock.seconds());
     return 4;
@@ -183,9 +137,9 @@ int run_continue(const std::vector<std::string>& argv) {
   std::printf("  run time %.3f s (%ld integrations, %ld steps)\n", clock.seconds(),
               branch.flow.calls, branch.flow.steps);
   if (json_path) {
-    nlohmann::json j = branch_json(branch, request, *describer);
-    j["case"] = case_path;
-    j["params_set"] = params;
+    nlohmann::json j = branch_json(branch, request, c.describer());
+    j["case"] = c.path();
+    j["params_set"] = c.params();
     j["seconds"] = clock.seconds();
     write_json(*json_path, j);
   }

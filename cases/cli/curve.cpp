@@ -8,6 +8,7 @@
 
 #include "cases/cli/branch_run.hpp"
 #include "cases/cli/commands.hpp"
+#include "cases/cli/loaded_system.hpp"
 #include "sympathy/continuation/bifurcation_curve.hpp"
 #include "sympathy/continuation/branch_output.hpp"
 #include "sympathy/continuation/curve_output.hpp"
@@ -37,7 +38,9 @@ int run_curve(const std::vector<std::string>& argv) {
   auto options = case_options();
   options.insert(
       options.end(),
-      {{"--start", "NAME", false, "named start of the case (required)"},
+      {{"--start", "NAME", false,
+        "named start of the case (required for a metronome case file; an equation case file's "
+        "default: its [states])"},
        {"--param", "P", false, "the branch's parameter, the curve's first (required)"},
        {"--from", "A", false, "the branch's first value, one end of the window (required)"},
        {"--to", "B", false, "the branch's last value, the window's other end (required)"},
@@ -61,18 +64,16 @@ int run_curve(const std::vector<std::string>& argv) {
   Arguments args("curve", argv, options, {"CASE"});
 
   Stopwatch clock;
-  const LoadedCase c = load_case(args);
-  for (const char* required : {"--start", "--param", "--from", "--to", "--event", "--second",
-                               "--second-from", "--second-to"})
+  const LoadedSystem c(args);
+  for (const char* required :
+       {"--param", "--from", "--to", "--event", "--second", "--second-from", "--second-to"})
     if (!args.has(required)) throw InputError(std::string(required) + " is required");
+  if (!c.equations() && !args.has("--start")) throw InputError("--start is required");
   BranchRequest request;
-  request.start = *args.value("--start");
-  c.file.start(request.start);
+  request.start = args.text("--start", "");
   request.parameter = *args.value("--param");
   for (const char* option : {"--param", "--second"})
-    if (!c.spec.has_parameter(*args.value(option)))
-      throw InputError(std::string(option) + " " + *args.value(option) + ": not a parameter of " +
-                       c.file.path() + "; expected one of: " + join(c.spec.parameter_names()));
+    c.require_parameter(option, *args.value(option));
   const std::string second = *args.value("--second");
   if (second == request.parameter)
     throw InputError("--second " + second + ": expected a parameter other than --param");
@@ -109,11 +110,12 @@ int run_curve(const std::vector<std::string>& argv) {
   curve_options.max_points = args.integer("--max-points", curve_options.max_points);
   curve_options.orbit = o.orbit;
   check_options(curve_options.validate(), "");  // names initial_step --step, ...
-  check_parameter_range(c.spec, request.parameter, {request.from, request.to}, "--from, --to: ");
-  check_parameter_range(c.spec, second, {curve_options.second_lower, curve_options.second_upper},
-                        "--second-from, --second-to: ");
+  c.check_range(request.parameter, {{"--from", request.from}, {"--to", request.to}});
+  c.check_range(second, {{"--second-from", curve_options.second_lower},
+                         {"--second-to", curve_options.second_upper}});
+  const BranchSource source = c.source(request.start, request.initial);
   // The curve starts at the branch's value of the second parameter: the window must hold it.
-  const double base_second = c.spec.get(second);
+  const double base_second = c.value_of(second);
   if (base_second < curve_options.second_lower || base_second > curve_options.second_upper)
     throw InputError("--second-from, --second-to: the window " +
                      format_double(curve_options.second_lower) + " to " +
@@ -124,22 +126,23 @@ int run_curve(const std::vector<std::string>& argv) {
   if (json_path) check_writable(*json_path, "--json");
   if (!csv_path.empty()) check_writable(csv_path, "--csv");
   check_distinct_outputs({{"--csv", csv_path}, {"--json", json_path.value_or("")}},
-                         {{"case file", c.file.path()}, {"--parent", request.parent_path}});
+                         {{"case file", c.path()}, {"--parent", request.parent_path}});
 
   std::printf(
       "sympathy curve %s  params %s  start %s  %s of the %s-branch (%g to %g) in %s "
       "(%g to %g)\n",
-      c.file.path().c_str(), c.params.empty() ? "(none)" : c.params.c_str(), request.start.c_str(),
-      name.text.c_str(), request.parameter.c_str(), request.from, request.to, second.c_str(),
+      c.path().c_str(), c.params().empty() ? "(none)" : c.params().c_str(),
+      request.start.empty() ? "(the file's [states])" : request.start.c_str(), name.text.c_str(),
+      request.parameter.c_str(), request.from, request.to, second.c_str(),
       curve_options.second_lower, curve_options.second_upper);
+  if (c.equations()) std::printf("  %s\n", c.build_note().c_str());
   std::fflush(stdout);
-  const MetronomeModel model(c.spec);
+  const OdeSystem& model = c.system();
   Branch parent;
   if (request.parent_path.empty()) {
-    parent = run_branch(c, model, request, interrupt_flag());
+    parent = run_branch(source, request, interrupt_flag());
   } else {
-    const auto& start = c.file.start(request.start);
-    parent = read_branch_json(request.parent_path, model, c.file.invariant_subspace(start, model));
+    parent = read_branch_json(request.parent_path, model, c.subspace(request.start));
     if (parent.parameter_name != request.parameter)
       throw InputError("--parent " + request.parent_path + ": a branch in " +
                        parent.parameter_name + "; expected one in --param " + request.parameter);
@@ -197,8 +200,8 @@ int run_curve(const std::vector<std::string>& argv) {
               curve.seconds, curve.evaluations, curve.flow.steps);
   if (json_path) {
     nlohmann::json j = curve_json(curve);
-    j["case"] = c.file.path();
-    j["params_set"] = c.params;
+    j["case"] = c.path();
+    j["params_set"] = c.params();
     j["start"] = request.start;
     j["event"] = name.text;
     j["seconds"] = clock.seconds();

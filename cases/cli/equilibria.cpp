@@ -8,8 +8,7 @@
 
 #include "cases/cli/commands.hpp"
 #include "cases/cli/common.hpp"
-#include "cases/cli/equations.hpp"
-#include "sympathy/cases/metronome_model.hpp"
+#include "cases/cli/loaded_system.hpp"
 #include "sympathy/continuation/branch_output.hpp"
 #include "sympathy/continuation/equilibrium_output.hpp"
 
@@ -76,29 +75,14 @@ int run_equilibria(const std::vector<std::string>& argv) {
   Arguments args("equilibria", argv, options, {"CASE"});
 
   Stopwatch clock;
-  const bool equations = case_file_kind(args.positional(0)) == "equations";
-  std::optional<LoadedCase> metronomes;
-  std::optional<LoadedEquations> system_file;
-  std::unique_ptr<MetronomeModel> model;
-  if (equations) {
-    system_file.emplace(load_equations(args));
-  } else {
-    metronomes.emplace(load_case(args));
-    model = std::make_unique<MetronomeModel>(metronomes->spec);
-  }
-  const std::string case_path = equations ? system_file->file.path() : metronomes->file.path();
-  const std::string params = equations ? system_file->params : metronomes->params;
-  const OdeSystem& system =
-      equations ? *system_file->build.system : static_cast<const OdeSystem&>(*model);
+  const LoadedSystem c(args);
+  const OdeSystem& system = c.system();
   for (const char* required : {"--param", "--from", "--to"})
     if (!args.has(required)) throw InputError(std::string(required) + " is required");
-  if (!equations && !args.has("--start")) throw InputError("--start is required");
+  if (!c.equations() && !args.has("--start")) throw InputError("--start is required");
   const std::string start_name = args.text("--start", "");
   const std::string parameter = *args.value("--param");
-  const auto names = system.parameter_names();
-  if (std::find(names.begin(), names.end(), parameter) == names.end())
-    throw InputError("--param " + parameter + ": not a parameter of " + case_path +
-                     "; expected one of: " + join(names));
+  c.require_parameter("--param", parameter);
 
   EquilibriumProblem problem;
   problem.parameter = system.parameter_index(parameter);
@@ -106,26 +90,12 @@ int run_equilibria(const std::vector<std::string>& argv) {
   problem.to = args.number("--to", 0.0);
   if (problem.from == problem.to) throw InputError("--from and --to: expected different values");
   if (args.has("--at")) problem.at = args.number("--at", 0.0);
-  const auto initial = args.assignments("--initial");
-  if (equations) {
-    const StartSpec* start = start_name.empty() ? nullptr : &system_file->file.start(start_name);
-    problem.start_state = system_file->file.initial_state(start, initial);
-    problem.values = system_file->values;
-    for (const auto& [option, value] : std::vector<std::pair<std::string, std::optional<double>>>{
-             {"--from", problem.from}, {"--to", problem.to}, {"--at", problem.at}}) {
-      if (!value) continue;
-      auto sets = args.assignments("--set");
-      sets.push_back({parameter, *value, option + " " + format_number(*value)});
-      system_file->file.parameter_values(params, sets);
-    }
-  } else {
-    const StartSpec& start = metronomes->file.start(start_name);
-    problem.start_state = metronomes->file.initial_state(&start, initial);
-    problem.values = model->default_parameters();
-    std::vector<double> ends{problem.from, problem.to};
-    if (problem.at) ends.push_back(*problem.at);
-    check_parameter_range(metronomes->spec, parameter, ends, "--from, --to: ");
-  }
+  std::vector<std::pair<std::string, double>> ends{{"--from", problem.from}, {"--to", problem.to}};
+  if (problem.at) ends.push_back({"--at", *problem.at});
+  c.check_range(parameter, ends);
+  const BranchSource source = c.source(start_name, args.assignments("--initial"));
+  problem.start_state = source.start_state;
+  problem.values = source.values;
   if (const std::string wrong = problem.problem_with(system); !wrong.empty())
     throw InputError("--" + wrong);
   EquilibriumOptions o;
@@ -140,13 +110,13 @@ int run_equilibria(const std::vector<std::string>& argv) {
   if (!csv_path.empty()) check_writable(csv_path, "--csv");
   if (json_path) check_writable(*json_path, "--json");
   check_distinct_outputs({{"--csv", csv_path}, {"--json", json_path.value_or("")}},
-                         {{"case file", case_path}});
+                         {{"case file", c.path()}});
 
-  std::printf("sympathy equilibria %s  params %s  start %s  %s from %g to %g\n", case_path.c_str(),
-              params.empty() ? "(none)" : params.c_str(),
+  std::printf("sympathy equilibria %s  params %s  start %s  %s from %g to %g\n", c.path().c_str(),
+              c.params().empty() ? "(none)" : c.params().c_str(),
               start_name.empty() ? "(the file's [states])" : start_name.c_str(), parameter.c_str(),
               problem.from, problem.to);
-  if (equations) std::printf("  %s\n", describe_build(system_file->build).c_str());
+  if (c.equations()) std::printf("  %s\n", c.build_note().c_str());
   std::fflush(stdout);
   std::unique_ptr<EquilibriumCsvWriter> csv;
   if (!csv_path.empty()) csv = std::make_unique<EquilibriumCsvWriter>(csv_path, system, parameter);
@@ -182,8 +152,8 @@ int run_equilibria(const std::vector<std::string>& argv) {
   std::printf("  run time %.3f s\n", clock.seconds());
   if (json_path) {
     nlohmann::json j = equilibrium_branch_json(branch);
-    j["case"] = case_path;
-    j["params_set"] = params;
+    j["case"] = c.path();
+    j["params_set"] = c.params();
     j["start"] = start_name;
     j["from"] = problem.from;
     j["to"] = problem.to;

@@ -48,7 +48,7 @@ check "... naming the window and the branch's value" \
   grep -q -- "--second-from, --second-to: the window 0.1 to 0.2 does not contain the event (c = 0.0185 on the branch)" "$work/bad.err"
 "$bin" curve "$row2" --start anti-phase --param k --from 40 --to 55 --parent "$work/anti.json" \
   --event BP1 --second c --second-from -0.1 --second-to 0.2 > /dev/null 2> "$work/bad.err"
-check "a window outside the parameter's domain is refused" grep -q -- "--second-from, --second-to: " "$work/bad.err"
+check "a window outside the parameter's domain is refused" grep -q -- "--second-from: c = -0.1 is outside the model.s domain" "$work/bad.err"
 
 # A small map: the anti-phase orbit near its BP, the BP curve in c and a 3 x 2 stability grid.
 cat > "$work/map_small.toml" <<TOML

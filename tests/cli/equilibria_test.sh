@@ -1,8 +1,8 @@
 #!/usr/bin/env bash
 # Equilibria and Hopf starts end to end on AUTO's demos (cases/examples): abc's four Hopf points
 # (exact values to 1e-8), its family born at the first (AUTO's folds of cycles) from equilibria
-# computed or read back from JSON, the family ending at its Hopf point, and bad requests refused
-# before any work.
+# computed or read back from JSON, the family ending at its Hopf point, a fold curve of it in two
+# parameters; the metronomes' s -> 0 end; bad requests refused before any work.
 # Usage: equilibria_test.sh SYMPATHY_BINARY SOURCE_DIR WORK_DIR
 set -u
 bin=$1 src=$2 work=$3
@@ -51,6 +51,22 @@ check "stopped at the Hopf point" test "$(json "$work/down.json" "
 j['stop'] == 'Hopf point' and abs(j['hopf_end']['value'] - 0.204184536) < 1e-8")" = True
 check "each fold once, no turn taken for a fold" test "$(json "$work/down.json" "
 sorted(round(e['value'], 6) for e in j['events']) == [0.211903, 0.213697]")" = True
+
+# The fold curve of abc's family in (p1, p3) from the saved branch (an equation case file in
+# curve): where it leaves its window at p3 = 1.52 exactly, its p1 is the fold the one-parameter
+# branch at p3 = 1.52 locates (1e-8: both located to about 1e-12).
+"$bin" curve "$abc" --param p1 --from 0.25 --to 0.2 --parent "$work/down.json" --event LP1 \
+  --second p3 --second-from 1.52 --second-to 1.56 --json "$work/lp.json" --quiet > "$work/lp.out" 2>&1
+check "curve on an equation case file exits 0" test $? -eq 0
+"$bin" continue "$abc" --param p1 --from 0.25 --to 0.2 --set p3=1.52 --json "$work/p3.json" \
+  --quiet > /dev/null 2>&1
+check "its end at p3 = 1.52 is the fold of the branch at p3 = 1.52" test "$(/usr/bin/python3 -c "
+import json, sys
+curve = json.load(open(sys.argv[1]))
+branch = json.load(open(sys.argv[2]))
+end = min(curve['points'], key=lambda p: p['second'])
+folds = [e['value'] for e in branch['events'] if e['type'] == 'LP']
+print(end['second'] == 1.52 and min(abs(f - end['first']) for f in folds) < 1e-8)" "$work/lp.json" "$work/p3.json")" = True
 
 # The metronomes (the reliability issue's s -> 0 branch): the in-phase orbit shrinks into the
 # hanging equilibrium as the escapement torque s goes to 0, and its branch ends at the in-phase

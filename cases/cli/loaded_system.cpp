@@ -1,0 +1,90 @@
+#include "cases/cli/loaded_system.hpp"
+
+#include <algorithm>
+
+#include "sympathy/cases/metronome_describer.hpp"
+#include "sympathy/cases/state_describer.hpp"
+
+namespace sympathy::cli {
+
+LoadedSystem::LoadedSystem(const Arguments& args) : sets_(args.assignments("--set")) {
+  if (case_file_kind(args.positional(0)) == "equations") {
+    equations_.emplace(load_equations(args));
+    describer_ = std::make_unique<StateDescriber>(*equations_->build.system);
+  } else {
+    metronomes_.emplace(load_case(args));
+    model_ = std::make_unique<MetronomeModel>(metronomes_->spec);
+    describer_ = std::make_unique<MetronomeDescriber>(*model_);
+  }
+}
+
+const std::string& LoadedSystem::path() const {
+  return equations_ ? equations_->file.path() : metronomes_->file.path();
+}
+
+const std::string& LoadedSystem::params() const {
+  return equations_ ? equations_->params : metronomes_->params;
+}
+
+const OdeSystem& LoadedSystem::system() const {
+  if (equations_) return *equations_->build.system;
+  return *model_;
+}
+
+std::string LoadedSystem::build_note() const {
+  return equations_ ? describe_build(equations_->build) : std::string();
+}
+
+void LoadedSystem::require_parameter(const std::string& option, const std::string& name) const {
+  const auto names = system().parameter_names();
+  if (std::find(names.begin(), names.end(), name) == names.end())
+    throw InputError(option + " " + name + ": not a parameter of " + path() +
+                     "; expected one of: " + join(names));
+}
+
+double LoadedSystem::value_of(const std::string& parameter) const {
+  if (metronomes_) return metronomes_->spec.get(parameter);
+  return system().parameter(equations_->values, system().parameter_index(parameter));
+}
+
+void LoadedSystem::check_range(const std::string& parameter,
+                               const std::vector<std::pair<std::string, double>>& values) const {
+  for (const auto& [option, value] : values) {
+    if (metronomes_) {
+      check_parameter_range(metronomes_->spec, parameter, {value}, option + ": ");
+    } else {
+      auto sets = sets_;
+      sets.push_back({parameter, value, option + " " + format_number(value)});
+      equations_->file.parameter_values(equations_->params, sets);
+    }
+  }
+}
+
+BranchSource LoadedSystem::source(const std::string& start,
+                                  const std::vector<Assignment>& initial) const {
+  if (equations_) {
+    const EquationCase& file = equations_->file;
+    const StartSpec* named = start.empty() ? nullptr : &file.start(start);
+    return {system(),
+            *describer_,
+            equations_->values,
+            file.initial_state(named, initial),
+            InvariantSubspace(),
+            start.empty() ? std::string("states") : start};
+  }
+  if (start.empty()) throw InputError("--start is required");
+  const StartSpec& named = metronomes_->file.start(start);
+  return {system(),
+          *describer_,
+          model_->default_parameters(),
+          metronomes_->file.initial_state(&named, initial),
+          metronomes_->file.invariant_subspace(named, *model_),
+          named.name};
+}
+
+InvariantSubspace LoadedSystem::subspace(const std::string& start) const {
+  if (equations_ || start.empty()) return InvariantSubspace();
+  return metronomes_->file.invariant_subspace(metronomes_->file.start(start), *model_);
+}
+
+}  // namespace sympathy::cli

@@ -1,0 +1,57 @@
+// A case file of either kind (a metronome case file, an equation case file), loaded for the
+// commands that run the engine on its system (continue, equilibria, curve): the system, the
+// describer of its orbits, the parameter values of --params and --set, named starts, and the
+// checks of a parameter's name and range, so that a command is written once for both kinds.
+#pragma once
+
+#include <memory>
+#include <optional>
+#include <string>
+#include <utility>
+#include <vector>
+
+#include "cases/cli/branch_run.hpp"
+#include "cases/cli/common.hpp"
+#include "cases/cli/equations.hpp"
+#include "sympathy/cases/metronome_model.hpp"
+
+namespace sympathy::cli {
+
+class LoadedSystem {
+ public:
+  // The case file of positional 0 with --params and --set (an equation case file's system
+  // compiled, or from the cache).
+  explicit LoadedSystem(const Arguments& args);
+
+  bool equations() const { return equations_.has_value(); }
+  const std::string& path() const;
+  const std::string& params() const;
+  const OdeSystem& system() const;
+  const OrbitDescriber& describer() const { return *describer_; }
+  // "system compiled in ..." or "system from the cache (...)"; empty for a metronome case file.
+  std::string build_note() const;
+
+  // InputError "OPTION NAME: not a parameter of FILE; expected one of: ..." unless it is one.
+  void require_parameter(const std::string& option, const std::string& name) const;
+  // The parameter's value in the case (with --params and --set).
+  double value_of(const std::string& parameter) const;
+  // Each (option, value) of `parameter` within its domain: an equation case file's min and max,
+  // the metronome model's physical domain. InputError naming the option.
+  void check_range(const std::string& parameter,
+                   const std::vector<std::pair<std::string, double>>& values) const;
+
+  // The start named `start` ("" is the file's [states] for an equation case file; a metronome
+  // case file needs a name: InputError "--start is required"), with `initial` on top; its
+  // invariant subspace (a metronome start's declared symmetry).
+  BranchSource source(const std::string& start, const std::vector<Assignment>& initial) const;
+  InvariantSubspace subspace(const std::string& start) const;
+
+ private:
+  std::vector<Assignment> sets_;  // --set, for range checks of an equation case file
+  std::optional<LoadedCase> metronomes_;
+  std::optional<LoadedEquations> equations_;
+  std::unique_ptr<MetronomeModel> model_;
+  std::unique_ptr<OrbitDescriber> describer_;
+};
+
+}  // namespace sympathy::cli
