@@ -6,6 +6,7 @@
 #include <filesystem>
 #include <fstream>
 #include <map>
+#include <numbers>
 #include <sstream>
 
 #include <toml++/toml.h>
@@ -245,7 +246,7 @@ EquationCase EquationCase::load(const std::string& path) {
   c.name_ = std::filesystem::path(path).stem().string();
   in.only(root, "",
           {"kind", "name", "description", "states", "parameters", "intermediates", "equations",
-           "params", "default_params", "starts"});
+           "steep", "params", "default_params", "starts"});
   const auto* kind = root.get("kind");
   if (kind == nullptr || in.string(*kind, "kind") != "equations")
     throw InputError(path +
@@ -376,6 +377,60 @@ EquationCase EquationCase::load(const std::string& path) {
     Expression tree = loader.expression(*it->second, full);
     check_names(tree, *it->second, full);
     sys.derivatives.push_back({s.name, std::move(tree)});
+  }
+
+  // Steep zones: per state, a width (and a scale) from the parameters alone, positive at the
+  // file's values.
+  if (const auto* n = root.get("steep")) {
+    std::map<std::string, SteepSpec> by_state;
+    for (const auto& [key, node] : in_file_order(in.table(*n, "steep"))) {
+      const std::string name(key->str());
+      const std::string full = "steep." + name;
+      const auto state = std::find_if(sys.states.begin(), sys.states.end(),
+                                      [&](const auto& st) { return st.name == name; });
+      if (state == sys.states.end())
+        loader.fail_key(*key, full, "a state of [states] (" + join(c.state_names()) + ")",
+                        "'" + name + "', not a state");
+      auto parameters_only = [&](const toml::node& at, const std::string& where) {
+        Expression tree = loader.expression(at, where);
+        std::vector<const Expression*> names;
+        collect_names(tree, names);
+        for (const auto* e : names)
+          if (e->name != "pi" && !(usable.count(e->name) && usable.at(e->name) == "parameter"))
+            throw InputError(loader.location(at, e->offset) + ": key '" + where +
+                             "': expected parameters, numbers and pi only (a zone's size does "
+                             "not change along the motion), got '" +
+                             e->name + "'");
+        const double value = evaluate_expression(tree, [&](const std::string& v) {
+          if (v == "pi") return std::numbers::pi;
+          for (const auto& p : sys.parameters)
+            if (p.name == v) return p.value;
+          return 0.0;
+        });
+        if (!(value > 0.0) || !std::isfinite(value))
+          in.fail(at, where,
+                  "a positive size at the file's parameter values, got " + format_number(value));
+        return tree;
+      };
+      SteepSpec spec;
+      spec.state = static_cast<int>(state - sys.states.begin());
+      if (node->is_table()) {
+        const auto& t = *node->as_table();
+        in.only(t, full + ".", {"width", "scale"});
+        const auto* width = t.get("width");
+        if (width == nullptr)
+          throw InputError(in.where(*node) + ": key '" + full +
+                           ".width' is missing: expected the zone's half-width");
+        spec.width = parameters_only(*width, full + ".width");
+        if (const auto* scale = t.get("scale"))
+          spec.scale = parameters_only(*scale, full + ".scale");
+      } else {
+        spec.width = parameters_only(*node, full);
+      }
+      by_state[name] = std::move(spec);
+    }
+    for (const auto& st : sys.states)
+      if (by_state.count(st.name)) sys.steep.push_back(std::move(by_state[st.name]));
   }
 
   // Parameter sets and starts, as in metronome case files.

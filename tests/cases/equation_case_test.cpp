@@ -52,8 +52,32 @@ void expect_contains(const std::string& message, const std::string& part) {
       << "message: " << message << "\nexpected to contain: " << part;
 }
 
+// [steep]: per state, a width (and optionally a scale) from the parameters alone, positive at
+// the file's values; each wrong entry refused where it stands.
+TEST(EquationCase, SteepZones) {
+  const auto c = EquationCase::load(
+      write_test_file("sympathy_equation_case_test", ".toml",
+                      kValid + "[steep]\ny = \"a/50\"\nx = { width = \"b*pi\", scale = \"2\" }\n"));
+  ASSERT_EQ(c.system().steep.size(), 2u);
+  EXPECT_EQ(c.system().steep[0].state, 0);  // in state order, not the file's
+  EXPECT_TRUE(c.system().steep[0].scale.has_value());
+  EXPECT_EQ(c.system().steep[1].state, 1);
+  EXPECT_FALSE(c.system().steep[1].scale.has_value());
+  expect_contains(error_of_file(kValid + "[steep]\ny = \"x/50\"\n"),
+                  ".toml:14:6: key 'steep.y': expected parameters, numbers and pi only (a zone's "
+                  "size does not change along the motion), got 'x'");
+  expect_contains(error_of_file(kValid + "[steep]\nr2 = \"a\"\n"),
+                  ".toml:14:1: key 'steep.r2': expected a state of [states] (x, y), got 'r2', not "
+                  "a state");
+  expect_contains(error_of_file(kValid + "[steep]\ny = \"a - 1\"\n"),
+                  ".toml:14: key 'steep.y': expected a positive size at the file's parameter "
+                  "values, got -0.5");
+  expect_contains(error_of_file(kValid + "[steep]\ny = { scale = \"1\" }\n"),
+                  "key 'steep.y.width' is missing: expected the zone's half-width");
+}
+
 TEST(EquationCase, ExamplesLoad) {
-  for (const char* name : {"hopf", "lrz", "abc", "lcbp"}) {
+  for (const char* name : {"hopf", "lrz", "abc", "lcbp", "row2_equations"}) {
     const auto c = EquationCase::load(example(name));
     EXPECT_EQ(c.name(), name);
     EXPECT_EQ(c.system().derivatives.size(), c.system().states.size());

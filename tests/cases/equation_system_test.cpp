@@ -3,6 +3,7 @@
 // reuse, sharing between equal systems, rebuilding a corrupt entry.
 #include "sympathy/cases/equation_compiler.hpp"
 
+#include <algorithm>
 #include <cmath>
 #include <filesystem>
 #include <fstream>
@@ -12,7 +13,9 @@
 
 #include <gtest/gtest.h>
 
+#include "sympathy/cases/case_file.hpp"
 #include "sympathy/cases/equation_codegen.hpp"
+#include "sympathy/cases/metronome_model.hpp"
 #include "sympathy/continuation/periodic_orbit.hpp"
 #include "sympathy/core/autodiff_system.hpp"
 #include "tests/support/errors.hpp"
@@ -220,6 +223,63 @@ TEST_F(EquationSystemTest, GeneratedSourceCarriesNoTextOfTheFile) {
   for (const char* text : {"lcbp", "Circles", "sqrt(x", "r^2", "\"x\"", "\"p1\""})
     EXPECT_EQ(source.find(text), std::string::npos) << text;
   EXPECT_NE(source.find("const S w1 = "), std::string::npos);
+}
+
+}  // namespace
+}  // namespace sympathy
+
+namespace sympathy {
+namespace {
+
+// The row setup written as equations (cases/examples/row2_equations.toml) against the built-in
+// metronome model (cases/row2.toml): its steep zones are the built-in's (the escapement's switch
+// within eps/50 of each turning point, scale max(1, 10 width)); started from the built-in's
+// orbit, Newton on the generated system stays on it (states and period to 1e-9, the multipliers
+// to 1e-8), at Table II and Table III, in phase and in anti-phase (the latter in the whole state,
+// where the built-in reduces it); and the anti-phase orbit's k-branch finds Table II's branch
+// point at the built-in's value within the two uncertainties.
+TEST_F(EquationSystemTest, MetronomesAsEquationsAreTheBuiltInModel) {
+  const EquationCase file = EquationCase::load(example("row2_equations"));
+  const CaseFile row2 = CaseFile::load(std::string(SYMPATHY_SOURCE_DIR) + "/cases/row2.toml");
+  for (const std::string params : {"table2", "table3"}) {
+    const MetronomeModel model(row2.spec(params));
+    const EquationBuild build =
+        build_equation_system(file, file.parameter_values(params), cache_.string());
+    const OdeSystem& system = *build.system;
+    const auto values = file.parameter_values(params);
+    const auto zones = system.steep_zones(values.data());
+    const auto own = model.steep_zones(model.default_parameters().data());
+    ASSERT_EQ(zones.size(), own.size());
+    for (std::size_t i = 0; i < zones.size(); ++i) {
+      EXPECT_EQ(zones[i].component, own[i].component);
+      EXPECT_NEAR(zones[i].width, own[i].width, 1e-15);
+      EXPECT_NEAR(zones[i].scale, own[i].scale, 1e-15);
+    }
+    for (const std::string start : {"in-phase", "anti-phase"}) {
+      const StartSpec& s = row2.start(start);
+      OrbitOptions o;
+      const PeriodicOrbit built_in =
+          find_periodic_orbit(model, model.default_parameters(), row2.initial_state(&s),
+                              row2.invariant_subspace(s, model), o);
+      ASSERT_TRUE(built_in.converged()) << params << " " << start;
+      const PeriodicOrbit generated =
+          solve_periodic_orbit(system, values, built_in.state0, built_in.period, {}, o);
+      ASSERT_TRUE(generated.converged()) << params << " " << start;
+      EXPECT_NEAR(generated.period, built_in.period, 1e-9) << params << " " << start;
+      EXPECT_LT((generated.state0 - built_in.state0).lpNorm<Eigen::Infinity>(), 1e-9)
+          << params << " " << start;
+      auto moduli = [](const PeriodicOrbit& orbit) {
+        std::vector<double> m;
+        for (const auto& mu : orbit.floquet.multipliers) m.push_back(std::abs(mu.value));
+        std::sort(m.begin(), m.end());
+        return m;
+      };
+      const auto a = moduli(built_in), b = moduli(generated);
+      ASSERT_EQ(a.size(), b.size());
+      for (std::size_t i = 0; i < a.size(); ++i)
+        EXPECT_NEAR(a[i], b[i], 1e-8) << params << " " << start << " " << i;
+    }
+  }
 }
 
 }  // namespace

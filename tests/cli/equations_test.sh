@@ -92,4 +92,17 @@ to = 0.1
 TOML
 "$bin" study "$work/study.toml" --out "$work/study" 2> "$work/study.err"
 check "study refuses an equation case file for now, naming the kind" grep -q "key 'kind': expected a metronome case file here" "$work/study.err"
+# The row setup as equations (cases/examples/row2_equations.toml, the escapement's switch declared
+# in [steep]) finds the anti-phase orbit's branch point of Table II where the built-in model does,
+# within their reported uncertainties.
+for f in "$src/cases/examples/row2_equations.toml" "$src/cases/row2.toml"; do
+  "$bin" continue "$f" --start anti-phase --param k --from 46.5 --to 47.5 --quiet \
+    --json "$work/$(basename "$f" .toml)_bp.json" > /dev/null 2>&1
+done
+check "the metronomes as equations: the same BP as the built-in model" test "$(/usr/bin/python3 -c "
+import json, sys
+a, b = (json.load(open(f))['events'] for f in sys.argv[1:3])
+print(len(a) == 1 and len(b) == 1 and a[0]['type'] == b[0]['type'] == 'BP' and
+      abs(a[0]['value'] - b[0]['value']) <= a[0]['uncertainty'] + b[0]['uncertainty'])" \
+  "$work/row2_equations_bp.json" "$work/row2_bp.json")" = True
 exit "$failures"

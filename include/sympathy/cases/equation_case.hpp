@@ -15,6 +15,9 @@
 //   [equations]                       # one per state: its time derivative
 //   x = "mu*x - w*y - x*r2"
 //   y = "w*x + mu*y - y*r2"
+//   [steep]                           # optional: states near whose zero f changes steeply
+//   vth1 = "eps/50"                   # the zone's half-width (an expression of parameters), or
+//   vth2 = { width = "eps/50", scale = "1" }   # with the state's typical size away from it
 //   [params.NAME]                     # optional parameter sets, as in metronome case files
 //   [starts.NAME]                     # optional named starts: state values (others: [states])
 //   default_params = "NAME"
@@ -60,6 +63,15 @@ struct NamedExpression {
   Expression tree;
 };
 
+// A state near whose zero the equations change steeply (an escapement switching with the sign of
+// a velocity): the flow resolves its crossings (SteepZone, core/ode_system.hpp). Width and scale
+// are expressions of the parameters; without a scale, max(1, 10 width).
+struct SteepSpec {
+  int state = 0;
+  Expression width;
+  std::optional<Expression> scale;
+};
+
 // A checked system of equations: what code generation needs, and nothing of the file's text.
 struct EquationSystem {
   std::vector<EquationState> states;
@@ -67,6 +79,7 @@ struct EquationSystem {
   std::vector<NamedExpression> intermediates;  // in evaluation order
   std::vector<NamedExpression> derivatives;    // one per state, in state order
   bool uses_time = false;                      // does any expression use t?
+  std::vector<SteepSpec> steep;                // [steep], in state order
 };
 
 class EquationCase {
