@@ -9,6 +9,8 @@ namespace sympathy {
 
 namespace {
 
+constexpr double kOnTheCircle = 1e-3;
+
 bool is_real(std::complex<double> mu) {
   return std::abs(mu.imag()) <= 1e-6 * std::abs(mu);
 }
@@ -67,6 +69,17 @@ std::vector<Bifurcation> detect(const TrackedMultipliers& tracked, const Continu
   std::vector<Bifurcation> found;
   auto report = [&](Bifurcation e) {
     e.after_point = a.index;
+    // A located crossing has its multiplier on the unit circle (to the location's tolerance times
+    // the multiplier's speed: far below 1e-3 on every branch measured); one that is not there was
+    // a pairing of unresolved multipliers across the step, not a crossing.
+    if (e.located() && e.trust == EventTrust::Trusted &&
+        std::abs(std::abs(e.crossing) - 1.0) > kOnTheCircle) {
+      e.trust = EventTrust::CrossingNotResolved;
+      std::ostringstream msg;
+      msg << "not trusted: the multiplier followed across is " << std::abs(e.crossing)
+          << " in modulus at the located point, not on the unit circle (multipliers not resolved)";
+      e.note += (e.note.empty() ? "" : "; ") + msg.str();
+    }
     const double worst = std::max(
         {a.orbit.floquet.trivial_error, b.orbit.floquet.trivial_error, e.floquet.trivial_error});
     if (worst > trust_limit) {

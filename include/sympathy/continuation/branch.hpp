@@ -54,6 +54,9 @@ enum class EventTrust {
   TrivialErrorTooLarge,  // a trivial-multiplier error above the trust limit near it
   NoCrossingMultiplier,  // a fold with no multiplier through +1: the branch turned back where
                          // it degenerates (an orbit shrinking into an equilibrium, a Hopf point)
+  CrossingNotResolved,   // the multiplier followed across is not on the unit circle where the
+                         // event was located (multipliers of 1e-17 "crossing" on long-period
+                         // orbits): the computation does not resolve it
 };
 
 struct Bifurcation {
