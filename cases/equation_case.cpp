@@ -245,8 +245,8 @@ EquationCase EquationCase::load(const std::string& path) {
   c.path_ = path;
   c.name_ = std::filesystem::path(path).stem().string();
   in.only(root, "",
-          {"kind", "name", "description", "states", "parameters", "intermediates", "equations",
-           "steep", "params", "default_params", "starts"});
+          {"kind", "name", "description", "plugin", "states", "parameters", "intermediates",
+           "equations", "steep", "params", "default_params", "starts"});
   const auto* kind = root.get("kind");
   if (kind == nullptr || in.string(*kind, "kind") != "equations")
     throw InputError(path +
@@ -351,32 +351,56 @@ EquationCase EquationCase::load(const std::string& path) {
     }
   }
 
-  // One equation per state, in state order.
-  const auto& equations = required("equations", "one expression per state, STATE = \"...\"");
-  std::map<std::string, const toml::node*> by_state;
-  for (const auto& [key, node] : in_file_order(equations)) {
-    const std::string name(key->str());
-    const bool is_state = std::any_of(sys.states.begin(), sys.states.end(),
-                                      [&](const auto& s) { return s.name == name; });
-    if (!is_state) {
-      std::vector<std::string> states;
-      for (const auto& s : sys.states) states.push_back(s.name);
-      loader.fail_key(*key, "equations." + name,
-                      "an equation for a state of [states] (" + join(states) + ")",
-                      "'" + name + "', not a state");
-    }
-    by_state[name] = node;
+  // A C++ plug-in instead of equations: its source beside the case file (or where it says).
+  if (const auto* n = root.get("plugin")) {
+    const std::string name = in.string(*n, "plugin");
+    for (const char* table : {"intermediates", "equations", "steep"})
+      if (root.get(table) != nullptr)
+        in.fail(*root.get(table), table,
+                "no [" + std::string(table) + "] in a case file with a plug-in (its equations " +
+                    "and steep zones are the plug-in's C++, " + name + ")");
+    const std::filesystem::path source =
+        std::filesystem::path(path).parent_path() / std::filesystem::path(name);
+    std::error_code ec;
+    if (name.size() < 5 || name.substr(name.size() - 4) != ".cpp" ||
+        !std::filesystem::is_regular_file(source, ec))
+      in.fail(*n, "plugin",
+              "the name of a C++ source file (.cpp) beside the case file or relative to it, got '" +
+                  name + "'" + (std::filesystem::exists(source, ec) ? "" : " (no such file)"));
+    if (std::filesystem::file_size(source, ec) > kMaxEquationFileBytes)
+      in.fail(*n, "plugin", "a source of at most 1 MiB");
+    c.plugin_ = source.string();
   }
-  for (const auto& s : sys.states) {
-    const auto it = by_state.find(s.name);
-    if (it == by_state.end())
-      throw InputError(path + ":" + std::to_string(equations.source().begin.line) +
-                       ": table [equations]: expected an equation for every state, got none for '" +
-                       s.name + "' (give " + s.name + " = \"...\", its time derivative)");
-    const std::string full = "equations." + s.name;
-    Expression tree = loader.expression(*it->second, full);
-    check_names(tree, *it->second, full);
-    sys.derivatives.push_back({s.name, std::move(tree)});
+
+  // One equation per state, in state order (none for a plug-in).
+  if (c.plugin_.empty()) {
+    const auto& equations = required("equations", "one expression per state, STATE = \"...\"");
+    std::map<std::string, const toml::node*> by_state;
+    for (const auto& [key, node] : in_file_order(equations)) {
+      const std::string name(key->str());
+      const bool is_state = std::any_of(sys.states.begin(), sys.states.end(),
+                                        [&](const auto& s) { return s.name == name; });
+      if (!is_state) {
+        std::vector<std::string> states;
+        for (const auto& s : sys.states) states.push_back(s.name);
+        loader.fail_key(*key, "equations." + name,
+                        "an equation for a state of [states] (" + join(states) + ")",
+                        "'" + name + "', not a state");
+      }
+      by_state[name] = node;
+    }
+    for (const auto& s : sys.states) {
+      const auto it = by_state.find(s.name);
+      if (it == by_state.end())
+        throw InputError(
+            path + ":" + std::to_string(equations.source().begin.line) +
+            ": table [equations]: expected an equation for every state, got none for '" + s.name +
+            "' (give " + s.name + " = \"...\", its time derivative)");
+      const std::string full = "equations." + s.name;
+      Expression tree = loader.expression(*it->second, full);
+      check_names(tree, *it->second, full);
+      sys.derivatives.push_back({s.name, std::move(tree)});
+    }
   }
 
   // Steep zones: per state, a width (and a scale) from the parameters alone, positive at the

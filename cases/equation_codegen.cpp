@@ -146,12 +146,11 @@ constexpr const char* kPrologue =
 #include <utility>
 #include <vector>
 
-#include "sympathy/core/autodiff_system.hpp"
-#include "sympathy/core/binary_interface.hpp"
-
 #ifndef SYMPATHY_EQUATIONS_TAG
 #error "SYMPATHY_EQUATIONS_TAG (the cache key) must be defined"
 #endif
+
+#include "sympathy/core/plugin.hpp"
 
 namespace {
 
@@ -188,63 +187,21 @@ S equations_sign_smooth(const S& x, const S& eps) {
   return tanh(x / eps);
 }
 
-class GeneratedSystem final : public sympathy::AutoDiffSystem<GeneratedSystem> {
+class GeneratedSystem final : public sympathy::PluginSystem<GeneratedSystem> {
  public:
-  GeneratedSystem(std::vector<std::string> states, std::vector<sympathy::NamedParameter> named,
-                 std::vector<double> values)
-      : states_(std::move(states)) {
-    set_parameter_layout(std::move(named), std::move(values));
-  }
-  std::vector<std::string> state_names() const override { return states_; }
+  using PluginSystem::PluginSystem;
 )";
 
-constexpr const char* kEpilogue = R"(
- private:
-  std::vector<std::string> states_;
-};
+constexpr const char* kEpilogue = R"(};
 
 }  // namespace
 
-extern "C" {
-
-__attribute__((visibility("default"))) int sympathy_equations_abi() {
-  return 2;
-}
-
-__attribute__((visibility("default"))) const char* sympathy_equations_binary_interface() {
-  return sympathy::kBinaryInterface;
-}
-
-__attribute__((visibility("default"))) const char* sympathy_equations_tag() {
-  return SYMPATHY_EQUATIONS_TAG;
-}
-
-__attribute__((visibility("default"))) void* sympathy_equations_create(
-    const char* const* states, int n, const char* const* parameters, const double* values,
-    int m) {
-  if (n != GeneratedSystem::kDimension || m != GeneratedSystem::kParameters) return nullptr;
-  try {
-    std::vector<std::string> names(states, states + n);
-    std::vector<sympathy::NamedParameter> named;
-    for (int i = 0; i < m; ++i) named.push_back({parameters[i], {i}, 1.0});
-    return static_cast<sympathy::OdeSystem*>(
-        new GeneratedSystem(std::move(names), std::move(named), std::vector<double>(values, values + m)));
-  } catch (const std::exception&) {
-    return nullptr;
-  }
-}
-
-__attribute__((visibility("default"))) void sympathy_equations_destroy(void* system) {
-  delete static_cast<sympathy::OdeSystem*>(system);
-}
-
-}  // extern "C"
+SYMPATHY_PLUGIN(GeneratedSystem)
 )";
 
 }  // namespace
 
 std::string generate_equation_source(const EquationSystem& system) {
-  static_assert(kEquationAbi == 2, "the epilogue's sympathy_equations_abi returns 2");
   const Emitter emitter(system);
   const std::size_t n = system.states.size(), m = system.parameters.size();
   std::string s = kPrologue;

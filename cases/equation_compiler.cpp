@@ -125,7 +125,7 @@ int run(const std::vector<std::string>& argv, const fs::path& log) {
 // Compiles `source` into the cache entry `key` (KEY.cpp, KEY.so, KEY.manifest) against the
 // engine headers in `include`.
 void compile(const fs::path& dir, const std::string& key, const std::string& source,
-             const std::string& include) {
+             const std::string& include, const std::string& what) {
   write_file_atomically((dir / (key + ".cpp")).string(), source);
   const std::string unique = key + "." + std::to_string(::getpid());
   const fs::path library = dir / (unique + ".so.tmp");
@@ -144,7 +144,7 @@ void compile(const fs::path& dir, const std::string& key, const std::string& sou
     std::string output = read_file(dir / (key + ".log")).value_or("");
     if (output.size() > 2000) output = output.substr(0, 2000) + "\n...";
     throw std::runtime_error(
-        std::string("compiling an equation case file's system failed (") +
+        std::string(what) + " failed (" +
         (status < 0 ? "could not run " : "exit status " + std::to_string(status) + " of ") +
         toolchain::kCompiler + "); output in " + (dir / (key + ".log")).string() + ":\n" + output);
   }
@@ -236,8 +236,19 @@ EquationBuild build_equation_system(const EquationCase& equations, const Eigen::
     throw std::runtime_error("cannot create the equation cache directory " + dir.string() +
                              (ec ? ": " + ec.message() : ""));
 
-  const std::string source = generate_equation_source(system);
+  // A plug-in's source as its author wrote it (it is code, and compiled as such); a file of
+  // equations' generated from its trees.
+  std::string source;
+  if (!equations.plugin().empty()) {
+    const auto text = read_file(equations.plugin());
+    if (!text) throw std::runtime_error("cannot read the plug-in " + equations.plugin());
+    source =
+        "// sympathy plug-in " + fs::path(equations.plugin()).filename().string() + "\n" + *text;
+  } else {
+    source = generate_equation_source(system);
+  }
   EquationBuild build;
+  build.plugin = equations.plugin();
   build.key = cache_key(source);
   build.library = (dir / (build.key + ".so")).string();
 
@@ -249,7 +260,9 @@ EquationBuild build_equation_system(const EquationCase& equations, const Eigen::
     if (!lib) {
       if (problem != "absent") build.rebuilt_because = problem;
       build.include_dir = engine_include_dir();
-      compile(dir, build.key, source, build.include_dir);
+      compile(dir, build.key, source, build.include_dir,
+              build.plugin.empty() ? "compiling an equation case file's system"
+                                   : "compiling the plug-in " + build.plugin);
       build.compiled = true;
       problem = entry_problem(dir, build.key);
       if (problem.empty()) lib = open_library(build.library, build.key, problem);

@@ -25,9 +25,13 @@ LoadedEquations load_equations(const Arguments& args) {
 std::string describe_build(const EquationBuild& build) {
   char seconds[32];
   std::snprintf(seconds, sizeof seconds, "%.2f", build.seconds);
-  std::string s = build.compiled ? "system compiled in " + std::string(seconds) +
+  const std::string what = build.plugin.empty() ? "system" : "plug-in " + build.plugin;
+  std::string s = build.compiled ? what + " compiled in " + std::string(seconds) +
                                        " s against the headers in " + build.include_dir
-                                 : std::string("system from the cache");
+                                 : what + " from the cache";
+  // A plug-in is code: say so each time it runs.
+  if (!build.plugin.empty())
+    s += " (a plug-in is C++ code, run as it is: use only plug-ins you trust)";
   s += " (" + build.library + ")";
   if (!build.rebuilt_because.empty()) s += "; the entry was rebuilt: " + build.rebuilt_because;
   return s;

@@ -76,6 +76,23 @@ TEST(EquationCase, SteepZones) {
                   "key 'steep.y.width' is missing: expected the zone's half-width");
 }
 
+// plugin = "FILE.cpp": a C++ source beside the case file instead of equations; a file that also
+// has equations, or names no .cpp file that exists, is refused where the key stands.
+TEST(EquationCase, PluginInsteadOfEquations) {
+  const auto c = EquationCase::load(example("vdp_plugin"));
+  EXPECT_EQ(c.plugin(), std::string(SYMPATHY_SOURCE_DIR) + "/cases/examples/vdp_plugin.cpp");
+  EXPECT_TRUE(c.system().derivatives.empty());
+  const std::string states = "kind = \"equations\"\nplugin = \"PLUGIN\"\n[states]\nx = 1.0\n";
+  expect_contains(error_of_file(replaced(states, "PLUGIN", "missing.cpp")),
+                  ":2: key 'plugin': expected the name of a C++ source file (.cpp) beside the "
+                  "case file or relative to it, got 'missing.cpp' (no such file)");
+  expect_contains(error_of_file(replaced(states, "PLUGIN", "/etc/passwd")),
+                  "key 'plugin': expected the name of a C++ source file (.cpp)");
+  const std::string source = write_test_file("sympathy_equation_case_test", ".cpp", "// empty\n");
+  expect_contains(error_of_file(replaced(states, "PLUGIN", source) + "[equations]\nx = \"-x\"\n"),
+                  "key 'equations': expected no [equations] in a case file with a plug-in");
+}
+
 TEST(EquationCase, ExamplesLoad) {
   for (const char* name : {"hopf", "lrz", "abc", "lcbp", "row2_equations"}) {
     const auto c = EquationCase::load(example(name));

@@ -284,3 +284,29 @@ TEST_F(EquationSystemTest, MetronomesAsEquationsAreTheBuiltInModel) {
 
 }  // namespace
 }  // namespace sympathy
+
+namespace sympathy {
+namespace {
+
+// A C++ plug-in (cases/examples/vdp_plugin.cpp, the van der Pol oscillator) compiled and loaded
+// the way generated systems are: its limit cycle at mu = 0.1 has period 2 pi (1 + mu^2 / 16)
+// to O(mu^4) (Lindstedt-Poincare; the mu^4 term is 2 pi 0.0016 mu^4 = 1e-6 here), the second
+// build comes from the cache.
+TEST_F(EquationSystemTest, PluginIsCompiledAndLoaded) {
+  const EquationCase file = EquationCase::load(example("vdp_plugin"));
+  const EquationBuild first = build(file);
+  EXPECT_TRUE(first.compiled);
+  EXPECT_EQ(first.plugin, file.plugin());
+  const OdeSystem& system = *first.system;
+  EXPECT_EQ(system.state_names(), (std::vector<std::string>{"x", "y"}));
+  EXPECT_EQ(system.parameter_names(), (std::vector<std::string>{"mu"}));
+  const PeriodicOrbit orbit =
+      find_periodic_orbit(system, file.parameter_values(), Eigen::Vector2d(2.0, 0.0), {}, {});
+  ASSERT_TRUE(orbit.converged());
+  const double mu = 0.1;
+  EXPECT_NEAR(orbit.period, 2 * std::numbers::pi * (1 + mu * mu / 16), 2e-6);
+  EXPECT_FALSE(build(file).compiled);
+}
+
+}  // namespace
+}  // namespace sympathy

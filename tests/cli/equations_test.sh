@@ -105,4 +105,11 @@ a, b = (json.load(open(f))['events'] for f in sys.argv[1:3])
 print(len(a) == 1 and len(b) == 1 and a[0]['type'] == b[0]['type'] == 'BP' and
       abs(a[0]['value'] - b[0]['value']) <= a[0]['uncertainty'] + b[0]['uncertainty'])" \
   "$work/row2_equations_bp.json" "$work/row2_bp.json")" = True
+# A C++ plug-in (cases/examples/vdp_plugin.toml names vdp_plugin.cpp): compiled like generated
+# code, and said to be code each time it runs; the van der Pol cycle at mu = 0.1, period
+# 2 pi (1 + mu^2/16) = 6.28711 (Lindstedt-Poincare, to 1e-6).
+"$bin" orbit "$src/cases/examples/vdp_plugin.toml" --json "$work/vdp.json" > "$work/vdp.out" 2>&1
+check "orbit on a plug-in case file exits 0" test $? -eq 0
+check "... saying a plug-in is code" grep -q "plug-in .*vdp_plugin.cpp compiled in .*a plug-in is C++ code" "$work/vdp.out"
+check "... and its period is van der Pol's" test "$(json_value "$work/vdp.json" "abs(j['period'] - 6.287111) < 2e-6")" = True
 exit "$failures"

@@ -22,6 +22,10 @@
 //   [starts.NAME]                     # optional named starts: state values (others: [states])
 //   default_params = "NAME"
 //
+// Or a C++ plug-in instead of [intermediates], [equations] and [steep]: `plugin = "FILE.cpp"`,
+// a source beside the case file defining a PluginSystem (core/plugin.hpp) whose states and
+// parameters are the file's, in its order. A plug-in is code: it is compiled and run as it is.
+//
 // Names: the time `t` and the constant `pi` are built in. Every name of the file is an ASCII
 // identifier (a letter, then letters, digits and '_'), at most 64 characters, no "__", not a
 // function of the grammar, not t or pi, not a C++ keyword, and unique across states,
@@ -88,6 +92,9 @@ class EquationCase {
   static EquationCase load(const std::string& path);
 
   const std::string& path() const { return path_; }
+  // The C++ plug-in's source (`plugin = "FILE.cpp"`, resolved beside the case file); empty for a
+  // file of equations.
+  const std::string& plugin() const { return plugin_; }
   const std::string& name() const { return name_; }
   const std::string& description() const { return description_; }
   const EquationSystem& system() const { return system_; }
@@ -110,6 +117,7 @@ class EquationCase {
 
  private:
   std::string path_;
+  std::string plugin_;
   std::string name_;
   std::string description_;
   std::string default_params_;

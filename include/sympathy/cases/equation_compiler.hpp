@@ -38,6 +38,7 @@ struct EquationBuild {
   std::string include_dir;                  // compiled: the engine headers it was compiled with
   std::string rebuilt_because;              // why an entry present was not used ("" if none)
   double seconds = 0.0;                     // generating, compiling (if) and loading
+  std::string plugin;                       // the C++ plug-in's source ("" for equations)
 };
 
 // The system of `equations` with parameter values `values` as its defaults (in the case file's
