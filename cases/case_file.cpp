@@ -75,8 +75,8 @@ CaseFile CaseFile::load(const std::string& path) {
     const std::string k = in.string(*kind, "kind");
     if (k == "equations")
       in.fail(*kind, "kind",
-              "a metronome case file here (this command reads only those for now; simulate, orbit "
-              "and continue read equation case files)");
+              "a metronome case file here (this command reads only those for now; simulate, "
+              "orbit, continue, equilibria, curve and study read equation case files)");
     if (k != "metronomes") in.fail(*kind, "kind", "\"equations\" or \"metronomes\"");
   }
   in.only(root, "",

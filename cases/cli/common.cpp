@@ -33,9 +33,14 @@ std::vector<OptionSpec> integrator_options() {
 }
 
 LoadedCase load_case(const Arguments& args) {
-  LoadedCase c{CaseFile::load(args.positional(0)), "", {}};
-  c.params = args.text("--params", c.file.default_parameter_set());
-  c.spec = c.file.spec(c.params, args.assignments("--set"));
+  return load_case(args.positional(0), args.text("--params", ""), args.assignments("--set"));
+}
+
+LoadedCase load_case(const std::string& path, const std::string& params,
+                     const std::vector<Assignment>& sets) {
+  LoadedCase c{CaseFile::load(path), "", {}};
+  c.params = params.empty() ? c.file.default_parameter_set() : params;
+  c.spec = c.file.spec(c.params, sets);
   return c;
 }
 

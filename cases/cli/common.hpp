@@ -42,6 +42,9 @@ Accuracy accuracy(const Arguments& args);
 void apply_accuracy(Accuracy accuracy, OrbitOptions& options);
 
 LoadedCase load_case(const Arguments& args);
+// The same for the file at `path`, parameter set `params` ("" for the file's default) and `sets`.
+LoadedCase load_case(const std::string& path, const std::string& params,
+                     const std::vector<Assignment>& sets);
 // The integrator options --rtol, --atol, --method and --sensitivities on top of `defaults` (for
 // orbit and continue: the accuracy preset's); without --linear-solver, defaults.linear_solver (by
 // default Automatic: the flow chooses, see LinearSolver).

@@ -13,13 +13,18 @@
 namespace sympathy::cli {
 
 LoadedEquations load_equations(const Arguments& args) {
-  EquationCase file = EquationCase::load(args.positional(0));
-  const std::string params = args.text("--params", file.default_parameter_set());
-  ParameterValues values = file.parameter_values(params, args.assignments("--set"));
+  return load_equations(args.positional(0), args.text("--params", ""), args.assignments("--set"));
+}
+
+LoadedEquations load_equations(const std::string& path, const std::string& params,
+                               const std::vector<Assignment>& sets) {
+  EquationCase file = EquationCase::load(path);
+  const std::string set = params.empty() ? file.default_parameter_set() : params;
+  ParameterValues values = file.parameter_values(set, sets);
   // Everything is checked before the compiler runs; a compiler failure is not the user's input
   // (a missing compiler or headers, or a bug of the generator) and says so.
   EquationBuild build = build_equation_system(file, values);
-  return {std::move(file), params, std::move(values), std::move(build)};
+  return {std::move(file), set, std::move(values), std::move(build)};
 }
 
 std::string describe_build(const EquationBuild& build) {

@@ -21,6 +21,9 @@ struct LoadedEquations {
 
 // The file of positional 0, the parameter values of --params and --set, and its system.
 LoadedEquations load_equations(const Arguments& args);
+// The same for the file at `path`, parameter set `params` ("" for the file's default) and `sets`.
+LoadedEquations load_equations(const std::string& path, const std::string& params,
+                               const std::vector<Assignment>& sets);
 
 // "system compiled in 1.23 s against the headers in DIR (CACHE/KEY.so)" or "system from the
 // cache (CACHE/KEY.so)", with why an entry present was rebuilt.

@@ -7,12 +7,17 @@
 
 namespace sympathy::cli {
 
-LoadedSystem::LoadedSystem(const Arguments& args) : sets_(args.assignments("--set")) {
-  if (case_file_kind(args.positional(0)) == "equations") {
-    equations_.emplace(load_equations(args));
+LoadedSystem::LoadedSystem(const Arguments& args)
+    : LoadedSystem(args.positional(0), args.text("--params", ""), args.assignments("--set")) {}
+
+LoadedSystem::LoadedSystem(const std::string& path, const std::string& params,
+                           const std::vector<Assignment>& sets)
+    : sets_(sets) {
+  if (case_file_kind(path) == "equations") {
+    equations_.emplace(load_equations(path, params, sets));
     describer_ = std::make_unique<StateDescriber>(*equations_->build.system);
   } else {
-    metronomes_.emplace(load_case(args));
+    metronomes_.emplace(load_case(path, params, sets));
     model_ = std::make_unique<MetronomeModel>(metronomes_->spec);
     describer_ = std::make_unique<MetronomeDescriber>(*model_);
   }

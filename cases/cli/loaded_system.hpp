@@ -22,6 +22,10 @@ class LoadedSystem {
   // The case file of positional 0 with --params and --set (an equation case file's system
   // compiled, or from the cache).
   explicit LoadedSystem(const Arguments& args);
+  // The case file at `path` with parameter set `params` ("" for the file's default) and `sets` on
+  // top (a study file's branch).
+  LoadedSystem(const std::string& path, const std::string& params,
+               const std::vector<Assignment>& sets);
 
   bool equations() const { return equations_.has_value(); }
   const std::string& path() const;

@@ -10,8 +10,8 @@
 
 #include "cases/cli/branch_run.hpp"
 #include "cases/cli/commands.hpp"
+#include "cases/cli/loaded_system.hpp"
 #include "cases/cli/study_file.hpp"
-#include "sympathy/cases/metronome_describer.hpp"
 #include "sympathy/continuation/branch_output.hpp"
 
 namespace sympathy::cli {
@@ -29,22 +29,25 @@ int run_study(const std::vector<std::string>& argv) {
   if (jobs < 1) throw InputError("--jobs: expected a positive integer");
   std::filesystem::create_directories(out);
 
-  // Every branch's case, set and start checked before anything is computed.
-  const CaseFile file = CaseFile::load(study.case_path);
-  std::vector<LoadedCase> cases;
+  // Every branch's case, set and start checked before anything is computed: a metronome case
+  // file or an equation case file (compiled once, its values per branch).
+  std::vector<std::unique_ptr<LoadedSystem>> systems;
+  std::vector<BranchSource> sources;
   for (const auto& b : study.branches) {
-    LoadedCase c{file, study.params.empty() ? file.default_parameter_set() : study.params, {}};
-    c.spec = file.spec(c.params, b.sets);
-    if (!c.spec.has_parameter(study.parameter))
+    auto c = std::make_unique<LoadedSystem>(study.case_path, study.params, b.sets);
+    const auto names = c->system().parameter_names();
+    if (std::find(names.begin(), names.end(), study.parameter) == names.end())
       throw InputError(study.path + ": parameter '" + study.parameter + "' is not one of " +
-                       file.path() + "'s: " + join(c.spec.parameter_names()));
-    file.start(b.request.start);
-    std::vector<double> ends{b.request.from, b.request.to};
-    if (b.request.at) ends.push_back(*b.request.at);
-    check_parameter_range(c.spec, study.parameter, ends,
-                          study.path + ": branch '" + b.name + "': ");
-    cases.push_back(std::move(c));
+                       c->path() + "'s: " + join(names));
+    std::vector<std::pair<std::string, double>> ends{
+        {study.path + ": branch '" + b.name + "': from", b.request.from},
+        {study.path + ": branch '" + b.name + "': to", b.request.to}};
+    if (b.request.at) ends.push_back({study.path + ": branch '" + b.name + "': at", *b.request.at});
+    c->check_range(study.parameter, ends);
+    sources.push_back(c->source(b.request.start, b.request.initial));
+    systems.push_back(std::move(c));
   }
+  const LoadedSystem& first = *systems.front();
 
   // Every output named before any work: one CSV per branch (two branches of one name would
   // write one file from two threads) and the JSON, none replacing an input or another.
@@ -56,16 +59,15 @@ int run_study(const std::vector<std::string>& argv) {
     outputs.emplace_back("branch '" + b.name + "''s events CSV", stem + "-events.csv");
   }
   for (const auto& [what, path] : outputs) check_writable(path, study.path + ": " + what);
-  check_distinct_outputs(outputs, {{"study file", study.path}, {"case file", file.path()}});
+  check_distinct_outputs(outputs, {{"study file", study.path}, {"case file", first.path()}});
 
   std::printf("sympathy study %s: %s\n  case %s  params %s  parameter %s\n", study.path.c_str(),
-              study.title.c_str(), file.path().c_str(), cases.front().params.c_str(),
+              study.title.c_str(), first.path().c_str(), first.params().c_str(),
               study.parameter.c_str());
+  if (first.equations()) std::printf("  %s\n", first.build_note().c_str());
   std::fflush(stdout);
   const auto* stop = interrupt_flag();
   std::vector<Branch> results(study.branches.size());
-  std::vector<std::unique_ptr<MetronomeModel>> models;
-  for (const auto& c : cases) models.push_back(std::make_unique<MetronomeModel>(c.spec));
   std::vector<BranchRequest> requests;
   for (std::size_t i = 0; i < study.branches.size(); ++i) {
     const auto& b = study.branches[i];
@@ -103,7 +105,7 @@ int run_study(const std::vector<std::string>& argv) {
             throw std::runtime_error("its parent branch '" + parent + "' has no result");
           requests[i].parent_branch = &results[p];
         }
-        results[i] = run_branch(cases[i], *models[i], requests[i], stop);
+        results[i] = run_branch(sources[i], requests[i], stop);
       } catch (const std::exception& e) {
         errors[i] = e.what();
       }
@@ -124,14 +126,14 @@ int run_study(const std::vector<std::string>& argv) {
   nlohmann::json j;
   j["study"] = study.name;
   j["title"] = study.title;
-  j["case"] = file.path();
-  j["params_set"] = cases.front().params;
+  j["case"] = first.path();
+  j["params_set"] = first.params();
   j["parameter"] = study.parameter;
   j["axis"] = study.axis;
   j["branches"] = nlohmann::json::array();
   bool ok = true;
   for (std::size_t i = 0; i < study.branches.size(); ++i) {
-    nlohmann::json b = branch_json(results[i], requests[i], MetronomeDescriber(*models[i]));
+    nlohmann::json b = branch_json(results[i], requests[i], systems[i]->describer());
     b["name"] = study.branches[i].name;
     b["csv"] = std::filesystem::path(requests[i].csv_path).filename().string();
     if (!errors[i].empty()) b["error"] = errors[i];

@@ -89,9 +89,18 @@ name = "hopf"
 start = "outside"
 from = 0.25
 to = 0.1
+[[branches]]
+name = "fast"
+start = "outside"
+from = 0.25
+to = 0.1
+set = { w = 2.0 }
 TOML
-"$bin" study "$work/study.toml" --out "$work/study" 2> "$work/study.err"
-check "study refuses an equation case file for now, naming the kind" grep -q "key 'kind': expected a metronome case file here" "$work/study.err"
+"$bin" study "$work/study.toml" --out "$work/study" > "$work/study.out" 2> "$work/study.err"
+check "study on an equation case file exits 0" test $? -eq 0
+# The circle's period 2 pi / w on each branch, the second with its own w = 2 (a branch's set).
+check "each branch with its own parameter values: T = 2 pi and pi" test "$(json_value "$work/study/study.json" "
+all(abs(p['period'] - 2 * math.pi / w) < 1e-8 for b, w in zip(j['branches'], (1, 2)) for p in b['points'])")" = True
 # The row setup as equations (cases/examples/row2_equations.toml, the escapement's switch declared
 # in [steep]) finds the anti-phase orbit's branch point of Table II where the built-in model does,
 # within their reported uncertainties.
