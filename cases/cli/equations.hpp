@@ -1,7 +1,7 @@
 // Equation case files (kind = "equations") in the commands: loading one with --params and --set,
 // its system compiled or taken from the cache (equation_compiler.hpp), and the orbit command on
-// it. simulate, orbit and continue read them (continue through run_branch's BranchSource); study
-// and fit do not yet (CaseFile refuses them, naming the kind).
+// it. simulate, orbit, continue, equilibria, curve and study read them (through LoadedSystem,
+// loaded_system.hpp); map and fit do not yet (CaseFile refuses them, naming the kind).
 #pragma once
 
 #include <string>

@@ -1,5 +1,5 @@
 // A case file of either kind (a metronome case file, an equation case file), loaded for the
-// commands that run the engine on its system (continue, equilibria, curve): the system, the
+// commands that run the engine on its system (continue, equilibria, curve, study): the system, the
 // describer of its orbits, the parameter values of --params and --set, named starts, and the
 // checks of a parameter's name and range, so that a command is written once for both kinds.
 #pragma once
