@@ -39,6 +39,14 @@ OptionCheck ContinuationOptions::validate() const {
   if (!(positive(location_tolerance) && location_tolerance < 1.0))
     return OptionProblem{"location_tolerance", "a number in (0, 1)"};
   if (!positive(trust_limit)) return OptionProblem{"trust_limit", "a positive number"};
+  for (std::size_t i = 0; i < user_points.size(); ++i) {
+    if (!std::isfinite(user_points[i]))
+      return OptionProblem{"user_points", "finite values of the parameter"};
+    for (std::size_t j = 0; j < i; ++j)
+      if (user_points[j] == user_points[i])
+        return OptionProblem{"user_points", "distinct values (" + format_double(user_points[i]) +
+                                                " is given twice)"};
+  }
   return nested("orbit.", orbit.validate());
 }
 
@@ -308,6 +316,12 @@ Branch Continuation::run_from(const PeriodicOrbit& start, int direction,
         ds *= 0.5;
         continue;
       }
+    }
+    if (!options_.user_points.empty()) {  // AUTO's UZ, among the step's events along it
+      auto passed = user_points_between(a, b);
+      events.insert(events.end(), passed.begin(), passed.end());
+      std::stable_sort(events.begin(), events.end(),
+                       [](const auto& x, const auto& y) { return x.arclength < y.arclength; });
     }
     location_retries = 0;
     std::optional<double> turned_back;  // a fold without its multiplier at +1, in this step

@@ -50,6 +50,7 @@ std::vector<BifurcationCurve> event_curves(const OdeSystem& system, const Branch
   std::vector<BifurcationCurve> curves;
   for (const auto& e : branch.events) {
     if (!e.located() || e.trust == EventTrust::NoCrossingMultiplier) continue;
+    if (e.type == BifurcationType::UserPoint) continue;  // a value asked for, no bifurcation
     if (e.type == BifurcationType::BranchPoint && e.symmetry != SymmetryKind::Breaking) continue;
     const double value = system.parameter(branch.start_values, second);
     const bool covered = std::any_of(curves.begin(), curves.end(), [&](const BifurcationCurve& c) {

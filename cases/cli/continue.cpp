@@ -9,6 +9,7 @@
 #include "cases/cli/commands.hpp"
 #include "cases/cli/equations.hpp"
 #include "cases/cli/report.hpp"
+#include "cases/cli/start_data.hpp"
 #include "sympathy/cases/equation_case.hpp"
 #include "sympathy/cases/state_describer.hpp"
 #include "sympathy/continuation/branch_output.hpp"
@@ -32,6 +33,8 @@ int run_continue(const std::vector<std::string>& argv) {
        {"--step", "DS", false, "initial arclength step, scaled (default 0.02)"},
        {"--max-step", "DS", false, "largest arclength step, scaled (default 0.1)"},
        {"--max-points", "N", false, "point limit per direction (default 400)"},
+       {"--user-points", "V1,V2,...", false,
+        "report the branch's orbit at each of these values of --param (AUTO's UZ), as events"},
        {"--transient", "SECONDS", false, "integration before the first Newton (default 60)"},
        {"--csv", "FILE", false, "stream every point to this CSV"},
        {"--json", "FILE", false, "write the branch and its bifurcations as JSON"},
@@ -47,6 +50,7 @@ int run_continue(const std::vector<std::string>& argv) {
   const auto integrator = integrator_options();
   options.insert(options.end(), integrator.begin(), integrator.end());
   options.push_back(accuracy_option());
+  options.push_back(start_data_option());
   Arguments args("continue", argv, options, {"CASE"});
 
   Stopwatch clock;
@@ -63,8 +67,12 @@ int run_continue(const std::vector<std::string>& argv) {
   const std::string params = equations ? system_file->params : metronomes->params;
   for (const char* required : {"--param", "--from", "--to"})
     if (!args.has(required)) throw InputError(std::string(required) + " is required");
-  if (!equations && !args.has("--start")) throw InputError("--start is required");
   BranchRequest request;
+  request.start_data =
+      equations ? system_file->start_data
+                : start_data(args, MetronomeModel(metronomes->spec).state_names(), case_path);
+  if (!equations && !args.has("--start") && !request.start_data)
+    throw InputError("--start is required (or --start-data FILE.csv)");
   request.start = args.text("--start", "");
   if (!request.start.empty()) {  // fails early with the list of starts
     if (equations)
@@ -100,6 +108,12 @@ int run_continue(const std::vector<std::string>& argv) {
   o.initial_step = args.number("--step", o.initial_step);
   o.max_step = args.number("--max-step", o.max_step);
   o.max_points = args.integer("--max-points", o.max_points);
+  o.user_points = args.numbers("--user-points");
+  for (double v : o.user_points)
+    if (v < std::min(request.from, request.to) || v > std::max(request.from, request.to))
+      throw InputError("--user-points " + format_number(v) + ": outside --from " +
+                       format_number(request.from) + " .. --to " + format_number(request.to) +
+                       "; expected values the branch can reach");
   apply_accuracy(accuracy(args), o.orbit);
   o.orbit.shooting.flow = flow_options(args, o.orbit.shooting.flow);
   o.orbit.transient_flow.linear_solver = o.orbit.shooting.flow.linear_solver;
@@ -127,11 +141,15 @@ int run_continue(const std::vector<std::string>& argv) {
   check_distinct_outputs({{"--csv", request.csv_path},
                           {"--events", request.events_path},
                           {"--json", json_path.value_or("")}},
-                         {{"case file", case_path}, {"--parent", request.parent_path}});
+                         {{"case file", case_path},
+                          {"--parent", request.parent_path},
+                          {"--start-data", args.text("--start-data", "")}});
 
+  const std::string start_name = request.start_data      ? describe_start_data(*request.start_data)
+                                 : request.start.empty() ? "(the file's [states])"
+                                                         : request.start;
   std::printf("sympathy continue %s  params %s  start %s  %s from %g to %g\n", case_path.c_str(),
-              params.empty() ? "(none)" : params.c_str(),
-              request.start.empty() ? "(the file's [states])" : request.start.c_str(),
+              params.empty() ? "(none)" : params.c_str(), start_name.c_str(),
               request.parameter.c_str(), request.from, request.to);
   if (equations) std::printf("  %s\n", describe_build(system_file->build).c_str());
   std::fflush(stdout);
@@ -143,12 +161,16 @@ int run_continue(const std::vector<std::string>& argv) {
     const OdeSystem& system = *system_file->build.system;
     describer = std::make_unique<StateDescriber>(system);
     const StartSpec* start = request.start.empty() ? nullptr : &file.start(request.start);
+    const auto& data = request.start_data;
     const BranchSource source{system,
                               *describer,
                               system_file->values,
-                              file.initial_state(start, request.initial),
+                              data ? data->state0 : file.initial_state(start, request.initial),
                               InvariantSubspace(),
-                              request.start.empty() ? std::string("states") : request.start};
+                              data                    ? "data " + data->path
+                              : request.start.empty() ? std::string("states")
+                                                      : request.start,
+                              data ? std::optional<double>(data->period) : std::nullopt};
     branch = run_branch(source, request, interrupt_flag());
   } else {
     model = std::make_unique<MetronomeModel>(metronomes->spec);

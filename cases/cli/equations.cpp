@@ -6,6 +6,7 @@
 
 #include "cases/cli/common.hpp"
 #include "cases/cli/report.hpp"
+#include "cases/cli/start_data.hpp"
 #include "sympathy/cases/state_describer.hpp"
 #include "sympathy/continuation/branch_output.hpp"
 #include "sympathy/core/output_file.hpp"
@@ -16,10 +17,11 @@ LoadedEquations load_equations(const Arguments& args) {
   EquationCase file = EquationCase::load(args.positional(0));
   const std::string params = args.text("--params", file.default_parameter_set());
   ParameterValues values = file.parameter_values(params, args.assignments("--set"));
+  std::optional<RecordedPeriod> recorded = start_data(args, file.state_names(), file.path());
   // Everything is checked before the compiler runs; a compiler failure is not the user's input
   // (a missing compiler or headers, or a bug of the generator) and says so.
   EquationBuild build = build_equation_system(file, values);
-  return {std::move(file), params, std::move(values), std::move(build)};
+  return {std::move(file), params, std::move(values), std::move(build), std::move(recorded)};
 }
 
 std::string describe_build(const EquationBuild& build) {
@@ -40,9 +42,11 @@ int run_orbit_equations(const Arguments& args) {
         "--whole-state: only for a metronome case file (an equation case file's "
         "orbits are always computed in the whole state space)");
   const LoadedEquations e = load_equations(args);
-  const StartSpec* start = args.has("--start") ? &e.file.start(*args.value("--start")) : nullptr;
-  const Eigen::VectorXd z0 = e.file.initial_state(start, args.assignments("--initial"));
   const OdeSystem& system = *e.build.system;
+  const auto& recorded = e.start_data;
+  const StartSpec* start = args.has("--start") ? &e.file.start(*args.value("--start")) : nullptr;
+  const Eigen::VectorXd z0 =
+      recorded ? recorded->state0 : e.file.initial_state(start, args.assignments("--initial"));
 
   OrbitOptions o;
   o.shooting.segments = args.integer("--segments", 1);
@@ -53,21 +57,30 @@ int run_orbit_equations(const Arguments& args) {
   check_options(o.validate(), "");
   if (auto path = args.value("--json")) {
     check_writable(*path, "--json");
-    check_distinct_outputs({{"--json", *path}}, {{"case file", e.file.path()}});
+    check_distinct_outputs({{"--json", *path}}, {{"case file", e.file.path()},
+                                                 {"--start-data", args.text("--start-data", "")}});
   }
 
-  const PeriodicOrbit orbit = find_periodic_orbit(system, e.values, z0, InvariantSubspace(), o);
+  const PeriodicOrbit orbit =
+      recorded ? orbit_from_recorded_period(system, e.values, *recorded, InvariantSubspace(), o)
+               : find_periodic_orbit(system, e.values, z0, InvariantSubspace(), o);
   const double seconds = clock.seconds();
   const StateDescriber describer(system);
   const auto amplitudes = describer.amplitudes(orbit);
 
+  const std::string start_name = recorded ? describe_start_data(*recorded)
+                                 : start  ? start->name
+                                          : "(the file's [states])";
   std::printf("sympathy orbit %s  params %s  start %s\n", e.file.path().c_str(),
-              e.params.empty() ? "(none)" : e.params.c_str(),
-              start ? start->name.c_str() : "(the file's [states])");
+              e.params.empty() ? "(none)" : e.params.c_str(), start_name.c_str());
   std::printf("  %s\n", describe_build(e.build).c_str());
   print_orbit(stdout, system, orbit, amplitudes, {}, o);
   return finish_orbit_report(system, orbit, describer, args.flag("--verbose"), args.value("--json"),
-                             e.file.path(), e.params, start ? start->name : "", seconds);
+                             e.file.path(), e.params,
+                             recorded ? "data " + recorded->path
+                             : start  ? start->name
+                                      : "",
+                             seconds);
 }
 
 }  // namespace sympathy::cli

@@ -6,7 +6,10 @@
 
 #include <string>
 
+#include <optional>
+
 #include "cases/cli/arguments.hpp"
+#include "cases/cli/start_data.hpp"
 #include "sympathy/cases/equation_case.hpp"
 #include "sympathy/cases/equation_compiler.hpp"
 
@@ -17,9 +20,11 @@ struct LoadedEquations {
   std::string params;  // the parameter set applied ("" if none)
   ParameterValues values;
   EquationBuild build;
+  std::optional<RecordedPeriod> start_data;  // --start-data, if given (orbit, continue)
 };
 
-// The file of positional 0, the parameter values of --params and --set, and its system.
+// The file of positional 0, the parameter values of --params and --set, the recorded period of
+// --start-data (checked against the file's states before anything is compiled), and its system.
 LoadedEquations load_equations(const Arguments& args);
 
 // "system compiled in 1.23 s against the headers in DIR (CACHE/KEY.so)" or "system from the

@@ -32,13 +32,18 @@ int run_study(const std::vector<std::string>& argv) {
   // Every branch's case, set and start checked before anything is computed.
   const CaseFile file = CaseFile::load(study.case_path);
   std::vector<LoadedCase> cases;
+  std::vector<std::optional<RecordedPeriod>> recorded;  // each branch's start_data, if any
   for (const auto& b : study.branches) {
     LoadedCase c{file, study.params.empty() ? file.default_parameter_set() : study.params, {}};
     c.spec = file.spec(c.params, b.sets);
     if (!c.spec.has_parameter(study.parameter))
       throw InputError(study.path + ": parameter '" + study.parameter + "' is not one of " +
                        file.path() + "'s: " + join(c.spec.parameter_names()));
-    file.start(b.request.start);
+    if (b.start_data.empty()) file.start(b.request.start);
+    recorded.push_back(b.start_data.empty()
+                           ? std::nullopt
+                           : std::optional<RecordedPeriod>(read_recorded_period(
+                                 b.start_data, MetronomeModel(c.spec).state_names(), file.path())));
     std::vector<double> ends{b.request.from, b.request.to};
     if (b.request.at) ends.push_back(*b.request.at);
     check_parameter_range(c.spec, study.parameter, ends,
@@ -56,7 +61,12 @@ int run_study(const std::vector<std::string>& argv) {
     outputs.emplace_back("branch '" + b.name + "''s events CSV", stem + "-events.csv");
   }
   for (const auto& [what, path] : outputs) check_writable(path, study.path + ": " + what);
-  check_distinct_outputs(outputs, {{"study file", study.path}, {"case file", file.path()}});
+  std::vector<std::pair<std::string, std::string>> inputs{{"study file", study.path},
+                                                          {"case file", file.path()}};
+  for (const auto& b : study.branches)
+    if (!b.start_data.empty())
+      inputs.emplace_back("branch '" + b.name + "''s start_data", b.start_data);
+  check_distinct_outputs(outputs, inputs);
 
   std::printf("sympathy study %s: %s\n  case %s  params %s  parameter %s\n", study.path.c_str(),
               study.title.c_str(), file.path().c_str(), cases.front().params.c_str(),
@@ -70,6 +80,7 @@ int run_study(const std::vector<std::string>& argv) {
   for (std::size_t i = 0; i < study.branches.size(); ++i) {
     const auto& b = study.branches[i];
     BranchRequest r = b.request;
+    r.start_data = recorded[i];
     if (args.has("--accuracy")) apply_accuracy(accuracy(args), r.continuation.orbit);
     r.csv_path = out + "/" + study.name + "-" + b.name + ".csv";
     r.events_path = out + "/" + study.name + "-" + b.name + "-events.csv";

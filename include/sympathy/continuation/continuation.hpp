@@ -77,6 +77,11 @@ class Continuation {
   // section; nullopt when it cannot be corrected.
   std::optional<ContinuationPoint> point_on_bound(const ContinuationPoint& a,
                                                   const ContinuationPoint& b, double bound) const;
+  // The options' user points the step from a to b passed (b at one, or a and b on either side),
+  // each as a UserPoint event: the branch's point at the value (point_on_bound), ordered along
+  // the step (user_points.cpp).
+  std::vector<Bifurcation> user_points_between(const ContinuationPoint& a,
+                                               const ContinuationPoint& b) const;
 
   const OdeSystem& system_;
   int parameter_;
