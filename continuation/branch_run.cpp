@@ -32,6 +32,8 @@ std::string BranchProblem::problem_with(const OdeSystem& system) const {
     return "start_state: expected " + std::to_string(system.dimension()) + " finite values";
   } else if (start_period && !(*start_period > 0.0 && std::isfinite(*start_period))) {
     return "start_period: expected a positive period";
+  } else if (!start_period && !system.autonomous()) {
+    return "start_period: expected the forcing's period (a periodically forced system)";
   }
   return "";
 }

@@ -90,6 +90,10 @@ PeriodicOrbit orbit_from_recorded_period(const OdeSystem& system, const Paramete
                                          const RecordedPeriod& recorded,
                                          const InvariantSubspace& subspace,
                                          const OrbitOptions& options) {
+  if (!system.autonomous())
+    throw std::invalid_argument(
+        "orbit_from_recorded_period: for autonomous systems (a forced system's period is the "
+        "forcing's: solve_periodic_orbit with it)");
   if (recorded.state0.size() != system.dimension())
     throw std::invalid_argument("orbit_from_recorded_period: a recorded state of " +
                                 std::to_string(recorded.state0.size()) +

@@ -44,6 +44,7 @@ int run_orbit_equations(const Arguments& args) {
   const LoadedEquations e = load_equations(args);
   const OdeSystem& system = *e.build.system;
   const auto& recorded = e.start_data;
+  check_start_data_system(recorded, system, e.file.path());
   const StartSpec* start = args.has("--start") ? &e.file.start(*args.value("--start")) : nullptr;
   const Eigen::VectorXd z0 =
       recorded ? recorded->state0 : e.file.initial_state(start, args.assignments("--initial"));

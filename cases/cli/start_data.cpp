@@ -25,6 +25,15 @@ std::optional<RecordedPeriod> start_data(const Arguments& args,
   return read_recorded_period(*path, state_names, system);
 }
 
+void check_start_data_system(const std::optional<RecordedPeriod>& recorded, const OdeSystem& system,
+                             const std::string& case_path) {
+  if (recorded && !system.autonomous())
+    throw InputError("--start-data " + recorded->path + ": " + case_path +
+                     " uses t (a periodically forced system), whose period is the forcing's, not "
+                     "the recording's; expected an autonomous system (a forced one's period "
+                     "cannot be declared in a case file yet)");
+}
+
 std::string describe_start_data(const RecordedPeriod& r) {
   char text[160];
   std::snprintf(text, sizeof text, " (%d rows over %.6g s; period guess %.9g s: %s", r.rows, r.span,

@@ -9,6 +9,7 @@
 
 #include "cases/cli/arguments.hpp"
 #include "sympathy/continuation/recorded_period.hpp"
+#include "sympathy/core/ode_system.hpp"
 
 namespace sympathy::cli {
 
@@ -20,6 +21,11 @@ OptionSpec start_data_option();
 std::optional<RecordedPeriod> start_data(const Arguments& args,
                                          const std::vector<std::string>& state_names,
                                          const std::string& system);
+
+// InputError unless `system` is autonomous: a forced system's period is the forcing's, not the
+// recording's (and an equation case file cannot declare the forcing's period yet).
+void check_start_data_system(const std::optional<RecordedPeriod>& recorded, const OdeSystem& system,
+                             const std::string& case_path);
 
 // "data FILE.csv (N rows over S s; period guess T s: the first return, line L)" for the reports.
 std::string describe_start_data(const RecordedPeriod& recorded);

@@ -95,6 +95,27 @@ check "--start with --start-data: says which" grep -qF -- "--start: not with --s
 "$bin" continue "$lcbp" --param p1 --from 1 --to 2 --start-data "$work/missing_column.csv" > /dev/null 2> "$work/cont_bad.err"
 check "continue refuses bad data the same way" grep -qF "missing_column.csv:1: no column 'y'" "$work/cont_bad.err"
 
+# A forced system (a case file that uses t): its period is the forcing's, not the recording's;
+# refused after the file is read, before any integration.
+cat > "$work/forced.toml" <<'TOML'
+kind = "equations"
+[states]
+x = 0.0
+v = 0.0
+[parameters]
+c = 0.1
+[equations]
+x = "v"
+v = "-c*v - x + cos(t)"
+TOML
+/usr/bin/python3 -c "
+import math
+print('t,x,v')
+for k in range(41): t = 2 * math.pi * k / 40; print('%r,%r,%r' % (t, math.cos(t), -math.sin(t)))" > "$work/forced.csv"
+"$bin" orbit "$work/forced.toml" --start-data "$work/forced.csv" > "$work/forced.out" 2> "$work/forced.err"
+check "a forced system with --start-data: exit code 2" test $? -eq 2
+check "... says why" grep -qF "forced.toml uses t (a periodically forced system), whose period is the forcing's" "$work/forced.err"
+
 # continue from the data: the unstable family r = p1 from p1 = 1 to 1.8, with user points at
 # 1.25 and 1.5: each event UZ at its value exactly (1e-12), its orbit the circle of radius p1,
 # period 1, multiplier exp(-p1 (p1 - 2)); to 1e-8 (the integration's accuracy, rtol 5e-12).

@@ -12,6 +12,12 @@
 // amount, so that a narrow window of instability is not stepped over. Between points, test
 // functions (the tangent's parameter component for folds, |mu| - 1 of each multiplier crossing the
 // unit circle) locate every bifurcation to a relative tolerance in the parameter.
+//
+// A periodically forced (non-autonomous) system is continued with its period fixed at the
+// start's (the forcing's; the continued parameter must not change it): the unknowns are then the
+// segment states alone, there is no phase condition and no trivial multiplier, and no shift in
+// time leaves an orbit alone. Branch switching and two-parameter curves are for autonomous
+// systems only.
 #pragma once
 
 #include <functional>

@@ -42,7 +42,8 @@ RecordedPeriod read_recorded_period(const std::string& path,
 
 // Newton from the recording's first row and period guess (solve_periodic_orbit), at parameter
 // values p, the iterates kept in `subspace`. Throws std::invalid_argument for a state of the
-// wrong size.
+// wrong size and for a periodically forced system (its period is the forcing's, not the data's:
+// solve_periodic_orbit with it).
 PeriodicOrbit orbit_from_recorded_period(const OdeSystem& system, const ParameterValues& p,
                                          const RecordedPeriod& recorded,
                                          const InvariantSubspace& subspace,
