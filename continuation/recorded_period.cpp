@@ -1,6 +1,7 @@
 #include "sympathy/continuation/recorded_period.hpp"
 
 #include <algorithm>
+#include <cmath>
 #include <stdexcept>
 
 #include "sympathy/core/csv.hpp"
@@ -12,8 +13,14 @@ namespace sympathy {
 
 RecordedPeriod read_recorded_period(const std::string& path,
                                     const std::vector<std::string>& state_names,
-                                    const std::string& system) {
+                                    const std::string& system, const std::vector<int>& angles) {
   const Recording r = read_recording(path, state_names, system);
+  // a - b, with the angles' differences on the circle, in (-pi, pi].
+  auto difference = [&](const Eigen::VectorXd& a, const Eigen::VectorXd& b) {
+    Eigen::VectorXd d = a - b;
+    for (int i : angles) d[i] = std::remainder(d[i], 2.0 * M_PI);
+    return d;
+  };
   const int n = static_cast<int>(state_names.size());
   // Every state, in any column order: the start is a whole state.
   std::vector<int> column(n, -1);
@@ -47,7 +54,7 @@ RecordedPeriod read_recorded_period(const std::string& path,
   // |n|^2 > 0 at the second row, and comes back up through 0 near z0 one period later. The
   // plane is crossed once more far from z0, the other way: only a crossing near z0 counts (within
   // a fifth of the farthest distance yet, as estimate_period does on a flow).
-  const Eigen::VectorXd normal = state(1) - out.state0;
+  const Eigen::VectorXd normal = difference(state(1), out.state0);
   if (!(normal.cwiseAbs().maxCoeff() > 0.0))
     throw InputError(path + ":" + std::to_string(r.lines[1]) + ": the same state as line " +
                      std::to_string(r.lines[0]) +
@@ -56,13 +63,14 @@ RecordedPeriod read_recorded_period(const std::string& path,
   Eigen::VectorXd previous = out.state0;
   for (int row = 1; row < rows; ++row) {
     const Eigen::VectorXd z = state(row);
-    largest_step = std::max(largest_step, (z - state(row - 1)).cwiseAbs().maxCoeff());
-    const double g = normal.dot(z - out.state0);
-    const double distance = (z - out.state0).cwiseAbs().maxCoeff();
+    largest_step = std::max(largest_step, difference(z, state(row - 1)).cwiseAbs().maxCoeff());
+    const Eigen::VectorXd from_start = difference(z, out.state0);
+    const double g = normal.dot(from_start);
+    const double distance = from_start.cwiseAbs().maxCoeff();
     if (row > 1 && previous_g < 0.0 && g >= 0.0) {
       const double s = -previous_g / (g - previous_g);
-      const Eigen::VectorXd crossing = previous + s * (z - previous);
-      if ((crossing - out.state0).cwiseAbs().maxCoeff() < 0.2 * farthest) {
+      const Eigen::VectorXd crossing = previous + s * difference(z, previous);
+      if (difference(crossing, out.state0).cwiseAbs().maxCoeff() < 0.2 * farthest) {
         out.period = r.times[row - 1] + s * (r.times[row] - r.times[row - 1]) - out.start_time;
         out.returned = true;
         out.return_line = r.lines[row];
@@ -75,7 +83,7 @@ RecordedPeriod read_recorded_period(const std::string& path,
   }
   // No return inside the data: it must end where it began (one period, the last row within two
   // sampling steps of the first), or it is less than a period.
-  const double gap = (state(rows - 1) - out.state0).cwiseAbs().maxCoeff();
+  const double gap = difference(state(rows - 1), out.state0).cwiseAbs().maxCoeff();
   if (gap > 2.0 * largest_step)
     throw InputError(path + ":" + std::to_string(r.lines.back()) + ": the last row is " +
                      format_double(gap) + " from the first (line " + std::to_string(r.lines[0]) +

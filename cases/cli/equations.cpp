@@ -17,7 +17,11 @@ LoadedEquations load_equations(const Arguments& args) {
   EquationCase file = EquationCase::load(args.positional(0));
   const std::string params = args.text("--params", file.default_parameter_set());
   ParameterValues values = file.parameter_values(params, args.assignments("--set"));
-  std::optional<RecordedPeriod> recorded = start_data(args, file.state_names(), file.path());
+  std::vector<int> angles;  // as the compiled system will declare them (angle_states)
+  for (std::size_t i = 0; i < file.system().states.size(); ++i)
+    if (file.system().states[i].angle) angles.push_back(static_cast<int>(i));
+  std::optional<RecordedPeriod> recorded =
+      start_data(args, file.state_names(), file.path(), angles);
   // Everything is checked before the compiler runs; a compiler failure is not the user's input
   // (a missing compiler or headers, or a bug of the generator) and says so.
   EquationBuild build = build_equation_system(file, values);

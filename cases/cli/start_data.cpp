@@ -14,7 +14,8 @@ OptionSpec start_data_option() {
 
 std::optional<RecordedPeriod> start_data(const Arguments& args,
                                          const std::vector<std::string>& state_names,
-                                         const std::string& system) {
+                                         const std::string& system,
+                                         const std::vector<int>& angles) {
   const auto path = args.value("--start-data");
   if (!path) return std::nullopt;
   for (const char* other : {"--start", "--initial", "--transient"})
@@ -22,7 +23,7 @@ std::optional<RecordedPeriod> start_data(const Arguments& args,
       throw InputError(std::string(other) + ": not with --start-data " + *path +
                        " (the recording's first row is the start, and Newton starts there "
                        "without a transient); expected one or the other");
-  return read_recorded_period(*path, state_names, system);
+  return read_recorded_period(*path, state_names, system, angles);
 }
 
 void check_start_data_system(const std::optional<RecordedPeriod>& recorded, const OdeSystem& system,

@@ -20,7 +20,8 @@ OptionSpec start_data_option();
 // row is the start, and nothing is integrated before Newton).
 std::optional<RecordedPeriod> start_data(const Arguments& args,
                                          const std::vector<std::string>& state_names,
-                                         const std::string& system);
+                                         const std::string& system,
+                                         const std::vector<int>& angles = {});
 
 // InputError unless `system` is autonomous: a forced system's period is the forcing's, not the
 // recording's (and an equation case file cannot declare the forcing's period yet).

@@ -1,7 +1,7 @@
 #!/usr/bin/env bash
-# Orbits started from data (--start-data: one recorded period, AUTO's `dat` files) and user points
-# (--user-points: AUTO's UZ), end to end on equation and metronome case files, with exact answers;
-# bad data files refused with located errors before any work.
+# Orbits started from data (--start-data: one recorded period, AUTO's `dat` files), user points
+# (--user-points: AUTO's UZ) and states declared as angles, end to end on equation and metronome
+# case files, with exact answers; bad data files refused with located errors before any work.
 # Usage: data_test.sh SYMPATHY_BINARY SOURCE_DIR WORK_DIR
 set -u
 bin=$1 src=$2 work=$3
@@ -144,5 +144,23 @@ check "a user point out of range: named" grep -qF -- "--user-points 2: outside -
 "$bin" continue "$hopf" --param mu --from 0.25 --to 1 --user-points 0.5,0.5 > "$work/uz3.out" 2> "$work/uz3.err"
 check "a repeated user point: named" grep -qF -- "--user-points: expected distinct values (0.5 is given twice)" "$work/uz3.err"
 check "nothing computed for them" test "$(cat "$work/uz1.out" "$work/uz2.out" "$work/uz3.out" | wc -c)" -eq 0
+
+# Angles (cases/examples/pendulum.toml): the driven pendulum's rotation, its angle gaining 2 pi
+# per period, found from rest; Liouville's multiplier exp(-gamma T) (gamma = 0.5) to 1e-8.
+"$bin" orbit "$src/cases/examples/pendulum.toml" --json "$work/pendulum.json" > "$work/pendulum.out"
+check "pendulum: the rotation is found" test $? -eq 0
+check "pendulum: multiplier exp(-gamma T)" test "$(json_value "$work/pendulum.json" "min(abs(complex(*m) - math.exp(-0.5 * j['period'])) for m in j['multipliers']) < 1e-8")" = True
+cat > "$work/bad_angle.toml" <<'TOML'
+kind = "equations"
+[states]
+theta = { value = 0.0, angle = 1 }
+omega = 0.0
+[equations]
+theta = "omega"
+omega = "-sin(theta)"
+TOML
+"$bin" orbit "$work/bad_angle.toml" > /dev/null 2> "$work/bad_angle.err"
+check "a bad angle declaration: exit code 2" test $? -eq 2
+check "... located" grep -qF "bad_angle.toml:3: key 'states.theta.angle': expected true or false, got 1" "$work/bad_angle.err"
 
 exit "$failures"

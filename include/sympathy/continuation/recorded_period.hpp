@@ -35,10 +35,12 @@ inline constexpr int kMinimumPeriodRows = 4;
 // kMinimumPeriodRows rows, a state that does not move between the first two rows, and a recording
 // that neither returns to its first row's section nor closes (its last row more than two of its
 // largest steps between rows away from the first: less than one period). `system` describes the
-// system in messages ("cases/examples/lcbp.toml").
+// system in messages ("cases/examples/lcbp.toml"). `angles`: the states that are angles
+// (OdeSystem::angle_states), compared on the circle: a rotation that gains 2 pi is back.
 RecordedPeriod read_recorded_period(const std::string& path,
                                     const std::vector<std::string>& state_names,
-                                    const std::string& system = "the system");
+                                    const std::string& system = "the system",
+                                    const std::vector<int>& angles = {});
 
 // Newton from the recording's first row and period guess (solve_periodic_orbit), at parameter
 // values p, the iterates kept in `subspace`. Throws std::invalid_argument for a state of the
