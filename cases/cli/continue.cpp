@@ -71,7 +71,10 @@ int run_continue(const std::vector<std::string>& argv) {
   request.start_data =
       equations ? system_file->start_data
                 : start_data(args, MetronomeModel(metronomes->spec).state_names(), case_path);
-  if (equations) check_start_data_system(request.start_data, *system_file->build.system, case_path);
+  if (equations) {
+    check_start_data_system(request.start_data, *system_file->build.system, case_path);
+    check_autonomous(*system_file);
+  }
   if (!equations && !args.has("--start") && !request.start_data)
     throw InputError("--start is required (or --start-data FILE.csv)");
   request.start = args.text("--start", "");

@@ -28,6 +28,15 @@ LoadedEquations load_equations(const Arguments& args) {
   return {std::move(file), params, std::move(values), std::move(build), std::move(recorded)};
 }
 
+void check_autonomous(const LoadedEquations& e) {
+  if (!e.build.system->autonomous())
+    throw InputError(e.file.path() +
+                     " uses t (a periodically forced system): its orbits have the forcing's "
+                     "period, which an equation case file cannot declare yet; expected an "
+                     "autonomous system (the library continues forced systems given the period: "
+                     "BranchProblem::start_period)");
+}
+
 std::string describe_build(const EquationBuild& build) {
   char seconds[32];
   std::snprintf(seconds, sizeof seconds, "%.2f", build.seconds);
@@ -49,6 +58,7 @@ int run_orbit_equations(const Arguments& args) {
   const OdeSystem& system = *e.build.system;
   const auto& recorded = e.start_data;
   check_start_data_system(recorded, system, e.file.path());
+  check_autonomous(e);
   const StartSpec* start = args.has("--start") ? &e.file.start(*args.value("--start")) : nullptr;
   const Eigen::VectorXd z0 =
       recorded ? recorded->state0 : e.file.initial_state(start, args.assignments("--initial"));

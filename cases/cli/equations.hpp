@@ -27,6 +27,10 @@ struct LoadedEquations {
 // --start-data (checked against the file's states before anything is compiled), and its system.
 LoadedEquations load_equations(const Arguments& args);
 
+// InputError unless the file's system is autonomous: a forced system's orbits have the forcing's
+// period, which an equation case file cannot declare yet (orbit and continue need it).
+void check_autonomous(const LoadedEquations& e);
+
 // "system compiled in 1.23 s against the headers in DIR (CACHE/KEY.so)" or "system from the
 // cache (CACHE/KEY.so)", with why an entry present was rebuilt.
 std::string describe_build(const EquationBuild& build);

@@ -115,6 +115,12 @@ for k in range(41): t = 2 * math.pi * k / 40; print('%r,%r,%r' % (t, math.cos(t)
 "$bin" orbit "$work/forced.toml" --start-data "$work/forced.csv" > "$work/forced.out" 2> "$work/forced.err"
 check "a forced system with --start-data: exit code 2" test $? -eq 2
 check "... says why" grep -qF "forced.toml uses t (a periodically forced system), whose period is the forcing's" "$work/forced.err"
+for command in orbit "continue --param c --from 0.1 --to 0.2"; do
+  # shellcheck disable=SC2086
+  "$bin" $command "$work/forced.toml" > /dev/null 2> "$work/forced_plain.err"
+  check "a forced system without data ($command): exit code 2" test $? -eq 2
+  check "... says why" grep -qF "forced.toml uses t (a periodically forced system): its orbits have the forcing's period" "$work/forced_plain.err"
+done
 
 # continue from the data: the unstable family r = p1 from p1 = 1 to 1.8, with user points at
 # 1.25 and 1.5: each event UZ at its value exactly (1e-12), its orbit the circle of radius p1,
