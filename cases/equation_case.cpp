@@ -265,11 +265,28 @@ EquationCase EquationCase::load(const std::string& path) {
 
   auto& sys = c.system_;
   // States and parameters first: every later expression may use them.
-  for (const auto& [key, node] :
-       in_file_order(required("states", "one entry per state, NAME = initial value"))) {
+  for (const auto& [key, node] : in_file_order(required(
+           "states",
+           "one entry per state, NAME = initial value, or NAME = { value = V, angle = true }"))) {
     const std::string full = "states." + std::string(key->str());
     loader.check_name(*key, full);
-    sys.states.push_back({std::string(key->str()), in.number(*node, full)});
+    EquationState state{std::string(key->str()), 0.0, false};
+    if (node->is_table()) {
+      const auto& t = *node->as_table();
+      in.only(t, full + ".", {"value", "angle"});
+      const auto* value = t.get("value");
+      if (value == nullptr)
+        throw InputError(in.where(*node) + ": key '" + full +
+                         ".value' is missing: expected the state's initial value");
+      state.initial = in.number(*value, full + ".value");
+      if (const auto* a = t.get("angle")) {
+        if (!a->is_boolean()) in.fail(*a, full + ".angle", "true or false");
+        state.angle = a->as_boolean()->get();
+      }
+    } else {
+      state.initial = in.number(*node, full);
+    }
+    sys.states.push_back(std::move(state));
     loader.define(sys.states.back().name, loader.where_key(*key));
   }
   if (const auto* n = root.get("parameters")) {

@@ -207,7 +207,13 @@ std::string generate_equation_source(const EquationSystem& system) {
   std::string s = kPrologue;
   s += "  int dimension() const override { return " + std::to_string(n) + "; }\n";
   s += std::string("  bool autonomous() const override { return ") +
-       (system.uses_time ? "false" : "true") + "; }\n\n";
+       (system.uses_time ? "false" : "true") + "; }\n";
+  std::string angles;
+  for (std::size_t i = 0; i < n; ++i)
+    if (system.states[i].angle) angles += (angles.empty() ? "" : ", ") + std::to_string(i);
+  if (!angles.empty())
+    s += "  std::vector<int> angle_states() const override { return {" + angles + "}; }\n";
+  s += "\n";
   s += "  template <class T, class P>\n";
   s += "  void evaluate([[maybe_unused]] double t, const T* z, [[maybe_unused]] const P* p, "
        "T* dz) const {\n";

@@ -400,6 +400,8 @@ BifurcationCurve continue_curve(const OdeSystem& system, const Branch& branch,
   const Stopwatch clock;
   if (const auto problem = options.validate())
     throw std::invalid_argument("curve options: " + problem->message());
+  if (!system.autonomous())
+    throw std::invalid_argument("curve: for autonomous systems (not yet periodically forced ones)");
   const auto names = system.parameter_names();
   if (second < 0 || second >= static_cast<int>(names.size()))
     throw std::invalid_argument("curve: the second parameter is not a parameter of the system");

@@ -15,6 +15,8 @@ std::string to_string(BifurcationType t) {
       return "PD";
     case BifurcationType::NeimarkSacker:
       return "NS";
+    case BifurcationType::UserPoint:
+      return "UZ";
   }
   return "?";
 }
@@ -29,6 +31,8 @@ std::string describe(BifurcationType t) {
       return "period doubling";
     case BifurcationType::NeimarkSacker:
       return "Neimark-Sacker";
+    case BifurcationType::UserPoint:
+      return "user point";
   }
   return "?";
 }

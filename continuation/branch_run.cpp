@@ -30,6 +30,10 @@ std::string BranchProblem::problem_with(const OdeSystem& system) const {
              format_double(v) + "; expected one at the first value " + format_double(first_value());
   } else if (start_state.size() != system.dimension() || !start_state.allFinite()) {
     return "start_state: expected " + std::to_string(system.dimension()) + " finite values";
+  } else if (start_period && !(*start_period > 0.0 && std::isfinite(*start_period))) {
+    return "start_period: expected a positive period";
+  } else if (!start_period && !system.autonomous()) {
+    return "start_period: expected the forcing's period (a periodically forced system)";
   }
   return "";
 }
@@ -118,8 +122,11 @@ Branch continue_branch(const OdeSystem& system, const BranchProblem& problem,
     orbit = *problem.start_orbit;
   } else {
     const ParameterValues values = system.with_parameter(problem.values, problem.parameter, first);
-    orbit =
-        find_periodic_orbit(system, values, problem.start_state, problem.subspace, options.orbit);
+    orbit = problem.start_period
+                ? solve_periodic_orbit(system, values, problem.start_state, *problem.start_period,
+                                       problem.subspace, options.orbit)
+                : find_periodic_orbit(system, values, problem.start_state, problem.subspace,
+                                      options.orbit);
     failed.flow = orbit.flow;
   }
   if (!orbit.converged()) {

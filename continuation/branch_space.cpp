@@ -72,8 +72,10 @@ Eigen::VectorXd BranchSpace::section_normal(const Eigen::VectorXd& z, double v) 
 // the period or the parameter. Sections and phase drift move tangents along it without any change
 // of orbit.
 Eigen::VectorXd BranchSpace::time_shift(const Eigen::VectorXd& y) const {
-  const ParameterValues p = values_at(y[unknowns_]);
   Eigen::VectorXd phi = Eigen::VectorXd::Zero(y.size());
+  // A forced system's orbits are fixed in time by the forcing: no shift leaves them alone.
+  if (!system_.autonomous()) return phi;
+  const ParameterValues p = values_at(y[unknowns_]);
   for (int j = 0; j < m_; ++j) phi.segment(j * n_, n_) = system_.rhs(0.0, y.segment(j * n_, n_), p);
   return phi;
 }

@@ -79,6 +79,8 @@ Branch Continuation::run_switched(const PeriodicOrbit& base, const Eigen::Vector
                                   const Eigen::VectorXd& old_tangent,
                                   const ContinuationCallbacks& callbacks, SwitchStart& start,
                                   const Eigen::MatrixXd& mirror) {
+  if (!system_.autonomous())
+    throw std::invalid_argument("branch switching: for autonomous systems (not yet forced ones)");
   const int N = problem_->unknowns();
   system_.check_parameters(base.parameters);
   subspace_ = base.subspace;

@@ -42,6 +42,14 @@ OptionCheck ContinuationOptions::validate() const {
   if (!(positive(location_tolerance) && location_tolerance < 1.0))
     return OptionProblem{"location_tolerance", "a number in (0, 1)"};
   if (!positive(trust_limit)) return OptionProblem{"trust_limit", "a positive number"};
+  for (std::size_t i = 0; i < user_points.size(); ++i) {
+    if (!std::isfinite(user_points[i]))
+      return OptionProblem{"user_points", "finite values of the parameter"};
+    for (std::size_t j = 0; j < i; ++j)
+      if (user_points[j] == user_points[i])
+        return OptionProblem{"user_points", "distinct values (" + format_double(user_points[i]) +
+                                                " is given twice)"};
+  }
   return nested("orbit.", orbit.validate());
 }
 
@@ -49,8 +57,6 @@ Continuation::Continuation(const OdeSystem& system, int parameter, ContinuationO
     : system_(system), parameter_(parameter), options_(std::move(options)) {
   if (const auto problem = options_.validate())
     throw std::invalid_argument("continuation options: " + problem->message());
-  if (!system.autonomous())
-    throw std::invalid_argument("continuation: for autonomous systems (periodic orbits)");
   if (!(options_.upper > options_.lower))
     throw std::invalid_argument("continuation: the upper bound must exceed the lower bound");
   if (options_.max_parameter_step <= 0.0)
@@ -58,7 +64,9 @@ Continuation::Continuation(const OdeSystem& system, int parameter, ContinuationO
   if (parameter < 0 || parameter >= system.parameter_count())
     throw std::invalid_argument("continuation: no parameter with index " +
                                 std::to_string(parameter));
-  problem_ = std::make_unique<ShootingProblem>(system_, options_.orbit.shooting);
+  // A forced system's problem is made by each run, with the start's period (the forcing's).
+  if (system.autonomous())
+    problem_ = std::make_unique<ShootingProblem>(system_, options_.orbit.shooting);
 }
 
 Correction Continuation::correct_step(const Eigen::VectorXd& from, const Eigen::VectorXd& tangent,
@@ -87,7 +95,7 @@ ContinuationPoint Continuation::make_point(const Correction& c, const Eigen::Vec
   p.iterations = c.iterations;
   PeriodicOrbit& o = p.orbit;
   o.state0 = c.y.head(n);
-  o.period = c.y[n * m];
+  o.period = problem_->period(c.y.head(N));
   o.segments = m;
   o.residual = c.residual;
   o.family_dimension = family_dimension_;
@@ -167,6 +175,13 @@ Branch Continuation::run_from(const PeriodicOrbit& start, int direction,
                               const Eigen::VectorXd& initial_tangent,
                               const Eigen::VectorXd& sizes) {
   const Stopwatch started;
+  // A periodically forced system: the period is the forcing's, the start's, fixed along the
+  // branch (the continued parameter must not change it); the unknowns are the segment states.
+  if (!system_.autonomous()) {
+    if (!(start.period > 0.0 && std::isfinite(start.period)))
+      throw std::invalid_argument("continuation: a forced system's start needs its period");
+    problem_ = std::make_unique<ShootingProblem>(system_, options_.orbit.shooting, start.period);
+  }
   Branch branch;
   branch.parameter_name = system_.parameter_names()[parameter_];
   branch.parameter = parameter_;
@@ -326,6 +341,12 @@ Branch Continuation::run_from(const PeriodicOrbit& start, int direction,
         ds *= 0.5;
         continue;
       }
+    }
+    if (!options_.user_points.empty()) {  // AUTO's UZ, among the step's events along it
+      auto passed = user_points_between(a, b);
+      events.insert(events.end(), passed.begin(), passed.end());
+      std::stable_sort(events.begin(), events.end(),
+                       [](const auto& x, const auto& y) { return x.arclength < y.arclength; });
     }
     location_retries = 0;
     std::optional<double> turned_back;  // a fold without its multiplier at +1, in this step

@@ -66,6 +66,21 @@ std::string to_string(NewtonOutcome o) {
 
 namespace {
 
+// y - z with the system's angles' differences taken to (-pi, pi]: how far apart two states are
+// on the circle (a rotating pendulum is back where it was after a turn).
+Eigen::VectorXd state_difference(const OdeSystem& system, const Eigen::VectorXd& y,
+                                 const Eigen::VectorXd& z) {
+  Eigen::VectorXd d = y - z;
+  for (int i : system.angle_states()) d[i] = std::remainder(d[i], 2.0 * M_PI);
+  return d;
+}
+
+// z with its angles taken to (-pi, pi]: the same point of the state space.
+Eigen::VectorXd wrap_angles(const OdeSystem& system, Eigen::VectorXd z) {
+  for (int i : system.angle_states()) z[i] = std::remainder(z[i], 2.0 * M_PI);
+  return z;
+}
+
 double inf_norm(const Eigen::VectorXd& v) {
   return v.size() ? v.cwiseAbs().maxCoeff() : 0.0;
 }
@@ -222,8 +237,9 @@ double estimate_period(Flow& flow, const ParameterValues& p, const Eigen::Vector
   for (double t = dt; t <= max_period; t += dt) times.push_back(t);
   double previous_g = 0.0, previous_t = 0.0, farthest = 0.0, period = 0.0;
   flow.sample_until(z, p, 0.0, times, [&](double t, const Eigen::VectorXd& y) {
-    const double g = f.dot(y - z);
-    const double distance = (y - z).cwiseAbs().maxCoeff();
+    const Eigen::VectorXd d = state_difference(flow.system(), y, z);
+    const double g = f.dot(d);
+    const double distance = d.cwiseAbs().maxCoeff();
     farthest = std::max(farthest, distance);
     // Back through the section in the flow's direction, near where it started (the orbit
     // crosses the section's plane once more, far away and the other way).
@@ -265,7 +281,7 @@ PeriodicOrbit find_periodic_orbit(const OdeSystem& system, const ParameterValues
     double next_check = 8.0;
     for (double t = 0.0; t < options.transient;) {
       const double dt = std::min(1.0, options.transient - t);
-      z = subspace.project(flow.advance(z, p, 0.0, dt));
+      z = wrap_angles(system, subspace.project(flow.advance(z, p, 0.0, dt)));
       t += dt;
       if (options.settle_tolerance > 0.0 && t >= next_check && t < options.transient) {
         // Settled when one period later the motion is back within the tolerance, relative to
@@ -277,7 +293,8 @@ PeriodicOrbit find_periodic_orbit(const OdeSystem& system, const ParameterValues
         if (period > 0.0) {
           const Eigen::VectorXd later = subspace.project(flow.advance(z, p, 0.0, period));
           const double size = std::max(z.cwiseAbs().maxCoeff(), 1e-300);
-          if ((later - z).cwiseAbs().maxCoeff() <= options.settle_tolerance * size) {
+          if (state_difference(system, later, z).cwiseAbs().maxCoeff() <=
+              options.settle_tolerance * size) {
             settled_period = period;
             break;
           }
@@ -307,7 +324,7 @@ PeriodicOrbit find_periodic_orbit(const OdeSystem& system, const ParameterValues
     // Say whether the transient had settled: how far the motion still moved in one period.
     try {
       const Eigen::VectorXd later = subspace.project(flow.advance(z, p, 0.0, period));
-      const double moved = (later - z).cwiseAbs().maxCoeff();
+      const double moved = state_difference(system, later, z).cwiseAbs().maxCoeff();
       const double size = std::max(z.cwiseAbs().maxCoeff(), 1e-300);
       std::ostringstream note;
       note.precision(2);

@@ -1,9 +1,15 @@
 #include "sympathy/continuation/shooting.hpp"
 
 #include <algorithm>
+#include <cmath>
+#include <numbers>
 #include <stdexcept>
 
 namespace sympathy {
+
+namespace {
+constexpr double kTwoPi = 2.0 * std::numbers::pi;
+}  // namespace
 
 ShootingProblem::ShootingProblem(const OdeSystem& system, ShootingOptions options,
                                  double forced_period)
@@ -18,6 +24,7 @@ ShootingProblem::ShootingProblem(const OdeSystem& system, ShootingOptions option
     throw std::invalid_argument("a periodically forced system needs its period");
   z_ref_ = Eigen::VectorXd::Zero(n_);
   f_ref_ = Eigen::VectorXd::Zero(n_);
+  winding_ = Eigen::VectorXd::Zero(n_);
 }
 
 void ShootingProblem::set_phase_reference(const Eigen::VectorXd& z_ref, const ParameterValues& p) {
@@ -45,6 +52,14 @@ Eigen::VectorXd ShootingProblem::unknowns_from(const Eigen::VectorXd& z0, const 
     if (j + 1 < m) z = flow_.advance(z, p, j * T / m, (j + 1) * T / m);
   }
   if (autonomous_) x[n_ * m] = period;
+  winding_.setZero();
+  const std::vector<int> angles = system_.angle_states();
+  if (!angles.empty()) {
+    // The gain of each angle over the guess's period, to the nearest whole turn: a guess within
+    // half a turn of an orbit winds as the orbit does.
+    const Eigen::VectorXd end = flow_.advance(z, p, (m - 1) * T / m, T);
+    for (int i : angles) winding_[i] = kTwoPi * std::round((end[i] - z0[i]) / kTwoPi);
+  }
   return x;
 }
 
@@ -106,6 +121,7 @@ ShootingProblem::Evaluation ShootingProblem::evaluate(const Eigen::VectorXd& x,
       end = flow.advance(zj, p, t0, t1);
     }
     e.residual.segment(j * n_, n_) = end - x.segment(((j + 1) % m) * n_, n_);
+    if (j + 1 == m) e.residual.segment(j * n_, n_) -= winding_;
   }
   if (autonomous_) e.residual[n_ * m] = f_ref_.dot(x.head(n_) - z_ref_);
   return e;

@@ -52,6 +52,7 @@ std::vector<BifurcationCurve> event_curves(const OdeSystem& system, const Branch
     if (!e.located() || e.trust == EventTrust::NoCrossingMultiplier ||
         e.trust == EventTrust::CrossingNotResolved)
       continue;
+    if (e.type == BifurcationType::UserPoint) continue;  // a value asked for, no bifurcation
     if (e.type == BifurcationType::BranchPoint && e.symmetry != SymmetryKind::Breaking) continue;
     const double value = system.parameter(branch.start_values, second);
     const bool covered = std::any_of(curves.begin(), curves.end(), [&](const BifurcationCurve& c) {

@@ -103,6 +103,32 @@ int Arguments::integer(const std::string& option, int fallback) const {
   return x;
 }
 
+std::vector<double> Arguments::numbers(const std::string& option) const {
+  const auto v = value(option);
+  if (!v) return {};
+  std::vector<double> out;
+  std::size_t begin = 0;
+  for (;;) {
+    const std::size_t comma = v->find(',', begin);
+    const std::string field =
+        v->substr(begin, comma == std::string::npos ? std::string::npos : comma - begin);
+    std::size_t used = 0;
+    double x = 0.0;
+    try {
+      x = std::stod(field, &used);
+    } catch (const std::exception&) {
+      used = 0;
+    }
+    if (used == 0 || used != field.size() || !std::isfinite(x))
+      throw InputError(option + " " + *v + ": '" + field +
+                       "' is not a finite number; expected finite numbers separated by commas "
+                       "(e.g. 0.5,1,1.5)");
+    out.push_back(x);
+    if (comma == std::string::npos) return out;
+    begin = comma + 1;
+  }
+}
+
 std::vector<Assignment> Arguments::assignments(const std::string& option) const {
   std::vector<Assignment> out;
   for (const auto& v : values(option)) out.push_back(parse_assignment(v, option));

@@ -36,6 +36,8 @@ class Arguments {
   std::string text(const std::string& option, const std::string& fallback) const;
   double number(const std::string& option, double fallback) const;
   int integer(const std::string& option, int fallback) const;
+  // A list of finite numbers separated by commas ("0.5,1,1.5"); empty without the option.
+  std::vector<double> numbers(const std::string& option) const;
   // Values of a repeatable KEY=VALUE option.
   std::vector<Assignment> assignments(const std::string& option) const;
 

@@ -15,14 +15,19 @@ namespace sympathy::cli {
 
 Branch run_branch(const LoadedCase& c, const MetronomeModel& model, const BranchRequest& request,
                   const std::atomic<bool>* stop) {
-  const StartSpec& start = c.file.start(request.start);
   const MetronomeDescriber describer(model);
+  if (const auto& data = request.start_data)
+    return run_branch(BranchSource{model, describer, model.default_parameters(), data->state0,
+                                   InvariantSubspace(), "data " + data->path, data->period},
+                      request, stop);
+  const StartSpec& start = c.file.start(request.start);
   const BranchSource source{model,
                             describer,
                             model.default_parameters(),
                             c.file.initial_state(&start, request.initial),
                             c.file.invariant_subspace(start, model),
-                            start.name};
+                            start.name,
+                            std::nullopt};
   return run_branch(source, request, stop);
 }
 
@@ -39,6 +44,7 @@ Branch run_branch(const BranchSource& source, const BranchRequest& request,
   problem.start_state = source.start_state;
   problem.subspace = source.subspace;
   problem.start_name = source.start_name;
+  problem.start_period = source.start_period;
   // The engine's own check of the problem, before any work ("at 3: expected a value between
   // from and to"), in the command line's names.
   if (const std::string wrong = problem.problem_with(model); !wrong.empty())
@@ -238,10 +244,11 @@ Branch branch_from_json(const nlohmann::json& j, const std::string& path, const 
         {"LP", BifurcationType::Fold},
         {"BP", BifurcationType::BranchPoint},
         {"PD", BifurcationType::PeriodDoubling},
-        {"NS", BifurcationType::NeimarkSacker}};
+        {"NS", BifurcationType::NeimarkSacker},
+        {"UZ", BifurcationType::UserPoint}};
     const auto t =
         std::find_if(types.begin(), types.end(), [&](const auto& x) { return x.first == type; });
-    if (t == types.end()) throw InputError(where + ".type: expected LP, BP, PD or NS");
+    if (t == types.end()) throw InputError(where + ".type: expected LP, BP, PD, NS or UZ");
     ev.type = t->second;
     ev.parameter = key(e, "value", where).get<double>();
     ev.period = key(e, "period", where).get<double>();
@@ -288,8 +295,9 @@ void print_events(std::FILE* out, const Branch& branch) {
                "uncertainty", "period (s)", "crossing multiplier", "note");
   for (const auto& e : events) {
     const std::complex<double> crossing = e.crossing;
-    char mu[64];
-    std::snprintf(mu, sizeof mu, "%.8f%+.8fi", crossing.real(), crossing.imag());
+    char mu[64] = "";  // a user point (UZ) has no crossing multiplier
+    if (e.type != BifurcationType::UserPoint)
+      std::snprintf(mu, sizeof mu, "%.8f%+.8fi", crossing.real(), crossing.imag());
     std::string note = e.note;
     if (e.multiplicity > 1 && note.empty()) note = "multiplicity " + std::to_string(e.multiplicity);
     if (e.symmetry == SymmetryKind::Breaking && !branch.points.empty())
@@ -305,6 +313,7 @@ nlohmann::json branch_json(const Branch& branch, const BranchRequest& request,
                            const OrbitDescriber& describer) {
   nlohmann::json j = sympathy::branch_json(branch, &describer);
   j["start"] = request.start;
+  if (request.start_data) j["start_data"] = request.start_data->path;
   j["from"] = request.from;
   j["to"] = request.to;
   if (request.at) j["at"] = *request.at;

@@ -15,6 +15,7 @@
 #include "cases/cli/event_name.hpp"
 #include "sympathy/continuation/branch_run.hpp"
 #include "sympathy/continuation/orbit_describer.hpp"
+#include "sympathy/continuation/recorded_period.hpp"
 
 namespace sympathy::cli {
 
@@ -22,8 +23,10 @@ struct BranchRequest {
   std::string start;
   std::string parameter;
   double from = 0.0, to = 0.0;
-  std::optional<double> at;          // start here and go both ways
-  std::vector<Assignment> initial;   // state values on top of the start
+  std::optional<double> at;         // start here and go both ways
+  std::vector<Assignment> initial;  // state values on top of the start
+  // Instead of the start: one recorded period (--start-data), Newton from it in the whole state.
+  std::optional<RecordedPeriod> start_data;
   std::string csv_path;              // "" for none
   std::string events_path;           // located events streamed here ("" for none)
   ContinuationOptions continuation;  // bounds are set from from/to
@@ -49,6 +52,7 @@ struct BranchSource {
   Eigen::VectorXd start_state;
   InvariantSubspace subspace;
   std::string start_name;
+  std::optional<double> start_period;  // a recorded period's guess: Newton at once (BranchProblem)
 };
 
 // A branch read back from the JSON `continue --json` wrote, with what switching at its events

@@ -214,6 +214,7 @@ void check_options(const OptionCheck& problem, const std::string& where) {
       {"initial_step", "step"},
       {"max_step", "max-step"},
       {"max_points", "max-points"},
+      {"user_points", "user-points"},
       {"orbit.transient", "transient"},
       {"transient", "transient"},
       {"orbit.shooting.segments", "segments"},

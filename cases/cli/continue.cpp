@@ -11,6 +11,7 @@
 #include "cases/cli/hopf_switch.hpp"
 #include "cases/cli/loaded_system.hpp"
 #include "cases/cli/report.hpp"
+#include "cases/cli/start_data.hpp"
 #include "sympathy/cases/equation_case.hpp"
 #include "sympathy/cases/state_describer.hpp"
 #include "sympathy/continuation/branch_output.hpp"
@@ -34,6 +35,8 @@ int run_continue(const std::vector<std::string>& argv) {
        {"--step", "DS", false, "initial arclength step, scaled (default 0.02)"},
        {"--max-step", "DS", false, "largest arclength step, scaled (default 0.1)"},
        {"--max-points", "N", false, "point limit per direction (default 400)"},
+       {"--user-points", "V1,V2,...", false,
+        "report the branch's orbit at each of these values of --param (AUTO's UZ), as events"},
        {"--transient", "SECONDS", false, "integration before the first Newton (default 60)"},
        {"--csv", "FILE", false, "stream every point to this CSV"},
        {"--json", "FILE", false, "write the branch and its bifurcations as JSON"},
@@ -51,6 +54,7 @@ int run_continue(const std::vector<std::string>& argv) {
   const auto integrator = integrator_options();
   options.insert(options.end(), integrator.begin(), integrator.end());
   options.push_back(accuracy_option());
+  options.push_back(start_data_option());
   Arguments args("continue", argv, options, {"CASE"});
 
   Stopwatch clock;
@@ -59,8 +63,11 @@ int run_continue(const std::vector<std::string>& argv) {
   const LoadedSystem c(args);
   for (const char* required : {"--param", "--from", "--to"})
     if (!args.has(required)) throw InputError(std::string(required) + " is required");
-  if (!c.equations() && !args.has("--start")) throw InputError("--start is required");
   BranchRequest request;
+  request.start_data = c.start_data();
+  c.require_autonomous();
+  if (!c.equations() && !args.has("--start") && !request.start_data)
+    throw InputError("--start is required (or --start-data FILE.csv)");
   request.start = args.text("--start", "");
   request.parameter = *args.value("--param");
   c.require_parameter("--param", request.parameter);
@@ -90,6 +97,12 @@ int run_continue(const std::vector<std::string>& argv) {
   o.initial_step = args.number("--step", o.initial_step);
   o.max_step = args.number("--max-step", o.max_step);
   o.max_points = args.integer("--max-points", o.max_points);
+  o.user_points = args.numbers("--user-points");
+  for (double v : o.user_points)
+    if (v < std::min(request.from, request.to) || v > std::max(request.from, request.to))
+      throw InputError("--user-points " + format_number(v) + ": outside --from " +
+                       format_number(request.from) + " .. --to " + format_number(request.to) +
+                       "; expected values the branch can reach");
   apply_accuracy(accuracy(args), o.orbit);
   o.orbit.shooting.flow = flow_options(args, o.orbit.shooting.flow);
   o.orbit.transient_flow.linear_solver = o.orbit.shooting.flow.linear_solver;
@@ -99,7 +112,7 @@ int run_continue(const std::vector<std::string>& argv) {
   if (request.at) ends.push_back({"--at", *request.at});
   c.check_range(request.parameter, ends);
   // The start (fails early with the list of starts).
-  const BranchSource source = c.source(request.start, request.initial);
+  const BranchSource source = c.source(request.start, request.initial, request.start_data);
   const auto json_path = args.value("--json");
   if (json_path) check_writable(*json_path, "--json");
   request.events_path = args.text("--events", "");
@@ -108,11 +121,15 @@ int run_continue(const std::vector<std::string>& argv) {
   check_distinct_outputs({{"--csv", request.csv_path},
                           {"--events", request.events_path},
                           {"--json", json_path.value_or("")}},
-                         {{"case file", c.path()}, {"--parent", request.parent_path}});
+                         {{"case file", c.path()},
+                          {"--parent", request.parent_path},
+                          {"--start-data", args.text("--start-data", "")}});
 
+  const std::string start_name = request.start_data      ? describe_start_data(*request.start_data)
+                                 : request.start.empty() ? "(the file's [states])"
+                                                         : request.start;
   std::printf("sympathy continue %s  params %s  start %s  %s from %g to %g\n", c.path().c_str(),
-              c.params().empty() ? "(none)" : c.params().c_str(),
-              request.start.empty() ? "(the file's [states])" : request.start.c_str(),
+              c.params().empty() ? "(none)" : c.params().c_str(), start_name.c_str(),
               request.parameter.c_str(), request.from, request.to);
   if (c.equations()) std::printf("  %s\n", c.build_note().c_str());
   std::fflush(stdout);

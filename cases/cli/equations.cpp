@@ -6,25 +6,54 @@
 
 #include "cases/cli/common.hpp"
 #include "cases/cli/report.hpp"
+#include "cases/cli/start_data.hpp"
 #include "sympathy/cases/state_describer.hpp"
 #include "sympathy/continuation/branch_output.hpp"
 #include "sympathy/core/output_file.hpp"
 
 namespace sympathy::cli {
 
+namespace {
+
+// The file's parameter values and its system (compiled or from the cache), `recorded` checked
+// already: everything is checked before the compiler runs; a compiler failure is not the user's
+// input (a missing compiler or headers, or a bug of the generator) and says so.
+LoadedEquations build_loaded(EquationCase file, const std::string& params,
+                             const std::vector<Assignment>& sets,
+                             std::optional<RecordedPeriod> recorded) {
+  const std::string set = params.empty() ? file.default_parameter_set() : params;
+  ParameterValues values = file.parameter_values(set, sets);
+  EquationBuild build = build_equation_system(file, values);
+  return {std::move(file), set, std::move(values), std::move(build), std::move(recorded)};
+}
+
+}  // namespace
+
 LoadedEquations load_equations(const Arguments& args) {
-  return load_equations(args.positional(0), args.text("--params", ""), args.assignments("--set"));
+  EquationCase file = EquationCase::load(args.positional(0));
+  file.parameter_values(args.text("--params", file.default_parameter_set()),
+                        args.assignments("--set"));  // the values' errors first
+  std::vector<int> angles;  // as the compiled system will declare them (angle_states)
+  for (std::size_t i = 0; i < file.system().states.size(); ++i)
+    if (file.system().states[i].angle) angles.push_back(static_cast<int>(i));
+  std::optional<RecordedPeriod> recorded =
+      start_data(args, file.state_names(), file.path(), angles);
+  return build_loaded(std::move(file), args.text("--params", ""), args.assignments("--set"),
+                      std::move(recorded));
 }
 
 LoadedEquations load_equations(const std::string& path, const std::string& params,
                                const std::vector<Assignment>& sets) {
-  EquationCase file = EquationCase::load(path);
-  const std::string set = params.empty() ? file.default_parameter_set() : params;
-  ParameterValues values = file.parameter_values(set, sets);
-  // Everything is checked before the compiler runs; a compiler failure is not the user's input
-  // (a missing compiler or headers, or a bug of the generator) and says so.
-  EquationBuild build = build_equation_system(file, values);
-  return {std::move(file), set, std::move(values), std::move(build)};
+  return build_loaded(EquationCase::load(path), params, sets, std::nullopt);
+}
+
+void check_autonomous(const LoadedEquations& e) {
+  if (!e.build.system->autonomous())
+    throw InputError(e.file.path() +
+                     " uses t (a periodically forced system): its orbits have the forcing's "
+                     "period, which an equation case file cannot declare yet; expected an "
+                     "autonomous system (the library continues forced systems given the period: "
+                     "BranchProblem::start_period)");
 }
 
 std::string describe_build(const EquationBuild& build) {
@@ -49,9 +78,13 @@ int run_orbit_equations(const Arguments& args) {
         "--whole-state: only for a metronome case file (an equation case file's "
         "orbits are always computed in the whole state space)");
   const LoadedEquations e = load_equations(args);
-  const StartSpec* start = args.has("--start") ? &e.file.start(*args.value("--start")) : nullptr;
-  const Eigen::VectorXd z0 = e.file.initial_state(start, args.assignments("--initial"));
   const OdeSystem& system = *e.build.system;
+  const auto& recorded = e.start_data;
+  check_start_data_system(recorded, system, e.file.path());
+  check_autonomous(e);
+  const StartSpec* start = args.has("--start") ? &e.file.start(*args.value("--start")) : nullptr;
+  const Eigen::VectorXd z0 =
+      recorded ? recorded->state0 : e.file.initial_state(start, args.assignments("--initial"));
 
   OrbitOptions o;
   o.shooting.segments = args.integer("--segments", 1);
@@ -62,21 +95,30 @@ int run_orbit_equations(const Arguments& args) {
   check_options(o.validate(), "");
   if (auto path = args.value("--json")) {
     check_writable(*path, "--json");
-    check_distinct_outputs({{"--json", *path}}, {{"case file", e.file.path()}});
+    check_distinct_outputs({{"--json", *path}}, {{"case file", e.file.path()},
+                                                 {"--start-data", args.text("--start-data", "")}});
   }
 
-  const PeriodicOrbit orbit = find_periodic_orbit(system, e.values, z0, InvariantSubspace(), o);
+  const PeriodicOrbit orbit =
+      recorded ? orbit_from_recorded_period(system, e.values, *recorded, InvariantSubspace(), o)
+               : find_periodic_orbit(system, e.values, z0, InvariantSubspace(), o);
   const double seconds = clock.seconds();
   const StateDescriber describer(system);
   const auto amplitudes = describer.amplitudes(orbit);
 
+  const std::string start_name = recorded ? describe_start_data(*recorded)
+                                 : start  ? start->name
+                                          : "(the file's [states])";
   std::printf("sympathy orbit %s  params %s  start %s\n", e.file.path().c_str(),
-              e.params.empty() ? "(none)" : e.params.c_str(),
-              start ? start->name.c_str() : "(the file's [states])");
+              e.params.empty() ? "(none)" : e.params.c_str(), start_name.c_str());
   std::printf("  %s\n", describe_build(e.build).c_str());
   print_orbit(stdout, system, orbit, amplitudes, {}, o);
   return finish_orbit_report(system, orbit, describer, args.flag("--verbose"), args.value("--json"),
-                             e.file.path(), e.params, start ? start->name : "", seconds);
+                             e.file.path(), e.params,
+                             recorded ? "data " + recorded->path
+                             : start  ? start->name
+                                      : "",
+                             seconds);
 }
 
 }  // namespace sympathy::cli

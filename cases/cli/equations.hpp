@@ -6,7 +6,10 @@
 
 #include <string>
 
+#include <optional>
+
 #include "cases/cli/arguments.hpp"
+#include "cases/cli/start_data.hpp"
 #include "sympathy/cases/equation_case.hpp"
 #include "sympathy/cases/equation_compiler.hpp"
 
@@ -17,13 +20,19 @@ struct LoadedEquations {
   std::string params;  // the parameter set applied ("" if none)
   ParameterValues values;
   EquationBuild build;
+  std::optional<RecordedPeriod> start_data;  // --start-data, if given (orbit, continue)
 };
 
-// The file of positional 0, the parameter values of --params and --set, and its system.
+// The file of positional 0, the parameter values of --params and --set, the recorded period of
+// --start-data (checked against the file's states before anything is compiled), and its system.
 LoadedEquations load_equations(const Arguments& args);
 // The same for the file at `path`, parameter set `params` ("" for the file's default) and `sets`.
 LoadedEquations load_equations(const std::string& path, const std::string& params,
                                const std::vector<Assignment>& sets);
+
+// InputError unless the file's system is autonomous: a forced system's orbits have the forcing's
+// period, which an equation case file cannot declare yet (orbit and continue need it).
+void check_autonomous(const LoadedEquations& e);
 
 // "system compiled in 1.23 s against the headers in DIR (CACHE/KEY.so)" or "system from the
 // cache (CACHE/KEY.so)", with why an entry present was rebuilt.

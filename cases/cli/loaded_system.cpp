@@ -7,8 +7,18 @@
 
 namespace sympathy::cli {
 
-LoadedSystem::LoadedSystem(const Arguments& args)
-    : LoadedSystem(args.positional(0), args.text("--params", ""), args.assignments("--set")) {}
+LoadedSystem::LoadedSystem(const Arguments& args) : sets_(args.assignments("--set")) {
+  if (case_file_kind(args.positional(0)) == "equations") {
+    equations_.emplace(load_equations(args));
+    recorded_ = equations_->start_data;
+    describer_ = std::make_unique<StateDescriber>(*equations_->build.system);
+  } else {
+    metronomes_.emplace(load_case(args));
+    model_ = std::make_unique<MetronomeModel>(metronomes_->spec);
+    describer_ = std::make_unique<MetronomeDescriber>(*model_);
+    recorded_ = cli::start_data(args, model_->state_names(), path());
+  }
+}
 
 LoadedSystem::LoadedSystem(const std::string& path, const std::string& params,
                            const std::vector<Assignment>& sets)
@@ -65,8 +75,19 @@ void LoadedSystem::check_range(const std::string& parameter,
   }
 }
 
-BranchSource LoadedSystem::source(const std::string& start,
-                                  const std::vector<Assignment>& initial) const {
+void LoadedSystem::require_autonomous() const {
+  if (!equations_) return;
+  check_start_data_system(recorded_, system(), path());
+  check_autonomous(*equations_);
+}
+
+BranchSource LoadedSystem::source(const std::string& start, const std::vector<Assignment>& initial,
+                                  const std::optional<RecordedPeriod>& data) const {
+  const ParameterValues values = equations_ ? equations_->values : model_->default_parameters();
+  if (data)
+    return {system(),     *describer_,         values,
+            data->state0, InvariantSubspace(), "data " + data->path,
+            data->period};
   if (equations_) {
     const EquationCase& file = equations_->file;
     const StartSpec* named = start.empty() ? nullptr : &file.start(start);
@@ -75,7 +96,8 @@ BranchSource LoadedSystem::source(const std::string& start,
             equations_->values,
             file.initial_state(named, initial),
             InvariantSubspace(),
-            start.empty() ? std::string("states") : start};
+            start.empty() ? std::string("states") : start,
+            std::nullopt};
   }
   if (start.empty()) throw InputError("--start is required");
   const StartSpec& named = metronomes_->file.start(start);
@@ -84,7 +106,8 @@ BranchSource LoadedSystem::source(const std::string& start,
           model_->default_parameters(),
           metronomes_->file.initial_state(&named, initial),
           metronomes_->file.invariant_subspace(named, *model_),
-          named.name};
+          named.name,
+          std::nullopt};
 }
 
 InvariantSubspace LoadedSystem::subspace(const std::string& start) const {

@@ -13,6 +13,7 @@
 #include "cases/cli/branch_run.hpp"
 #include "cases/cli/common.hpp"
 #include "cases/cli/equations.hpp"
+#include "cases/cli/start_data.hpp"
 #include "sympathy/cases/metronome_model.hpp"
 
 namespace sympathy::cli {
@@ -20,7 +21,8 @@ namespace sympathy::cli {
 class LoadedSystem {
  public:
   // The case file of positional 0 with --params and --set (an equation case file's system
-  // compiled, or from the cache).
+  // compiled, or from the cache), and --start-data's recorded period if given (read and checked
+  // before anything is compiled).
   explicit LoadedSystem(const Arguments& args);
   // The case file at `path` with parameter set `params` ("" for the file's default) and `sets` on
   // top (a study file's branch).
@@ -44,14 +46,23 @@ class LoadedSystem {
   void check_range(const std::string& parameter,
                    const std::vector<std::pair<std::string, double>>& values) const;
 
+  // --start-data's recorded period (nullopt without it).
+  const std::optional<RecordedPeriod>& start_data() const { return recorded_; }
+  // InputError for an equation case file that uses t (a forced system: its period cannot be
+  // declared in a case file yet), naming --start-data if it was given.
+  void require_autonomous() const;
+
   // The start named `start` ("" is the file's [states] for an equation case file; a metronome
   // case file needs a name: InputError "--start is required"), with `initial` on top; its
-  // invariant subspace (a metronome start's declared symmetry).
-  BranchSource source(const std::string& start, const std::vector<Assignment>& initial) const;
+  // invariant subspace (a metronome start's declared symmetry). With `data`, the recorded
+  // period's first row and its period guess instead (Newton at once, in the whole state).
+  BranchSource source(const std::string& start, const std::vector<Assignment>& initial,
+                      const std::optional<RecordedPeriod>& data = std::nullopt) const;
   InvariantSubspace subspace(const std::string& start) const;
 
  private:
   std::vector<Assignment> sets_;  // --set, for range checks of an equation case file
+  std::optional<RecordedPeriod> recorded_;
   std::optional<LoadedCase> metronomes_;
   std::optional<LoadedEquations> equations_;
   std::unique_ptr<MetronomeModel> model_;

@@ -10,6 +10,7 @@
 #include "cases/cli/common.hpp"
 #include "cases/cli/equations.hpp"
 #include "cases/cli/report.hpp"
+#include "cases/cli/start_data.hpp"
 #include "sympathy/continuation/branch_output.hpp"
 #include "sympathy/continuation/periodic_orbit.hpp"
 #include "sympathy/core/output_file.hpp"
@@ -31,17 +32,24 @@ int run_orbit(const std::vector<std::string>& argv) {
   const auto integrator = integrator_options();
   options.insert(options.end(), integrator.begin(), integrator.end());
   options.push_back(accuracy_option());
+  options.push_back(start_data_option());
   Arguments args("orbit", argv, options, {"CASE"});
 
   if (case_file_kind(args.positional(0)) == "equations") return run_orbit_equations(args);
   Stopwatch clock;
   const LoadedCase c = load_case(args);
-  if (!args.has("--start"))
-    throw InputError("--start NAME is required; expected one of: " + join(c.file.start_names()));
-  const StartSpec& start = c.file.start(*args.value("--start"));
   MetronomeModel model(c.spec);
-  const InvariantSubspace subspace = c.file.invariant_subspace(start, model);
-  const Eigen::VectorXd z0 = c.file.initial_state(&start, args.assignments("--initial"));
+  // From a recorded period: in the whole state space (the data need not lie in a start's
+  // symmetric subspace).
+  const auto recorded = start_data(args, model.state_names(), c.file.path());
+  if (!recorded && !args.has("--start"))
+    throw InputError("--start NAME is required (or --start-data FILE.csv); expected one of: " +
+                     join(c.file.start_names()));
+  const StartSpec* start = recorded ? nullptr : &c.file.start(*args.value("--start"));
+  const InvariantSubspace subspace =
+      start ? c.file.invariant_subspace(*start, model) : InvariantSubspace();
+  const Eigen::VectorXd z0 =
+      start ? c.file.initial_state(start, args.assignments("--initial")) : recorded->state0;
 
   OrbitOptions o;
   o.shooting.segments = args.integer("--segments", 1);
@@ -53,20 +61,25 @@ int run_orbit(const std::vector<std::string>& argv) {
   check_options(o.validate(), "");
   if (auto path = args.value("--json")) {
     check_writable(*path, "--json");
-    check_distinct_outputs({{"--json", *path}}, {{"case file", c.file.path()}});
+    check_distinct_outputs({{"--json", *path}}, {{"case file", c.file.path()},
+                                                 {"--start-data", args.text("--start-data", "")}});
   }
 
   const PeriodicOrbit orbit =
-      find_periodic_orbit(model, model.default_parameters(), z0, subspace, o);
+      recorded
+          ? orbit_from_recorded_period(model, model.default_parameters(), *recorded, subspace, o)
+          : find_periodic_orbit(model, model.default_parameters(), z0, subspace, o);
   const double seconds = clock.seconds();
   const MetronomeDescriber describer(model);
   const MetronomeDescriber::Report report = describer.report(orbit);
 
+  const std::string start_name = start ? start->name : describe_start_data(*recorded);
   std::printf("sympathy orbit %s  params %s  start %s\n", c.file.path().c_str(),
-              c.params.empty() ? "(none)" : c.params.c_str(), start.name.c_str());
+              c.params.empty() ? "(none)" : c.params.c_str(), start_name.c_str());
   print_orbit(stdout, model, orbit, report.amplitudes, report.phase_differences, o);
   return finish_orbit_report(model, orbit, describer, args.flag("--verbose"), args.value("--json"),
-                             c.file.path(), c.params, start.name, seconds);
+                             c.file.path(), c.params,
+                             start ? start->name : "data " + recorded->path, seconds);
 }
 
 }  // namespace sympathy::cli

@@ -33,18 +33,23 @@ int run_study(const std::vector<std::string>& argv) {
   // file or an equation case file (compiled once, its values per branch).
   std::vector<std::unique_ptr<LoadedSystem>> systems;
   std::vector<BranchSource> sources;
+  std::vector<std::optional<RecordedPeriod>> recorded;  // each branch's start_data, if any
   for (const auto& b : study.branches) {
     auto c = std::make_unique<LoadedSystem>(study.case_path, study.params, b.sets);
     const auto names = c->system().parameter_names();
     if (std::find(names.begin(), names.end(), study.parameter) == names.end())
       throw InputError(study.path + ": parameter '" + study.parameter + "' is not one of " +
                        c->path() + "'s: " + join(names));
+    recorded.push_back(b.start_data.empty() ? std::nullopt
+                                            : std::optional<RecordedPeriod>(read_recorded_period(
+                                                  b.start_data, c->system().state_names(),
+                                                  c->path(), c->system().angle_states())));
     std::vector<std::pair<std::string, double>> ends{
         {study.path + ": branch '" + b.name + "': from", b.request.from},
         {study.path + ": branch '" + b.name + "': to", b.request.to}};
     if (b.request.at) ends.push_back({study.path + ": branch '" + b.name + "': at", *b.request.at});
     c->check_range(study.parameter, ends);
-    sources.push_back(c->source(b.request.start, b.request.initial));
+    sources.push_back(c->source(b.request.start, b.request.initial, recorded.back()));
     systems.push_back(std::move(c));
   }
   const LoadedSystem& first = *systems.front();
@@ -59,7 +64,12 @@ int run_study(const std::vector<std::string>& argv) {
     outputs.emplace_back("branch '" + b.name + "''s events CSV", stem + "-events.csv");
   }
   for (const auto& [what, path] : outputs) check_writable(path, study.path + ": " + what);
-  check_distinct_outputs(outputs, {{"study file", study.path}, {"case file", first.path()}});
+  std::vector<std::pair<std::string, std::string>> inputs{{"study file", study.path},
+                                                          {"case file", first.path()}};
+  for (const auto& b : study.branches)
+    if (!b.start_data.empty())
+      inputs.emplace_back("branch '" + b.name + "''s start_data", b.start_data);
+  check_distinct_outputs(outputs, inputs);
 
   std::printf("sympathy study %s: %s\n  case %s  params %s  parameter %s\n", study.path.c_str(),
               study.title.c_str(), first.path().c_str(), first.params().c_str(),
@@ -72,6 +82,7 @@ int run_study(const std::vector<std::string>& argv) {
   for (std::size_t i = 0; i < study.branches.size(); ++i) {
     const auto& b = study.branches[i];
     BranchRequest r = b.request;
+    r.start_data = recorded[i];
     if (args.has("--accuracy")) apply_accuracy(accuracy(args), r.continuation.orbit);
     r.csv_path = out + "/" + study.name + "-" + b.name + ".csv";
     r.events_path = out + "/" + study.name + "-" + b.name + "-events.csv";

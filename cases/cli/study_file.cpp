@@ -47,18 +47,26 @@ Study load_study(const std::string& path) {
     const auto& t = *entry.as_table();
     in.only(t, prefix,
             {"name", "start", "from", "to", "at", "set", "initial", "max_points", "step",
-             "max_step", "transient", "switch_at"});
+             "max_step", "transient", "switch_at", "user_points", "start_data"});
     StudyBranch b;
     // A branch switched at another's event may leave out its start: the parent's.
     const toml::node* switch_node = t.get("switch_at");
     const bool chained = switch_node && switch_node->is_string() &&
                          switch_node->as_string()->get().find(':') != std::string::npos;
     for (const char* key : {"name", "start", "from", "to"})
-      if (!t.get(key) && !(chained && std::string(key) == "start"))
+      if (!t.get(key) && !((chained || t.get("start_data")) && std::string(key) == "start"))
         throw InputError(path + ":" + std::to_string(entry.source().begin.line) + ": key '" +
                          prefix + key + "' is missing");
     b.name = in.string(*t.get("name"), prefix + "name");
     if (t.get("start")) b.request.start = in.string(*t.get("start"), prefix + "start");
+    if (const toml::node* n = t.get("start_data")) {
+      if (t.get("start"))
+        in.fail(*n, prefix + "start_data", "either start or start_data, not both");
+      b.start_data =
+          (std::filesystem::path(path).parent_path() / in.string(*n, prefix + "start_data"))
+              .lexically_normal()
+              .string();
+    }
     b.request.parameter = s.parameter;
     b.request.from = in.number(*t.get("from"), prefix + "from");
     b.request.to = in.number(*t.get("to"), prefix + "to");
@@ -80,7 +88,10 @@ Study load_study(const std::string& path) {
         if (!parent.parent.empty() || !parent.request.switch_at.empty())
           in.fail(*n, prefix + "switch_at",
                   "a branch that is not itself switched ('" + b.parent + "' is)");
-        if (b.request.start.empty()) b.request.start = parent.request.start;
+        if (b.request.start.empty() && b.start_data.empty()) {
+          b.request.start = parent.request.start;
+          b.start_data = parent.start_data;
+        }
       }
       b.request.switch_at = text;
       parse_event_name(b.request.switch_at, in.where(*n) + ": key '" + prefix + "switch_at'");
@@ -91,6 +102,19 @@ Study load_study(const std::string& path) {
     if (auto* n = t.get("max_points")) o.max_points = in.integer(*n, prefix + "max_points");
     if (auto* n = t.get("step")) o.initial_step = in.number(*n, prefix + "step");
     if (auto* n = t.get("max_step")) o.max_step = in.number(*n, prefix + "max_step");
+    if (const toml::node* n = t.get("user_points")) {
+      const std::string key = prefix + "user_points";
+      if (!n->is_array()) in.fail(*n, key, "a list of values of the parameter, e.g. [20, 40]");
+      for (const auto& v : *n->as_array()) {
+        const double value = in.number(v, key);
+        if (value < std::min(b.request.from, b.request.to) ||
+            value > std::max(b.request.from, b.request.to))
+          in.fail(
+              v, key,
+              "values between from and to (the branch never reaches " + format_number(value) + ")");
+        o.user_points.push_back(value);
+      }
+    }
     // The engine's own validation, as the command line's (the same domains, named by key).
     const std::string where =
         path + ":" + std::to_string(entry.source().begin.line) + ": " + prefix;

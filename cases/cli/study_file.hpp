@@ -17,6 +17,9 @@ struct StudyBranch {
   std::string parent;
   BranchRequest request;
   std::vector<Assignment> sets;  // on top of the study's parameter set
+  // `start_data`: a recorded period to start from instead of `start` (relative to the study
+  // file; read by the study against its case's states).
+  std::string start_data;
 };
 
 struct Study {

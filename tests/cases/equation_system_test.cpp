@@ -11,6 +11,8 @@
 #include <numbers>
 #include <random>
 
+#include <unistd.h>
+
 #include <gtest/gtest.h>
 
 #include "sympathy/cases/case_file.hpp"
@@ -29,13 +31,15 @@ std::string example(const std::string& name) {
   return std::string(SYMPATHY_SOURCE_DIR) + "/cases/examples/" + name + ".toml";
 }
 
-// A fresh cache directory per test, removed after it.
+// A fresh cache directory per test, removed after it; named by the process too, so that two test
+// runs at once (two build trees on one machine) do not remove each other's entries.
 class EquationSystemTest : public ::testing::Test {
  protected:
   void SetUp() override {
     cache_ = fs::temp_directory_path() /
              ("sympathy_equation_cache_" +
-              std::string(::testing::UnitTest::GetInstance()->current_test_info()->name()));
+              std::string(::testing::UnitTest::GetInstance()->current_test_info()->name()) + "_" +
+              std::to_string(::getpid()));
     fs::remove_all(cache_);
   }
   void TearDown() override { fs::remove_all(cache_); }

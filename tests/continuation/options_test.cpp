@@ -146,6 +146,8 @@ Spoilers<ContinuationOptions> all_continuation_spoilers() {
       {"location_tolerance", [](O& o) { o.location_tolerance = kNaN; }},
       {"trust_limit", [](O& o) { o.trust_limit = 0.0; }},
       {"trust_limit", [](O& o) { o.trust_limit = kNaN; }},
+      {"user_points", [](O& o) { o.user_points.push_back(kNaN); }},
+      {"user_points", [](O& o) { o.user_points.assign(2, 0.5); }},  // repeated
   };
   for (const auto& [field, spoil] : all_orbit_spoilers())
     all.push_back({"orbit." + field, [spoil](O& o) { spoil(o.orbit); }});

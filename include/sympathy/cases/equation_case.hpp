@@ -5,8 +5,8 @@
 //   name = "hopf"                     # optional, as in every case file
 //   description = "..."
 //   [states]                          # the state vector, in the order of the file; initial values
-//   x = 0.1
-//   y = 0.0
+//   x = 0.1                           # or a table: theta = { value = 0.0, angle = true }, an
+//   y = 0.0                           # angle (a rotation by 2 pi k per period is periodic)
 //   [parameters]                      # a value, or a table with value, unit, min, max
 //   mu = 0.25
 //   w = { value = 1.0, unit = "rad/s", min = 0.0 }
@@ -52,6 +52,9 @@ constexpr std::size_t kMaxEquationFileBytes = 1 << 20;
 struct EquationState {
   std::string name;
   double initial = 0.0;
+  // Declared an angle (theta = { value = 0.0, angle = true }): a motion on which it gains 2 pi k
+  // per period is periodic (OdeSystem::angle_states).
+  bool angle = false;
 };
 
 struct EquationParameter {

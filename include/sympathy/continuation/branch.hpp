@@ -21,8 +21,12 @@ enum class BifurcationType {
   BranchPoint,     // BP: a real multiplier crosses +1 without a fold (symmetry-breaking pitchfork)
   PeriodDoubling,  // PD: a real multiplier crosses -1
   NeimarkSacker,   // NS: a complex pair crosses the unit circle
+  // UZ: not a bifurcation but a value of the parameter asked for (ContinuationOptions::
+  // user_points, AUTO's UZ): the branch's orbit there, at the value exactly, no multiplier
+  // crossing.
+  UserPoint,
 };
-std::string to_string(BifurcationType t);  // "LP", "BP", "PD", "NS"
+std::string to_string(BifurcationType t);  // "LP", "BP", "PD", "NS", "UZ"
 std::string describe(BifurcationType t);   // "fold", ...
 
 // One computed point of a branch: a converged periodic orbit at a parameter value.

@@ -25,7 +25,11 @@ struct BranchProblem {
   Eigen::VectorXd start_state;  // the transient starts here (ignored when start_orbit is given)
   InvariantSubspace subspace;   // ... and stays in it (a symmetric orbit, however unstable)
   std::optional<PeriodicOrbit> start_orbit;  // a converged orbit at the first value instead
-  std::string start_name = "start";          // how messages name the start
+  // A period guess for start_state (a recorded period, recorded_period.hpp): Newton from there
+  // at once, without the transient. For a periodically forced system, the forcing's period
+  // (required unless start_orbit is given: no transient looks for a forced orbit).
+  std::optional<double> start_period;
+  std::string start_name = "start";  // how messages name the start
 
   // What is wrong with it for `system` (empty when nothing): the field and what was expected.
   std::string problem_with(const OdeSystem& system) const;

@@ -4,7 +4,8 @@
 // state component by the largest amplitude met on the branch so far, the period by itself, the
 // parameter by the range asked for, so that steps mean the same in metres, radians and newtons
 // per metre); the bordered linear system and the unit tangent; and the directions that do not
-// change the orbit (shifts in time along it), which comparisons of tangents leave out.
+// change the orbit (shifts in time along it), which comparisons of tangents leave out (none for
+// a periodically forced system, whose unknowns are the segment states alone, the period fixed).
 #pragma once
 
 #include <Eigen/Dense>

@@ -12,6 +12,12 @@
 // amount, so that a narrow window of instability is not stepped over. Between points, test
 // functions (the tangent's parameter component for folds, |mu| - 1 of each multiplier crossing the
 // unit circle) locate every bifurcation to a relative tolerance in the parameter.
+//
+// A periodically forced (non-autonomous) system is continued with its period fixed at the
+// start's (the forcing's; the continued parameter must not change it): the unknowns are then the
+// segment states alone, there is no phase condition and no trivial multiplier, and no shift in
+// time leaves an orbit alone. Branch switching and two-parameter curves are for autonomous
+// systems only.
 #pragma once
 
 #include <functional>
@@ -77,6 +83,11 @@ class Continuation {
   // section; nullopt when it cannot be corrected.
   std::optional<ContinuationPoint> point_on_bound(const ContinuationPoint& a,
                                                   const ContinuationPoint& b, double bound) const;
+  // The options' user points the step from a to b passed (b at one, or a and b on either side),
+  // each as a UserPoint event: the branch's point at the value (point_on_bound), ordered along
+  // the step (user_points.cpp).
+  std::vector<Bifurcation> user_points_between(const ContinuationPoint& a,
+                                               const ContinuationPoint& b) const;
 
   // The Hopf point where a branch that turned back at `turn` (no multiplier at +1) ends, if its
   // orbits shrank into an equilibrium there (hopf.hpp); nullopt otherwise.

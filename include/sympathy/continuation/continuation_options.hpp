@@ -2,6 +2,8 @@
 // else) and their validation. A Branch keeps the options that made it.
 #pragma once
 
+#include <vector>
+
 #include "sympathy/continuation/periodic_orbit.hpp"
 #include "sympathy/core/option_check.hpp"
 
@@ -28,7 +30,11 @@ struct ContinuationOptions {
   double trust_limit = 1e-6;         // trivial-multiplier error above which events are flagged
   bool detect_bifurcations = true;
   bool curved_predictor = true;  // cubic through the last two points; false: the tangent alone
-  OrbitOptions orbit;            // shooting, rank tolerance, stability tolerance
+  // Values of the parameter at which the branch reports its orbit (AUTO's UZ): each time the
+  // branch passes one, the point there, corrected with the parameter fixed at it, is an event of
+  // type UserPoint. Finite and distinct; any order. The start itself is not reported.
+  std::vector<double> user_points;
+  OrbitOptions orbit;  // shooting, rank tolerance, stability tolerance
 
   // The bounds are not checked here (a branch run sets them from its problem; the Continuation
   // checks lower < upper).

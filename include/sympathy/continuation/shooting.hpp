@@ -6,6 +6,10 @@
 //   r_p = <n, z_0 - z_ref>              (phase condition, autonomous only: a Poincare section
 //                                       through a reference point, across the flow there:
 //                                       n = f(z_ref), or f(z_ref) in a chosen metric).
+// States declared as angles (OdeSystem::angle_states) may gain 2 pi k over the period (a
+// rotating pendulum): the wrap-around residual is then Phi(z_{m-1}) - (z_0 + 2 pi k), with the
+// whole numbers k per angle (the winding) taken from the guess (unknowns_from) and fixed while
+// Newton and continuation run; the Jacobian is unchanged.
 // The Jacobian is block sparse: the segments' transition matrices on the block diagonal, -I on
 // the block superdiagonal (cyclically), f at the segment ends / m in the period column, n in the
 // phase row. Derivatives come from the flow's forward sensitivities.
@@ -58,7 +62,11 @@ class ShootingProblem {
   const Eigen::VectorXd& phase_normal() const { return f_ref_; }
 
   // Unknowns from an initial state and period: the segment states by integrating one period.
+  // Also sets the winding: what each angle gains over the period, rounded to a multiple of 2 pi.
   Eigen::VectorXd unknowns_from(const Eigen::VectorXd& z0, const ParameterValues& p, double period);
+  // What the states gain over one period: 2 pi k on the angles that rotate, 0 elsewhere.
+  const Eigen::VectorXd& winding() const { return winding_; }
+  void set_winding(const Eigen::VectorXd& winding) { winding_ = winding; }
   double period(const Eigen::VectorXd& x) const;
   Eigen::VectorXd state(const Eigen::VectorXd& x, int segment = 0) const {
     return x.segment(segment * n_, n_);
@@ -101,6 +109,7 @@ class ShootingProblem {
   Evaluation evaluate(const Eigen::VectorXd& x, const ParameterValues& p, bool derivatives,
                       int parameter, Flow& flow);
   Eigen::VectorXd z_ref_, f_ref_;
+  Eigen::VectorXd winding_;  // n: 2 pi k per rotating angle
 };
 
 }  // namespace sympathy

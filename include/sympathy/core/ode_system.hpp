@@ -95,6 +95,11 @@ class OdeSystem {
   // Does f depend on t? Autonomous systems have a trivial Floquet multiplier.
   virtual bool autonomous() const { return true; }
 
+  // States that are angles (indices, increasing): a motion on which one of them gains a multiple
+  // of 2 pi over a period (a pendulum that rotates) is periodic all the same (the shooting
+  // residual subtracts the gain; see ShootingProblem). Empty: none.
+  virtual std::vector<int> angle_states() const { return {}; }
+
   // Steep zones at parameter values p (a zone's width may depend on them).
   virtual std::vector<SteepZone> steep_zones(const double* /*p*/) const { return {}; }
 

@@ -1,0 +1,47 @@
+#include "cases/cli/start_data.hpp"
+
+#include <cstdio>
+
+#include "sympathy/core/errors.hpp"
+
+namespace sympathy::cli {
+
+OptionSpec start_data_option() {
+  return {"--start-data", "FILE.csv", false,
+          "start from one recorded period instead (columns t and every state, as simulate --out "
+          "writes; its first row the start, its span or first return the period guess)"};
+}
+
+std::optional<RecordedPeriod> start_data(const Arguments& args,
+                                         const std::vector<std::string>& state_names,
+                                         const std::string& system,
+                                         const std::vector<int>& angles) {
+  const auto path = args.value("--start-data");
+  if (!path) return std::nullopt;
+  for (const char* other : {"--start", "--initial", "--transient"})
+    if (args.has(other))
+      throw InputError(std::string(other) + ": not with --start-data " + *path +
+                       " (the recording's first row is the start, and Newton starts there "
+                       "without a transient); expected one or the other");
+  return read_recorded_period(*path, state_names, system, angles);
+}
+
+void check_start_data_system(const std::optional<RecordedPeriod>& recorded, const OdeSystem& system,
+                             const std::string& case_path) {
+  if (recorded && !system.autonomous())
+    throw InputError("--start-data " + recorded->path + ": " + case_path +
+                     " uses t (a periodically forced system), whose period is the forcing's, not "
+                     "the recording's; expected an autonomous system (a forced one's period "
+                     "cannot be declared in a case file yet)");
+}
+
+std::string describe_start_data(const RecordedPeriod& r) {
+  char text[160];
+  std::snprintf(text, sizeof text, " (%d rows over %.6g s; period guess %.9g s: %s", r.rows, r.span,
+                r.period, r.returned ? "its first return, line " : "its time span");
+  std::string s = "data " + r.path + text;
+  if (r.returned) s += std::to_string(r.return_line);
+  return s + ")";
+}
+
+}  // namespace sympathy::cli

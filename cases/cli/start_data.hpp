@@ -1,0 +1,34 @@
+// --start-data FILE.csv (orbit, continue): an orbit started from one recorded or simulated period
+// instead of a named start and a transient (continuation/recorded_period.hpp), for metronome and
+// equation case files alike. The file is read and checked as the arguments are, before any work.
+#pragma once
+
+#include <optional>
+#include <string>
+#include <vector>
+
+#include "cases/cli/arguments.hpp"
+#include "sympathy/continuation/recorded_period.hpp"
+#include "sympathy/core/ode_system.hpp"
+
+namespace sympathy::cli {
+
+OptionSpec start_data_option();
+
+// The recorded period --start-data names (nullopt without it), checked against the system's
+// state names; InputError for --start, --initial or --transient beside it (the recording's first
+// row is the start, and nothing is integrated before Newton).
+std::optional<RecordedPeriod> start_data(const Arguments& args,
+                                         const std::vector<std::string>& state_names,
+                                         const std::string& system,
+                                         const std::vector<int>& angles = {});
+
+// InputError unless `system` is autonomous: a forced system's period is the forcing's, not the
+// recording's (and an equation case file cannot declare the forcing's period yet).
+void check_start_data_system(const std::optional<RecordedPeriod>& recorded, const OdeSystem& system,
+                             const std::string& case_path);
+
+// "data FILE.csv (N rows over S s; period guess T s: the first return, line L)" for the reports.
+std::string describe_start_data(const RecordedPeriod& recorded);
+
+}  // namespace sympathy::cli
