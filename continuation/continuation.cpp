@@ -64,6 +64,7 @@ Correction Continuation::correct_step(const Eigen::VectorXd& from, const Eigen::
   CorrectorOptions corrector;
   corrector.max_iterations = options_.max_corrector_iterations;
   corrector.max_chord_steps = options_.max_chord_steps;
+  corrector.derivatives_first = predictions_land_;
   corrector.tolerance =
       attainable_tolerance(options_.corrector_tolerance, options_.orbit.newton.rtol_factor,
                            options_.orbit.shooting.flow);
@@ -156,6 +157,7 @@ Branch Continuation::run_from(const PeriodicOrbit& start, int direction,
   branch.options = options_;
   branch.start_values = start.parameters;
   problem_->reset_statistics();
+  predictions_land_ = false;
   auto finish = [&](StopReason stop, const std::string& reason) {
     branch.stop = stop;
     branch.stop_reason = reason;
@@ -239,6 +241,7 @@ Branch Continuation::run_from(const PeriodicOrbit& start, int direction,
         ya, a.tangent, ds,
         predict(space, previous, a, ds, options_.curved_predictor, options_.min_tangent_cosine),
         &chord);
+    predictions_land_ = c.converged && c.chord_steps == 0 && c.iterations == 0;
     if (!c.converged) {
       ++branch.rejected.corrector;
       ds *= 0.5;
