@@ -56,6 +56,7 @@ Continuation::Continuation(const OdeSystem& system, int parameter, ContinuationO
     throw std::invalid_argument("continuation: no parameter with index " +
                                 std::to_string(parameter));
   problem_ = std::make_unique<ShootingProblem>(system_, options_.orbit.shooting);
+  problem_->record_samples(true);  // each point's scales and description from its own run
 }
 
 Correction Continuation::correct_step(const Eigen::VectorXd& from, const Eigen::VectorXd& tangent,
@@ -93,6 +94,7 @@ ContinuationPoint Continuation::make_point(const Correction& c, const Eigen::Vec
   o.subspace = subspace_;
   o.floquet = shooting_floquet(*problem_, c.evaluation, o.state0, family_dimension_,
                                options_.orbit.floquet, subspace_);
+  o.samples = c.evaluation.samples;
   o.newton.converged = true;
   o.newton.outcome = NewtonOutcome::Converged;
   o.newton.iterations = c.iterations;
@@ -175,7 +177,7 @@ Branch Continuation::run_from(const PeriodicOrbit& start, int direction,
                                          options_.orbit.newton.rank_tolerance);
   const BranchSpace& space = *space_;
   try {
-    space_->reset_scales(start.state0, start.period, options_.orbit.transient_flow);
+    space_->reset_scales(start.state0, start.period, options_.orbit.transient_flow, &start.samples);
     if (sizes.size()) space_->include_sizes(sizes);
   } catch (const IntegrationError& e) {
     return finish(StopReason::StartFailed,
@@ -215,6 +217,8 @@ Branch Continuation::run_from(const PeriodicOrbit& start, int direction,
   chord_jacobian_ = problem_->jacobian(c0.evaluation, true);
   branch.points.push_back(make_point(c0, tau, 0, 0.0));
   if (callbacks.on_point) callbacks.on_point(branch.points.back());
+  // A point's samples serve its callback and scales, not the branch kept (801 states a point).
+  branch.points.back().orbit.samples = PeriodSamples{};
 
   double ds = options_.initial_step;
   int location_retries = 0;  // shorter tries of the current step for an unlocated event
@@ -321,6 +325,8 @@ Branch Continuation::run_from(const PeriodicOrbit& start, int direction,
     chord_jacobian_ = std::move(jacobian_b);
     const ContinuationPoint& added = branch.points.back();
     if (callbacks.on_point) callbacks.on_point(added);
+    const PeriodSamples samples = std::move(branch.points.back().orbit.samples);
+    branch.points.back().orbit.samples = PeriodSamples{};  // as the start's
     for (auto& e : events) {
       branch.events.push_back(std::move(e));
       if (callbacks.on_event) callbacks.on_event(branch.events.back());
@@ -337,7 +343,7 @@ Branch Continuation::run_from(const PeriodicOrbit& start, int direction,
     // Scales follow the amplitudes met so far; the tangent stays a unit vector in them.
     try {
       space_->widen_scales(added.orbit.state0, added.orbit.parameters, added.orbit.period,
-                           options_.orbit.transient_flow);
+                           options_.orbit.transient_flow, &samples);
     } catch (const IntegrationError&) {
       // keep the scales as they are
     }
