@@ -222,6 +222,7 @@ Branch Continuation::run_from(const PeriodicOrbit& start, int direction,
 
   double ds = options_.initial_step;
   int location_retries = 0;  // shorter tries of the current step for an unlocated event
+  bool after_retry = false;  // the step being tried was retried for the multipliers' motion
   for (;;) {
     if (callbacks.stop_requested && callbacks.stop_requested())
       return finish(StopReason::Interrupted, "interrupted");
@@ -280,6 +281,7 @@ Branch Continuation::run_from(const PeriodicOrbit& start, int direction,
     if (motion.too_far && ds > 4 * options_.min_step) {
       ++branch.rejected.multipliers;
       ds = std::max(std::min(0.5 * ds, aim), 4 * options_.min_step);
+      after_retry = true;
       continue;
     }
     // The last point lies on the bound, never beyond it: a point past the bound gives way to the
@@ -349,7 +351,8 @@ Branch Continuation::run_from(const PeriodicOrbit& start, int direction,
     }
     auto& last = branch.points.back();
     last.tangent /= std::sqrt(space.dot(last.tangent, last.tangent));
-    ds = next_step(ds, c.iterations, aim, options_);
+    ds = next_step(ds, c.iterations, aim, options_, after_retry);
+    after_retry = false;
   }
 }
 
