@@ -22,18 +22,26 @@ ParameterValues BranchSpace::values_at(double v) const {
   return system_.with_parameter(base_, parameter_, v);
 }
 
-void BranchSpace::reset_scales(const Eigen::VectorXd& z0, double period, const FlowOptions& flow) {
+void BranchSpace::reset_scales(const Eigen::VectorXd& z0, double period, const FlowOptions& flow,
+                               const PeriodSamples* samples) {
   weights_.resize(unknowns_ + 1);
   sizes_.resize(0);
-  widen_scales(z0, base_, period, flow);
+  widen_scales(z0, base_, period, flow, samples);
   weights_[n_ * m_] = 1.0 / period;
   weights_[unknowns_] = 1.0 / range_;
 }
 
 void BranchSpace::widen_scales(const Eigen::VectorXd& z0, const ParameterValues& p, double period,
-                               const FlowOptions& flow_options) {
-  Flow flow(system_, flow_options);
+                               const FlowOptions& flow_options, const PeriodSamples* samples) {
   Eigen::VectorXd size = z0.cwiseAbs();
+  constexpr int every = PeriodSamples::intervals / 100;
+  static_assert(every * 100 == PeriodSamples::intervals);
+  if (samples && samples->of(z0, period)) {
+    for (int k = 1; k <= 100; ++k) size = size.cwiseMax(samples->states.col(every * k).cwiseAbs());
+    include_sizes(size);
+    return;
+  }
+  Flow flow(system_, flow_options);
   std::vector<double> times;
   for (int k = 1; k <= 100; ++k) times.push_back(period * k / 100.0);
   flow.sample(z0, p, 0.0, times,

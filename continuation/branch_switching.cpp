@@ -103,6 +103,7 @@ Branch Continuation::run_switched(const PeriodicOrbit& base, const Eigen::Vector
   y0[N] = p0;
   const auto e = problem_->evaluate(y0.head(N), base.parameters, true, parameter_);
   family_dimension_ = base.family_dimension;
+  predictions_land_ = false;  // the steps off the event: plain runs first, as from a start
 
   // The null space of [F_x F_p] in the scaled norm: the right singular vectors of J W^-1 with the
   // smallest singular values, two (the old branch and the new) plus the family's.

@@ -65,8 +65,10 @@ Continuation::Continuation(const OdeSystem& system, int parameter, ContinuationO
     throw std::invalid_argument("continuation: no parameter with index " +
                                 std::to_string(parameter));
   // A forced system's problem is made by each run, with the start's period (the forcing's).
-  if (system.autonomous())
+  if (system.autonomous()) {
     problem_ = std::make_unique<ShootingProblem>(system_, options_.orbit.shooting);
+    problem_->record_samples(true);  // each point's scales and description from its own run
+  }
 }
 
 Correction Continuation::correct_step(const Eigen::VectorXd& from, const Eigen::VectorXd& tangent,
@@ -75,6 +77,7 @@ Correction Continuation::correct_step(const Eigen::VectorXd& from, const Eigen::
   CorrectorOptions corrector;
   corrector.max_iterations = options_.max_corrector_iterations;
   corrector.max_chord_steps = options_.max_chord_steps;
+  corrector.derivatives_first = predictions_land_;
   corrector.tolerance =
       attainable_tolerance(options_.corrector_tolerance, options_.orbit.newton.rtol_factor,
                            options_.orbit.shooting.flow, space_->sizes().maxCoeff());
@@ -103,6 +106,7 @@ ContinuationPoint Continuation::make_point(const Correction& c, const Eigen::Vec
   o.subspace = subspace_;
   o.floquet = shooting_floquet(*problem_, c.evaluation, o.state0, family_dimension_,
                                options_.orbit.floquet, subspace_);
+  o.samples = c.evaluation.samples;
   o.newton.converged = true;
   o.newton.outcome = NewtonOutcome::Converged;
   o.newton.iterations = c.iterations;
@@ -181,6 +185,7 @@ Branch Continuation::run_from(const PeriodicOrbit& start, int direction,
     if (!(start.period > 0.0 && std::isfinite(start.period)))
       throw std::invalid_argument("continuation: a forced system's start needs its period");
     problem_ = std::make_unique<ShootingProblem>(system_, options_.orbit.shooting, start.period);
+    problem_->record_samples(true);
   }
   Branch branch;
   branch.parameter_name = system_.parameter_names()[parameter_];
@@ -189,6 +194,7 @@ Branch Continuation::run_from(const PeriodicOrbit& start, int direction,
   branch.options = options_;
   branch.start_values = start.parameters;
   problem_->reset_statistics();
+  predictions_land_ = false;
   auto finish = [&](StopReason stop, const std::string& reason) {
     branch.stop = stop;
     branch.stop_reason = reason;
@@ -206,7 +212,7 @@ Branch Continuation::run_from(const PeriodicOrbit& start, int direction,
                                          options_.orbit.newton.rank_tolerance);
   const BranchSpace& space = *space_;
   try {
-    space_->reset_scales(start.state0, start.period, options_.orbit.transient_flow);
+    space_->reset_scales(start.state0, start.period, options_.orbit.transient_flow, &start.samples);
     if (sizes.size()) space_->include_sizes(sizes);
   } catch (const IntegrationError& e) {
     return finish(StopReason::StartFailed,
@@ -246,9 +252,12 @@ Branch Continuation::run_from(const PeriodicOrbit& start, int direction,
   chord_jacobian_ = problem_->jacobian(c0.evaluation, true);
   branch.points.push_back(make_point(c0, tau, 0, 0.0));
   if (callbacks.on_point) callbacks.on_point(branch.points.back());
+  // A point's samples serve its callback and scales, not the branch kept (801 states a point).
+  branch.points.back().orbit.samples = PeriodSamples{};
 
   double ds = options_.initial_step;
   int location_retries = 0;  // shorter tries of the current step for an unlocated event
+  bool after_retry = false;  // the step being tried was retried for the multipliers' motion
   for (;;) {
     if (callbacks.stop_requested && callbacks.stop_requested())
       return finish(StopReason::Interrupted, "interrupted");
@@ -272,6 +281,7 @@ Branch Continuation::run_from(const PeriodicOrbit& start, int direction,
         ya, a.tangent, ds,
         predict(space, previous, a, ds, options_.curved_predictor, options_.min_tangent_cosine),
         &chord);
+    predictions_land_ = c.converged && c.chord_steps == 0 && c.iterations == 0;
     if (!c.converged) {
       ++branch.rejected.corrector;
       ds *= 0.5;
@@ -306,6 +316,7 @@ Branch Continuation::run_from(const PeriodicOrbit& start, int direction,
     if (motion.too_far && ds > 4 * options_.min_step) {
       ++branch.rejected.multipliers;
       ds = std::max(std::min(0.5 * ds, aim), 4 * options_.min_step);
+      after_retry = true;
       continue;
     }
     // The last point lies on the bound, never beyond it: a point past the bound gives way to the
@@ -380,6 +391,8 @@ Branch Continuation::run_from(const PeriodicOrbit& start, int direction,
     chord_jacobian_ = std::move(jacobian_b);
     const ContinuationPoint& added = branch.points.back();
     if (callbacks.on_point) callbacks.on_point(added);
+    const PeriodSamples samples = std::move(branch.points.back().orbit.samples);
+    branch.points.back().orbit.samples = PeriodSamples{};  // as the start's
     for (auto& e : events) {
       branch.events.push_back(std::move(e));
       if (callbacks.on_event) callbacks.on_event(branch.events.back());
@@ -396,13 +409,14 @@ Branch Continuation::run_from(const PeriodicOrbit& start, int direction,
     // Scales follow the amplitudes met so far; the tangent stays a unit vector in them.
     try {
       space_->widen_scales(added.orbit.state0, added.orbit.parameters, added.orbit.period,
-                           options_.orbit.transient_flow);
+                           options_.orbit.transient_flow, &samples);
     } catch (const IntegrationError&) {
       // keep the scales as they are
     }
     auto& last = branch.points.back();
     last.tangent /= std::sqrt(space.dot(last.tangent, last.tangent));
-    ds = next_step(ds, c.iterations, aim, options_);
+    ds = next_step(ds, c.iterations, aim, options_, after_retry);
+    after_retry = false;
   }
 }
 

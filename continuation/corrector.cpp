@@ -1,6 +1,7 @@
 #include "sympathy/continuation/corrector.hpp"
 
 #include <limits>
+#include <optional>
 #include <sstream>
 #include <vector>
 
@@ -32,17 +33,41 @@ Correction correct(ShootingProblem& problem, const BranchSpace& space, int param
     return rhs;
   };
   int iterations = 0;
+  // Where the predictions have been landing on the branch, the integration with sensitivities
+  // comes first: at the guess it usually both confirms the point and gives its monodromy, and the
+  // plain run that would only have said so is saved (on the anti-phase k-branch the orbit does not
+  // move with k, every prediction lands, and that plain run was 13% of the fast preset's time and
+  // 14% of the default's). Where it does not land, the quasi-Newton steps start from this exact
+  // Jacobian instead of the extrapolated one.
+  std::optional<ShootingProblem::Evaluation> known;  // with sensitivities, at y
+  if (options.derivatives_first) {
+    try {
+      known = problem.evaluate(y.head(N), space.values_at(y[N]), true, parameter);
+    } catch (const IntegrationError& error) {
+      c.reason = error.what();
+      return c;
+    }
+    const double norm = inf_norm(known->residual);
+    if (norm <= tolerance) {
+      c.converged = true;
+      c.y = std::move(y);
+      c.residual = norm;
+      c.evaluation = std::move(*known);
+      return c;
+    }
+  }
   // Broyden's updates of `chord` (the Jacobian extrapolated from the last points), in the scaled
   // norm, while they contract.
-  if (chord && options.max_chord_steps > 0) {
-    const auto matrix = bordered(*chord, row);
+  if ((chord || known) && options.max_chord_steps > 0) {
+    const auto matrix = bordered(known ? problem.jacobian(*known, true) : *chord, row);
     std::vector<Eigen::VectorXd> steps;
     double last = std::numeric_limits<double>::infinity();
     Eigen::VectorXd before = y;
     for (int k = 0; k < options.max_chord_steps; ++k) {
       Eigen::VectorXd residual;
       try {
-        residual = problem.residual(y.head(N), space.values_at(y[N]));
+        residual =
+            k == 0 && known ? known->residual : problem.residual(y.head(N), space.values_at(y[N]));
       } catch (const IntegrationError&) {
         y = before;
         break;
@@ -60,6 +85,7 @@ Correction correct(ShootingProblem& problem, const BranchSpace& space, int param
       steps.push_back(*z);
       before = y;
       y += *z;
+      known.reset();  // y moved
       ++c.chord_steps;
       last = norm;
     }
@@ -67,11 +93,15 @@ Correction correct(ShootingProblem& problem, const BranchSpace& space, int param
   double previous = std::numeric_limits<double>::infinity();
   for (int it = 0;; ++it, ++iterations) {
     ShootingProblem::Evaluation e;
-    try {
-      e = problem.evaluate(y.head(N), space.values_at(y[N]), true, parameter);
-    } catch (const IntegrationError& error) {
-      c.reason = error.what();
-      return c;
+    if (it == 0 && known) {
+      e = std::move(*known);  // the chord steps did not move y
+    } else {
+      try {
+        e = problem.evaluate(y.head(N), space.values_at(y[N]), true, parameter);
+      } catch (const IntegrationError& error) {
+        c.reason = error.what();
+        return c;
+      }
     }
     const double norm = inf_norm(e.residual);
     // Converged; or stalled within ten tolerances: the integration's noise floor, not a failure.

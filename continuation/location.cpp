@@ -45,6 +45,10 @@ Bifurcation locate(const ContinuationPoint& a, const ContinuationPoint& b, Bifur
   std::complex<double> mu_best = std::abs(f_lo) < std::abs(f_hi) ? mu_a : mu_b;
   double s_best = std::abs(f_lo) < std::abs(f_hi) ? 0.0 : sb;
   int side = 0;  // Illinois: which end was kept last time
+  // The true test values at the ends (f_lo and f_hi are Illinois-scaled) and at the end last
+  // replaced: three points for inverse quadratic interpolation.
+  double g_lo = f_lo, g_hi = f_hi, s_old = 0.0, g_old = 0.0;
+  bool third = false;
   for (int iteration = 0; iteration < 30; ++iteration) {
     // Relative to the parameter itself: with a floor of 1 the M-branch's points (M about 0.1
     // kg) were located only to 1e-7 relative.
@@ -56,6 +60,16 @@ Bifurcation locate(const ContinuationPoint& a, const ContinuationPoint& b, Bifur
       break;
     }
     double s = s_hi - f_hi * (s_hi - s_lo) / (f_hi - f_lo);
+    // With three points, their inverse quadratic interpolant where it falls inside the bracket:
+    // the test functions are curved across a step (|mu| - 1 of a multiplier speeding up towards
+    // the circle), and on the anti-phase k-branch the secant crept up on the BP and the second NS
+    // from one side (5 and 6 probes; 3 and 4 this way).
+    if (third && g_lo != g_hi && g_lo != g_old && g_hi != g_old) {
+      const double q = s_lo * g_hi * g_old / ((g_lo - g_hi) * (g_lo - g_old)) +
+                       s_hi * g_lo * g_old / ((g_hi - g_lo) * (g_hi - g_old)) +
+                       s_old * g_lo * g_hi / ((g_old - g_lo) * (g_old - g_hi));
+      if (q > s_lo && q < s_hi) s = q;
+    }
     if (!(s > s_lo && s < s_hi)) s = 0.5 * (s_lo + s_hi);
     // At least half the tolerance (in arclength) inside each end: when the root lies next to
     // one end, a probe just past it closes the bracket at once, where the secant would creep up
@@ -82,15 +96,22 @@ Bifurcation locate(const ContinuationPoint& a, const ContinuationPoint& b, Bifur
       mu_best = mu;
       s_best = s;
     }
+    third = true;
     if ((f > 0) == (f_hi > 0)) {
+      s_old = s_hi;
+      g_old = g_hi;
       s_hi = s;
+      g_hi = f;
       f_hi = f;
       mu_hi = mu;
       hi = std::move(p);
       if (side == +1) f_lo *= 0.5;
       side = +1;
     } else {
+      s_old = s_lo;
+      g_old = g_lo;
       s_lo = s;
+      g_lo = f;
       f_lo = f;
       mu_lo = mu;
       lo = std::move(p);

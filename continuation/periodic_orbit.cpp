@@ -131,6 +131,7 @@ PeriodicOrbit solve_periodic_orbit(const OdeSystem& system, const ParameterValue
       return orbit;
     }
   ShootingProblem problem(system, options.shooting, period);
+  problem.record_samples(true);  // for the orbit's describers and a branch's first scales
   const int n = problem.dimension(), m = problem.segments();
   PeriodicOrbit orbit;
   orbit.segments = m;
@@ -225,6 +226,7 @@ PeriodicOrbit solve_periodic_orbit(const OdeSystem& system, const ParameterValue
   orbit.family_dimension = rank_deficiency(jac, options.newton.rank_tolerance);
   orbit.floquet =
       shooting_floquet(problem, e, orbit.state0, orbit.family_dimension, options.floquet, subspace);
+  orbit.samples = std::move(e.samples);
   orbit.flow = problem.statistics();
   orbit.seconds = started.seconds();
   return orbit;

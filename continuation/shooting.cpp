@@ -105,14 +105,33 @@ ShootingProblem::Evaluation ShootingProblem::evaluate(const Eigen::VectorXd& x,
   if (parameter >= 0) e.parameter_sensitivities.resize(n_, m);
   const std::vector<int> parameters =
       parameter >= 0 ? std::vector<int>{parameter} : std::vector<int>{};
+  const bool sampled = derivatives && record_samples_;
+  constexpr int intervals = PeriodSamples::intervals;
+  if (sampled) {
+    e.samples.period = T;
+    e.samples.states.resize(n_, intervals + 1);
+  }
   for (int j = 0; j < m; ++j) {
     const Eigen::VectorXd zj = x.segment(j * n_, n_);
     // Autonomous segments all start at t = 0; forced ones at their place in the period.
     const double t0 = autonomous_ ? 0.0 : j * T / m;
     const double t1 = autonomous_ ? T / m : (j + 1) * T / m;
+    // The samples in this segment (the last one's end included), in its own time.
+    std::vector<double> times;
+    int first = 0;
+    if (sampled) {
+      first = (j * intervals + m - 1) / m;  // the first k with T k / intervals >= j T / m
+      const int last = j + 1 == m ? intervals : ((j + 1) * intervals + m - 1) / m - 1;
+      const double offset = autonomous_ ? j * T / m : 0.0;
+      for (int k = first; k <= last; ++k)
+        times.push_back(std::clamp(T * k / intervals - offset, t0, t1));
+    }
     Eigen::VectorXd end;
     if (derivatives) {
-      auto d = flow.advance_with_sensitivities(zj, p, t0, t1, true, parameters);
+      int k = first;
+      auto d = flow.advance_with_sensitivities(
+          zj, p, t0, t1, true, parameters, times,
+          [&](double, const Eigen::VectorXd& z) { e.samples.states.col(k++) = z; });
       end = std::move(d.state);
       e.transitions.push_back(std::move(d.transition));
       if (parameter >= 0) e.parameter_sensitivities.col(j) = d.parameter_sensitivities.col(0);

@@ -290,11 +290,21 @@ bool Flow::sample_until(const Eigen::VectorXd& z0, const ParameterValues& p, dou
 FlowDerivatives Flow::advance_with_sensitivities(const Eigen::VectorXd& z0,
                                                  const ParameterValues& p, double t0, double t1,
                                                  bool state, std::span<const int> parameters) {
+  return advance_with_sensitivities(z0, p, t0, t1, state, parameters, {}, {});
+}
+
+FlowDerivatives Flow::advance_with_sensitivities(
+    const Eigen::VectorXd& z0, const ParameterValues& p, double t0, double t1, bool state,
+    std::span<const int> parameters, std::span<const double> times,
+    const std::function<void(double, const Eigen::VectorXd&)>& observer) {
   if (!(t1 >= t0)) throw std::invalid_argument("flow: end time before start time");
+  for (std::size_t i = 0; i < times.size(); ++i)
+    if (!(times[i] >= (i == 0 ? t0 : times[i - 1]) && times[i] <= t1))
+      throw std::invalid_argument("flow: sample times must be increasing and within [t0, t1]");
   const int n = system_.dimension();
   const int state_columns = state ? n : 0;
   const int columns = state_columns + static_cast<int>(parameters.size());
-  if (columns == 0) {
+  if (columns == 0 && times.empty()) {
     FlowDerivatives r;
     r.state = advance(z0, p, t0, t1);
     return r;
@@ -302,7 +312,20 @@ FlowDerivatives Flow::advance_with_sensitivities(const Eigen::VectorXd& z0,
   std::vector<int> components(state_columns);
   for (int j = 0; j < state_columns; ++j) components[j] = j;
   start(z0, p, t0, components, parameters);
-  integrate_to(t1);
+  std::size_t next = 0;
+  for (; next < times.size() && times[next] <= t0; ++next) observer(times[next], z0);
+  if (next < times.size()) {
+    Eigen::VectorXd z;
+    integrate_to(t1, [&](double, double t_new) {
+      for (; next < times.size() && times[next] <= t_new; ++next) {
+        stepper_->interpolate_state(times[next], z);
+        observer(times[next], z);
+      }
+      return false;
+    });
+  } else {
+    integrate_to(t1);
+  }
   collect_statistics();
 
   FlowDerivatives r;

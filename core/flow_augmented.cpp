@@ -47,6 +47,8 @@ class AugmentedCvode final : public FlowStepper {
   const double* state() const override { return N_VGetArrayPointer(y); }
   void sensitivities(Eigen::MatrixXd& S) override { columns_of(N_VGetArrayPointer(y), S); }
   void interpolate(double t, Eigen::VectorXd& z, Eigen::MatrixXd& S) override;
+  // The state's part of the interpolant, the columns not copied out.
+  void interpolate_state(double t, Eigen::VectorXd& z) override;
   void collect(FlowStatistics& s) override;
   const char* name() const override { return "CVode"; }
 
@@ -219,6 +221,11 @@ void AugmentedCvode::interpolate(double t, Eigen::VectorXd& z, Eigen::MatrixXd& 
   check(CVodeGetDky(mem, t, 0, out), "CVodeGetDky");
   z = Eigen::Map<const Eigen::VectorXd>(N_VGetArrayPointer(out), n);
   columns_of(N_VGetArrayPointer(out), S);
+}
+
+void AugmentedCvode::interpolate_state(double t, Eigen::VectorXd& z) {
+  check(CVodeGetDky(mem, t, 0, out), "CVodeGetDky");
+  z = Eigen::Map<const Eigen::VectorXd>(N_VGetArrayPointer(out), call.system.dimension());
 }
 
 void AugmentedCvode::collect(FlowStatistics& s) {

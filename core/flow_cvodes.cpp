@@ -188,6 +188,8 @@ class CvodesStepper final : public FlowStepper {
   const double* state() const override { return N_VGetArrayPointer(y); }
   void sensitivities(Eigen::MatrixXd& S) override;
   void interpolate(double t, Eigen::VectorXd& z, Eigen::MatrixXd& S) override;
+  // The state's interpolant alone (no CVodeGetSensDky).
+  void interpolate_state(double t, Eigen::VectorXd& z) override;
   void collect(FlowStatistics& s) override;
   const char* name() const override { return "CVode"; }
 
@@ -610,6 +612,11 @@ void CvodesStepper::interpolate(double t, Eigen::VectorXd& z, Eigen::MatrixXd& S
   SYMPATHY_CHECK(CVodeGetSensDky(mem, t, 0, out_sens));
   for (int j = 0; j < call.columns; ++j)
     S.col(j) = Eigen::Map<const Eigen::VectorXd>(N_VGetArrayPointer(out_sens[j]), n);
+}
+
+void CvodesStepper::interpolate_state(double t, Eigen::VectorXd& z) {
+  SYMPATHY_CHECK(CVodeGetDky(mem, t, 0, out));
+  z = Eigen::Map<const Eigen::VectorXd>(N_VGetArrayPointer(out), call.system.dimension());
 }
 
 void CvodesStepper::collect(FlowStatistics& s) {

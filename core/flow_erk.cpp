@@ -11,13 +11,20 @@
 // c = 50 N s/m in the probe, at 2.2x the steps).
 //
 // Outputs inside a step come from ARKODE's Hermite interpolant (degree min(order - 1, 5): 4 for
-// Dormand-Prince); switching surfaces are ARKODE's root functions (ERKStepRootInit), the
-// integrator restarted at each (ERKStepReInit) as CVODE is.
+// Dormand-Prince), which evaluates the whole augmented right-hand side once more for an output:
+// 801 samples of a period that way cost 24% of the fast preset's branch. The state alone
+// (interpolate_state: a branch's scales and descriptions) comes from the cubic Hermite interpolant
+// of the step's ends and rates instead, two evaluations of f (the state's, no columns) a step:
+// error below h^4 max|z''''| / 384, about 3e-9 relative at Dormand-Prince's longest steps on the
+// metronome model (3 ms, 11 rad/s), within the flow's own tolerance. Switching surfaces are
+// ARKODE's root functions (ERKStepRootInit), the integrator restarted at each (ERKStepReInit) as
+// CVODE is.
 #include <arkode/arkode_erkstep.h>
 #include <nvector/nvector_serial.h>
 
 #include <algorithm>
 #include <cstdlib>
+#include <limits>
 #include <sstream>
 
 #include "flow_stepper.hpp"
@@ -47,6 +54,7 @@ class ErkStepper final : public FlowStepper {
   const double* state() const override { return N_VGetArrayPointer(y); }
   void sensitivities(Eigen::MatrixXd& S) override { columns_of(N_VGetArrayPointer(y), S); }
   void interpolate(double t, Eigen::VectorXd& z, Eigen::MatrixXd& S) override;
+  void interpolate_state(double t, Eigen::VectorXd& z) override;
   void collect(FlowStatistics& s) override;
   const char* name() const override { return "ERKStep"; }
 
@@ -66,6 +74,11 @@ class ErkStepper final : public FlowStepper {
   FlowCall& call;
   int columns;
   double t_now = 0.0;
+  // The state where the last step began (t_before), for interpolate_state; the rates at both ends
+  // are evaluated on its first use in a step (the step that ended at rates_at).
+  double t_before = 0.0;
+  Eigen::VectorXd z_before, rate_before, rate_after;
+  double rates_at = std::numeric_limits<double>::quiet_NaN();
   int root_count = -1;
   SUNContext ctx = nullptr;
   void* mem = nullptr;
@@ -175,6 +188,9 @@ std::optional<PlannedStep> ErkStepper::planned_step() {
 }
 
 StepOutcome ErkStepper::step(double t_end, double& t) {
+  t_before = t_now;
+  z_before = Eigen::Map<const Eigen::VectorXd>(N_VGetArrayPointer(y), call.system.dimension());
+  rates_at = std::numeric_limits<double>::quiet_NaN();
   const int flag = ERKStepEvolve(mem, t_end, y, &t, ARK_ONE_STEP);
   t_now = t;
   if (flag < 0 || call.callback_error) fail(flag, "ERKStepEvolve");
@@ -188,6 +204,28 @@ void ErkStepper::interpolate(double t, Eigen::VectorXd& z, Eigen::MatrixXd& S) {
   check(ERKStepGetDky(mem, t, 0, out), "ERKStepGetDky");
   z = Eigen::Map<const Eigen::VectorXd>(N_VGetArrayPointer(out), n);
   columns_of(N_VGetArrayPointer(out), S);
+}
+
+void ErkStepper::interpolate_state(double t, Eigen::VectorXd& z) {
+  const int n = call.system.dimension();
+  const double h = t_now - t_before;
+  const Eigen::Map<const Eigen::VectorXd> z_after(N_VGetArrayPointer(y), n);
+  if (!(h > 0.0)) {
+    z = z_after;
+    return;
+  }
+  if (!(rates_at == t_now)) {
+    rate_before.resize(n);
+    rate_after.resize(n);
+    call.system.rhs(t_before, z_before.data(), call.values.data(), rate_before.data());
+    call.system.rhs(t_now, z_after.data(), call.values.data(), rate_after.data());
+    rates_at = t_now;
+  }
+  // The cubic Hermite basis at s = (t - t_before) / h.
+  const double s = std::clamp((t - t_before) / h, 0.0, 1.0);
+  const double s2 = s * s, s3 = s2 * s;
+  z = (2 * s3 - 3 * s2 + 1) * z_before + (s3 - 2 * s2 + s) * h * rate_before +
+      (3 * s2 - 2 * s3) * z_after + (s3 - s2) * h * rate_after;
 }
 
 void ErkStepper::collect(FlowStatistics& s) {

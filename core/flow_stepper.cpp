@@ -53,6 +53,9 @@ class StepperByColumns final : public FlowStepper {
   void interpolate(double t, Eigen::VectorXd& z, Eigen::MatrixXd& S) override {
     active().interpolate(t, z, S);
   }
+  void interpolate_state(double t, Eigen::VectorXd& z) override {
+    active().interpolate_state(t, z);
+  }
   void collect(FlowStatistics& s) override {
     if (active_) active_->collect(s);
   }

@@ -71,6 +71,11 @@ class FlowStepper {
   virtual void sensitivities(Eigen::MatrixXd& S) = 0;
   // The state and columns at t inside the last step, from the integrator's interpolant.
   virtual void interpolate(double t, Eigen::VectorXd& z, Eigen::MatrixXd& S) = 0;
+  // The state alone at t inside the last step: by default the same interpolant.
+  virtual void interpolate_state(double t, Eigen::VectorXd& z) {
+    Eigen::MatrixXd S;
+    interpolate(t, z, S);
+  }
   // Adds the integrator's counters since the last start or restart.
   virtual void collect(FlowStatistics& s) = 0;
   // The integrator's name for messages ("CVode", "ERKStep").

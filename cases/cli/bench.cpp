@@ -337,7 +337,7 @@ int run_bench(const std::vector<std::string>& argv) {
       out + "/bench.csv",
       {"problem", "setting", "rtol", "period_error", "multiplier_error", "parameter_error",
        "trivial_multiplier_error", "seconds", "rhs_evaluations", "sensitivity_rhs_evaluations",
-       "jacobians", "newton_iterations", "converged", "note", "steps", "points"});
+       "jacobians", "newton_iterations", "converged", "note", "steps", "points", "cpu_seconds"});
   std::ostringstream md;
   md << "# sympathy bench: error against run time (row setup)\n\n";
   const Setting reference = setting("reference", Method::BDF, 1e-13);
@@ -349,7 +349,7 @@ int run_bench(const std::vector<std::string>& argv) {
         format(k_error), format(r.trivial_error), format(r.seconds, "%.4f"),
         std::to_string(r.flow.rhs_evaluations), std::to_string(r.flow.variational_evaluations),
         std::to_string(r.flow.jacobian_evaluations), std::to_string(r.iterations),
-        r.converged ? "yes" : "no", r.note, std::to_string(r.flow.steps), ""});
+        r.converged ? "yes" : "no", r.note, std::to_string(r.flow.steps), "", ""});
     md << "| " << s.name << " | " << format(s.flow.rtol, "%.0e") << " | "
        << (std::isnan(period_error) ? format(k_error) : format(period_error)) << " | "
        << (std::isnan(mu_error) ? std::string("-") : format(mu_error)) << " | "

@@ -3,6 +3,7 @@
 #include <algorithm>
 #include <cmath>
 #include <cstdio>
+#include <ctime>
 #include <fstream>
 #include <sstream>
 
@@ -24,6 +25,9 @@ struct BranchRun {
   std::vector<std::pair<std::string, double>> events;  // type, located k
   double trivial_error = 0.0;                          // largest over the branch's points
   double seconds = 0.0;
+  // The process's CPU time over the run (one thread): on a machine shared with other builds the
+  // wall time of a run grew 2-3 times (load average 5 on 2 cores) while this did not.
+  double cpu_seconds = 0.0;
   FlowStatistics flow;
   int points = 0;
   bool trusted = true;  // every event trusted
@@ -60,6 +64,7 @@ BranchSetting preset(const std::string& name, Accuracy accuracy) {
 BranchRun run(const LoadedCase& c, const BranchRequest& branch, const BranchSetting& s) {
   BranchRun r;
   const Stopwatch clock;
+  const std::clock_t cpu = std::clock();
   try {
     const MetronomeModel model(c.spec);
     BranchRequest request = branch;
@@ -80,6 +85,7 @@ BranchRun run(const LoadedCase& c, const BranchRequest& branch, const BranchSett
     r.note = e.what();
   }
   r.seconds = clock.seconds();
+  r.cpu_seconds = static_cast<double>(std::clock() - cpu) / CLOCKS_PER_SEC;
   return r;
 }
 
@@ -185,8 +191,8 @@ void bench_branch_accuracy(const std::string& root, bool quick, CsvWriter& csv, 
         "tolerances, not the integration, set it. Trivial: the largest |mu - 1| over the branch's "
         "points. AUTO-07p's rows are AUTO's own measurements (bench/anchors/auto07p_row_k.csv, "
         "whole process, another day: compare ratios within one run where you can).\n\n"
-     << "| setting | rtol | event error (rel.) | trivial error | seconds | steps | points | "
-        "events trusted |\n|---|---|---|---|---|---|---|---|\n";
+     << "| setting | rtol | event error (rel.) | trivial error | seconds | CPU seconds | steps | "
+        "points | events trusted |\n|---|---|---|---|---|---|---|---|---|\n";
   std::printf("%s: reference %.2f s, %zu events\n", problem.c_str(), reference.seconds,
               reference.events.size());
   for (const auto& s : settings) {
@@ -197,22 +203,26 @@ void bench_branch_accuracy(const std::string& root, bool quick, CsvWriter& csv, 
         problem, s.name, fmt(s.flow.rtol, "%.0e"), "", "", fmt(error), fmt(r.trivial_error),
         fmt(r.seconds, "%.4f"), std::to_string(r.flow.rhs_evaluations),
         std::to_string(r.flow.variational_evaluations), std::to_string(r.flow.jacobian_evaluations),
-        "", ok ? "yes" : "no", r.note, std::to_string(r.flow.steps), std::to_string(r.points)});
+        "", ok ? "yes" : "no", r.note, std::to_string(r.flow.steps), std::to_string(r.points),
+        fmt(r.cpu_seconds, "%.4f")});
     md << "| " << s.name << " | " << fmt(s.flow.rtol, "%.0e") << " | " << fmt(error) << " | "
-       << fmt(r.trivial_error) << " | " << fmt(r.seconds, "%.3f") << " | " << r.flow.steps << " | "
-       << r.points << " | " << (r.trusted ? "yes" : "no") << " |\n";
-    std::printf("  %-28s rtol %.0e  error %s  trivial %s  %.3f s  %ld steps%s\n", s.name.c_str(),
-                s.flow.rtol, fmt(error).c_str(), fmt(r.trivial_error).c_str(), r.seconds,
-                r.flow.steps, r.note.empty() ? "" : ("  " + r.note).c_str());
+       << fmt(r.trivial_error) << " | " << fmt(r.seconds, "%.3f") << " | "
+       << fmt(r.cpu_seconds, "%.3f") << " | " << r.flow.steps << " | " << r.points << " | "
+       << (r.trusted ? "yes" : "no") << " |\n";
+    std::printf("  %-28s rtol %.0e  error %s  trivial %s  %.3f s (CPU %.3f s)  %ld steps%s\n",
+                s.name.c_str(), s.flow.rtol, fmt(error).c_str(), fmt(r.trivial_error).c_str(),
+                r.seconds, r.cpu_seconds, r.flow.steps,
+                r.note.empty() ? "" : ("  " + r.note).c_str());
     std::fflush(stdout);
   }
   for (const auto& a : auto_anchors(root + "bench/anchors/auto07p_row_k.csv")) {
     csv.row(std::vector<std::string>{problem, a.setting, "-", "", "", fmt(a.error), fmt(a.trivial),
                                      fmt(a.seconds, "%.4f"), "", "", "", "", "AUTO-07p",
                                      "AUTO-07p's measurement (anchors file)", "",
-                                     std::to_string(a.points)});
+                                     std::to_string(a.points), ""});
     md << "| " << a.setting << " (AUTO's measurement) | - | " << fmt(a.error) << " | "
-       << fmt(a.trivial) << " | " << fmt(a.seconds, "%.3f") << " | - | " << a.points << " | - |\n";
+       << fmt(a.trivial) << " | " << fmt(a.seconds, "%.3f") << " | - | - | " << a.points
+       << " | - |\n";
   }
 }
 

@@ -86,6 +86,10 @@ Accuracy parse_accuracy(const std::string& text, const std::string& where) {
 // and events get reported as not trusted; hence 1e-8 (`--accuracy fast --rtol 5e-7` gives the
 // 4e-7 of AUTO's best setting). Its transient (60 s before the first Newton) is Dormand-Prince
 // too: 0.72 s against 0.83 s with the BDF transient.
+// After each point's scales and description came from its own shooting run and the corrector
+// started with the run with sensitivities where predictions land (2026-11-24, bench section (f),
+// CPU seconds, the machine's load average about 5): fast 2.9e-9 in 0.43 s, default 1.1e-10 in
+// 1.39 s, high 3.3e-11 in 1.62 s; the choice above stands.
 void apply_accuracy(Accuracy accuracy, OrbitOptions& o) {
   FlowOptions& f = o.shooting.flow;
   switch (accuracy) {

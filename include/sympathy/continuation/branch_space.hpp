@@ -27,12 +27,15 @@ class BranchSpace {
   ParameterValues values_at(double v) const;
 
   // Resets the state scales to the orbit (z0, T) and sets the period's and parameter's weights.
-  void reset_scales(const Eigen::VectorXd& z0, double period, const FlowOptions& flow);
+  void reset_scales(const Eigen::VectorXd& z0, double period, const FlowOptions& flow,
+                    const PeriodSamples* samples = nullptr);
   // Widens the state scales to the largest |z_i| on the orbit (z0, T) at parameter values p
-  // (sampled 100 times over a period): scales only grow, so that a component whose amplitude
-  // grows along the branch (a platform starting to swing) does not take all the arclength.
+  // (at T k / 100, k = 0 .. 100): scales only grow, so that a component whose amplitude grows
+  // along the branch (a platform starting to swing) does not take all the arclength. The states
+  // at those times are read off `samples` where they are the orbit's (every eighth), else a run
+  // of `flow` samples them.
   void widen_scales(const Eigen::VectorXd& z0, const ParameterValues& p, double period,
-                    const FlowOptions& flow);
+                    const FlowOptions& flow, const PeriodSamples* samples = nullptr);
 
   // Widens the state scales to at least `size` (per state component): a switched branch's new
   // direction, which the orbit it starts from does not show.

@@ -104,6 +104,9 @@ class Continuation {
   // the chord steps' matrix for the next step and for locating events after it.
   Eigen::SparseMatrix<double> chord_jacobian_;
   Eigen::SparseMatrix<double> jacobian_before_;  // the same at the point before it
+  // The last step's prediction was on the branch as it stood (no chord step, no iteration): the
+  // next corrections start with the integration with sensitivities (derivatives_first).
+  bool predictions_land_ = false;
 };
 
 }  // namespace sympathy

@@ -4,7 +4,8 @@
 // tangent. Before it, quasi-Newton (Broyden) steps on plain residuals as accurate as those runs
 // (ShootingProblem::residual, about a tenth of their cost) from a chord Jacobian do most of the
 // work: they aim well below the tolerance, so that one integration with sensitivities at their
-// end usually both confirms the point and gives its monodromy.
+// end usually both confirms the point and gives its monodromy. Where predictions land on the
+// branch (CorrectorOptions::derivatives_first) that integration comes first.
 #pragma once
 
 #include <string>
@@ -18,6 +19,10 @@ struct CorrectorOptions {
   int max_iterations = 7;
   int max_chord_steps = 6;  // quasi-Newton steps on plain integrations before the iterations
   double tolerance = 1e-9;  // |F|_inf: the attainable one (attainable_tolerance)
+  // Start with an integration with sensitivities at the guess, and the quasi-Newton steps (if it
+  // is not on the branch yet) from its Jacobian: for callers whose predictions have been landing
+  // (saves the plain run before it).
+  bool derivatives_first = false;
 };
 
 struct Correction {

@@ -29,10 +29,13 @@ class OrbitDescriber {
   virtual std::vector<double> describe(const PeriodicOrbit& orbit) const = 0;
 };
 
-// One period of `orbit` sampled 801 times (both ends included) by a plain flow at rtol 1e-9,
-// atol 1e-12: what describers take amplitudes and phases from (the samples' spacing, T / 800,
-// bounds the error of an interpolated zero crossing well below a describer's digits). Throws
-// IntegrationError where the period cannot be integrated.
+// One period of `orbit` sampled 801 times (both ends included): what describers take amplitudes
+// and phases from (the samples' spacing, T / 800, bounds the error of an interpolated zero
+// crossing well below a describer's digits). The orbit's own samples where it carries them (the
+// run with sensitivities that confirmed it, at the shooting flow's tolerance with its
+// sensitivities in the error test), else a plain flow at rtol 1e-9, atol 1e-12; the two agree
+// to about 1e-9 relative (tests/continuation/period_samples_test.cpp). Throws IntegrationError
+// where the period cannot be integrated.
 void sample_period(const OdeSystem& system, const PeriodicOrbit& orbit,
                    const std::function<void(double, const Eigen::VectorXd&)>& at);
 

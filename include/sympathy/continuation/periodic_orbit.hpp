@@ -106,6 +106,9 @@ struct PeriodicOrbit {
   FlowStatistics flow;  // integration work of the whole computation
   double seconds = 0.0;
   std::string reduction;  // how a symmetry reduced the computation; empty: the whole state
+  // The period sampled by the run that confirmed the orbit (empty where none was kept; checked
+  // against state0 and period before use: PeriodSamples::of).
+  PeriodSamples samples;
   bool converged() const { return newton.converged; }
 };
 

@@ -177,6 +177,13 @@ class Flow {
   FlowDerivatives advance_with_sensitivities(const Eigen::VectorXd& z0, const ParameterValues& p,
                                              double t0, double t1, bool state = true,
                                              std::span<const int> parameters = {});
+  // The same, calling `observer(t, z)` on the way with the state at each of `times` (increasing,
+  // in [t0, t1]) from the step's interpolant: the trajectory of a run that is made anyway (the
+  // end state and derivatives are those of the call without it).
+  FlowDerivatives advance_with_sensitivities(
+      const Eigen::VectorXd& z0, const ParameterValues& p, double t0, double t1, bool state,
+      std::span<const int> parameters, std::span<const double> times,
+      const std::function<void(double, const Eigen::VectorXd&)>& observer);
 
   // Integrates once from z0 at t0 and calls `observer(t, z, S)` at each of `times` (increasing,
   // >= t0), where S (n x columns) holds dz(t)/dz0[c] for each of `initial_components`, then
