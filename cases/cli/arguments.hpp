@@ -27,6 +27,7 @@ class Arguments {
   // Parses args (after the subcommand's name); throws InputError.
   Arguments(std::string command, const std::vector<std::string>& args,
             std::vector<OptionSpec> options, std::vector<std::string> positional_names);
+  const std::string& command() const { return command_; }
 
   const std::string& positional(std::size_t i) const { return positional_.at(i); }
   bool has(const std::string& option) const;

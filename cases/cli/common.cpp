@@ -32,6 +32,17 @@ std::vector<OptionSpec> integrator_options() {
   };
 }
 
+void require_differentiable(const OdeSystem& system, const std::string& case_path,
+                            const std::string& what) {
+  if (system.differentiable()) return;
+  throw InputError(case_path +
+                   ": key 'escapement': the impulsive escapement (eq. 2) switches "
+                   "discontinuously, and " +
+                   what +
+                   " needs the flow's sensitivities (monodromy matrices); expected escapement = "
+                   "\"half\" or \"double\" (simulate runs the impulsive one)");
+}
+
 LoadedCase load_case(const Arguments& args) {
   return load_case(args.positional(0), args.text("--params", ""), args.assignments("--set"));
 }

@@ -42,6 +42,11 @@ Accuracy accuracy(const Arguments& args);
 void apply_accuracy(Accuracy accuracy, OrbitOptions& options);
 
 LoadedCase load_case(const Arguments& args);
+// InputError naming the case file and its escapement unless the model is differentiable: the
+// impulsive escapement (eq. 2) switches discontinuously, and orbits, branches and equilibria
+// need the flow's sensitivities (`what`: "orbit", "continue", ...). Before any work.
+void require_differentiable(const OdeSystem& system, const std::string& case_path,
+                            const std::string& what);
 // The same for the file at `path`, parameter set `params` ("" for the file's default) and `sets`.
 LoadedCase load_case(const std::string& path, const std::string& params,
                      const std::vector<Assignment>& sets);

@@ -15,6 +15,7 @@ LoadedSystem::LoadedSystem(const Arguments& args) : sets_(args.assignments("--se
   } else {
     metronomes_.emplace(load_case(args));
     model_ = std::make_unique<MetronomeModel>(metronomes_->spec);
+    require_differentiable(*model_, path(), args.command());
     describer_ = std::make_unique<MetronomeDescriber>(*model_);
     recorded_ = cli::start_data(args, model_->state_names(), path());
   }
@@ -29,6 +30,7 @@ LoadedSystem::LoadedSystem(const std::string& path, const std::string& params,
   } else {
     metronomes_.emplace(load_case(path, params, sets));
     model_ = std::make_unique<MetronomeModel>(metronomes_->spec);
+    require_differentiable(*model_, path, "a branch");
     describer_ = std::make_unique<MetronomeDescriber>(*model_);
   }
 }

@@ -95,6 +95,7 @@ int run_map(const std::vector<std::string>& argv) {
   std::fflush(stdout);
   const auto* stop = interrupt_flag();
   const MetronomeModel model(c.spec);
+  require_differentiable(model, file.path(), "map");
   const int second = index_of(model, map.second.parameter);
   std::vector<OrbitMap> results(map.orbits.size());
   std::mutex print;

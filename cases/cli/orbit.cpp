@@ -39,6 +39,7 @@ int run_orbit(const std::vector<std::string>& argv) {
   Stopwatch clock;
   const LoadedCase c = load_case(args);
   MetronomeModel model(c.spec);
+  require_differentiable(model, c.file.path(), "orbit");
   // From a recorded period: in the whole state space (the data need not lie in a start's
   // symmetric subspace).
   const auto recorded = start_data(args, model.state_names(), c.file.path());

@@ -44,6 +44,18 @@ check "... naming the directory" grep -q "does not exist" "$work/err"
 check "--from -0.5 for M exits 2" test $? -eq 2
 check "... saying M must be positive" grep -q "M = -0.5 is outside the model's domain: M must be a positive number" "$work/err"
 
+# The impulsive escapement (eq. 2) has no sensitivities: orbit, continue and equilibria refuse it
+# at once (exit 2), naming the case file and its escapement (before: exit 1, "sensitivities need
+# a differentiable system", after the transient).
+sed 's/^escapement = "half".*/escapement = "impulsive"/' "$row2" > "$work/impulsive.toml"
+for command in "orbit --start in-phase" "continue --start in-phase --param c --from 0.0185 --to 0" \
+  "equilibria --start in-phase --param s --from 1e-8 --to 0"; do
+  set -- $command
+  "$bin" "$1" "$work/impulsive.toml" "${@:2}" > /dev/null 2> "$work/err"
+  check "$1 on the impulsive escapement exits 2" test $? -eq 2
+  check "... naming the case and its escapement" grep -q "impulsive.toml: key 'escapement': the impulsive escapement (eq. 2) switches discontinuously" "$work/err"
+done
+
 # Options validated by the engine's one validation, in study files as on the command line.
 printf 'case = "%s"\nparameter = "k"\n[[branches]]\nname = "a"\nstart = "anti-phase"\nfrom = 1.0\nto = 2.0\nstep = -0.1\n' "$row2" > "$work/step.toml"
 "$bin" study "$work/step.toml" --out "$work" 2> "$work/err"
