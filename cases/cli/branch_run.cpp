@@ -6,6 +6,7 @@
 #include <memory>
 
 #include "cases/cli/hopf_switch.hpp"
+#include "cases/cli/json_reader.hpp"
 #include "sympathy/cases/metronome_describer.hpp"
 #include "sympathy/continuation/branch_output.hpp"
 #include "sympathy/continuation/branch_switching.hpp"
@@ -160,54 +161,30 @@ Branch run_branch(const BranchSource& source, const BranchRequest& request,
 
 namespace {
 
-Eigen::VectorXd vector_of(const nlohmann::json& j, const std::string& where, int size = -1) {
-  if (!j.is_array()) throw InputError(where + ": expected a list of numbers");
-  Eigen::VectorXd v(static_cast<int>(j.size()));
-  for (std::size_t i = 0; i < j.size(); ++i) {
-    if (!j[i].is_number()) throw InputError(where + ": expected a list of numbers");
-    v[static_cast<int>(i)] = j[i].get<double>();
-  }
-  if (size >= 0 && v.size() != size)
-    throw InputError(where + ": expected " + std::to_string(size) + " numbers, got " +
-                     std::to_string(v.size()));
-  return v;
-}
-
-const nlohmann::json& key(const nlohmann::json& j, const std::string& name,
-                          const std::string& where) {
-  if (!j.is_object() || !j.contains(name))
-    throw InputError(where + ": key '" + name +
-                     "' is missing; expected a branch JSON written by sympathy continue --json");
-  return j.at(name);
-}
-
-Branch branch_from_json(const nlohmann::json& j, const std::string& path, const OdeSystem& model,
+Branch branch_from_json(const JsonReader& in, const OdeSystem& model,
                         const InvariantSubspace& subspace);
 
 }  // namespace
 
 Branch read_branch_json(const std::string& path, const OdeSystem& model,
                         const InvariantSubspace& subspace) {
-  std::ifstream in(path);
-  if (!in) throw InputError(path + ": cannot be read");
-  nlohmann::json j;
-  try {
-    j = nlohmann::json::parse(in);
-  } catch (const nlohmann::json::exception& e) {
-    throw InputError(path + ": not JSON (" + e.what() + ")");
-  }
-  try {
-    return branch_from_json(j, path, model, subspace);
-  } catch (const nlohmann::json::exception& e) {
-    throw InputError(path + ": a value of the wrong type (" + e.what() +
-                     "); expected a branch JSON written by sympathy continue --json");
-  }
+  const JsonReader in(path, "a branch JSON written by sympathy continue --json");
+  return in.read([&](const nlohmann::json&) { return branch_from_json(in, model, subspace); });
 }
 
 namespace {
 
-Branch branch_from_json(const nlohmann::json& j, const std::string& path, const OdeSystem& model,
+Branch branch_from_json(const JsonReader& in, const OdeSystem& model,
                         const InvariantSubspace& subspace) {
+  const nlohmann::json& j = in.root();
+  const std::string& path = in.path();
+  auto key = [&](const nlohmann::json& x, const std::string& name,
+                 const std::string& where) -> const nlohmann::json& {
+    return in.key(x, name, where);
+  };
+  auto vector_of = [&](const nlohmann::json& x, const std::string& where, int size = -1) {
+    return in.numbers(x, where, size);
+  };
   Branch b;
   const auto& name = key(j, "parameter", path);
   if (!name.is_string()) throw InputError(path + ": key 'parameter': expected a name");

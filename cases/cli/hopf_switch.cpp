@@ -1,6 +1,6 @@
 #include "cases/cli/hopf_switch.hpp"
 
-#include <fstream>
+#include "cases/cli/json_reader.hpp"
 
 #include "sympathy/continuation/hopf.hpp"
 #include "sympathy/core/csv.hpp"
@@ -17,41 +17,18 @@ std::optional<int> parse_hopf_name(const std::string& text, const std::string& o
   return std::stoi(number);
 }
 
-namespace {
-
-const nlohmann::json& key(const nlohmann::json& j, const std::string& name,
-                          const std::string& where) {
-  if (!j.is_object() || !j.contains(name))
-    throw InputError(where + ": key '" + name +
-                     "' is missing; expected equilibria written by sympathy equilibria --json");
-  return j.at(name);
-}
-
-Eigen::VectorXd numbers(const nlohmann::json& j, const std::string& where, int size) {
-  if (!j.is_array() || static_cast<int>(j.size()) != size)
-    throw InputError(where + ": expected a list of " + std::to_string(size) + " numbers");
-  Eigen::VectorXd v(size);
-  for (int i = 0; i < size; ++i) {
-    if (!j[i].is_number()) throw InputError(where + ": expected a list of numbers");
-    v[i] = j[i].get<double>();
-  }
-  return v;
-}
-
-}  // namespace
-
 EquilibriumBranch read_equilibria_json(const std::string& path, const OdeSystem& system) {
-  std::ifstream in(path);
-  if (!in) throw InputError(path + ": cannot be read");
-  nlohmann::json j;
-  try {
-    j = nlohmann::json::parse(in);
-  } catch (const nlohmann::json::exception& e) {
-    throw InputError(path + ": not JSON (" + e.what() + ")");
-  }
+  const JsonReader in(path, "equilibria written by sympathy equilibria --json");
+  auto key = [&](const nlohmann::json& x, const std::string& name,
+                 const std::string& where) -> const nlohmann::json& {
+    return in.key(x, name, where);
+  };
+  auto numbers = [&](const nlohmann::json& x, const std::string& where, int size) {
+    return in.numbers(x, where, size);
+  };
   const int n = system.dimension();
-  EquilibriumBranch b;
-  try {
+  return in.read([&](const nlohmann::json& j) {
+    EquilibriumBranch b;
     if (key(j, "kind", path) != "equilibria")
       throw InputError(path +
                        ": key 'kind': expected \"equilibria\" (written by sympathy "
@@ -92,11 +69,8 @@ EquilibriumBranch read_equilibria_json(const std::string& path, const OdeSystem&
       }
       b.events.push_back(std::move(e));
     }
-  } catch (const nlohmann::json::exception& e) {
-    throw InputError(path + ": a value of the wrong type (" + e.what() +
-                     "); expected equilibria written by sympathy equilibria --json");
-  }
-  return b;
+    return b;
+  });
 }
 
 Branch run_hopf_branch(const BranchSource& source, const BranchRequest& request, int ordinal,
