@@ -61,20 +61,17 @@ int run_continue(const std::vector<std::string>& argv) {
   // The case: a metronome case file, or an equation case file (its system compiled or from the
   // cache; its start the file's [states] unless --start names one).
   const LoadedSystem c(args);
-  for (const char* required : {"--param", "--from", "--to"})
-    if (!args.has(required)) throw InputError(std::string(required) + " is required");
+  const ParameterWindow window = c.window(args);
   BranchRequest request;
   request.start_data = c.start_data();
   c.require_autonomous();
   if (!c.equations() && !args.has("--start") && !request.start_data)
     throw InputError("--start is required (or --start-data FILE.csv)");
   request.start = args.text("--start", "");
-  request.parameter = *args.value("--param");
-  c.require_parameter("--param", request.parameter);
-  request.from = args.number("--from", 0.0);
-  request.to = args.number("--to", 0.0);
-  if (request.from == request.to) throw InputError("--from and --to: expected different values");
-  if (args.has("--at")) request.at = args.number("--at", 0.0);
+  request.parameter = window.parameter;
+  request.from = window.from;
+  request.to = window.to;
+  request.at = window.at;
   request.initial = args.assignments("--initial");
   request.csv_path = args.text("--csv", "");
   request.switch_at = args.text("--switch-at", "");
@@ -108,9 +105,7 @@ int run_continue(const std::vector<std::string>& argv) {
   o.orbit.transient_flow.linear_solver = o.orbit.shooting.flow.linear_solver;
   o.orbit.use_symmetry = !args.flag("--whole-state");
   check_options(o.validate(), "");
-  std::vector<std::pair<std::string, double>> ends{{"--from", request.from}, {"--to", request.to}};
-  if (request.at) ends.push_back({"--at", *request.at});
-  c.check_range(request.parameter, ends);
+  c.check_range(request.parameter, window.ends());
   // The start (fails early with the list of starts).
   const BranchSource source = c.source(request.start, request.initial, request.start_data);
   const auto json_path = args.value("--json");

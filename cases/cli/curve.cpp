@@ -65,15 +65,14 @@ int run_curve(const std::vector<std::string>& argv) {
 
   Stopwatch clock;
   const LoadedSystem c(args);
-  for (const char* required :
-       {"--param", "--from", "--to", "--event", "--second", "--second-from", "--second-to"})
+  const ParameterWindow window = c.window(args);
+  for (const char* required : {"--event", "--second", "--second-from", "--second-to"})
     if (!args.has(required)) throw InputError(std::string(required) + " is required");
   if (!c.equations() && !args.has("--start")) throw InputError("--start is required");
   BranchRequest request;
   request.start = args.text("--start", "");
-  request.parameter = *args.value("--param");
-  for (const char* option : {"--param", "--second"})
-    c.require_parameter(option, *args.value(option));
+  request.parameter = window.parameter;
+  c.require_parameter("--second", *args.value("--second"));
   const std::string second = *args.value("--second");
   if (second == request.parameter)
     throw InputError("--second " + second + ": expected a parameter other than --param");
@@ -83,9 +82,8 @@ int run_curve(const std::vector<std::string>& argv) {
        BifurcationType::NeimarkSacker},
       "a located bifurcation, LP, BP, PD or NS followed by its number along the branch (e.g. "
       "BP1)");
-  request.from = args.number("--from", 0.0);
-  request.to = args.number("--to", 0.0);
-  if (request.from == request.to) throw InputError("--from and --to: expected different values");
+  request.from = window.from;
+  request.to = window.to;
   request.initial = args.assignments("--initial");
   request.progress = nullptr;
   request.parent_path = args.text("--parent", "");

@@ -77,22 +77,17 @@ int run_equilibria(const std::vector<std::string>& argv) {
   Stopwatch clock;
   const LoadedSystem c(args);
   const OdeSystem& system = c.system();
-  for (const char* required : {"--param", "--from", "--to"})
-    if (!args.has(required)) throw InputError(std::string(required) + " is required");
+  const ParameterWindow window = c.window(args);
   if (!c.equations() && !args.has("--start")) throw InputError("--start is required");
   const std::string start_name = args.text("--start", "");
-  const std::string parameter = *args.value("--param");
-  c.require_parameter("--param", parameter);
+  const std::string& parameter = window.parameter;
 
   EquilibriumProblem problem;
   problem.parameter = system.parameter_index(parameter);
-  problem.from = args.number("--from", 0.0);
-  problem.to = args.number("--to", 0.0);
-  if (problem.from == problem.to) throw InputError("--from and --to: expected different values");
-  if (args.has("--at")) problem.at = args.number("--at", 0.0);
-  std::vector<std::pair<std::string, double>> ends{{"--from", problem.from}, {"--to", problem.to}};
-  if (problem.at) ends.push_back({"--at", *problem.at});
-  c.check_range(parameter, ends);
+  problem.from = window.from;
+  problem.to = window.to;
+  problem.at = window.at;
+  c.check_range(parameter, window.ends());
   const BranchSource source = c.source(start_name, args.assignments("--initial"));
   problem.start_state = source.start_state;
   problem.values = source.values;

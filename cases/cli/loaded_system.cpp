@@ -59,6 +59,25 @@ void LoadedSystem::require_parameter(const std::string& option, const std::strin
                      "; expected one of: " + join(names));
 }
 
+std::vector<std::pair<std::string, double>> ParameterWindow::ends() const {
+  std::vector<std::pair<std::string, double>> e{{"--from", from}, {"--to", to}};
+  if (at) e.push_back({"--at", *at});
+  return e;
+}
+
+ParameterWindow LoadedSystem::window(const Arguments& args) const {
+  for (const char* required : {"--param", "--from", "--to"})
+    if (!args.has(required)) throw InputError(std::string(required) + " is required");
+  ParameterWindow w;
+  w.parameter = *args.value("--param");
+  require_parameter("--param", w.parameter);
+  w.from = args.number("--from", 0.0);
+  w.to = args.number("--to", 0.0);
+  if (w.from == w.to) throw InputError("--from and --to: expected different values");
+  if (args.has("--at")) w.at = args.number("--at", 0.0);
+  return w;
+}
+
 double LoadedSystem::value_of(const std::string& parameter) const {
   if (metronomes_) return metronomes_->spec.get(parameter);
   return system().parameter(equations_->values, system().parameter_index(parameter));

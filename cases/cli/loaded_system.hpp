@@ -18,6 +18,15 @@
 
 namespace sympathy::cli {
 
+// --param, --from, --to and --at of a command that runs over a window of one parameter.
+struct ParameterWindow {
+  std::string parameter;
+  double from = 0.0, to = 0.0;
+  std::optional<double> at;
+  // (option, value) of each end given, for LoadedSystem::check_range.
+  std::vector<std::pair<std::string, double>> ends() const;
+};
+
 class LoadedSystem {
  public:
   // The case file of positional 0 with --params and --set (an equation case file's system
@@ -39,6 +48,9 @@ class LoadedSystem {
 
   // InputError "OPTION NAME: not a parameter of FILE; expected one of: ..." unless it is one.
   void require_parameter(const std::string& option, const std::string& name) const;
+  // --param (required, one of the case's), --from and --to (required, different) and --at (if
+  // given); InputError naming the option. Their range is check_range's.
+  ParameterWindow window(const Arguments& args) const;
   // The parameter's value in the case (with --params and --set).
   double value_of(const std::string& parameter) const;
   // Each (option, value) of `parameter` within its domain: an equation case file's min and max,
