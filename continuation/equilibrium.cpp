@@ -28,6 +28,14 @@ Eigen::VectorXcd sorted_eigenvalues(const Eigen::MatrixXd& jacobian) {
   return v;
 }
 
+std::complex<double> nearest_eigenvalue(const Eigen::VectorXcd& eigenvalues,
+                                        std::complex<double> target) {
+  std::complex<double> best = eigenvalues[0];
+  for (const auto& l : eigenvalues)
+    if (std::abs(l - target) < std::abs(best - target)) best = l;
+  return best;
+}
+
 int unstable_count(const Eigen::VectorXcd& eigenvalues, double tolerance) {
   const double size = std::max(1.0, eigenvalues.size() ? eigenvalues.cwiseAbs().maxCoeff() : 0.0);
   int n = 0;

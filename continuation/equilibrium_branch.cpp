@@ -205,11 +205,7 @@ class Run {
       Complex followed = la;
       EquilibriumEvent e =
           locate(a, ds, EquilibriumEventType::Hopf, [&](const EquilibriumPoint& pt) {
-            Eigen::Index k = 0;
-            for (Eigen::Index m = 1; m < pt.eigenvalues.size(); ++m)
-              if (std::abs(pt.eigenvalues[m] - followed) < std::abs(pt.eigenvalues[k] - followed))
-                k = m;
-            followed = pt.eigenvalues[k];
+            followed = nearest_eigenvalue(pt.eigenvalues, followed);
             return followed.real();
           });
       e.hopf = describe_hopf(system_, values_at(e.parameter), e.state, followed.imag());

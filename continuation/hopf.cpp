@@ -15,18 +15,6 @@ OptionCheck HopfStartOptions::validate() const {
   return std::nullopt;
 }
 
-namespace {
-
-// The eigenvalue of `e` nearest `target`.
-std::complex<double> nearest(const Eigen::VectorXcd& eigenvalues, std::complex<double> target) {
-  std::complex<double> best = eigenvalues[0];
-  for (const auto& l : eigenvalues)
-    if (std::abs(l - target) < std::abs(best - target)) best = l;
-  return best;
-}
-
-}  // namespace
-
 std::optional<HopfPoint> hopf_point_near(const OdeSystem& system, int parameter,
                                          const ParameterValues& p, const Eigen::VectorXd& guess,
                                          double omega_guess, double step, std::string& why) {
@@ -36,7 +24,7 @@ std::optional<HopfPoint> hopf_point_near(const OdeSystem& system, int parameter,
     why = "no equilibrium near the orbit: " + e0.reason;
     return std::nullopt;
   }
-  std::complex<double> l0 = nearest(e0.eigenvalues, {0.0, omega_guess});
+  std::complex<double> l0 = nearest_eigenvalue(e0.eigenvalues, {0.0, omega_guess});
   if (std::abs(l0.imag() - omega_guess) > 0.2 * omega_guess) {
     why = "the equilibrium near the orbit has no pair of eigenvalues near +-i " +
           format_double(omega_guess) + " (nearest " + format_double(l0.real()) + " + " +
@@ -54,7 +42,7 @@ std::optional<HopfPoint> hopf_point_near(const OdeSystem& system, int parameter,
       return std::nullopt;
     }
     x = e.state;
-    followed = nearest(e.eigenvalues, followed);
+    followed = nearest_eigenvalue(e.eigenvalues, followed);
     const double gb = followed.real();
     const double scale = std::max(std::abs(pb), std::abs(step));
     if (gb == ga || std::abs(pb - pa) <= 1e-13 * scale || gb == 0.0) {

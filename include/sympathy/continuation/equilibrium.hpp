@@ -27,6 +27,10 @@ struct EquilibriumNewtonOptions {
 // Eigenvalues of df/dx, largest real part first (ties: positive imaginary part first).
 Eigen::VectorXcd sorted_eigenvalues(const Eigen::MatrixXd& jacobian);
 
+// The one of `eigenvalues` nearest `target` (an eigenvalue followed from one point to the next).
+std::complex<double> nearest_eigenvalue(const Eigen::VectorXcd& eigenvalues,
+                                        std::complex<double> target);
+
 // How many eigenvalues have a real part above `tolerance` times max(1, the largest |lambda|).
 int unstable_count(const Eigen::VectorXcd& eigenvalues, double tolerance = 1e-9);
 
