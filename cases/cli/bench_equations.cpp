@@ -11,6 +11,7 @@
 #include <random>
 #include <vector>
 
+#include "cases/cli/hand_written_systems.hpp"
 #include "sympathy/cases/equation_compiler.hpp"
 #include "sympathy/continuation/periodic_orbit.hpp"
 #include "sympathy/core/autodiff_system.hpp"
@@ -19,57 +20,6 @@
 namespace sympathy::cli {
 
 namespace {
-
-// cases/examples/hopf.toml by hand.
-class HandHopf final : public AutoDiffSystem<HandHopf> {
- public:
-  explicit HandHopf(const Eigen::VectorXd& p) {
-    set_parameter_layout({{"mu", {0}}, {"w", {1}}}, {p[0], p[1]});
-  }
-  int dimension() const override { return 2; }
-  std::vector<std::string> state_names() const override { return {"x", "y"}; }
-  template <class T, class P>
-  void evaluate(double, const T* z, const P* p, T* dz) const {
-    const T r2 = z[0] * z[0] + z[1] * z[1];
-    dz[0] = p[0] * z[0] - p[1] * z[1] - z[0] * r2;
-    dz[1] = p[1] * z[0] + p[0] * z[1] - z[1] * r2;
-  }
-};
-
-// cases/examples/lrz.toml by hand.
-class HandLorenz final : public AutoDiffSystem<HandLorenz> {
- public:
-  explicit HandLorenz(const Eigen::VectorXd& p) {
-    set_parameter_layout({{"rho", {0}}, {"sigma", {1}}, {"beta", {2}}}, {p[0], p[1], p[2]});
-  }
-  int dimension() const override { return 3; }
-  std::vector<std::string> state_names() const override { return {"x", "y", "z"}; }
-  template <class T, class P>
-  void evaluate(double, const T* z, const P* p, T* dz) const {
-    dz[0] = p[1] * (z[1] - z[0]);
-    dz[1] = p[0] * z[0] - z[1] - z[0] * z[2];
-    dz[2] = z[0] * z[1] - p[2] * z[2];
-  }
-};
-
-// cases/examples/abc.toml by hand.
-class HandAbc final : public AutoDiffSystem<HandAbc> {
- public:
-  explicit HandAbc(const Eigen::VectorXd& p) {
-    set_parameter_layout({{"p1", {0}}, {"p2", {1}}, {"p3", {2}}, {"p4", {3}}, {"p5", {4}}},
-                         {p[0], p[1], p[2], p[3], p[4]});
-  }
-  int dimension() const override { return 3; }
-  std::vector<std::string> state_names() const override { return {"u1", "u2", "u3"}; }
-  template <class T, class P>
-  void evaluate(double, const T* z, const P* p, T* dz) const {
-    using std::exp;
-    const T e = exp(z[2]);
-    dz[0] = -z[0] + p[0] * (1.0 - z[0]) * e;
-    dz[1] = -z[1] + p[0] * e * (1.0 - z[0] - p[4] * z[1]);
-    dz[2] = -z[2] - p[2] * z[2] + p[0] * p[3] * e * (1.0 - z[0] + p[1] * p[4] * z[1]);
-  }
-};
 
 double median(std::vector<double> v) {
   std::sort(v.begin(), v.end());

@@ -6,6 +6,7 @@
 
 #include <numbers>
 
+#include "cases/cli/hand_written_systems.hpp"
 #include "sympathy/continuation/continuation.hpp"
 #include "sympathy/continuation/hopf.hpp"
 #include "tests/support/test_systems.hpp"
@@ -13,10 +14,14 @@
 namespace sympathy {
 namespace {
 
-using testing::Abc;
 using testing::Equilibria1D;
-using testing::Lorenz;
 using testing::NormalForm;
+// AUTO's demos written by hand (cases/examples/lrz.toml, abc.toml), the files' values as
+// defaults. Lorenz: the nonzero equilibria x = y = +-sqrt(beta (rho - 1)), z = rho - 1 have a
+// Hopf point at rho = sigma (sigma + beta + 3) / (sigma - beta - 1) with omega^2 =
+// beta (sigma + rho) (the characteristic polynomial with l = i omega).
+using Abc = cli::HandAbc;
+using Lorenz = cli::HandLorenz;
 constexpr double kPi = std::numbers::pi;
 
 EquilibriumProblem problem_of(const OdeSystem& system, double from, double to,
@@ -40,7 +45,7 @@ std::vector<EquilibriumEvent> events_of(const EquilibriumBranch& b, EquilibriumE
 // Newton's tolerance is relative: an equilibrium with states near 1e3 converges (an absolute
 // bound on |f| would stall at the rounding of f, about 1e-13 * 1e3 * |f_x|).
 TEST(Equilibrium, NewtonScalesWithTheState) {
-  Lorenz lorenz(1e3 + 1.0);  // C+ = (sqrt(beta 1e3), same, 1e3)
+  Lorenz lorenz(Eigen::Vector3d(1e3 + 1.0, 10.0, 8.0 / 3.0));  // C+ = (sqrt(beta 1e3), same, 1e3)
   const double c = std::sqrt(8.0 / 3.0 * 1e3);
   const Equilibrium e = solve_equilibrium(lorenz, lorenz.default_parameters(),
                                           Eigen::Vector3d(1.01 * c, 0.99 * c, 1.01e3));

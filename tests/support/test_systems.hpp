@@ -319,43 +319,4 @@ class Equilibria1D final : public AutoDiffSystem<Equilibria1D> {
   Kind kind_;
 };
 
-// The Lorenz system x' = sigma (y - x), y' = rho x - y - x z, z' = x y - beta z (AUTO's demo
-// lrz): the nonzero equilibria x = y = +-sqrt(beta (rho - 1)), z = rho - 1 have a Hopf point at
-// rho = sigma (sigma + beta + 3) / (sigma - beta - 1) with omega^2 = beta (sigma + rho) (the
-// characteristic polynomial l^3 + (sigma + beta + 1) l^2 + beta (sigma + rho) l +
-// 2 sigma beta (rho - 1) with l = i omega).
-class Lorenz final : public AutoDiffSystem<Lorenz> {
- public:
-  explicit Lorenz(double rho = 28.0, double sigma = 10.0, double beta = 8.0 / 3.0) {
-    set_parameter_layout({{"rho", {0}}, {"sigma", {1}}, {"beta", {2}}}, {rho, sigma, beta});
-  }
-  int dimension() const override { return 3; }
-  std::vector<std::string> state_names() const override { return {"x", "y", "z"}; }
-  template <class T, class P>
-  void evaluate(double, const T* z, const P* p, T* dz) const {
-    dz[0] = p[1] * (z[1] - z[0]);
-    dz[1] = p[0] * z[0] - z[1] - z[0] * z[2];
-    dz[2] = z[0] * z[1] - p[2] * z[2];
-  }
-};
-
-// AUTO's demo abc (the A -> B -> C reaction), cases/examples/abc.toml written by hand.
-class Abc final : public AutoDiffSystem<Abc> {
- public:
-  explicit Abc(double p1 = 0.25) {
-    set_parameter_layout({{"p1", {0}}, {"p2", {1}}, {"p3", {2}}, {"p4", {3}}, {"p5", {4}}},
-                         {p1, 1.0, 1.55, 8.0, 0.04});
-  }
-  int dimension() const override { return 3; }
-  std::vector<std::string> state_names() const override { return {"u1", "u2", "u3"}; }
-  template <class T, class P>
-  void evaluate(double, const T* u, const P* p, T* du) const {
-    using std::exp;
-    const T e = exp(u[2]);
-    du[0] = -u[0] + p[0] * (1.0 - u[0]) * e;
-    du[1] = -u[1] + p[0] * e * (1.0 - u[0] - p[4] * u[1]);
-    du[2] = -u[2] - p[2] * u[2] + p[0] * p[3] * e * (1.0 - u[0] + p[1] * p[4] * u[1]);
-  }
-};
-
 }  // namespace sympathy::testing
