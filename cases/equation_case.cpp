@@ -246,7 +246,7 @@ EquationCase EquationCase::load(const std::string& path) {
   c.name_ = std::filesystem::path(path).stem().string();
   in.only(root, "",
           {"kind", "name", "description", "plugin", "states", "parameters", "intermediates",
-           "equations", "steep", "params", "default_params", "starts"});
+           "equations", "steep", "forcing_period", "params", "default_params", "starts"});
   const auto* kind = root.get("kind");
   if (kind == nullptr || in.string(*kind, "kind") != "equations")
     throw InputError(path +
@@ -420,9 +420,33 @@ EquationCase EquationCase::load(const std::string& path) {
     }
   }
 
+  // An expression of the parameters alone (`why` says why: it does not change along the motion),
+  // positive at the file's values.
+  auto parameters_only = [&](const toml::node& at, const std::string& where, const char* why) {
+    Expression tree = loader.expression(at, where);
+    std::vector<const Expression*> names;
+    collect_names(tree, names);
+    for (const auto* e : names)
+      if (e->name != "pi" && !(usable.count(e->name) && usable.at(e->name) == "parameter"))
+        throw InputError(loader.location(at, e->offset) + ": key '" + where +
+                         "': expected parameters, numbers and pi only (" + why + "), got '" +
+                         e->name + "'");
+    const double value = evaluate_expression(tree, [&](const std::string& v) {
+      if (v == "pi") return std::numbers::pi;
+      for (const auto& p : sys.parameters)
+        if (p.name == v) return p.value;
+      return 0.0;
+    });
+    if (!(value > 0.0) || !std::isfinite(value))
+      in.fail(at, where,
+              "a positive value at the file's parameter values, got " + format_number(value));
+    return tree;
+  };
+
   // Steep zones: per state, a width (and a scale) from the parameters alone, positive at the
   // file's values.
   if (const auto* n = root.get("steep")) {
+    constexpr const char* kZoneSize = "a zone's size does not change along the motion";
     std::map<std::string, SteepSpec> by_state;
     for (const auto& [key, node] : in_file_order(in.table(*n, "steep"))) {
       const std::string name(key->str());
@@ -432,27 +456,6 @@ EquationCase EquationCase::load(const std::string& path) {
       if (state == sys.states.end())
         loader.fail_key(*key, full, "a state of [states] (" + join(c.state_names()) + ")",
                         "'" + name + "', not a state");
-      auto parameters_only = [&](const toml::node& at, const std::string& where) {
-        Expression tree = loader.expression(at, where);
-        std::vector<const Expression*> names;
-        collect_names(tree, names);
-        for (const auto* e : names)
-          if (e->name != "pi" && !(usable.count(e->name) && usable.at(e->name) == "parameter"))
-            throw InputError(loader.location(at, e->offset) + ": key '" + where +
-                             "': expected parameters, numbers and pi only (a zone's size does "
-                             "not change along the motion), got '" +
-                             e->name + "'");
-        const double value = evaluate_expression(tree, [&](const std::string& v) {
-          if (v == "pi") return std::numbers::pi;
-          for (const auto& p : sys.parameters)
-            if (p.name == v) return p.value;
-          return 0.0;
-        });
-        if (!(value > 0.0) || !std::isfinite(value))
-          in.fail(at, where,
-                  "a positive size at the file's parameter values, got " + format_number(value));
-        return tree;
-      };
       SteepSpec spec;
       spec.state = static_cast<int>(state - sys.states.begin());
       if (node->is_table()) {
@@ -462,16 +465,30 @@ EquationCase EquationCase::load(const std::string& path) {
         if (width == nullptr)
           throw InputError(in.where(*node) + ": key '" + full +
                            ".width' is missing: expected the zone's half-width");
-        spec.width = parameters_only(*width, full + ".width");
+        spec.width = parameters_only(*width, full + ".width", kZoneSize);
         if (const auto* scale = t.get("scale"))
-          spec.scale = parameters_only(*scale, full + ".scale");
+          spec.scale = parameters_only(*scale, full + ".scale", kZoneSize);
       } else {
-        spec.width = parameters_only(*node, full);
+        spec.width = parameters_only(*node, full, kZoneSize);
       }
       by_state[name] = std::move(spec);
     }
     for (const auto& st : sys.states)
       if (by_state.count(st.name)) sys.steep.push_back(std::move(by_state[st.name]));
+  }
+
+  // The forcing's period, for equations that use t: what orbits of a forced system have.
+  if (const auto* n = root.get("forcing_period")) {
+    if (!c.plugin_.empty())
+      in.fail(*n, "forcing_period",
+              "no forcing_period in a case file with a plug-in (its class declares it: "
+              "OdeSystem::forcing_period)");
+    if (!sys.uses_time)
+      in.fail(*n, "forcing_period",
+              "no forcing_period for equations that do not use t (an autonomous system's period "
+              "is found, not declared)");
+    sys.forcing_period = parameters_only(*n, "forcing_period",
+                                         "the forcing's period does not change along the motion");
   }
 
   // Parameter sets and starts, as in metronome case files.

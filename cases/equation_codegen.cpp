@@ -233,16 +233,24 @@ std::string generate_equation_source(const EquationSystem& system) {
   for (std::size_t i = 0; i < n; ++i)
     s += "    dz[" + std::to_string(i) + "] = " + emitter.emit(system.derivatives[i].tree) + ";\n";
   s += "  }\n\n";
-  if (!system.steep.empty()) {
-    // The zones' sizes from the parameters (sympathy::SteepZone{component, width, scale}).
-    s += "  std::vector<sympathy::SteepZone> steep_zones(const double* p) const override {\n";
-    s += "    using S = double;\n";
-    s += "    using std::abs, std::acos, std::asin, std::atan, std::atan2, std::cos, std::cosh,\n"
+  // A function of the parameters alone, in doubles (steep zones' sizes, the forcing's period).
+  auto parameter_function = [&](const std::string& signature) {
+    std::string f = "  " + signature + " const override {\n";
+    f += "    using S = double;\n";
+    f += "    using std::abs, std::acos, std::asin, std::atan, std::atan2, std::cos, std::cosh,\n"
          "        std::exp, std::log, std::pow, std::sin, std::sinh, std::sqrt, std::tan, "
          "std::tanh;\n";
     for (std::size_t i = 0; i < m; ++i)
-      s += "    [[maybe_unused]] const S p" + std::to_string(i) + " = p[" + std::to_string(i) +
+      f += "    [[maybe_unused]] const S p" + std::to_string(i) + " = p[" + std::to_string(i) +
            "];\n";
+    return f;
+  };
+  if (system.forcing_period)
+    s += parameter_function("double forcing_period(const double* p)") + "    return S(" +
+         emitter.emit(*system.forcing_period) + ");\n  }\n\n";
+  if (!system.steep.empty()) {
+    // The zones' sizes from the parameters (sympathy::SteepZone{component, width, scale}).
+    s += parameter_function("std::vector<sympathy::SteepZone> steep_zones(const double* p)");
     s += "    std::vector<sympathy::SteepZone> zones;\n";
     for (const auto& zone : system.steep) {
       const std::string width = "S(" + emitter.emit(zone.width) + ")";

@@ -103,6 +103,24 @@ nlohmann::json hopf_json(const HopfPoint& h) {
   return j;
 }
 
+namespace {
+
+// A describer's numbers as its groups (JSON key per group, a list of numbers each); nothing when
+// the orbit was not described.
+void add_description(nlohmann::json& j, const std::vector<OrbitDescriber::Group>& layout,
+                     const std::vector<double>& description) {
+  if (description.empty()) return;
+  std::size_t k = 0;
+  for (const auto& g : layout) {
+    std::vector<double> numbers;
+    for (std::size_t i = 0; i < g.labels.size() && k < description.size(); ++i)
+      numbers.push_back(description[k++]);
+    j[g.name] = numbers;
+  }
+}
+
+}  // namespace
+
 nlohmann::json branch_json(const Branch& branch, const OrbitDescriber* describer) {
   nlohmann::json j;
   j["parameter"] = branch.parameter_name;
@@ -128,14 +146,7 @@ nlohmann::json branch_json(const Branch& branch, const OrbitDescriber* describer
     q["residual"] = p.orbit.residual;
     q["structural"] = f.structural;
     q["state0"] = as_vector(p.orbit.state0);
-    std::size_t k = 0;
-    for (const auto& g : layout) {
-      if (p.description.empty()) break;
-      std::vector<double> numbers;
-      for (std::size_t i = 0; i < g.labels.size() && k < p.description.size(); ++i)
-        numbers.push_back(p.description[k++]);
-      q[g.name] = numbers;
-    }
+    add_description(q, layout, p.description);
     points.push_back(q);
   }
   j["points"] = points;
@@ -161,6 +172,7 @@ nlohmann::json branch_json(const Branch& branch, const OrbitDescriber* describer
                       {"unknowns", as_vector(e.unknowns)},
                       {"tangent", as_vector(e.tangent)},
                       {"after_point", e.after_point}});
+    add_description(events.back(), layout, e.description);
   }
   j["events"] = events;
   j["seconds"] = branch.seconds;

@@ -32,8 +32,28 @@ std::string BranchProblem::problem_with(const OdeSystem& system) const {
     return "start_state: expected " + std::to_string(system.dimension()) + " finite values";
   } else if (start_period && !(*start_period > 0.0 && std::isfinite(*start_period))) {
     return "start_period: expected a positive period";
-  } else if (!start_period && !system.autonomous()) {
-    return "start_period: expected the forcing's period (a periodically forced system)";
+  } else if (!start_period && !system.autonomous() &&
+             !(system.forcing_period(values.data()) > 0.0)) {
+    return "start_period: expected the forcing's period (a periodically forced system that "
+           "declares none)";
+  }
+  if (!system.autonomous()) {
+    // The branch keeps the start's period: the continued parameter must not move the forcing's.
+    const double declared = system.forcing_period(values.data());
+    if (declared > 0.0) {
+      const auto& name = system.parameter_names()[parameter];
+      for (double v : {from, to, first_value()}) {
+        const double at = system.forcing_period(system.with_parameter(values, parameter, v).data());
+        if (!(std::abs(at - declared) <= 1e-14 * declared))
+          return "parameter " + name + ": the forcing's period depends on it (" +
+                 format_double(declared) + " at the given values, " + format_double(at) + " at " +
+                 name + " = " + format_double(v) +
+                 "); expected a parameter the forcing's period does not depend on";
+      }
+      if (!start_orbit && start_period && !(std::abs(*start_period - declared) <= 1e-12 * declared))
+        return "start_period " + format_double(*start_period) + ": expected the forcing's period " +
+               format_double(declared);
+    }
   }
   return "";
 }
@@ -176,6 +196,16 @@ Branch continue_branch(const OdeSystem& system, const BranchProblem& problem,
     auto it = descriptions.find(p.index);
     if (it != descriptions.end()) p.description = std::move(it->second);
   }
+  if (describer)
+    for (auto& e : branch.events) {
+      // The located orbit, for the describer: one plain integration of its period.
+      PeriodicOrbit located;
+      located.state0 = e.state0;
+      located.period = e.period;
+      located.parameters = system.with_parameter(problem.values, problem.parameter, e.parameter);
+      located.subspace = orbit.subspace;
+      e.description = describer->describe(located);
+    }
   if (!problem.start_orbit) branch.flow += orbit.flow;  // the start's transient and Newton
   branch.seconds = clock.seconds();
   return branch;

@@ -256,15 +256,54 @@ double estimate_period(Flow& flow, const ParameterValues& p, const Eigen::Vector
   return period;
 }
 
+namespace {
+
+// A periodically forced system's orbit: its period is the forcing's, so the transient runs over
+// whole periods of the forcing (it then ends where the forcing starts again: the state it reaches
+// is a guess of the orbit's state at t = 0; none when the transient is under half a period), and
+// Newton follows with the period fixed.
+PeriodicOrbit find_forced_orbit(const OdeSystem& system, const ParameterValues& p,
+                                const Eigen::VectorXd& start, const InvariantSubspace& subspace,
+                                const OrbitOptions& options) {
+  const Stopwatch started;
+  const double period = system.forcing_period(p.data());
+  if (!(period > 0.0) || !std::isfinite(period))
+    throw std::invalid_argument(
+        "find_periodic_orbit: a periodically forced system that declares no forcing period "
+        "(OdeSystem::forcing_period); give the period (solve_periodic_orbit)");
+  Flow flow(system, options.transient_flow);
+  Eigen::VectorXd z = subspace.project(start);
+  const long periods = std::lround(options.transient / period);
+  try {
+    for (long k = 0; k < periods; ++k)
+      z = wrap_angles(system, subspace.project(flow.advance(z, p, 0.0, period)));
+  } catch (const IntegrationError& e) {
+    PeriodicOrbit failed;
+    failed.segments = options.shooting.segments;
+    failed.parameters = p;
+    failed.newton.outcome = NewtonOutcome::TransientFailed;
+    failed.newton.reason = std::string("transient integration failed: ") + e.what();
+    failed.state0 = z;
+    failed.flow = flow.statistics();
+    failed.seconds = started.seconds();
+    return failed;
+  }
+  PeriodicOrbit orbit = solve_periodic_orbit(system, p, z, period, subspace, options);
+  orbit.flow += flow.statistics();
+  orbit.seconds = started.seconds();
+  return orbit;
+}
+
+}  // namespace
+
 PeriodicOrbit find_periodic_orbit(const OdeSystem& system, const ParameterValues& p,
                                   const Eigen::VectorXd& start, const InvariantSubspace& subspace,
                                   const OrbitOptions& options) {
   const Stopwatch started;
-  if (!system.autonomous())
-    throw std::invalid_argument("find_periodic_orbit: for autonomous systems; give the period");
   system.check_parameters(p);
   if (const auto problem = options.validate())
     throw std::invalid_argument("orbit options: " + problem->message());
+  if (!system.autonomous()) return find_forced_orbit(system, p, start, subspace, options);
   if (options.use_symmetry)
     if (const auto r = symmetry_reduction(system, p, subspace)) {
       PeriodicOrbit orbit = find_periodic_orbit(

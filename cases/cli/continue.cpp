@@ -37,7 +37,8 @@ int run_continue(const std::vector<std::string>& argv) {
        {"--max-points", "N", false, "point limit per direction (default 400)"},
        {"--user-points", "V1,V2,...", false,
         "report the branch's orbit at each of these values of --param (AUTO's UZ), as events"},
-       {"--transient", "SECONDS", false, "integration before the first Newton (default 60)"},
+       {"--transient", "SECONDS", false,
+        "integration before the first Newton (default 60; 0 for a forced system)"},
        {"--csv", "FILE", false, "stream every point to this CSV"},
        {"--json", "FILE", false, "write the branch and its bifurcations as JSON"},
        {"--events", "FILE", false, "stream each bifurcation to this CSV as it is located"},
@@ -64,7 +65,7 @@ int run_continue(const std::vector<std::string>& argv) {
   const ParameterWindow window = c.window(args);
   BranchRequest request;
   request.start_data = c.start_data();
-  c.require_autonomous();
+  c.require_orbits();
   if (!c.equations() && !args.has("--start") && !request.start_data)
     throw InputError("--start is required (or --start-data FILE.csv)");
   request.start = args.text("--start", "");
@@ -81,6 +82,7 @@ int run_continue(const std::vector<std::string>& argv) {
                      "a branch point or period doubling of the branch, or a Hopf point of the "
                      "equilibria (BP, PD or HB followed by its number, e.g. BP1 or HB1): only "
                      "there is a branch born");
+  if (!request.switch_at.empty()) c.require_autonomous("--switch-at (branch switching)");
   request.parent_path = args.text("--parent", "");
   if (!request.parent_path.empty() && request.switch_at.empty())
     throw InputError("--parent " + request.parent_path +
@@ -89,7 +91,9 @@ int run_continue(const std::vector<std::string>& argv) {
   if (args.flag("--quiet")) request.progress = nullptr;
   request.verbose = args.flag("--verbose");
   auto& o = request.continuation;
-  o.orbit.transient = args.number("--transient", o.orbit.transient);
+  // A forced system's start: Newton at once unless a transient is asked for (its period is the
+  // forcing's; a transient would leave an unstable response for whatever attracts).
+  o.orbit.transient = args.number("--transient", c.system().autonomous() ? o.orbit.transient : 0.0);
   o.orbit.shooting.segments = args.integer("--segments", 1);
   o.initial_step = args.number("--step", o.initial_step);
   o.max_step = args.number("--max-step", o.max_step);

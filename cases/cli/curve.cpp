@@ -65,6 +65,7 @@ int run_curve(const std::vector<std::string>& argv) {
 
   Stopwatch clock;
   const LoadedSystem c(args);
+  c.require_autonomous("curve (two-parameter curves)");
   const ParameterWindow window = c.window(args);
   for (const char* required : {"--event", "--second", "--second-from", "--second-to"})
     if (!args.has(required)) throw InputError(std::string(required) + " is required");

@@ -47,13 +47,24 @@ LoadedEquations load_equations(const std::string& path, const std::string& param
   return build_loaded(EquationCase::load(path), params, sets, std::nullopt);
 }
 
-void check_autonomous(const LoadedEquations& e) {
-  if (!e.build.system->autonomous())
+void check_period_known(const LoadedEquations& e) {
+  if (!e.build.system->autonomous() && !e.file.system().forcing_period && e.file.plugin().empty())
     throw InputError(e.file.path() +
-                     " uses t (a periodically forced system): its orbits have the forcing's "
-                     "period, which an equation case file cannot declare yet; expected an "
-                     "autonomous system (the library continues forced systems given the period: "
-                     "BranchProblem::start_period)");
+                     ": its equations use t (a periodically forced system) and it declares no "
+                     "forcing period; expected forcing_period = \"EXPRESSION\" (the forcing's "
+                     "period from the parameters, e.g. \"2*pi/beta\") at the top of the file");
+  if (!e.build.system->autonomous() && !(e.build.system->forcing_period(e.values.data()) > 0.0))
+    throw InputError(e.file.path() + ": a periodically forced system whose forcing_period is " +
+                     format_number(e.build.system->forcing_period(e.values.data())) +
+                     " at these parameter values; expected a positive period");
+}
+
+void check_autonomous(const LoadedEquations& e, const std::string& what) {
+  if (!e.build.system->autonomous())
+    throw InputError(e.file.path() + ": its equations use t (a periodically forced system); " +
+                     what +
+                     " is for autonomous systems (a forced system's orbits: orbit, "
+                     "continue and study)");
 }
 
 std::string describe_build(const EquationBuild& build) {
@@ -81,14 +92,16 @@ int run_orbit_equations(const Arguments& args) {
   const OdeSystem& system = *e.build.system;
   const auto& recorded = e.start_data;
   check_start_data_system(recorded, system, e.file.path());
-  check_autonomous(e);
+  check_period_known(e);
   const StartSpec* start = args.has("--start") ? &e.file.start(*args.value("--start")) : nullptr;
   const Eigen::VectorXd z0 =
       recorded ? recorded->state0 : e.file.initial_state(start, args.assignments("--initial"));
 
   OrbitOptions o;
   o.shooting.segments = args.integer("--segments", 1);
-  o.transient = args.number("--transient", o.transient);
+  // A forced system's orbit: Newton from the start at once unless a transient is asked for (its
+  // period is known; a transient would leave an unstable response for whatever attracts).
+  o.transient = args.number("--transient", system.autonomous() ? o.transient : 0.0);
   apply_accuracy(accuracy(args), o);
   o.shooting.flow = flow_options(args, o.shooting.flow);
   o.transient_flow.linear_solver = o.shooting.flow.linear_solver;
@@ -104,7 +117,7 @@ int run_orbit_equations(const Arguments& args) {
                : find_periodic_orbit(system, e.values, z0, InvariantSubspace(), o);
   const double seconds = clock.seconds();
   const StateDescriber describer(system);
-  const auto amplitudes = describer.amplitudes(orbit);
+  const StateDescriber::Sizes sizes = describer.sizes(orbit);
 
   const std::string start_name = recorded ? describe_start_data(*recorded)
                                  : start  ? start->name
@@ -112,7 +125,7 @@ int run_orbit_equations(const Arguments& args) {
   std::printf("sympathy orbit %s  params %s  start %s\n", e.file.path().c_str(),
               e.params.empty() ? "(none)" : e.params.c_str(), start_name.c_str());
   std::printf("  %s\n", describe_build(e.build).c_str());
-  print_orbit(stdout, system, orbit, amplitudes, {}, o);
+  print_orbit(stdout, system, orbit, sizes.amplitudes, {}, o, sizes.rms);
   return finish_orbit_report(system, orbit, describer, args.flag("--verbose"), args.value("--json"),
                              e.file.path(), e.params,
                              recorded ? "data " + recorded->path

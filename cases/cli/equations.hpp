@@ -30,9 +30,11 @@ LoadedEquations load_equations(const Arguments& args);
 LoadedEquations load_equations(const std::string& path, const std::string& params,
                                const std::vector<Assignment>& sets);
 
-// InputError unless the file's system is autonomous: a forced system's orbits have the forcing's
-// period, which an equation case file cannot declare yet (orbit and continue need it).
-void check_autonomous(const LoadedEquations& e);
+// InputError unless the file's orbits have a known period: an autonomous system, or a forced one
+// (its equations use t) that declares forcing_period (positive at its values).
+void check_period_known(const LoadedEquations& e);
+// InputError for a forced system: `what` (a command or option) is for autonomous systems only.
+void check_autonomous(const LoadedEquations& e, const std::string& what);
 
 // "system compiled in 1.23 s against the headers in DIR (CACHE/KEY.so)" or "system from the
 // cache (CACHE/KEY.so)", with why an entry present was rebuilt.

@@ -76,6 +76,7 @@ int run_equilibria(const std::vector<std::string>& argv) {
 
   Stopwatch clock;
   const LoadedSystem c(args);
+  c.require_autonomous("equilibria");
   const OdeSystem& system = c.system();
   const ParameterWindow window = c.window(args);
   if (!c.equations() && !args.has("--start")) throw InputError("--start is required");

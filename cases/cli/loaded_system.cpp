@@ -83,6 +83,19 @@ double LoadedSystem::value_of(const std::string& parameter) const {
   return system().parameter(equations_->values, system().parameter_index(parameter));
 }
 
+std::vector<std::pair<std::string, double>> LoadedSystem::set_values(const std::string& set) const {
+  std::vector<std::pair<std::string, double>> r;
+  if (metronomes_) {
+    const ModelSpec s = metronomes_->file.spec(set);
+    for (const auto& name : s.parameter_names()) r.emplace_back(name, s.get(name));
+  } else {
+    const Eigen::VectorXd values = equations_->file.parameter_values(set);
+    const auto names = equations_->file.parameter_names();
+    for (std::size_t i = 0; i < names.size(); ++i) r.emplace_back(names[i], values[i]);
+  }
+  return r;
+}
+
 void LoadedSystem::check_range(const std::string& parameter,
                                const std::vector<std::pair<std::string, double>>& values) const {
   for (const auto& [option, value] : values) {
@@ -96,10 +109,14 @@ void LoadedSystem::check_range(const std::string& parameter,
   }
 }
 
-void LoadedSystem::require_autonomous() const {
+void LoadedSystem::require_orbits() const {
   if (!equations_) return;
   check_start_data_system(recorded_, system(), path());
-  check_autonomous(*equations_);
+  check_period_known(*equations_);
+}
+
+void LoadedSystem::require_autonomous(const std::string& what) const {
+  if (equations_) check_autonomous(*equations_, what);
 }
 
 BranchSource LoadedSystem::source(const std::string& start, const std::vector<Assignment>& initial,

@@ -53,6 +53,9 @@ class LoadedSystem {
   ParameterWindow window(const Arguments& args) const;
   // The parameter's value in the case (with --params and --set).
   double value_of(const std::string& parameter) const;
+  // Every parameter's (name, value) in the file's parameter set `set` (without --set); InputError
+  // naming the set if the file has none of that name.
+  std::vector<std::pair<std::string, double>> set_values(const std::string& set) const;
   // Each (option, value) of `parameter` within its domain: an equation case file's min and max,
   // the metronome model's physical domain. InputError naming the option.
   void check_range(const std::string& parameter,
@@ -60,9 +63,12 @@ class LoadedSystem {
 
   // --start-data's recorded period (nullopt without it).
   const std::optional<RecordedPeriod>& start_data() const { return recorded_; }
-  // InputError for an equation case file that uses t (a forced system: its period cannot be
-  // declared in a case file yet), naming --start-data if it was given.
-  void require_autonomous() const;
+  // InputError unless the system's orbits have a known period (an equation case file that uses t
+  // declares forcing_period), and for --start-data with a forced system.
+  void require_orbits() const;
+  // InputError for a forced system (an equation case file that uses t): `what` is for
+  // autonomous systems only.
+  void require_autonomous(const std::string& what) const;
 
   // The start named `start` ("" is the file's [states] for an equation case file; a metronome
   // case file needs a name: InputError "--start is required"), with `initial` on top; its

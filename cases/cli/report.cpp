@@ -13,7 +13,8 @@ namespace sympathy::cli {
 
 void print_orbit(std::FILE* out, const OdeSystem& model, const PeriodicOrbit& orbit,
                  const std::vector<double>& amplitudes,
-                 const std::vector<double>& phase_differences, const OrbitOptions& options) {
+                 const std::vector<double>& phase_differences, const OrbitOptions& options,
+                 const std::vector<double>& rms) {
   const auto names = model.state_names();
   const auto& f = orbit.floquet;
   std::fprintf(out, "  period       %.12g s    frequency %.9g Hz\n", orbit.period,
@@ -21,6 +22,11 @@ void print_orbit(std::FILE* out, const OdeSystem& model, const PeriodicOrbit& or
   std::fprintf(out, "  amplitudes  ");
   for (std::size_t i = 0; i < amplitudes.size(); ++i)
     std::fprintf(out, " %s %.6g", names[i].c_str(), amplitudes[i]);
+  if (!rms.empty()) {
+    std::fprintf(out, "\n  rms         ");
+    for (std::size_t i = 0; i < rms.size(); ++i)
+      std::fprintf(out, " %s %.9g", names[i].c_str(), rms[i]);
+  }
   if (!phase_differences.empty()) {
     std::fprintf(out, "\n  phases to th1");
     for (std::size_t i = 0; i < phase_differences.size(); ++i)
@@ -40,8 +46,14 @@ void print_orbit(std::FILE* out, const OdeSystem& model, const PeriodicOrbit& or
                  f.unstable_count > 1 ? "s" : "");
   std::fprintf(out, "; largest other |mu| = %.9f, tolerance %g\n", f.max_modulus,
                options.floquet.stability_tolerance);
-  std::fprintf(out, "  accuracy     Newton residual %.2e; trivial multiplier |mu - 1| = %.2e\n",
-               orbit.residual, f.trivial_error);
+  if (model.autonomous())
+    std::fprintf(out, "  accuracy     Newton residual %.2e; trivial multiplier |mu - 1| = %.2e\n",
+                 orbit.residual, f.trivial_error);
+  else
+    std::fprintf(out,
+                 "  accuracy     Newton residual %.2e (a forced orbit, period the forcing's: no "
+                 "trivial multiplier)\n",
+                 orbit.residual);
   if (orbit.family_dimension > 0)
     std::fprintf(
         out,

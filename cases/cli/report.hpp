@@ -18,10 +18,12 @@
 namespace sympathy::cli {
 
 // An orbit of any system: `amplitudes` per state from the first (a metronome model gives its
-// positions'), `phase_differences` of th2, th3, ... to th1 (empty for other systems).
+// positions'), `phase_differences` of th2, th3, ... to th1 (empty for other systems), `rms` per
+// state (empty: not printed).
 void print_orbit(std::FILE* out, const OdeSystem& model, const PeriodicOrbit& orbit,
                  const std::vector<double>& amplitudes,
-                 const std::vector<double>& phase_differences, const OrbitOptions& options);
+                 const std::vector<double>& phase_differences, const OrbitOptions& options,
+                 const std::vector<double>& rms = {});
 
 // The full report of a flow's work (--verbose).
 void print_flow_statistics(std::FILE* out, const FlowStatistics& s);

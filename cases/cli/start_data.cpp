@@ -31,8 +31,8 @@ void check_start_data_system(const std::optional<RecordedPeriod>& recorded, cons
   if (recorded && !system.autonomous())
     throw InputError("--start-data " + recorded->path + ": " + case_path +
                      " uses t (a periodically forced system), whose period is the forcing's, not "
-                     "the recording's; expected an autonomous system (a forced one's period "
-                     "cannot be declared in a case file yet)");
+                     "the recording's; expected an autonomous system (a forced one starts from its "
+                     "[states] or a named start, with its forcing_period)");
 }
 
 std::string describe_start_data(const RecordedPeriod& r) {

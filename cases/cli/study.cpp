@@ -23,7 +23,7 @@ int run_study(const std::vector<std::string>& argv) {
                   accuracy_option()},
                  {"STUDY"});
   Stopwatch clock;
-  const Study study = load_study(args.positional(0));
+  Study study = load_study(args.positional(0));
   const std::string out = args.text("--out", "out/figures");
   const int jobs = args.integer("--jobs", 2);
   if (jobs < 1) throw InputError("--jobs: expected a positive integer");
@@ -34,8 +34,11 @@ int run_study(const std::vector<std::string>& argv) {
   std::vector<std::unique_ptr<LoadedSystem>> systems;
   std::vector<BranchSource> sources;
   std::vector<std::optional<RecordedPeriod>> recorded;  // each branch's start_data, if any
-  for (const auto& b : study.branches) {
+  for (auto& b : study.branches) {
     auto c = std::make_unique<LoadedSystem>(study.case_path, study.params, b.sets);
+    c->require_orbits();
+    if (!c->system().autonomous() && !b.transient_given) b.request.continuation.orbit.transient = 0;
+    if (!b.request.switch_at.empty()) c->require_autonomous("switch_at (branch switching)");
     const auto names = c->system().parameter_names();
     if (std::find(names.begin(), names.end(), study.parameter) == names.end())
       throw InputError(study.path + ": parameter '" + study.parameter + "' is not one of " +

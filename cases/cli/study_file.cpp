@@ -98,7 +98,10 @@ Study load_study(const std::string& path) {
     }
     auto& o = b.request.continuation;
     apply_accuracy(accuracy, o.orbit);
-    if (auto* n = t.get("transient")) o.orbit.transient = in.number(*n, prefix + "transient");
+    if (auto* n = t.get("transient")) {
+      o.orbit.transient = in.number(*n, prefix + "transient");
+      b.transient_given = true;
+    }
     if (auto* n = t.get("max_points")) o.max_points = in.integer(*n, prefix + "max_points");
     if (auto* n = t.get("step")) o.initial_step = in.number(*n, prefix + "step");
     if (auto* n = t.get("max_step")) o.max_step = in.number(*n, prefix + "max_step");

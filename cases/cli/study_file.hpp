@@ -20,6 +20,9 @@ struct StudyBranch {
   // `start_data`: a recorded period to start from instead of `start` (relative to the study
   // file; read by the study against its case's states).
   std::string start_data;
+  // `transient` given: a forced system's branch integrates it too (by default it starts with
+  // Newton at once, as continue's).
+  bool transient_given = false;
 };
 
 struct Study {

@@ -70,7 +70,7 @@ TEST(EquationCase, SteepZones) {
                   ".toml:14:1: key 'steep.r2': expected a state of [states] (x, y), got 'r2', not "
                   "a state");
   expect_contains(error_of_file(kValid + "[steep]\ny = \"a - 1\"\n"),
-                  ".toml:14: key 'steep.y': expected a positive size at the file's parameter "
+                  ".toml:14: key 'steep.y': expected a positive value at the file's parameter "
                   "values, got -0.5");
   expect_contains(error_of_file(kValid + "[steep]\ny = { scale = \"1\" }\n"),
                   "key 'steep.y.width' is missing: expected the zone's half-width");
@@ -94,7 +94,7 @@ TEST(EquationCase, PluginInsteadOfEquations) {
 }
 
 TEST(EquationCase, ExamplesLoad) {
-  for (const char* name : {"hopf", "lrz", "abc", "lcbp", "row2_equations"}) {
+  for (const char* name : {"hopf", "lrz", "abc", "lcbp", "ffn", "row2_equations"}) {
     const auto c = EquationCase::load(example(name));
     EXPECT_EQ(c.name(), name);
     EXPECT_EQ(c.system().derivatives.size(), c.system().states.size());
@@ -268,6 +268,29 @@ TEST(EquationCase, TimeMakesTheSystemNonautonomous) {
       EquationCase::load(write_test_file("sympathy_equation_case_test", ".toml",
                                          replaced(kValid, "\"b*x + a*y", "\"cos(t) + b*x + a*y")));
   EXPECT_TRUE(c.system().uses_time);
+}
+
+// forcing_period: an expression of the parameters, positive at the file's values, for equations
+// that use t; anything else refused where it stands.
+TEST(EquationCase, ForcingPeriod) {
+  const std::string forced = replaced(kValid, "\"b*x + a*y", "\"cos(b*t) + b*x + a*y");
+  const auto c = EquationCase::load(
+      write_test_file("sympathy_equation_case_test", ".toml",
+                      replaced(forced, "[states]", "forcing_period = \"2*pi/b\"\n[states]")));
+  ASSERT_TRUE(c.system().forcing_period.has_value());
+  expect_contains(error_of_file(replaced(kValid, "[states]", "forcing_period = \"1\"\n[states]")),
+                  ".toml:2: key 'forcing_period': expected no forcing_period for equations "
+                  "that do not use t");
+  expect_contains(
+      error_of_file(replaced(forced, "[states]", "forcing_period = \"2*pi/x\"\n[states]")),
+      ".toml:2:24: key 'forcing_period': expected parameters, numbers and pi only (the forcing's "
+      "period does not change along the motion), got 'x'");
+  expect_contains(
+      error_of_file(replaced(forced, "[states]", "forcing_period = \"a - 1\"\n[states]")),
+      ".toml:2: key 'forcing_period': expected a positive value at the file's parameter values, "
+      "got -0.5");
+  expect_contains(error_of_file(replaced(forced, "[states]", "forcing_period = 2\n[states]")),
+                  "key 'forcing_period'");
 }
 
 TEST(EquationCase, MetronomeCaseFileRefusesEquations) {

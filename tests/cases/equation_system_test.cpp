@@ -112,6 +112,51 @@ TEST_F(EquationSystemTest, HopfOrbitHasItsExactPeriodRadiusAndMultiplier) {
   EXPECT_NEAR(nontrivial, std::exp(-std::numbers::pi), 1e-7);
 }
 
+// A forced system declares its forcing's period (forcing_period = "2*pi/w", evaluated by the
+// generated code at any parameter values), and find_periodic_orbit finds its response from the
+// file's start with no period given: x'' + c x' + k x = A cos(w t) has the response
+// x = X cos(w t - phi), X = A / sqrt((k - w^2)^2 + (c w)^2), tan(phi) = c w / (k - w^2), so at
+// t = 0 x = X cos(phi), v = X w sin(phi); both multipliers exp(-c T / 2). To 1e-8 (the
+// integration's accuracy at the defaults on states of order 0.1).
+TEST_F(EquationSystemTest, ForcedSystemHasItsForcingPeriodAndResponse) {
+  const std::string path =
+      testing::write_test_file("sympathy_forced", ".toml", R"toml(kind = "equations"
+forcing_period = "2*pi/w"
+[states]
+x = 0.0
+v = 0.0
+[parameters]
+c = 0.1
+k = 0.5
+A = 0.1
+w = 1.0
+[equations]
+x = "v"
+v = "-c*v - k*x + A*cos(w*t)"
+)toml");
+  const auto file = EquationCase::load(path);
+  const auto b = build(file);
+  ParameterValues p = b.system->default_parameters();
+  EXPECT_FALSE(b.system->autonomous());
+  EXPECT_NEAR(b.system->forcing_period(p.data()), 2 * std::numbers::pi, 1e-15);
+  p[3] = 2.0;  // w
+  EXPECT_NEAR(b.system->forcing_period(p.data()), std::numbers::pi, 1e-15);
+  OrbitOptions o;
+  o.transient = 0.0;  // Newton at once: the system is linear
+  const PeriodicOrbit orbit =
+      find_periodic_orbit(*b.system, p, file.initial_state(nullptr), InvariantSubspace(), o);
+  ASSERT_TRUE(orbit.converged()) << orbit.newton.reason;
+  const double c = 0.1, k = 0.5, a = 0.1, w = 2.0;
+  const double amplitude = a / std::hypot(k - w * w, c * w), phi = std::atan2(c * w, k - w * w);
+  EXPECT_EQ(orbit.period, std::numbers::pi);
+  EXPECT_NEAR(orbit.state0[0], amplitude * std::cos(phi), 1e-8);
+  EXPECT_NEAR(orbit.state0[1], amplitude * w * std::sin(phi), 1e-8);
+  for (const auto& m : orbit.floquet.multipliers) {
+    EXPECT_NEAR(std::abs(m.value), std::exp(-c * std::numbers::pi / 2), 1e-8);
+    EXPECT_FALSE(m.trivial);
+  }
+}
+
 TEST_F(EquationSystemTest, CacheIsReusedAndSharedBetweenEqualSystems) {
   const auto c = EquationCase::load(example("hopf"));
   const auto first = build(c);

@@ -119,7 +119,7 @@ for command in orbit "continue --param c --from 0.1 --to 0.2"; do
   # shellcheck disable=SC2086
   "$bin" $command "$work/forced.toml" > /dev/null 2> "$work/forced_plain.err"
   check "a forced system without data ($command): exit code 2" test $? -eq 2
-  check "... says why" grep -qF "forced.toml uses t (a periodically forced system): its orbits have the forcing's period" "$work/forced_plain.err"
+  check "... says why" grep -qF "forced.toml: its equations use t (a periodically forced system) and it declares no forcing period; expected forcing_period" "$work/forced_plain.err"
 done
 
 # continue from the data: the unstable family r = p1 from p1 = 1 to 1.8, with user points at

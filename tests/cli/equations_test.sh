@@ -121,4 +121,35 @@ print(len(a) == 1 and len(b) == 1 and a[0]['type'] == b[0]['type'] == 'BP' and
 check "orbit on a plug-in case file exits 0" test $? -eq 0
 check "... saying a plug-in is code" grep -q "plug-in .*vdp_plugin.cpp compiled in .*a plug-in is C++ code" "$work/vdp.out"
 check "... and its period is van der Pol's" test "$(json_value "$work/vdp.json" "abs(j['period'] - 6.287111) < 2e-6")" = True
+
+# AUTO-07p's ffn (cases/examples/ffn.toml): FitzHugh-Nagumo forced at beta = 10, period 2 pi / 10
+# declared by forcing_period. Its torus (NS) points, AUTO's log test/hyper.all: a = 0.422945 at
+# amp = 0.1 and amp = 4.52337 at a = 0, to the digits AUTO prints; at each the root mean square
+# of x over the period is sqrt(1 - b / c^2) = sqrt(1 - 0.8 / 9) exactly (the multipliers'
+# product exp(integral of c (1 - x^2) - b / c) is 1 there), here to 1e-7 (the location's
+# uncertainty, 1e-8 in the parameter, and the describer's rtol 1e-9 integration).
+ffn=$src/cases/examples/ffn.toml
+rms_exact=0.9545214042184236
+"$bin" orbit "$ffn" --json "$work/ffn_orbit.json" > "$work/ffn_orbit.out"
+check "ffn: orbit of a forced system exits 0" test $? -eq 0
+check "ffn: its period is the forcing's, 2 pi / 10" test "$(json_value "$work/ffn_orbit.json" "j['period'] == 2 * math.pi / 10")" = True
+check "ffn: no trivial multiplier said" grep -q "a forced orbit, period the forcing's: no trivial multiplier" "$work/ffn_orbit.out"
+"$bin" continue "$ffn" --param a --from 0 --to 1 --quiet --json "$work/ffn_a.json" > "$work/ffn_a.out"
+check "ffn: continue in a exits 0" test $? -eq 0
+check "ffn: one NS in a, at 0.422945 (AUTO-07p)" test "$(json_value "$work/ffn_a.json" "[(e['type'], round(e['value'], 6)) for e in j['events']]")" = "[('NS', 0.422945)]"
+check "ffn: rms of x at that NS = sqrt(1 - b/c^2)" test "$(json_value "$work/ffn_a.json" "abs(j['events'][0]['rms'][0] - $rms_exact) < 1e-7")" = True
+"$bin" continue "$ffn" --param amp --from 0.1 --to 10 --quiet --json "$work/ffn_amp.json" > "$work/ffn_amp.out"
+check "ffn: one NS in amp, at 4.52337 (AUTO-07p)" test "$(json_value "$work/ffn_amp.json" "[(e['type'], round(e['value'], 5)) for e in j['events']]")" = "[('NS', 4.52337)]"
+check "ffn: rms of x at that NS = sqrt(1 - b/c^2)" test "$(json_value "$work/ffn_amp.json" "abs(j['events'][0]['rms'][0] - $rms_exact) < 1e-7")" = True
+# The forcing's period must not move along a branch; switching, curves and equilibria are for
+# autonomous systems: each refused before any work (exit 2), saying why.
+"$bin" continue "$ffn" --param beta --from 10 --to 11 > /dev/null 2> "$work/ffn_beta.err"
+check "ffn: continuing beta (the forcing's period moves) exits 2" test $? -eq 2
+check "... saying so" grep -qF "parameter beta: the forcing's period depends on it" "$work/ffn_beta.err"
+"$bin" equilibria "$ffn" --param a --from 0 --to 1 > /dev/null 2> "$work/ffn_eq.err"
+check "ffn: equilibria of a forced system exit 2" test $? -eq 2
+check "... saying why" grep -qF "ffn.toml: its equations use t (a periodically forced system); equilibria is for autonomous systems" "$work/ffn_eq.err"
+"$bin" curve "$ffn" --param a --from 0 --to 1 --event NS1 --second amp --second-from 0 --second-to 1 > /dev/null 2> "$work/ffn_curve.err"
+check "ffn: curve on a forced system exits 2" test $? -eq 2
+check "... saying why" grep -qF "curve (two-parameter curves) is for autonomous systems" "$work/ffn_curve.err"
 exit "$failures"

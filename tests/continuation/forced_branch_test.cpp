@@ -35,6 +35,25 @@ class ForcedOscillator final : public AutoDiffSystem<ForcedOscillator> {
   }
 };
 
+// The same system declaring its forcing's period, 2 pi / w (OdeSystem::forcing_period).
+class DeclaredForcing final : public AutoDiffSystem<DeclaredForcing> {
+ public:
+  DeclaredForcing(double c, double k, double a, double w) : oscillator_(c, k, a, w) {
+    set_parameter_layout({{"c", {0}}, {"k", {1}}, {"A", {2}}, {"w", {3}}}, {c, k, a, w});
+  }
+  int dimension() const override { return 2; }
+  bool autonomous() const override { return false; }
+  std::vector<std::string> state_names() const override { return {"x", "v"}; }
+  double forcing_period(const double* p) const override { return 2 * kPi / p[3]; }
+  template <class T, class P>
+  void evaluate(double t, const T* z, const P* p, T* dz) const {
+    oscillator_.evaluate(t, z, p, dz);
+  }
+
+ private:
+  ForcedOscillator oscillator_;
+};
+
 Eigen::Vector2d exact_state0(double c, double k, double a, double w) {
   const double amplitude = a / std::hypot(k - w * w, c * w);
   const double phi = std::atan2(c * w, k - w * w);
@@ -116,6 +135,56 @@ TEST(ForcedBranch, NeedsTheForcingPeriod) {
   problem.start_state = Eigen::Vector2d::Zero();
   EXPECT_NE(problem.problem_with(system).find("start_period: expected the forcing's period"),
             std::string::npos);
+}
+
+// A system that declares its forcing's period needs none given: find_periodic_orbit integrates
+// the transient over whole forcing periods (60 s: 10 periods of 2 pi; the response is stable,
+// |mu| = exp(-0.1 pi) per period, so it is approached to about 0.73^10 = 0.04 of the start's
+// distance) and Newton converges to the exact response, to 1e-8; a branch runs from the start
+// state alone.
+TEST(ForcedBranch, DeclaredForcingPeriodNeedsNoPeriodGiven) {
+  const DeclaredForcing system(0.1, 0.5, 0.1, 1.0);
+  const ParameterValues p = system.default_parameters();
+  const PeriodicOrbit orbit =
+      find_periodic_orbit(system, p, Eigen::Vector2d(1.0, -1.0), InvariantSubspace(), {});
+  ASSERT_TRUE(orbit.converged()) << orbit.newton.reason;
+  EXPECT_EQ(orbit.period, 2 * kPi);
+  EXPECT_LT((orbit.state0 - exact_state0(0.1, 0.5, 0.1, 1.0)).cwiseAbs().maxCoeff(), 1e-8);
+
+  BranchProblem problem;
+  problem.parameter = 1;
+  problem.values = p;
+  problem.from = 0.5;
+  problem.to = 0.8;
+  problem.start_state = Eigen::Vector2d::Zero();
+  EXPECT_EQ(problem.problem_with(system), "");
+  const Branch branch = continue_branch(system, problem, {});
+  ASSERT_TRUE(branch.started()) << branch.stop_reason;
+  for (const auto& q : branch.points)
+    EXPECT_LT((q.orbit.state0 - exact_state0(0.1, q.parameter, 0.1, 1.0)).cwiseAbs().maxCoeff(),
+              1e-8);
+}
+
+// A branch keeps its start's period: a parameter the forcing's period depends on is refused
+// before any work, and so is a period given that is not the forcing's.
+TEST(ForcedBranch, ParameterThatMovesTheForcingPeriodIsRefused) {
+  const DeclaredForcing system(0.1, 0.5, 0.1, 1.0);
+  BranchProblem problem;
+  problem.parameter = 3;  // w
+  problem.values = system.default_parameters();
+  problem.from = 1.0;
+  problem.to = 1.5;
+  problem.start_state = Eigen::Vector2d::Zero();
+  EXPECT_NE(problem.problem_with(system).find("parameter w: the forcing's period depends on it"),
+            std::string::npos)
+      << problem.problem_with(system);
+  problem.parameter = 1;  // k
+  problem.from = 0.5;
+  problem.to = 1.5;
+  problem.start_period = 6.0;
+  EXPECT_NE(problem.problem_with(system).find("start_period 6: expected the forcing's period"),
+            std::string::npos)
+      << problem.problem_with(system);
 }
 
 }  // namespace

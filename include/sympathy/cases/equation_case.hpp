@@ -4,6 +4,8 @@
 //   kind = "equations"
 //   name = "hopf"                     # optional, as in every case file
 //   description = "..."
+//   forcing_period = "2*pi/beta"      # optional, for equations that use t: the forcing's period
+//                                     # (parameters only), which a forced system's orbits have
 //   [states]                          # the state vector, in the order of the file; initial values
 //   x = 0.1                           # or a table: theta = { value = 0.0, angle = true }, an
 //   y = 0.0                           # angle (a rotation by 2 pi k per period is periodic)
@@ -87,6 +89,7 @@ struct EquationSystem {
   std::vector<NamedExpression> derivatives;    // one per state, in state order
   bool uses_time = false;                      // does any expression use t?
   std::vector<SteepSpec> steep;                // [steep], in state order
+  std::optional<Expression> forcing_period;    // of parameters; only where uses_time
 };
 
 class EquationCase {

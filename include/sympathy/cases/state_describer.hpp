@@ -1,6 +1,9 @@
 // What the writers say of any system's orbit when the model knows nothing more (an equation case
-// file's system): the amplitude of every state, half its range over one period. One plain
-// integration of one period, sampled 800 times, at rtol 1e-9 (as MetronomeDescriber's).
+// file's system): the amplitude of every state, half its range over one period, and its root mean
+// square over the period, sqrt((1/T) integral of z_i^2 dt) (AUTO's L2 norm per state; at a torus
+// bifurcation of the forced FitzHugh-Nagumo system it is known exactly). From the period's 801
+// samples (OrbitDescriber's sample_period); the mean square by the trapezoidal rule, which on a
+// smooth periodic function converges faster than any power of the spacing T/800.
 #pragma once
 
 #include <vector>
@@ -14,15 +17,16 @@ class StateDescriber final : public OrbitDescriber {
  public:
   explicit StateDescriber(const OdeSystem& system) : system_(system) {}
 
-  // Half the range of every state over one period (zeros when the period is not positive, the
-  // integration's failure leaves them unknown: NaN).
-  std::vector<double> amplitudes(const PeriodicOrbit& orbit) const;
+  struct Sizes {
+    std::vector<double> amplitudes;  // half the range over one period
+    std::vector<double> rms;         // the root mean square over one period
+  };
+  // Every state's (zeros when the period is not positive; NaN when the integration fails).
+  Sizes sizes(const PeriodicOrbit& orbit) const;
 
-  // "amplitudes" (amp_NAME per state).
+  // "amplitudes" (amp_NAME per state), then "rms" (rms_NAME per state).
   std::vector<Group> layout() const override;
-  std::vector<double> describe(const PeriodicOrbit& orbit) const override {
-    return amplitudes(orbit);
-  }
+  std::vector<double> describe(const PeriodicOrbit& orbit) const override;
 
  private:
   const OdeSystem& system_;

@@ -91,6 +91,9 @@ struct Bifurcation {
   bool trusted() const { return trust == EventTrust::Trusted; }
   int after_point = 0;     // index of the branch point before it
   double arclength = 0.0;  // from that point (orders events found in one interval)
+  // The located orbit described (OrbitDescriber), as the branch's points are: filled by
+  // continue_branch when it is given a describer; empty otherwise.
+  std::vector<double> description;
 };
 
 // Steps rejected and retried shorter, by reason: what step control did on a branch.

@@ -27,7 +27,8 @@ struct BranchProblem {
   std::optional<PeriodicOrbit> start_orbit;  // a converged orbit at the first value instead
   // A period guess for start_state (a recorded period, recorded_period.hpp): Newton from there
   // at once, without the transient. For a periodically forced system, the forcing's period
-  // (required unless start_orbit is given: no transient looks for a forced orbit).
+  // (required unless start_orbit is given or the system declares it, OdeSystem::forcing_period:
+  // then its transient runs over whole periods of the forcing, as find_periodic_orbit's).
   std::optional<double> start_period;
   std::string start_name = "start";  // how messages name the start
 

@@ -129,7 +129,10 @@ PeriodicOrbit solve_periodic_orbit(const OdeSystem& system, const ParameterValue
 
 // From a start: a transient integration inside `subspace` (projected after every second, so
 // that even orbits unstable in the full space are approached), the period from the first return
-// to the section through the end point, then Newton.
+// to the section through the end point, then Newton. A periodically forced system's period is
+// the forcing's (OdeSystem::forcing_period; std::invalid_argument where it declares none): its
+// transient runs over the nearest whole number of forcing periods (none under half a period),
+// then Newton with the period fixed.
 PeriodicOrbit find_periodic_orbit(const OdeSystem& system, const ParameterValues& p,
                                   const Eigen::VectorXd& start, const InvariantSubspace& subspace,
                                   const OrbitOptions& options);

@@ -94,6 +94,11 @@ class OdeSystem {
 
   // Does f depend on t? Autonomous systems have a trivial Floquet multiplier.
   virtual bool autonomous() const { return true; }
+  // The period of the forcing at parameter values p, for a periodically forced system that
+  // declares it (an equation case file's forcing_period); 0: not declared (then whoever computes
+  // its orbits gives the period). Its orbits have this period; no shift in time maps one onto
+  // another, so they have no trivial multiplier.
+  virtual double forcing_period(const double* /*p*/) const { return 0.0; }
 
   // States that are angles (indices, increasing): a motion on which one of them gains a multiple
   // of 2 pi over a period (a pendulum that rotates) is periodic all the same (the shooting

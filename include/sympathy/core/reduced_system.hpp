@@ -44,6 +44,7 @@ class ReducedSystem final : public OdeSystem {
   void parameter_derivative(double t, const double* y, const double* p, int parameter,
                             double* dfdp) const override;
   bool autonomous() const override { return system_.autonomous(); }
+  double forcing_period(const double* p) const override { return system_.forcing_period(p); }
   // The whole system's zones on components that are coordinates here (a zero component has
   // none to resolve).
   std::vector<SteepZone> steep_zones(const double* p) const override;
