@@ -64,19 +64,79 @@ Range parse_range(const std::string& text, const std::string& option) {
   return r;
 }
 
-PreparedFit prepare_fit(const CaseFile& file, const ModelSpec& spec, const FitRequest& request) {
-  PreparedFit fit;
-  fit.model_description = describe_model(spec, request.locked_pendula);
-  if (request.locked_pendula) {
-    fit.model = std::make_unique<PlatformModel>(spec);
+FitModel metronome_fit_model(const CaseFile& file, const ModelSpec& spec, bool locked_pendula) {
+  FitModel m;
+  m.description = describe_model(spec, locked_pendula);
+  m.case_path = file.path();
+  if (locked_pendula) {
+    m.owned = std::make_unique<PlatformModel>(spec);
   } else {
     if (spec.escapement == Escapement::Impulsive)
       throw InputError(file.path() +
                        ": escapement \"impulsive\" has no derivatives, which the fit needs; "
                        "expected \"half\" or \"double\" (e.g. a copy of the case file)");
-    fit.model = std::make_unique<MetronomeModel>(spec);
+    m.owned = std::make_unique<MetronomeModel>(spec);
   }
-  OdeSystem& model = *fit.model;
+  m.system = m.owned.get();
+  m.values = m.system->default_parameters();
+  m.initial = Eigen::VectorXd::Zero(m.system->dimension());
+  m.initial_source = "default";
+  m.domain = [](const std::string& name, double) {
+    ParameterDomain d;
+    if (signed_parameter(name)) {  // a direction, in degrees
+      d.positive = false;
+      d.scale = 10.0;
+      d.half_width = 45.0;
+    } else {
+      d.lower = 0.0;
+    }
+    return d;
+  };
+  if (locked_pendula)
+    m.why_not_a_parameter = [spec](const std::string& name) {
+      return spec.has_parameter(name) ? "with --locked-pendula the model is the platform alone, "
+                                        "where '" +
+                                            name + "' does not enter"
+                                      : std::string();
+    };
+  return m;
+}
+
+FitModel equation_fit_model(const EquationCase& file, const OdeSystem& system,
+                            const ParameterValues& values) {
+  FitModel m;
+  m.description = "the equations of " + file.path();
+  m.case_path = file.path();
+  m.system = &system;
+  m.values = values;
+  m.initial = file.initial_state(nullptr);
+  m.initial_source = "[states]";
+  const auto parameters = file.system().parameters;
+  m.domain = [parameters](const std::string& name, double start) {
+    ParameterDomain d;
+    for (const auto& p : parameters) {
+      if (p.name != name) continue;
+      if (p.min) d.lower = *p.min;
+      if (p.max) d.upper = *p.max;
+      d.positive = p.min && *p.min >= 0.0 && start > 0.0;
+      d.scale = start != 0.0 ? std::abs(start) : 1.0;
+      d.half_width = 10.0 * d.scale;
+    }
+    return d;
+  };
+  return m;
+}
+
+PreparedFit prepare_fit(const CaseFile& file, const ModelSpec& spec, const FitRequest& request) {
+  return prepare_fit(metronome_fit_model(file, spec, request.locked_pendula), request);
+}
+
+PreparedFit prepare_fit(FitModel fm, const FitRequest& request) {
+  PreparedFit fit;
+  fit.model_description = fm.description;
+  fit.owned = std::move(fm.owned);
+  fit.model = fm.system;
+  const OdeSystem& model = *fit.model;
   const auto parameters = model.parameter_names();
   const auto states = model.state_names();
   const int n = model.dimension();
@@ -89,11 +149,10 @@ PreparedFit prepare_fit(const CaseFile& file, const ModelSpec& spec, const FitRe
     if (std::count(request.free.begin(), request.free.begin() + j, name))
       throw InputError("--free " + name + ": given twice; expected each parameter once");
     if (index_of(parameters, name) < 0) {
-      if (request.locked_pendula && spec.has_parameter(name))
-        throw InputError("--free " + name + ": with --locked-pendula the model is the platform " +
-                         "alone, where '" + name +
-                         "' does not enter; expected one of: " + join(parameters));
-      throw InputError("--free " + name + ": the case " + file.path() + " has no parameter '" +
+      const std::string why = fm.why_not_a_parameter ? fm.why_not_a_parameter(name) : "";
+      if (!why.empty())
+        throw InputError("--free " + name + ": " + why + "; expected one of: " + join(parameters));
+      throw InputError("--free " + name + ": the case " + fm.case_path + " has no parameter '" +
                        name + "'; expected one of: " + join(parameters));
     }
   }
@@ -109,15 +168,15 @@ PreparedFit prepare_fit(const CaseFile& file, const ModelSpec& spec, const FitRe
   // The recording.
   const std::string system_text = request.locked_pendula
                                       ? "the platform with locked pendula (--locked-pendula)"
-                                      : "the case " + file.path();
+                                      : "the case " + fm.case_path;
   fit.recording = read_recording(request.data, states, system_text);
   const Recording& rec = fit.recording;
   const int m = static_cast<int>(rec.columns.size());
 
   // Initial state: a named start and --initial for the unrecorded states, the first row for the
   // recorded ones.
-  Eigen::VectorXd z0 = Eigen::VectorXd::Zero(n);
-  fit.initial_source.assign(n, "default");
+  Eigen::VectorXd z0 = fm.initial;
+  fit.initial_source.assign(n, fm.initial_source);
   if (request.start) {
     for (const auto& [name, value] : request.start->values) {
       const int c = index_of(states, name);
@@ -180,29 +239,30 @@ PreparedFit prepare_fit(const CaseFile& file, const ModelSpec& spec, const FitRe
   pb.values = rec.values;
   pb.column_scale = scale;
   pb.initial_state = z0;
-  pb.parameter_values = model.default_parameters();
+  pb.parameter_values = fm.values;
   for (const auto& name : request.free) {
     FreeParameter f;
     f.index = model.parameter_index(name);
     const double start = model.parameter(pb.parameter_values, f.index);
     const Range* range = range_of(name);
-    if (signed_parameter(name)) {
+    const ParameterDomain domain = fm.domain(name, start);
+    if (!domain.positive) {
       f.logarithmic = false;
-      f.scale = 10.0;  // degrees
-      f.lower = -kInfinity;
-      f.upper = kInfinity;
-      f.search_lower = start - 45.0;
-      f.search_upper = start + 45.0;
+      f.scale = domain.scale;
+      f.lower = domain.lower;
+      f.upper = domain.upper;
+      f.search_lower = std::max(domain.lower, start - domain.half_width);
+      f.search_upper = std::min(domain.upper, start + domain.half_width);
     } else {
       if (!(start > 0.0))
         throw InputError("--free " + name + ": its starting value is " + format_double(start) +
                          "; expected a positive start for a positive parameter (--set " + name +
                          "=VALUE)");
       f.logarithmic = true;
-      f.lower = 0.0;
-      f.upper = kInfinity;
-      f.search_lower = start / request.search_factor;
-      f.search_upper = start * request.search_factor;
+      f.lower = std::max(0.0, domain.lower);
+      f.upper = domain.upper;
+      f.search_lower = std::max(f.lower, start / request.search_factor);
+      f.search_upper = std::min(f.upper, start * request.search_factor);
     }
     if (range) {
       if (f.logarithmic && !(range->lower > 0.0))

@@ -3,12 +3,14 @@
 #include <cstdio>
 #include <ctime>
 #include <fstream>
+#include <optional>
 #include <sstream>
 
 #include <nlohmann/json.hpp>
 
 #include "cases/cli/commands.hpp"
 #include "cases/cli/common.hpp"
+#include "cases/cli/equations.hpp"
 #include "cases/cli/report.hpp"
 #include "sympathy/cases/case_writer.hpp"
 #include "sympathy/cases/parameter_fit.hpp"
@@ -102,14 +104,32 @@ int run_fit(const std::vector<std::string>& argv) {
   Arguments args("fit", argv, options, {"CASE"});
 
   Stopwatch clock;
-  const LoadedCase c = load_case(args);
+  // A metronome case file, or an equation case file (its system compiled, or from the cache).
+  std::optional<LoadedCase> metronomes;
+  std::optional<LoadedEquations> equations;
+  if (case_file_kind(args.positional(0)) == "equations") {
+    for (const char* option : {"--locked-pendula", "--out"})
+      if (args.has(option))
+        throw InputError(std::string(option) + ": only for a metronome case file (" +
+                         args.positional(0) +
+                         " is an equation case file: its fitted values are in the report and "
+                         "--json; run it with --set NAME=VALUE)");
+    equations.emplace(
+        load_equations(args.positional(0), args.text("--params", ""), args.assignments("--set")));
+  } else {
+    metronomes.emplace(load_case(args));
+  }
+  const std::string case_path = equations ? equations->file.path() : metronomes->file.path();
+  const std::string params = equations ? equations->params : metronomes->params;
   FitRequest request;
   if (!args.has("--data")) throw InputError("--data FILE.csv is required (the recording)");
   request.data = *args.value("--data");
   request.free = names(args, "--free");
   request.free_initial = names(args, "--free-initial");
   request.locked_pendula = args.flag("--locked-pendula");
-  if (args.has("--start")) request.start = &c.file.start(*args.value("--start"));
+  if (args.has("--start"))
+    request.start = equations ? &equations->file.start(*args.value("--start"))
+                              : &metronomes->file.start(*args.value("--start"));
   request.initial = args.assignments("--initial");
   request.sigma = args.assignments("--sigma");
   for (const auto& r : args.values("--range")) request.ranges.push_back(parse_range(r, "--range"));
@@ -134,9 +154,18 @@ int run_fit(const std::vector<std::string>& argv) {
   check_distinct_outputs({{"--out", args.text("--out", "")},
                           {"--json", args.text("--json", "")},
                           {"--csv", args.text("--csv", "")}},
-                         {{"case file", c.file.path()}, {"recording (--data)", request.data}});
+                         {{"case file", case_path}, {"recording (--data)", request.data}});
 
-  PreparedFit fit = prepare_fit(c.file, c.spec, request);
+  PreparedFit fit = equations
+                        ? prepare_fit(equation_fit_model(equations->file, *equations->build.system,
+                                                         equations->values),
+                                      request)
+                        : prepare_fit(metronomes->file, metronomes->spec, request);
+  // Units of the recorded columns: the metronome model's (m, rad); an equation case file's
+  // states have none.
+  const auto unit_of = [&](const std::string& state) {
+    return equations ? std::string() : unit(state);
+  };
   const Recording& rec = fit.recording;
   const auto states = fit.model->state_names();
 
@@ -144,8 +173,9 @@ int run_fit(const std::vector<std::string>& argv) {
   const int np = static_cast<int>(fit.problem.parameters.size());
 
   // The report.
-  std::printf("sympathy fit %s  params %s  data %s\n", c.file.path().c_str(),
-              c.params.empty() ? "(none)" : c.params.c_str(), rec.path.c_str());
+  std::printf("sympathy fit %s  params %s  data %s\n", case_path.c_str(),
+              params.empty() ? "(none)" : params.c_str(), rec.path.c_str());
+  if (equations) std::printf("  %s\n", describe_build(equations->build).c_str());
   std::string columns;
   for (const auto& col : rec.columns) columns += (columns.empty() ? "" : ", ") + col;
   std::printf("  model        %s; %d samples of %s, t = %g .. %g s\n",
@@ -170,13 +200,14 @@ int run_fit(const std::vector<std::string>& argv) {
   }
   std::printf("  residuals    RMS");
   for (std::size_t k = 0; k < rec.columns.size(); ++k)
-    std::printf(" %s %.4g %s", rec.columns[k].c_str(), r.column_rms[static_cast<int>(k)],
-                unit(rec.columns[k]).c_str());
+    std::printf(" %s %.4g%s%s", rec.columns[k].c_str(), r.column_rms[static_cast<int>(k)],
+                equations ? "" : " ", unit_of(rec.columns[k]).c_str());
   std::printf("; %d residuals, %d unknowns; s^2 = RSS/(N-p) = %.4g, residuals scaled by",
               r.residuals, r.unknowns, r.sigma2);
   for (std::size_t k = 0; k < rec.columns.size(); ++k)
-    std::printf("%s %s %.3g %s", k ? "," : "", rec.columns[k].c_str(),
-                fit.problem.column_scale[static_cast<int>(k)], unit(rec.columns[k]).c_str());
+    std::printf("%s %s %.3g%s%s", k ? "," : "", rec.columns[k].c_str(),
+                fit.problem.column_scale[static_cast<int>(k)], equations ? "" : " ",
+                unit_of(rec.columns[k]).c_str());
   std::printf("\n");
   std::string correlations;
   for (int a = 0; a < r.unknowns; ++a)
@@ -265,20 +296,22 @@ int run_fit(const std::vector<std::string>& argv) {
         bool fitted = false;
         for (int j = 0; j < np; ++j) fitted = fitted || fit.unknowns[j] == a.key;
         if (!fitted)
-          values.push_back({a.key, c.spec.get(a.key), "from " + a.source + " of the fit"});
+          values.push_back(
+              {a.key, metronomes->spec.get(a.key), "from " + a.source + " of the fit"});
       }
       std::string fitted_text;
       for (int j = 0; j < np; ++j)
         fitted_text += (j ? ", " : "") + fit.unknowns[j] + " = " + format_double(r.values[j]) +
                        " +- " + short_number(r.errors[j]);
       std::vector<std::string> header{
-          "Written by sympathy fit on " + today() + " from " + c.file.path() +
+          "Written by sympathy fit on " + today() + " from " + case_path +
               (request.locked_pendula ? " (pendula locked: the platform alone)" : ""),
           "fitted: " + (np ? fitted_text : std::string("no parameters")),
           "to " + rec.path + " (" + columns + ", " + std::to_string(rec.samples()) +
               " samples), residual RMS " + short_number(r.column_rms.maxCoeff(), 4),
           ""};
-      const auto edits = write_case_with_values(c.file, c.params, values, header, *path);
+      const auto edits =
+          write_case_with_values(metronomes->file, metronomes->params, values, header, *path);
       std::printf("  wrote        %s:", path->c_str());
       for (const auto& e : edits) std::printf("\n                 %s", e.c_str());
       std::printf("\n");
@@ -290,8 +323,8 @@ int run_fit(const std::vector<std::string>& argv) {
 
   if (auto path = args.value("--json")) {
     nlohmann::json j;
-    j["case"] = c.file.path();
-    j["params_set"] = c.params;
+    j["case"] = case_path;
+    j["params_set"] = params;
     j["data"] = rec.path;
     j["columns"] = rec.columns;
     j["samples"] = rec.samples();

@@ -11,6 +11,7 @@
 
 #include "cases/cli/branch_run.hpp"
 #include "cases/cli/commands.hpp"
+#include "cases/cli/loaded_system.hpp"
 #include "cases/cli/map_file.hpp"
 #include "sympathy/continuation/branch_output.hpp"
 #include "sympathy/continuation/curve_output.hpp"
@@ -49,36 +50,45 @@ int run_map(const std::vector<std::string>& argv) {
   if (jobs < 1) throw InputError("--jobs: expected a positive integer");
   const bool quiet = args.flag("--quiet");
 
-  // The case, its parameters, starts and marks checked before any work.
-  const CaseFile file = CaseFile::load(map.case_path);
-  LoadedCase c{file, map.params.empty() ? file.default_parameter_set() : map.params, {}};
-  c.spec = file.spec(c.params);
+  // The case (a metronome case file or an equation case file, compiled once), its parameters,
+  // starts and marks checked before any work.
+  const LoadedSystem c(map.case_path, map.params, {});
+  c.require_autonomous("map (two-parameter curves)");
   for (const auto* axis : {&map.first, &map.second}) {
-    if (!c.spec.has_parameter(axis->parameter))
-      throw InputError(map.path + ": parameter '" + axis->parameter + "' is not one of " +
-                       file.path() + "'s: " + join(c.spec.parameter_names()));
-    check_parameter_range(c.spec, axis->parameter, {axis->from, axis->to},
-                          map.path + ": " + (axis == &map.first ? "first" : "second") + ": ");
+    const std::string which = axis == &map.first ? "first" : "second";
+    c.require_parameter(map.path + ": " + which + ".parameter", axis->parameter);
+    c.check_range(axis->parameter, {{map.path + ": " + which + ": from", axis->from},
+                                    {map.path + ": " + which + ": to", axis->to}});
   }
-  const double base_second = c.spec.get(map.second.parameter);
+  const double base_second = c.value_of(map.second.parameter);
   if (base_second < map.second.from || base_second > map.second.to)
     throw InputError(map.path + ": second: the window " + format_double(map.second.from) + " to " +
                      format_double(map.second.to) + " does not contain " + map.second.parameter +
                      " = " + format_double(base_second) + ", the value the branches start at");
-  for (const auto& o : map.orbits) file.start(o.start);
+  std::vector<BranchSource> sources;
+  for (const auto& o : map.orbits) {
+    if (o.start.empty() && !c.equations())
+      throw InputError(map.path + ": orbit '" + o.name +
+                       "': key 'start' is missing: expected one of the case's starts");
+    sources.push_back(c.source(o.start, {}));  // throws naming the start if there is none
+  }
   nlohmann::json marks = nlohmann::json::array();
   for (const auto& set : map.marks) {
-    const ModelSpec s = file.spec(set);  // throws naming the set if there is none
     // In the map's plane only where every other parameter is the map's (Table III differs from
     // Table II in c as well as k: on the (k, M) map it is drawn hollow, off the plane).
     std::string off;
-    for (const auto& name : c.spec.parameter_names())
-      if (name != map.first.parameter && name != map.second.parameter &&
-          s.get(name) != c.spec.get(name))
-        off += (off.empty() ? "" : ", ") + name + " = " + format_number(s.get(name));
+    double first = 0.0, second_value = 0.0;
+    for (const auto& [name, value] : c.set_values(set)) {  // throws naming the set
+      if (name == map.first.parameter)
+        first = value;
+      else if (name == map.second.parameter)
+        second_value = value;
+      else if (value != c.value_of(name))
+        off += (off.empty() ? "" : ", ") + name + " = " + format_number(value);
+    }
     marks.push_back({{"name", set},
-                     {"first", s.get(map.first.parameter)},
-                     {"second", s.get(map.second.parameter)},
+                     {"first", first},
+                     {"second", second_value},
                      {"in_plane", off.empty()},
                      {"off_plane", off}});
   }
@@ -86,16 +96,16 @@ int run_map(const std::vector<std::string>& argv) {
   const std::string json_path = out + "/" + map.name + ".json";
   check_writable(json_path, map.path + ": the map's JSON");
   check_distinct_outputs({{"the map's JSON", json_path}},
-                         {{"map file", map.path}, {"case file", file.path()}});
+                         {{"map file", map.path}, {"case file", c.path()}});
 
   std::printf("sympathy map %s: %s\n  case %s  params %s  %s %g to %g, %s %g to %g\n",
-              map.path.c_str(), map.title.c_str(), file.path().c_str(), c.params.c_str(),
+              map.path.c_str(), map.title.c_str(), c.path().c_str(), c.params().c_str(),
               map.first.parameter.c_str(), map.first.from, map.first.to,
               map.second.parameter.c_str(), map.second.from, map.second.to);
+  if (c.equations()) std::printf("  %s\n", c.build_note().c_str());
   std::fflush(stdout);
   const auto* stop = interrupt_flag();
-  const MetronomeModel model(c.spec);
-  require_differentiable(model, file.path(), "map");
+  const OdeSystem& model = c.system();
   const int second = index_of(model, map.second.parameter);
   std::vector<OrbitMap> results(map.orbits.size());
   std::mutex print;
@@ -125,13 +135,13 @@ int run_map(const std::vector<std::string>& argv) {
         // The branch starts at the orbit's `at`, else at the case's own value where the window
         // holds it (the orbit the case's start reaches there, as the curves' seeds should be),
         // else at the window's `from`.
-        const double own = c.spec.get(map.first.parameter);
+        const double own = c.value_of(map.first.parameter);
         request.at = o.at;
         if (!request.at && own > map.first.from && own < map.first.to) request.at = own;
         request.progress = nullptr;
         apply_accuracy(args.has("--accuracy") ? accuracy(args) : map.accuracy,
                        request.continuation.orbit);
-        r.branch = run_branch(c, model, request, stop);
+        r.branch = run_branch(sources[i], request, stop);
         say("  %s: branch of %zu points, %zu events in %.1f s\n", o.name.c_str(),
             r.branch.points.size(), r.branch.events.size(), r.branch.seconds);
         if (r.branch.started()) {
@@ -172,8 +182,8 @@ int run_map(const std::vector<std::string>& argv) {
   nlohmann::json j;
   j["map"] = map.name;
   j["title"] = map.title;
-  j["case"] = file.path();
-  j["params_set"] = c.params;
+  j["case"] = c.path();
+  j["params_set"] = c.params();
   j["first"] = {{"parameter", map.first.parameter}, {"from", map.first.from}, {"to", map.first.to}};
   j["second"] = {
       {"parameter", map.second.parameter}, {"from", map.second.from}, {"to", map.second.to}};

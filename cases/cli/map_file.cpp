@@ -70,12 +70,12 @@ MapStudy load_map(const std::string& path) {
     const std::string prefix = "orbits[" + std::to_string(++index) + "].";
     const auto& t = *entry.as_table();
     in.only(t, prefix, {"name", "start", "at"});
-    for (const char* key : {"name", "start"})
-      if (!t.get(key))
-        throw InputError(in.where(entry) + ": key '" + prefix + key + "' is missing");
+    if (!t.get("name")) throw InputError(in.where(entry) + ": key '" + prefix + "name' is missing");
     MapOrbit o;
     o.name = in.string(*t.get("name"), prefix + "name");
-    o.start = in.string(*t.get("start"), prefix + "start");
+    // Required for a metronome case file (checked with the case); an equation case file's
+    // default start is its [states].
+    if (const toml::node* start = t.get("start")) o.start = in.string(*start, prefix + "start");
     if (o.name.empty() || o.name.find_first_of("/\\") != std::string::npos)
       in.fail(*t.get("name"), prefix + "name", "a name without slashes (it names files)");
     if (const toml::node* at = t.get("at")) {

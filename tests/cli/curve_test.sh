@@ -85,4 +85,41 @@ check "a map window without the start's value is refused" grep -q "does not cont
 printf 'case = "%s"\ncolour = 1\n' "$row2" > "$work/bad_map.toml"
 "$bin" map "$work/bad_map.toml" --out "$work" 2> "$work/bad.err"
 check "a map with an unknown key is refused" grep -q "bad_map.toml:2: key 'colour'" "$work/bad.err"
+
+# A map of an equation case file (AUTO-07p's abc, compiled once): the cycle family's two folds
+# in p1 at p3 = 1.55, each followed as an LP curve in (p1, p3); each curve passes through the
+# fold it was seeded at (1e-9 in p1). The orbit needs no start: the file's [states].
+cat > "$work/abc_map.toml" <<TOML
+case = "$src/cases/examples/abc.toml"
+[first]
+parameter = "p1"
+from = 0.21
+to = 0.22
+points = 0
+[second]
+parameter = "p3"
+from = 1.54
+to = 1.56
+points = 0
+[[orbits]]
+name = "cycle"
+at = 0.215
+TOML
+SYMPATHY_CACHE_DIR="$work/cache" "$bin" map "$work/abc_map.toml" --out "$work" --quiet > "$work/abc_map.out" 2>&1
+check "map on an equation case file exits 0" test $? -eq 0
+check "... two LP curves, each through the fold it starts at" test "$(/usr/bin/python3 -c "
+import csv, json, sys
+o = json.load(open(sys.argv[1]))['orbits'][0]
+folds = [e['value'] for e in o['branch']['events'] if e['type'] == 'LP']
+ok = len(folds) == 2 and [c['kind'] for c in o['curves']] == ['LP', 'LP']
+for c in o['curves']:
+    rows = list(csv.DictReader(open(sys.argv[2] + '/' + c['csv'])))
+    ok = ok and any(abs(float(r['p3']) - 1.55) < 1e-12 and min(abs(float(r['p1']) - f) for f in folds) < 1e-9 for r in rows)
+print(ok)" "$work/abc_map.json" "$work")" = True
+# A forced system has no curves: refused before any work.
+sed "s|abc.toml|ffn.toml|; s|p1|a|g; s|p3|amp|; s|0.21|0.3|; s|0.22|0.5|; s|0.215|0.4|; s|1.54|0.05|; s|1.56|0.2|" \
+  "$work/abc_map.toml" > "$work/ffn_map.toml"
+SYMPATHY_CACHE_DIR="$work/cache" "$bin" map "$work/ffn_map.toml" --out "$work" > /dev/null 2> "$work/ffn_map.err"
+check "map on a forced system exits 2" test $? -eq 2
+check "... saying why" grep -qF "map (two-parameter curves) is for autonomous systems" "$work/ffn_map.err"
 exit "$failures"

@@ -104,6 +104,44 @@ bad too_few 't,x\n0,0.01\n0.1,0.008\n0.2,0.004\n' \
 bad unknown_parameter 't,x\n0,0.01\n0.1,0.008\n0.2,0.004\n' \
   "--free kk: the case $src/cases/row2.toml has no parameter 'kk'; expected one of: M, c, k" --free kk
 
+# An equation case file: the damped oscillator x'' + 2 zeta w x' + w^2 x = 0, whose solution from
+# x(0) = 1, x'(0) = -zeta w is x = exp(-zeta w t) cos(w_d t), w_d = w sqrt(1 - zeta^2). Exact
+# samples of x at w = 1, zeta = 0.05 (t = 0 .. 20 by 0.1), fitted from w = 1.2, zeta = 0.08 (v
+# starts at the file's [states], the true -zeta w): both recovered to 1e-6 (the integration's
+# accuracy at the fit's defaults, far below it).
+cat > "$work/oscillator.toml" <<'TOML'
+kind = "equations"
+[states]
+x = 1.0
+v = -0.05
+[parameters]
+w = { value = 1.2, min = 0.0 }
+zeta = { value = 0.08, min = 0.0 }
+[equations]
+x = "v"
+v = "-2*zeta*w*v - w^2*x"
+TOML
+/usr/bin/python3 -c "
+import math
+w, z = 1.0, 0.05
+wd = w * math.sqrt(1 - z * z)
+print('t,x')
+for k in range(201):
+    t = 0.1 * k
+    print('%r,%r' % (t, math.exp(-z * w * t) * (math.cos(wd * t))))" > "$work/oscillator.csv"
+SYMPATHY_CACHE_DIR="$work/cache" "$bin" fit "$work/oscillator.toml" --data "$work/oscillator.csv" \
+  --free w,zeta --json "$work/oscillator.json" > "$work/oscillator.out" 2>&1
+check "fit on an equation case file exits 0" test $? -eq 0
+check "... unrecorded v from the file's [states]" grep -q "v -0.05 (\[states\])" "$work/oscillator.out"
+check "... recovers w = 1 and zeta = 0.05 to 1e-6" test "$(json "$work/oscillator.json" "abs(j['values']['w'] - 1) < 1e-6 and abs(j['values']['zeta'] - 0.05) < 1e-6")" = True
+for option in --locked-pendula "--out $work/fitted.toml"; do
+  # shellcheck disable=SC2086
+  SYMPATHY_CACHE_DIR="$work/cache" "$bin" fit "$work/oscillator.toml" --data "$work/oscillator.csv" \
+    --free w $option > /dev/null 2> "$work/eq_option.err"
+  check "fit $option on an equation case file: exit 2" test $? -eq 2
+  check "... saying it is for metronome case files" grep -qF -- "${option%% *}: only for a metronome case file" "$work/eq_option.err"
+done
+
 "$bin" fit --help > "$work/help.out"
 check "--help exits 0 and lists --free-initial" grep -q -- "--free-initial" "$work/help.out"
 
