@@ -14,14 +14,15 @@ namespace sympathy {
 
 namespace {
 
-// Whether `curve` crosses `value` of its second parameter at `first`: within 1e-4 relative of it
-// or, where the points lie far apart, within half their distance (the chord between two points
-// 0.47 N/m apart missed the anti-phase NS point at k = 56.11 by 0.067 N/m on the (k, c) map).
-// On an NS curve the rotation number must match too (within 2e-3): the row setup's two
-// in-phase NS points at k = 84.93 and 85.01 lie closer than the NS curve's points, but their
-// pairs turn by 0.2328 and 0.2401 of a revolution.
-bool passes_through(const BifurcationCurve& curve, double first, double value,
-                    double rotation = std::nan("")) {
+double rotation_of(const Bifurcation& e) {
+  return e.type == BifurcationType::NeimarkSacker ? std::abs(std::arg(e.crossing)) / (2 * M_PI)
+                                                  : std::nan("");
+}
+
+}  // namespace
+
+bool curve_passes_through(const BifurcationCurve& curve, double first, double value,
+                          double rotation) {
   for (std::size_t i = 0; i + 1 < curve.points.size(); ++i) {
     const CurvePoint &a = curve.points[i], &b = curve.points[i + 1];
     if ((a.second - value) * (b.second - value) > 0.0) continue;
@@ -37,13 +38,6 @@ bool passes_through(const BifurcationCurve& curve, double first, double value,
   return false;
 }
 
-double rotation_of(const Bifurcation& e) {
-  return e.type == BifurcationType::NeimarkSacker ? std::abs(std::arg(e.crossing)) / (2 * M_PI)
-                                                  : std::nan("");
-}
-
-}  // namespace
-
 std::vector<BifurcationCurve> event_curves(const OdeSystem& system, const Branch& branch,
                                            int second, const CurveOptions& options,
                                            const CurveCallbacks& callbacks) {
@@ -56,7 +50,7 @@ std::vector<BifurcationCurve> event_curves(const OdeSystem& system, const Branch
     if (e.type == BifurcationType::BranchPoint && e.symmetry != SymmetryKind::Breaking) continue;
     const double value = system.parameter(branch.start_values, second);
     const bool covered = std::any_of(curves.begin(), curves.end(), [&](const BifurcationCurve& c) {
-      return c.kind == e.type && passes_through(c, e.parameter, value, rotation_of(e));
+      return c.kind == e.type && curve_passes_through(c, e.parameter, value, rotation_of(e));
     });
     if (covered) continue;
     if (callbacks.stop_requested && callbacks.stop_requested()) break;
@@ -112,10 +106,10 @@ std::vector<BifurcationCurve> event_curves(const OdeSystem& system, const Branch
       if (kind == std::end(kinds)) continue;
       const bool covered =
           std::any_of(curves.begin(), curves.end(), [&](const BifurcationCurve& k) {
-            return k.kind == *kind &&
-                   passes_through(k, meeting.first, meeting.second,
-                                  *kind == BifurcationType::NeimarkSacker ? meeting.at.rotation
-                                                                          : std::nan(""));
+            return k.kind == *kind && curve_passes_through(k, meeting.first, meeting.second,
+                                                           *kind == BifurcationType::NeimarkSacker
+                                                               ? meeting.at.rotation
+                                                               : std::nan(""));
           });
       if (covered) continue;
       if (callbacks.stop_requested && callbacks.stop_requested()) return curves;

@@ -5,6 +5,7 @@
 // and multipliers' accuracy at rtol 1e-11. And the test functions' algebra against exact
 // eigenvalues.
 #include "sympathy/continuation/bifurcation_curve.hpp"
+#include "sympathy/continuation/stability_map.hpp"
 
 #include <gtest/gtest.h>
 
@@ -120,6 +121,17 @@ TEST(BifurcationCurve, BranchPointCurveIsTheParabola) {
   EXPECT_NEAR(curve.points.front().second, -0.8, 1e-12);
   EXPECT_NEAR(curve.points.back().second, 1.2, 1e-12);
   EXPECT_EQ(curve.origin.rfind("BP at mu = ", 0), 0u) << curve.origin;
+  // The parabola turns back in mu at its vertex, (mu, a) = (0, 0) exactly: located there, mu to
+  // 1e-10 (at a turn in mu its error is the square of the arclength's), a to 1e-6.
+  int turns = 0;
+  for (const auto& e : curve.events) {
+    if (e.type != "turn in mu") continue;
+    ++turns;
+    EXPECT_TRUE(e.located) << e.note;
+    EXPECT_NEAR(e.first, 0.0, 1e-10);
+    EXPECT_NEAR(e.second, 0.0, 1e-6);
+  }
+  EXPECT_EQ(turns, 1);
 }
 
 // Another multiplier crossing the unit circle along a curve is located and named: on the BP
@@ -210,6 +222,30 @@ TEST(BifurcationCurve, FoldCurveIsTheParabola) {
     EXPECT_NEAR(p.state0.head(2).squaredNorm(), b / 2.0, 1e-7) << "a = " << p.second;
     EXPECT_NEAR(p.period, 2 * kPi, 1e-8);
   }
+}
+
+// Whether a curve passes through a point (what a map asks before following an event's curve),
+// on the points of mu = a^2 at a = 0, 0.1, ..., 1 (rotation 0.2 + a / 10): through (0.25, 0.5)
+// and (0.4225, 0.65) between points (within 1e-4, the chord's error there 2.5e-3 is within half
+// the points' distance in mu, 0.065); not through (0.32, 0.5) (0.07 off, beyond half the
+// distance, 0.055) nor beyond its ends; with a
+// rotation, only where it matches within 2e-3.
+TEST(BifurcationCurve, PassesThroughPointsOnItOnly) {
+  BifurcationCurve curve;
+  for (int i = 0; i <= 10; ++i) {
+    CurvePoint p;
+    p.second = 0.1 * i;
+    p.first = p.second * p.second;
+    p.rotation = 0.2 + p.second / 10.0;
+    curve.points.push_back(p);
+  }
+  EXPECT_TRUE(curve_passes_through(curve, 0.25, 0.5));
+  EXPECT_TRUE(curve_passes_through(curve, 0.4225, 0.65));
+  EXPECT_FALSE(curve_passes_through(curve, 0.32, 0.5));
+  EXPECT_FALSE(curve_passes_through(curve, 1.21, 1.1));
+  EXPECT_TRUE(curve_passes_through(curve, 0.25, 0.5, 0.25));
+  EXPECT_TRUE(curve_passes_through(curve, 0.25, 0.5, 0.2515));
+  EXPECT_FALSE(curve_passes_through(curve, 0.25, 0.5, 0.2525));
 }
 
 // Bad requests are refused before any work, saying what was expected.

@@ -6,6 +6,7 @@
 // a point where the orbit changes smoothly, as the paper's synchronized orbits do.
 #pragma once
 
+#include <cmath>
 #include <functional>
 #include <vector>
 
@@ -26,6 +27,16 @@ namespace sympathy {
 std::vector<BifurcationCurve> event_curves(const OdeSystem& system, const Branch& branch,
                                            int second, const CurveOptions& options,
                                            const CurveCallbacks& callbacks = {});
+
+// Whether `curve` crosses `value` of its second parameter at `first` of its first: within 1e-4
+// relative of it or, where the points lie far apart, within half their distance (the chord
+// between two points 0.47 N/m apart missed the anti-phase NS point at k = 56.11 by 0.067 N/m on
+// the (k, c) map). With a `rotation` (an NS point's pair angle over 2 pi) the curve's must
+// match too, within 2e-3: the row setup's two in-phase NS points at k = 84.93 and 85.01 lie
+// closer than the NS curve's points, but their pairs turn by 0.2328 and 0.2401 of a revolution.
+// What event_curves asks before following a curve.
+bool curve_passes_through(const BifurcationCurve& curve, double first, double value,
+                          double rotation = std::nan(""));
 
 struct StabilityGrid {
   std::vector<double> first, second;  // the grid's values of the two parameters
