@@ -15,7 +15,7 @@
 #include "cases/cli/basins_output.hpp"
 #include "cases/cli/commands.hpp"
 #include "cases/cli/common.hpp"
-#include "continuation/task_runner_mpi.hpp"
+#include "cases/cli/task_run.hpp"
 #include "sympathy/cases/basin_study.hpp"
 #include "sympathy/continuation/task_journal.hpp"
 #include "sympathy/continuation/task_runner.hpp"
@@ -26,47 +26,6 @@
 namespace sympathy::cli {
 
 namespace {
-
-// "NAME=FROM:TO:COUNT" (COUNT values from FROM to TO); throws InputError naming --grid.
-GridAxis parse_grid(const std::string& text) {
-  const auto fail = [&] {
-    return InputError(
-        "--grid " + text +
-        ": expected NAME=FROM:TO:COUNT (e.g. k=40:90:6), or NAME=VALUE for one value");
-  };
-  const auto eq = text.find('=');
-  if (eq == std::string::npos || eq == 0) throw fail();
-  GridAxis a;
-  a.parameter = text.substr(0, eq);
-  std::vector<std::string> parts;
-  std::size_t from = eq + 1;
-  for (std::size_t colon; (colon = text.find(':', from)) != std::string::npos; from = colon + 1)
-    parts.push_back(text.substr(from, colon - from));
-  parts.push_back(text.substr(from));
-  const auto number = [&](const std::string& s) {
-    std::size_t used = 0;
-    double v = 0.0;
-    try {
-      v = std::stod(s, &used);
-    } catch (const std::exception&) {
-      throw fail();
-    }
-    if (used != s.size() || !std::isfinite(v)) throw fail();
-    return v;
-  };
-  if (parts.size() == 1) {
-    a.from = a.to = number(parts[0]);
-    a.count = 1;
-    return a;
-  }
-  if (parts.size() != 3) throw fail();
-  a.from = number(parts[0]);
-  a.to = number(parts[1]);
-  const double count = number(parts[2]);
-  if (count != std::floor(count) || count < 0 || count > 1e6) throw fail();
-  a.count = static_cast<int>(count);
-  return a;
-}
 
 // The command line's option for a field of BasinOptions.
 std::string option_of(const std::string& field) {
@@ -192,7 +151,7 @@ void parse_study_options(const Arguments& args, Basins& b) {
   const auto grids = args.values("--grid");
   if (grids.empty())
     throw InputError("--grid: expected one or two parameter grids, e.g. k=40:90:6");
-  for (const auto& g : grids) o.grid.push_back(parse_grid(g));
+  for (const auto& g : grids) o.grid.push_back(parse_grid(g, "--grid"));
   o.starts = args.integer("--starts", o.starts);
   if (const auto angles = args.value("--angles")) {
     const auto colon = angles->find(':');
@@ -259,28 +218,11 @@ int run_basins(const std::vector<std::string>& argv) {
   const MpiSession mpi;
   const bool distributed = mpi.size() > 1;
   std::optional<Basins> b;
-  std::exception_ptr failure;
-  try {
-    b.emplace(prepare(args, mpi.size()));
-    if (mpi.rank() == 0) open_outputs(*b, args.flag("--resume"));
-  } catch (...) {
-    failure = std::current_exception();
-  }
-  if (distributed) {
-    const auto ok = mpi.all(!failure);
-    if (failure && (mpi.rank() == 0 || ok[0])) std::rethrow_exception(failure);
-    // Rank 0 reports the same error and gives the job its exit code (a worker exiting non-zero
-    // first would make mpirun end rank 0 before it prints).
-    if (failure) return 0;
-    for (int r = 1; r < mpi.size(); ++r)
-      if (!ok[r]) {
-        if (mpi.rank() == 0)
-          throw InputError("rank " + std::to_string(r) + " failed before any work (above)");
-        return 2;
-      }
-  } else if (failure) {
-    std::rethrow_exception(failure);
-  }
+  if (const auto exit = prepare_every_rank(mpi, [&] {
+        b.emplace(prepare(args, mpi.size()));
+        if (mpi.rank() == 0) open_outputs(*b, args.flag("--resume"));
+      }))
+    return *exit;
   const BasinStudy& study = *b->study;
   const auto* stop = interrupt_flag();
   const auto work = [&](std::size_t index) -> std::optional<std::vector<std::string>> {
@@ -290,7 +232,7 @@ int run_basins(const std::vector<std::string>& argv) {
     return row_of(task, *result, study.options().confirm);
   };
   if (distributed && mpi.rank() > 0) {
-    run_tasks_mpi(mpi, study.tasks(), {}, work, {}, stop);
+    run_journaled(mpi, study.tasks(), nullptr, work, b->run, stop);
     return 0;
   }
 
@@ -315,13 +257,7 @@ int run_basins(const std::vector<std::string>& argv) {
                journal.resumed(), to_compute, workers, distributed ? "MPI worker" : "thread",
                workers == 1 ? "" : "s");
 
-  const auto record = [&](std::size_t index, std::vector<std::string>&& row) {
-    journal.append(index, std::move(row));
-  };
-  const auto summary = distributed
-                           ? run_tasks_mpi(mpi, study.tasks(), journal.done(), work, record, stop)
-                           : run_tasks<std::vector<std::string>>(study.tasks(), journal.done(),
-                                                                 work, record, b->run, stop);
+  const auto summary = run_journaled(mpi, study.tasks(), &journal, work, b->run, stop);
   journal.close();
   write_results(*b, summary, clock);
   return summary.interrupted ? kInterrupted : 0;

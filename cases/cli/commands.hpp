@@ -16,5 +16,6 @@ int run_study(const std::vector<std::string>& args);
 int run_bench(const std::vector<std::string>& args);
 int run_fit(const std::vector<std::string>& args);
 int run_basins(const std::vector<std::string>& args);
+int run_sweep(const std::vector<std::string>& args);
 
 }  // namespace sympathy::cli

@@ -26,6 +26,7 @@ void print_usage() {
       "  bench      error against run time over integrator settings (the accuracy report)\n"
       "  fit        parameters fitted to a recorded time series (least squares)\n"
       "  basins     shares of the synchronized states from random starts, over a grid\n"
+      "  sweep      one-parameter branches over a grid of a second parameter\n"
       "run 'sympathy COMMAND --help' for the options of a command\n",
       stderr);
 }
@@ -50,6 +51,7 @@ int main(int argc, char** argv) {
     if (command == "bench") return sympathy::cli::run_bench(args);
     if (command == "fit") return sympathy::cli::run_fit(args);
     if (command == "basins") return sympathy::cli::run_basins(args);
+    if (command == "sweep") return sympathy::cli::run_sweep(args);
     std::fprintf(stderr, "sympathy: unknown command '%s'\n", command.c_str());
     print_usage();
     return 2;

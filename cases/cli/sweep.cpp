@@ -1,0 +1,244 @@
+// sympathy sweep: one-parameter branches over a grid of a second parameter, as independent tasks
+// (cli/task_run.hpp: threads, or the ranks of an MPI job; a journal that a resumed run does not
+// compute again). A coarse cross-check of the two-parameter curves (curve, map): each branch's
+// located events at its value of the second parameter. Files, in --out DIR: sweep_journal.csv
+// (a row per branch as it finishes), and at the end, in task order whatever the threads,
+// sweep_events.csv (a row per located event) and sweep.json.
+#include <cstdio>
+#include <filesystem>
+#include <optional>
+#include <sstream>
+
+#include <nlohmann/json.hpp>
+
+#include "cases/cli/branch_run.hpp"
+#include "cases/cli/commands.hpp"
+#include "cases/cli/loaded_system.hpp"
+#include "cases/cli/task_run.hpp"
+#include "sympathy/continuation/branch_output.hpp"
+#include "sympathy/core/csv.hpp"
+#include "sympathy/core/output_file.hpp"
+
+namespace sympathy::cli {
+
+namespace {
+
+struct Sweep {
+  std::unique_ptr<LoadedSystem> c;
+  ParameterWindow window;
+  GridAxis over;
+  std::vector<double> values;  // of the second parameter, one per task
+  BranchRequest request;       // the branch of every task; its parameter values set per task
+  std::string start;
+  TaskRunOptions run;
+  std::string out, journal_path, events_path, json_path;
+  std::unique_ptr<TaskJournal> journal;
+};
+
+// A located event in a journal field: TYPE:VALUE:UNCERTAINTY:TRUSTED, events joined by ';'.
+std::string events_field(const Branch& b) {
+  std::string s;
+  for (const auto& e : b.events) {
+    if (!s.empty()) s += ";";
+    s += to_string(e.type) + ":" + format_double(e.parameter) + ":" + format_double(e.uncertainty) +
+         ":" + (e.trusted() ? "1" : "0");
+  }
+  return s;
+}
+
+std::vector<std::vector<std::string>> split_events(const std::string& field) {
+  std::vector<std::vector<std::string>> events;
+  std::stringstream all(field);
+  for (std::string one; std::getline(all, one, ';');) {
+    std::vector<std::string> parts;
+    std::stringstream s(one);
+    for (std::string p; std::getline(s, p, ':');) parts.push_back(p);
+    if (parts.size() == 4) events.push_back(parts);
+  }
+  return events;
+}
+
+Sweep prepare(const Arguments& args, int ranks) {
+  Sweep w;
+  w.c = std::make_unique<LoadedSystem>(args);
+  w.c->require_orbits();
+  w.window = w.c->window(args);
+  if (!args.has("--over"))
+    throw InputError("--over is required: the second parameter's grid, NAME=FROM:TO:COUNT");
+  w.over = parse_grid(*args.value("--over"), "--over");
+  w.c->require_parameter("--over", w.over.parameter);
+  if (w.over.parameter == w.window.parameter)
+    throw InputError("--over " + w.over.parameter + ": expected a parameter other than --param");
+  if (w.over.count < 1)
+    throw InputError("--over " + *args.value("--over") + ": an empty grid; expected COUNT >= 1");
+  w.values = w.over.values();
+  w.c->check_range(w.over.parameter, {{"--over (from)", w.over.from}, {"--over (to)", w.over.to}});
+  w.c->check_range(w.window.parameter, w.window.ends());
+  if (!w.c->equations() && !args.has("--start")) throw InputError("--start is required");
+  w.start = args.text("--start", "");
+  w.c->source(w.start, args.assignments("--initial"));  // the start named, checked
+  BranchRequest& r = w.request;
+  r.start = w.start;
+  r.parameter = w.window.parameter;
+  r.from = w.window.from;
+  r.to = w.window.to;
+  r.at = w.window.at;
+  r.initial = args.assignments("--initial");
+  r.progress = nullptr;
+  auto& o = r.continuation;
+  o.orbit.transient =
+      args.number("--transient", w.c->system().autonomous() ? o.orbit.transient : 0.0);
+  o.orbit.shooting.segments = args.integer("--segments", 1);
+  o.initial_step = args.number("--step", o.initial_step);
+  o.max_step = args.number("--max-step", o.max_step);
+  o.max_points = args.integer("--max-points", o.max_points);
+  apply_accuracy(accuracy(args), o.orbit);
+  o.orbit.shooting.flow = flow_options(args, o.orbit.shooting.flow);
+  o.orbit.transient_flow.linear_solver = o.orbit.shooting.flow.linear_solver;
+  check_options(o.validate(), "");
+  w.run.threads = args.integer("--threads", 0);
+  if (args.has("--threads") && w.run.threads < 1)
+    throw InputError("--threads: expected a positive number of threads");
+  if (ranks > 1 && static_cast<std::size_t>(ranks - 1) > w.values.size())
+    throw InputError("mpirun -np " + std::to_string(ranks) + ": " + std::to_string(ranks - 1) +
+                     " workers for " + std::to_string(w.values.size()) +
+                     " branches; expected at most " + std::to_string(w.values.size() + 1) +
+                     " ranks (one manager)");
+  w.out = args.text("--out", "out/sweep");
+  w.journal_path = w.out + "/sweep_journal.csv";
+  w.events_path = w.out + "/sweep_events.csv";
+  w.json_path = w.out + "/sweep.json";
+  check_distinct_outputs(
+      {{"journal", w.journal_path}, {"events", w.events_path}, {"json", w.json_path}},
+      {{"case file", w.c->path()}});
+  return w;
+}
+
+// Rank 0's: the output directory and the journal (new, or resumed and checked to be this
+// sweep's: each row's value of the second parameter the one its task index gives).
+void open_outputs(Sweep& w, bool resume) {
+  if (!resume && std::filesystem::exists(w.journal_path))
+    throw InputError("--out " + w.out + ": " + w.journal_path +
+                     " is the journal of an earlier run; expected --resume to continue it, or "
+                     "another --out (or remove the file)");
+  std::filesystem::create_directories(w.out);
+  for (const auto& p : {w.journal_path, w.events_path, w.json_path}) check_writable(p, "--out");
+  w.journal = std::make_unique<TaskJournal>(
+      w.journal_path, TaskJournal::Row{w.over.parameter, "points", "stop", "events"},
+      w.values.size(), resume);
+  for (const auto& [index, row] : w.journal->rows())
+    if (row[0] != format_double(w.values[index]))
+      throw InputError(w.journal_path + ": task " + std::to_string(index) + " is at " +
+                       w.over.parameter + " = " + row[0] + "; this sweep's is at " +
+                       format_double(w.values[index]) + " (expected a journal of the same grid)");
+}
+
+void write_results(const Sweep& w, const TaskRunSummary& summary, const Stopwatch& clock) {
+  CsvWriter csv(w.events_path,
+                {w.over.parameter, "type", w.window.parameter, "uncertainty", "trusted"});
+  nlohmann::json branches = nlohmann::json::array();
+  for (const auto& [index, row] : w.journal->rows()) {
+    nlohmann::json events = nlohmann::json::array();
+    for (const auto& e : split_events(row[3])) {
+      csv.row(std::vector<std::string>{row[0], e[0], e[1], e[2], e[3]});
+      events.push_back({{"type", e[0]},
+                        {"value", std::stod(e[1])},
+                        {"uncertainty", std::stod(e[2])},
+                        {"trusted", e[3] == "1"}});
+    }
+    branches.push_back({{"task", index},
+                        {"value", std::stod(row[0])},
+                        {"points", std::stoi(row[1])},
+                        {"stop", row[2]},
+                        {"events", events}});
+  }
+  csv.close();
+  nlohmann::json j;
+  j["case"] = w.c->path();
+  j["params_set"] = w.c->params();
+  j["start"] = w.start;
+  j["parameter"] = {{"name", w.window.parameter}, {"from", w.window.from}, {"to", w.window.to}};
+  j["over"] = {{"name", w.over.parameter},
+               {"from", w.over.from},
+               {"to", w.over.to},
+               {"count", w.over.count}};
+  j["complete"] = w.journal->rows().size() == w.values.size();
+  j["branches"] = branches;
+  write_file_atomically(w.json_path, j.dump(1) + "\n");
+  std::fprintf(stderr, "  %zu of %zu branches (%zu computed now, on %d %s)%s; run time %.1f s\n",
+               w.journal->rows().size(), w.values.size(), summary.computed, summary.threads,
+               summary.threads == 1 ? "worker" : "workers",
+               summary.interrupted ? ", interrupted: --resume continues" : "", clock.seconds());
+  std::printf("wrote %s, %s and %s\n", w.journal_path.c_str(), w.events_path.c_str(),
+              w.json_path.c_str());
+}
+
+}  // namespace
+
+int run_sweep(const std::vector<std::string>& argv) {
+  auto options = case_options();
+  options.insert(
+      options.end(),
+      {{"--start", "NAME", false,
+        "named start of the case (required for a metronome case file; an equation case file's "
+        "default: its [states])"},
+       {"--param", "P", false, "each branch's parameter (required)"},
+       {"--from", "A", false, "each branch's first value (required)"},
+       {"--to", "B", false, "each branch's last value (required)"},
+       {"--at", "V", false, "start each branch at V instead and continue both ways"},
+       {"--over", "NAME=FROM:TO:COUNT", false,
+        "the second parameter's grid: a branch at each of its COUNT values (required)"},
+       {"--initial", "VAR=VALUE", true, "initial state value (on top of --start)"},
+       {"--segments", "M", false, "shooting segments (default 1)"},
+       {"--step", "DS", false, "initial arclength step, scaled (default 0.02)"},
+       {"--max-step", "DS", false, "largest arclength step, scaled (default 0.1)"},
+       {"--max-points", "N", false, "point limit per direction (default 400)"},
+       {"--transient", "SECONDS", false,
+        "integration before the first Newton (default 60; 0 for a forced system)"},
+       {"--threads", "N", false,
+        "branches run side by side (default: one per core; under mpirun one per rank)"},
+       {"--out", "DIR", false, "where the files go (default out/sweep)"},
+       {"--resume", "", false, "continue the journal in DIR: its branches are not computed again"},
+       accuracy_option()});
+  const auto integrator = integrator_options();
+  options.insert(options.end(), integrator.begin(), integrator.end());
+  Arguments args("sweep", argv, options, {"CASE"});
+  Stopwatch clock;
+  const MpiSession mpi;
+  std::optional<Sweep> w;
+  if (const auto exit = prepare_every_rank(mpi, [&] {
+        w.emplace(prepare(args, mpi.size()));
+        if (mpi.rank() == 0) open_outputs(*w, args.flag("--resume"));
+      }))
+    return *exit;
+  const auto* stop = interrupt_flag();
+  const BranchSource base = w->c->source(w->start, w->request.initial);
+  const OdeSystem& system = w->c->system();
+  const int over = system.parameter_index(w->over.parameter);
+  const auto work = [&](std::size_t index) -> std::optional<TaskRow> {
+    BranchSource source = base;
+    source.values = system.with_parameter(base.values, over, w->values[index]);
+    const Branch b = run_branch(source, w->request, stop);
+    if (b.stop == StopReason::Interrupted) return std::nullopt;
+    return TaskRow{format_double(w->values[index]), std::to_string(b.points.size()),
+                   to_string(b.stop), events_field(b)};
+  };
+  if (mpi.size() > 1 && mpi.rank() > 0) {
+    run_journaled(mpi, w->values.size(), nullptr, work, w->run, stop);
+    return 0;
+  }
+  const std::size_t to_compute = w->values.size() - w->journal->resumed();
+  std::fprintf(stderr,
+               "sympathy sweep %s  params %s  start %s  %s from %g to %g, over %s %g .. %g (%d "
+               "values)\n  %zu in the journal, %zu to compute\n",
+               w->c->path().c_str(), w->c->params().empty() ? "(none)" : w->c->params().c_str(),
+               w->start.empty() ? "(the file's [states])" : w->start.c_str(),
+               w->window.parameter.c_str(), w->window.from, w->window.to, w->over.parameter.c_str(),
+               w->over.from, w->over.to, w->over.count, w->journal->resumed(), to_compute);
+  const auto summary = run_journaled(mpi, w->values.size(), w->journal.get(), work, w->run, stop);
+  w->journal->close();
+  write_results(*w, summary, clock);
+  return summary.interrupted ? kInterrupted : 0;
+}
+
+}  // namespace sympathy::cli

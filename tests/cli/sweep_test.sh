@@ -1,0 +1,66 @@
+#!/usr/bin/env bash
+# The sweep command end to end on lcbp (cases/examples/lcbp.toml): the circles r = p1 and r = p2
+# exchange stability at the branch point p1 = p2 exactly, so a branch in p1 at each p2 of the
+# grid has its BP at p1 = p2 (to 1e-7: the location's accuracy, the multipliers' error over the
+# crossing speed p2). Identical files whatever the threads and under mpirun; a resumed journal
+# completes the sweep without recomputing; bad input refused before any work. About 3 s.
+# Usage: sweep_test.sh SYMPATHY_BINARY SOURCE_DIR WORK_DIR [MPIRUN]
+set -u
+bin=$1 src=$2 work=$3 mpirun=${4:-}
+rm -rf "$work"
+mkdir -p "$work"
+. "$(dirname "$0")/check.sh"
+export SYMPATHY_CACHE_DIR="$work/cache"  # never the user's cache
+lcbp=$src/cases/examples/lcbp.toml
+run=("$bin" sweep "$lcbp" --param p1 --from 1 --to 3 --over p2=1.5:2.5:3)
+
+"${run[@]}" --threads 1 --out "$work/one" > "$work/one.out" 2> "$work/one.err"
+check "sweep exits 0" test $? -eq 0
+check "one BP per branch, at p1 = p2 (1e-7)" test "$(/usr/bin/python3 -c "
+import json, sys
+j = json.load(open(sys.argv[1]))
+print(j['complete'] and [b['value'] for b in j['branches']] == [1.5, 2.0, 2.5] and
+      all([e['type'] for e in b['events']] == ['BP'] and abs(b['events'][0]['value'] - b['value']) < 1e-7
+          for b in j['branches']))" "$work/one/sweep.json")" = True
+check "events CSV: a row per event, in task order" test "$(cut -d, -f1,2 "$work/one/sweep_events.csv" | tr '\n' ' ')" = "p2,type 1.5,BP 2,BP 2.5,BP "
+check "prints the run time" grep -q 'run time' "$work/one.err"
+
+"${run[@]}" --threads 2 --out "$work/two" > /dev/null 2>&1
+for f in sweep_journal.csv sweep_events.csv sweep.json; do
+  check "$f identical with 1 and 2 threads" cmp -s "$work/one/$f" "$work/two/$f"
+done
+if [ -n "$mpirun" ]; then
+  "$mpirun" --allow-run-as-root --oversubscribe -np 3 "${run[@]}" --out "$work/mpi" 2> "$work/mpi.err"
+  check "mpirun -np 3 exits 0" test $? -eq 0
+  for f in sweep_events.csv sweep.json; do
+    check "$f identical with mpirun -np 3 and 1 thread" cmp -s "$work/one/$f" "$work/mpi/$f"
+  done
+fi
+
+# A run killed after its first branch: its journal holds that row alone. Resumed, the sweep
+# computes the other two and writes the files of an uninterrupted run.
+mkdir -p "$work/resumed"
+head -2 "$work/one/sweep_journal.csv" > "$work/resumed/sweep_journal.csv"
+"${run[@]}" --out "$work/resumed" --resume > /dev/null 2> "$work/resumed.err"
+check "resume exits 0" test $? -eq 0
+check "resume computes only the missing branches" grep -q '1 in the journal, 2 to compute' "$work/resumed.err"
+for f in sweep_events.csv sweep.json; do
+  check "$f of the resumed run identical" cmp -s "$work/one/$f" "$work/resumed/$f"
+done
+
+# Bad input: exit 2 before any work.
+bad() {  # bad NAME EXPECTED-MESSAGE ARGS...
+  local name=$1 expected=$2; shift 2
+  "$bin" sweep "$lcbp" "$@" > /dev/null 2> "$work/$name.err"
+  check "$name: exit 2" test $? -eq 2
+  check "$name: message" grep -qF -- "$expected" "$work/$name.err"
+}
+bad same_parameter "--over p1: expected a parameter other than --param" \
+  --param p1 --from 1 --to 3 --over p1=1:2:3 --out "$work/bad"
+bad empty_grid "an empty grid; expected COUNT >= 1" --param p1 --from 1 --to 3 --over p2=1:2:0 --out "$work/bad"
+bad unknown "--over q: not a parameter of $lcbp" --param p1 --from 1 --to 3 --over q=1:2:3 --out "$work/bad"
+bad malformed "--over p2=1:2: expected NAME=FROM:TO:COUNT" --param p1 --from 1 --to 3 --over p2=1:2 --out "$work/bad"
+bad journal_exists "is the journal of an earlier run; expected --resume" \
+  --param p1 --from 1 --to 3 --over p2=1.5:2.5:3 --out "$work/one"
+check "no file written for bad input" test ! -e "$work/bad"
+exit "$failures"
