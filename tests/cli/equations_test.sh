@@ -121,6 +121,10 @@ print(len(a) == 1 and len(b) == 1 and a[0]['type'] == b[0]['type'] == 'BP' and
 check "orbit on a plug-in case file exits 0" test $? -eq 0
 check "... saying a plug-in is code" grep -q "plug-in .*vdp_plugin.cpp compiled in .*a plug-in is C++ code" "$work/vdp.out"
 check "... and its period is van der Pol's" test "$(json_value "$work/vdp.json" "abs(j['period'] - 6.287111) < 2e-6")" = True
+# The rms per state, exact on van der Pol: x'' = mu (1 - x^2) x' - x gives, integrated by parts
+# over a period, int x'^2 dt = int x^2 dt (the rest is the derivative of mu (x^2/2 - x^4/4)), so
+# rms x = rms y (y = x') to the integration's and the trapezoidal rule's accuracy (1e-8).
+check "... its rms of x and y equal" test "$(json_value "$work/vdp.json" "abs(j['rms']['x'] - j['rms']['y']) < 1e-8 and abs(j['rms']['x'] - 1.41443) < 1e-5")" = True
 
 # AUTO-07p's ffn (cases/examples/ffn.toml): FitzHugh-Nagumo forced at beta = 10, period 2 pi / 10
 # declared by forcing_period. Its torus (NS) points, AUTO's log test/hyper.all: a = 0.422945 at
