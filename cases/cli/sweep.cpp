@@ -1,9 +1,10 @@
-// sympathy sweep: one-parameter branches over a grid of a second parameter, as independent tasks
-// (cli/task_run.hpp: threads, or the ranks of an MPI job; a journal that a resumed run does not
-// compute again). A coarse cross-check of the two-parameter curves (curve, map): each branch's
-// located events at its value of the second parameter. Files, in --out DIR: sweep_journal.csv
-// (a row per branch as it finishes), and at the end, in task order whatever the threads,
-// sweep_events.csv (a row per located event) and sweep.json.
+// sympathy sweep: one-parameter branches over a grid of a second parameter, or one orbit at each
+// of its values, as independent tasks (cli/task_run.hpp: threads, or the ranks of an MPI job; a
+// journal that a resumed run does not compute again). The branches are a coarse cross-check of
+// the two-parameter curves (curve, map): each branch's located events at its value of the second
+// parameter. Files, in --out DIR: sweep_journal.csv (a row per task as it finishes), and at the
+// end, in task order whatever the threads, sweep_events.csv (a row per located event) or
+// sweep_orbits.csv (a row per orbit), and sweep.json.
 #include <cstdio>
 #include <filesystem>
 #include <optional>
@@ -15,6 +16,7 @@
 #include "cases/cli/commands.hpp"
 #include "cases/cli/loaded_system.hpp"
 #include "cases/cli/task_run.hpp"
+#include "sympathy/continuation/periodic_orbit.hpp"
 #include "sympathy/continuation/branch_output.hpp"
 #include "sympathy/core/csv.hpp"
 #include "sympathy/core/output_file.hpp"
@@ -25,13 +27,14 @@ namespace {
 
 struct Sweep {
   std::unique_ptr<LoadedSystem> c;
+  bool orbits = false;  // no --param: an orbit at each value, not a branch
   ParameterWindow window;
   GridAxis over;
   std::vector<double> values;  // of the second parameter, one per task
   BranchRequest request;       // the branch of every task; its parameter values set per task
   std::string start;
   TaskRunOptions run;
-  std::string out, journal_path, events_path, json_path;
+  std::string out, journal_path, table_path, json_path;
   std::unique_ptr<TaskJournal> journal;
 };
 
@@ -62,18 +65,27 @@ Sweep prepare(const Arguments& args, int ranks) {
   Sweep w;
   w.c = std::make_unique<LoadedSystem>(args);
   w.c->require_orbits();
-  w.window = w.c->window(args);
+  w.orbits = !args.has("--param");
+  if (w.orbits) {
+    for (const char* option : {"--from", "--to", "--at", "--step", "--max-step", "--max-points"})
+      if (args.has(option))
+        throw InputError(std::string(option) +
+                         ": a branch's option, given without --param (a sweep of orbits); "
+                         "expected --param P too, for a branch at each value");
+  } else {
+    w.window = w.c->window(args);
+  }
   if (!args.has("--over"))
     throw InputError("--over is required: the second parameter's grid, NAME=FROM:TO:COUNT");
   w.over = parse_grid(*args.value("--over"), "--over");
   w.c->require_parameter("--over", w.over.parameter);
-  if (w.over.parameter == w.window.parameter)
+  if (!w.orbits && w.over.parameter == w.window.parameter)
     throw InputError("--over " + w.over.parameter + ": expected a parameter other than --param");
   if (w.over.count < 1)
     throw InputError("--over " + *args.value("--over") + ": an empty grid; expected COUNT >= 1");
   w.values = w.over.values();
   w.c->check_range(w.over.parameter, {{"--over (from)", w.over.from}, {"--over (to)", w.over.to}});
-  w.c->check_range(w.window.parameter, w.window.ends());
+  if (!w.orbits) w.c->check_range(w.window.parameter, w.window.ends());
   if (!w.c->equations() && !args.has("--start")) throw InputError("--start is required");
   w.start = args.text("--start", "");
   w.c->source(w.start, args.assignments("--initial"));  // the start named, checked
@@ -102,16 +114,26 @@ Sweep prepare(const Arguments& args, int ranks) {
   if (ranks > 1 && static_cast<std::size_t>(ranks - 1) > w.values.size())
     throw InputError("mpirun -np " + std::to_string(ranks) + ": " + std::to_string(ranks - 1) +
                      " workers for " + std::to_string(w.values.size()) +
-                     " branches; expected at most " + std::to_string(w.values.size() + 1) +
+                     " tasks; expected at most " + std::to_string(w.values.size() + 1) +
                      " ranks (one manager)");
   w.out = args.text("--out", "out/sweep");
   w.journal_path = w.out + "/sweep_journal.csv";
-  w.events_path = w.out + "/sweep_events.csv";
+  w.table_path = w.out + (w.orbits ? "/sweep_orbits.csv" : "/sweep_events.csv");
   w.json_path = w.out + "/sweep.json";
   check_distinct_outputs(
-      {{"journal", w.journal_path}, {"events", w.events_path}, {"json", w.json_path}},
+      {{"journal", w.journal_path}, {"table", w.table_path}, {"json", w.json_path}},
       {{"case file", w.c->path()}});
   return w;
+}
+
+// The journal's columns: the second parameter's value, then a branch's points, stop and events
+// (events_field), or an orbit's convergence, period, stability, largest multiplier but the
+// trivial one, trivial-multiplier error and residual.
+TaskJournal::Row header(const Sweep& w) {
+  if (w.orbits)
+    return {w.over.parameter, "converged",     "period",  "stability",
+            "max_modulus",    "trivial_error", "residual"};
+  return {w.over.parameter, "points", "stop", "events"};
 }
 
 // Rank 0's: the output directory and the journal (new, or resumed and checked to be this
@@ -122,10 +144,8 @@ void open_outputs(Sweep& w, bool resume) {
                      " is the journal of an earlier run; expected --resume to continue it, or "
                      "another --out (or remove the file)");
   std::filesystem::create_directories(w.out);
-  for (const auto& p : {w.journal_path, w.events_path, w.json_path}) check_writable(p, "--out");
-  w.journal = std::make_unique<TaskJournal>(
-      w.journal_path, TaskJournal::Row{w.over.parameter, "points", "stop", "events"},
-      w.values.size(), resume);
+  for (const auto& p : {w.journal_path, w.table_path, w.json_path}) check_writable(p, "--out");
+  w.journal = std::make_unique<TaskJournal>(w.journal_path, header(w), w.values.size(), resume);
   for (const auto& [index, row] : w.journal->rows())
     if (row[0] != format_double(w.values[index]))
       throw InputError(w.journal_path + ": task " + std::to_string(index) + " is at " +
@@ -133,8 +153,9 @@ void open_outputs(Sweep& w, bool resume) {
                        format_double(w.values[index]) + " (expected a journal of the same grid)");
 }
 
-void write_results(const Sweep& w, const TaskRunSummary& summary, const Stopwatch& clock) {
-  CsvWriter csv(w.events_path,
+// The branches' events: sweep_events.csv, and the JSON's list.
+nlohmann::json branches_json(const Sweep& w) {
+  CsvWriter csv(w.table_path,
                 {w.over.parameter, "type", w.window.parameter, "uncertainty", "trusted"});
   nlohmann::json branches = nlohmann::json::array();
   for (const auto& [index, row] : w.journal->rows()) {
@@ -153,23 +174,47 @@ void write_results(const Sweep& w, const TaskRunSummary& summary, const Stopwatc
                         {"events", events}});
   }
   csv.close();
+  return branches;
+}
+
+// The orbits: sweep_orbits.csv (the journal's rows in task order), and the JSON's list.
+nlohmann::json orbits_json(const Sweep& w) {
+  CsvWriter csv(w.table_path, header(w));
+  nlohmann::json orbits = nlohmann::json::array();
+  for (const auto& [index, row] : w.journal->rows()) {
+    csv.row(row);
+    orbits.push_back({{"task", index},
+                      {"value", std::stod(row[0])},
+                      {"converged", row[1] == "1"},
+                      {"period", std::stod(row[2])},
+                      {"stability", row[3]},
+                      {"max_modulus", std::stod(row[4])},
+                      {"trivial_error", std::stod(row[5])},
+                      {"residual", std::stod(row[6])}});
+  }
+  csv.close();
+  return orbits;
+}
+
+void write_results(const Sweep& w, const TaskRunSummary& summary, const Stopwatch& clock) {
   nlohmann::json j;
   j["case"] = w.c->path();
   j["params_set"] = w.c->params();
   j["start"] = w.start;
-  j["parameter"] = {{"name", w.window.parameter}, {"from", w.window.from}, {"to", w.window.to}};
+  if (!w.orbits)
+    j["parameter"] = {{"name", w.window.parameter}, {"from", w.window.from}, {"to", w.window.to}};
   j["over"] = {{"name", w.over.parameter},
                {"from", w.over.from},
                {"to", w.over.to},
                {"count", w.over.count}};
   j["complete"] = w.journal->rows().size() == w.values.size();
-  j["branches"] = branches;
+  j[w.orbits ? "orbits" : "branches"] = w.orbits ? orbits_json(w) : branches_json(w);
   write_file_atomically(w.json_path, j.dump(1) + "\n");
-  std::fprintf(stderr, "  %zu of %zu branches (%zu computed now, on %d %s)%s; run time %.1f s\n",
-               w.journal->rows().size(), w.values.size(), summary.computed, summary.threads,
-               summary.threads == 1 ? "worker" : "workers",
+  std::fprintf(stderr, "  %zu of %zu %s (%zu computed now, on %d %s)%s; run time %.1f s\n",
+               w.journal->rows().size(), w.values.size(), w.orbits ? "orbits" : "branches",
+               summary.computed, summary.threads, summary.threads == 1 ? "worker" : "workers",
                summary.interrupted ? ", interrupted: --resume continues" : "", clock.seconds());
-  std::printf("wrote %s, %s and %s\n", w.journal_path.c_str(), w.events_path.c_str(),
+  std::printf("wrote %s, %s and %s\n", w.journal_path.c_str(), w.table_path.c_str(),
               w.json_path.c_str());
 }
 
@@ -182,12 +227,14 @@ int run_sweep(const std::vector<std::string>& argv) {
       {{"--start", "NAME", false,
         "named start of the case (required for a metronome case file; an equation case file's "
         "default: its [states])"},
-       {"--param", "P", false, "each branch's parameter (required)"},
-       {"--from", "A", false, "each branch's first value (required)"},
-       {"--to", "B", false, "each branch's last value (required)"},
+       {"--param", "P", false,
+        "each branch's parameter (without it: an orbit at each value, not a branch)"},
+       {"--from", "A", false, "each branch's first value (required with --param)"},
+       {"--to", "B", false, "each branch's last value (required with --param)"},
        {"--at", "V", false, "start each branch at V instead and continue both ways"},
        {"--over", "NAME=FROM:TO:COUNT", false,
-        "the second parameter's grid: a branch at each of its COUNT values (required)"},
+        "the second parameter's grid: a branch (or an orbit) at each of its COUNT values "
+        "(required)"},
        {"--initial", "VAR=VALUE", true, "initial state value (on top of --start)"},
        {"--segments", "M", false, "shooting segments (default 1)"},
        {"--step", "DS", false, "initial arclength step, scaled (default 0.02)"},
@@ -196,9 +243,9 @@ int run_sweep(const std::vector<std::string>& argv) {
        {"--transient", "SECONDS", false,
         "integration before the first Newton (default 60; 0 for a forced system)"},
        {"--threads", "N", false,
-        "branches run side by side (default: one per core; under mpirun one per rank)"},
+        "tasks run side by side (default: one per core; under mpirun one per rank)"},
        {"--out", "DIR", false, "where the files go (default out/sweep)"},
-       {"--resume", "", false, "continue the journal in DIR: its branches are not computed again"},
+       {"--resume", "", false, "continue the journal in DIR: its tasks are not computed again"},
        accuracy_option()});
   const auto integrator = integrator_options();
   options.insert(options.end(), integrator.begin(), integrator.end());
@@ -218,6 +265,15 @@ int run_sweep(const std::vector<std::string>& argv) {
   const auto work = [&](std::size_t index) -> std::optional<TaskRow> {
     BranchSource source = base;
     source.values = system.with_parameter(base.values, over, w->values[index]);
+    if (w->orbits) {
+      const PeriodicOrbit o = find_periodic_orbit(system, source.values, source.start_state,
+                                                  source.subspace, w->request.continuation.orbit);
+      const auto& f = o.floquet;
+      return TaskRow{format_double(w->values[index]), o.converged() ? "1" : "0",
+                     format_double(o.period),         to_string(f.stability),
+                     format_double(f.max_modulus),    format_double(f.trivial_error),
+                     format_double(o.residual)};
+    }
     const Branch b = run_branch(source, w->request, stop);
     if (b.stop == StopReason::Interrupted) return std::nullopt;
     return TaskRow{format_double(w->values[index]), std::to_string(b.points.size()),
@@ -228,13 +284,19 @@ int run_sweep(const std::vector<std::string>& argv) {
     return 0;
   }
   const std::size_t to_compute = w->values.size() - w->journal->resumed();
+  char job[160];
+  if (w->orbits)
+    std::snprintf(job, sizeof job, "an orbit");
+  else
+    std::snprintf(job, sizeof job, "%s from %g to %g", w->window.parameter.c_str(), w->window.from,
+                  w->window.to);
   std::fprintf(stderr,
-               "sympathy sweep %s  params %s  start %s  %s from %g to %g, over %s %g .. %g (%d "
-               "values)\n  %zu in the journal, %zu to compute\n",
+               "sympathy sweep %s  params %s  start %s  %s, over %s %g .. %g (%d values)\n  %zu "
+               "in the journal, %zu to compute\n",
                w->c->path().c_str(), w->c->params().empty() ? "(none)" : w->c->params().c_str(),
-               w->start.empty() ? "(the file's [states])" : w->start.c_str(),
-               w->window.parameter.c_str(), w->window.from, w->window.to, w->over.parameter.c_str(),
-               w->over.from, w->over.to, w->over.count, w->journal->resumed(), to_compute);
+               w->start.empty() ? "(the file's [states])" : w->start.c_str(), job,
+               w->over.parameter.c_str(), w->over.from, w->over.to, w->over.count,
+               w->journal->resumed(), to_compute);
   const auto summary = run_journaled(mpi, w->values.size(), w->journal.get(), work, w->run, stop);
   w->journal->close();
   write_results(*w, summary, clock);

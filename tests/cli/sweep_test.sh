@@ -48,6 +48,23 @@ for f in sweep_events.csv sweep.json; do
   check "$f of the resumed run identical" cmp -s "$work/one/$f" "$work/resumed/$f"
 done
 
+# Without --param, an orbit at each value: lcbp at p2 = 2 from (1.8, 0) falls on the stable
+# circle, r = 2 while p1 < 2 (radial multiplier exp(-2 (2 - p1))), r = p1 beyond (exp(-p1 (p1 -
+# 2))); period 1 each. To 1e-8.
+"$bin" sweep "$lcbp" --over p1=1.25:2.75:4 --out "$work/orbits" > /dev/null 2> "$work/orbits.err"
+check "a sweep of orbits exits 0" test $? -eq 0
+check "... each orbit the stable circle's, exactly" test "$(/usr/bin/python3 -c "
+import json, math, sys
+j = json.load(open(sys.argv[1]))
+ok = [o['value'] for o in j['orbits']] == [1.25, 1.75, 2.25, 2.75]
+for o in j['orbits']:
+    p1 = o['value']
+    mu = math.exp(-2 * (2 - p1)) if p1 < 2 else math.exp(-p1 * (p1 - 2))
+    ok = ok and o['converged'] and abs(o['period'] - 1) < 1e-8
+    ok = ok and abs(o['max_modulus'] - mu) < 1e-8
+print(ok)" "$work/orbits/sweep.json")" = True
+check "... and its table" test "$(head -1 "$work/orbits/sweep_orbits.csv")" = "p1,converged,period,stability,max_modulus,trivial_error,residual"
+
 # Bad input: exit 2 before any work.
 bad() {  # bad NAME EXPECTED-MESSAGE ARGS...
   local name=$1 expected=$2; shift 2
@@ -62,5 +79,7 @@ bad unknown "--over q: not a parameter of $lcbp" --param p1 --from 1 --to 3 --ov
 bad malformed "--over p2=1:2: expected NAME=FROM:TO:COUNT" --param p1 --from 1 --to 3 --over p2=1:2 --out "$work/bad"
 bad journal_exists "is the journal of an earlier run; expected --resume" \
   --param p1 --from 1 --to 3 --over p2=1.5:2.5:3 --out "$work/one"
+bad branch_option_without_param "--from: a branch's option, given without --param" \
+  --from 1 --over p2=1:2:3 --out "$work/bad"
 check "no file written for bad input" test ! -e "$work/bad"
 exit "$failures"
