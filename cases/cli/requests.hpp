@@ -1,0 +1,33 @@
+// The options of the commands that the Python module (python/) runs too, and what they are read
+// into, with every check of the command line before any work: one table of names and defaults,
+// one reading and one validation for the program and the module.
+#pragma once
+
+#include <vector>
+
+#include "cases/cli/arguments.hpp"
+#include "cases/cli/branch_run.hpp"
+#include "cases/cli/loaded_system.hpp"
+#include "sympathy/continuation/periodic_orbit.hpp"
+#include "sympathy/core/flow.hpp"
+
+namespace sympathy::cli {
+
+// sympathy orbit: its options, and its --segments, --transient, --accuracy, integrator options and
+// --whole-state read into the engine's OrbitOptions, checked by their validate().
+std::vector<OptionSpec> orbit_options();
+OrbitOptions orbit_request(const Arguments& args);
+
+// sympathy continue: its options, and the request (the window, the start, the continuation
+// options, switching, the outputs), checked against the case `c`.
+std::vector<OptionSpec> continue_options();
+BranchRequest continue_request(const Arguments& args, const LoadedSystem& c);
+
+// sympathy simulate: its options, the output times of --t-end and --dt (0, dt, 2 dt, ..., t_end;
+// InputError unless 0 < dt <= t_end) and the integrator options on its defaults (BDF, rtol 1e-8,
+// atol 1e-10).
+std::vector<OptionSpec> simulate_options();
+std::vector<double> simulation_times(const Arguments& args);
+FlowOptions simulation_flow_options(const Arguments& args);
+
+}  // namespace sympathy::cli

@@ -1,0 +1,221 @@
+#include "python_results.hpp"
+
+#include <algorithm>
+#include <cmath>
+#include <complex>
+#include <limits>
+
+#include <pybind11/complex.h>
+#include <pybind11/numpy.h>
+#include <pybind11/stl.h>
+
+namespace sympathy::python {
+
+namespace {
+
+py::object with_fields(const py::dict& fields) {
+  return py::module_::import("types").attr("SimpleNamespace")(**fields);
+}
+
+// The describer's groups (amplitudes, phase_differences, ...) of one orbit: a dict by label each.
+void add_description(py::dict& fields, const OrbitDescriber& describer,
+                     const std::vector<double>& numbers) {
+  std::size_t k = 0;
+  for (const auto& group : describer.layout()) {
+    py::dict values;
+    for (const auto& label : group.labels)
+      values[py::str(label)] = k < numbers.size() ? numbers[k++] : std::nan("");
+    fields[py::str(group.name)] = values;
+  }
+}
+
+}  // namespace
+
+py::array vector_array(const Eigen::VectorXd& v) {
+  py::array_t<double> a(v.size());
+  std::copy(v.data(), v.data() + v.size(), a.mutable_data());
+  return a;
+}
+
+py::array matrix_array(const std::vector<Eigen::VectorXd>& rows, int columns) {
+  py::array_t<double> a({static_cast<py::ssize_t>(rows.size()), static_cast<py::ssize_t>(columns)});
+  auto m = a.mutable_unchecked<2>();
+  for (std::size_t i = 0; i < rows.size(); ++i)
+    for (int j = 0; j < columns; ++j)
+      m(i, j) = j < rows[i].size() ? rows[i][j] : std::numeric_limits<double>::quiet_NaN();
+  return a;
+}
+
+py::array multiplier_array(const FloquetAnalysis& floquet) {
+  py::array_t<std::complex<double>> a(static_cast<py::ssize_t>(floquet.multipliers.size()));
+  for (std::size_t i = 0; i < floquet.multipliers.size(); ++i)
+    a.mutable_data()[i] = floquet.multipliers[i].value;
+  return a;
+}
+
+py::object orbit_result(const OdeSystem& system, const PeriodicOrbit& orbit,
+                        const OrbitDescriber& describer) {
+  const FloquetAnalysis& f = orbit.floquet;
+  std::vector<double> moduli;
+  std::vector<std::string> kinds, symmetry;
+  for (const auto& m : f.multipliers) {
+    moduli.push_back(std::abs(m.value));
+    kinds.push_back(m.trivial ? "trivial" : m.structural ? "structural" : "");
+    symmetry.push_back(to_string(m.symmetry));
+  }
+  py::dict parameters;
+  const auto names = system.parameter_names();
+  for (int i = 0; i < static_cast<int>(names.size()); ++i)
+    parameters[py::str(names[i])] = system.parameter(orbit.parameters, i);
+  py::dict newton;
+  newton["iterations"] = orbit.newton.iterations;
+  newton["residuals"] = orbit.newton.residual_norms;
+  newton["outcome"] = to_string(orbit.newton.outcome);
+  newton["reason"] = orbit.newton.reason;
+  py::dict fields;
+  fields["converged"] = orbit.converged();
+  fields["period"] = orbit.period;
+  fields["frequency"] = orbit.period > 0.0 ? 1.0 / orbit.period : 0.0;
+  fields["state0"] = vector_array(orbit.state0);
+  fields["state_names"] = system.state_names();
+  fields["multipliers"] = multiplier_array(f);
+  fields["moduli"] = moduli;
+  fields["kinds"] = kinds;
+  fields["symmetry"] = symmetry;
+  fields["stable"] = f.stability == Stability::Stable;
+  fields["stability"] = to_string(f.stability);
+  fields["unstable_count"] = f.unstable_count;
+  fields["max_modulus"] = f.max_modulus;
+  fields["residual"] = orbit.residual;
+  fields["trivial_multiplier_error"] = f.trivial_error;
+  fields["family_dimension"] = orbit.family_dimension;
+  fields["newton"] = with_fields(newton);
+  fields["segments"] = orbit.segments;
+  fields["reduction"] = orbit.reduction;
+  fields["parameters"] = parameters;
+  fields["seconds"] = orbit.seconds;
+  // Described only where there is an orbit: the describer integrates one period of it.
+  add_description(fields, describer,
+                  orbit.converged() ? describer.describe(orbit) : std::vector<double>());
+  return with_fields(fields);
+}
+
+py::object point_result(const ContinuationPoint& p) {
+  py::dict fields;
+  fields["index"] = p.index;
+  fields["value"] = p.parameter;
+  fields["period"] = p.orbit.period;
+  fields["stability"] = to_string(p.orbit.floquet.stability);
+  fields["max_modulus"] = p.orbit.floquet.max_modulus;
+  fields["step"] = p.step;
+  fields["iterations"] = p.iterations;
+  return with_fields(fields);
+}
+
+py::object event_result(const Bifurcation& e) {
+  py::dict fields;
+  fields["type"] = to_string(e.type);
+  fields["name"] = describe(e.type);
+  fields["value"] = e.parameter;
+  fields["uncertainty"] = e.uncertainty;
+  fields["bracket"] = e.bracket;
+  fields["period"] = e.period;
+  fields["multipliers"] = multiplier_array(e.floquet);
+  fields["crossing"] = e.crossing;
+  fields["multiplicity"] = e.multiplicity;
+  fields["located"] = e.located();
+  fields["location"] = to_string(e.location);
+  fields["symmetry"] = to_string(e.symmetry);
+  fields["trusted"] = e.trusted();
+  fields["note"] = e.note;
+  fields["state0"] = vector_array(e.state0);
+  fields["after_point"] = e.after_point;
+  return with_fields(fields);
+}
+
+py::object branch_result(const Branch& branch, const OrbitDescriber& describer) {
+  const auto& points = branch.points;
+  const std::size_t n = points.size();
+  auto column = [&](auto value) {
+    std::vector<decltype(value(points.front()))> c;
+    c.reserve(n);
+    for (const auto& p : points) c.push_back(value(p));
+    return py::array(py::cast(c));
+  };
+  py::dict arrays;
+  std::vector<std::string> stability;
+  std::vector<Eigen::VectorXd> states, multipliers_re, multipliers_im, described;
+  int dimension = static_cast<int>(branch.state_names.size()), count = 0;
+  for (const auto& p : points) {
+    stability.push_back(to_string(p.orbit.floquet.stability));
+    states.push_back(p.orbit.state0);
+    count = std::max(count, static_cast<int>(p.orbit.floquet.multipliers.size()));
+  }
+  {  // one array per field (empty ones for a branch that never started)
+    arrays["index"] = column([](const ContinuationPoint& p) { return p.index; });
+    arrays["value"] = column([](const ContinuationPoint& p) { return p.parameter; });
+    arrays["period"] = column([](const ContinuationPoint& p) { return p.orbit.period; });
+    arrays["frequency"] = column([](const ContinuationPoint& p) { return 1.0 / p.orbit.period; });
+    arrays["stable"] = column(
+        [](const ContinuationPoint& p) { return p.orbit.floquet.stability == Stability::Stable; });
+    arrays["unstable_count"] =
+        column([](const ContinuationPoint& p) { return p.orbit.floquet.unstable_count; });
+    arrays["max_modulus"] =
+        column([](const ContinuationPoint& p) { return p.orbit.floquet.max_modulus; });
+    arrays["trivial_multiplier_error"] =
+        column([](const ContinuationPoint& p) { return p.orbit.floquet.trivial_error; });
+    arrays["residual"] = column([](const ContinuationPoint& p) { return p.orbit.residual; });
+    arrays["structural"] =
+        column([](const ContinuationPoint& p) { return p.orbit.family_dimension; });
+    arrays["iterations"] = column([](const ContinuationPoint& p) { return p.iterations; });
+    arrays["step"] = column([](const ContinuationPoint& p) { return p.step; });
+  }
+  arrays["stability"] = stability;
+  arrays["state0"] = matrix_array(states, dimension);
+  // Multipliers by decreasing modulus per point (NaN where a point has fewer).
+  py::array_t<std::complex<double>> mu(
+      {static_cast<py::ssize_t>(n), static_cast<py::ssize_t>(count)});
+  auto m = mu.mutable_unchecked<2>();
+  for (std::size_t i = 0; i < n; ++i)
+    for (int j = 0; j < count; ++j) {
+      const auto& list = points[i].orbit.floquet.multipliers;
+      m(i, j) = j < static_cast<int>(list.size())
+                    ? list[j].value
+                    : std::complex<double>(std::nan(""), std::nan(""));
+    }
+  arrays["multipliers"] = mu;
+  // The describer's groups: a dict of arrays by label each (phase_differences["th2"]).
+  std::size_t offset = 0;
+  for (const auto& group : describer.layout()) {
+    py::dict values;
+    for (const auto& label : group.labels) {
+      std::vector<double> c;
+      for (const auto& p : points)
+        c.push_back(offset < p.description.size() ? p.description[offset] : std::nan(""));
+      values[py::str(label)] = py::array(py::cast(c));
+      ++offset;
+    }
+    arrays[py::str(group.name)] = values;
+  }
+  py::list events;
+  for (const auto& e : branch.events) events.append(event_result(e));
+  py::dict rejected;
+  rejected["corrector"] = branch.rejected.corrector;
+  rejected["turn"] = branch.rejected.turn;
+  rejected["multipliers"] = branch.rejected.multipliers;
+  rejected["location"] = branch.rejected.location;
+  py::dict fields;
+  fields["parameter"] = branch.parameter_name;
+  fields["points"] = with_fields(arrays);
+  fields["events"] = events;
+  fields["stop"] = to_string(branch.stop);
+  fields["stop_reason"] = branch.stop_reason;
+  fields["started"] = branch.started();
+  fields["origin"] = branch.origin;
+  fields["seconds"] = branch.seconds;
+  fields["state_names"] = branch.state_names;
+  fields["rejected"] = rejected;
+  return with_fields(fields);
+}
+
+}  // namespace sympathy::python

@@ -1,0 +1,43 @@
+// The engine's results as Python values: NumPy arrays for numbers along a branch or a time series,
+// complex arrays for multipliers, and plain objects (types.SimpleNamespace) whose attributes are
+// the fields of the C++ results, named as the JSON writers name them (branch_output.hpp).
+#pragma once
+
+#include <string>
+#include <vector>
+
+#include <pybind11/numpy.h>
+#include <pybind11/pybind11.h>
+#include <Eigen/Dense>
+
+#include "sympathy/continuation/branch.hpp"
+#include "sympathy/continuation/orbit_describer.hpp"
+
+namespace sympathy::python {
+
+namespace py = pybind11;
+
+py::array vector_array(const Eigen::VectorXd& v);
+// Rows of equal length as a 2-D array (rows x columns).
+py::array matrix_array(const std::vector<Eigen::VectorXd>& rows, int columns);
+py::array multiplier_array(const FloquetAnalysis& floquet);
+
+// period, frequency, state0, state_names, multipliers, moduli, kinds, symmetry, stable, stability,
+// unstable_count, max_modulus, residual, trivial_multiplier_error, family_dimension, converged,
+// newton (iterations, residuals, reason), segments, reduction, parameters, seconds, and the
+// describer's groups (amplitudes, phase_differences: dicts by label).
+py::object orbit_result(const OdeSystem& system, const PeriodicOrbit& orbit,
+                        const OrbitDescriber& describer);
+// A point as the progress callback gets it: index, value, period, stability, max_modulus, step,
+// iterations.
+py::object point_result(const ContinuationPoint& p);
+// type, name, value, uncertainty, bracket, period, multipliers, crossing, multiplicity, located,
+// location, symmetry, trusted, note, state0, after_point.
+py::object event_result(const Bifurcation& e);
+// parameter, points (arrays along the branch: index, value, period, frequency, stable, stability,
+// unstable_count, max_modulus, trivial_multiplier_error, residual, structural, iterations, step,
+// state0, multipliers, and the describer's groups), events, stop, stop_reason, origin, seconds,
+// state_names, rejected.
+py::object branch_result(const Branch& branch, const OrbitDescriber& describer);
+
+}  // namespace sympathy::python

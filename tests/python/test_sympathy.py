@@ -1,0 +1,154 @@
+"""The Python module against the program: the same case, options and numbers.
+
+Run by ctest (python.module) with PYTHONPATH at the built module, SYMPATHY_CLI the program and
+SYMPATHY_SOURCE_DIR the repository. Every expected number comes from the program run in the same
+test, or from the closed form of the Hopf normal form (cases/examples/hopf.toml).
+"""
+
+import math
+import os
+import re
+import signal
+import subprocess
+import threading
+
+import numpy as np
+import pytest
+
+import sympathy
+
+SOURCE = os.environ.get("SYMPATHY_SOURCE_DIR", os.path.join(os.path.dirname(__file__), "../.."))
+CLI = os.environ.get("SYMPATHY_CLI", os.path.join(SOURCE, "build/cases/sympathy"))
+ROW2 = os.path.join(SOURCE, "cases/row2.toml")
+HOPF = os.path.join(SOURCE, "cases/examples/hopf.toml")
+
+
+def cli(*args):
+    run = subprocess.run([CLI, *args], capture_output=True, text=True, check=True)
+    return run.stdout
+
+
+def events_table(stdout):
+    """(type, value as printed) of each row of the program's table of bifurcations."""
+    rows = []
+    lines = stdout.splitlines()
+    start = next(i for i, line in enumerate(lines) if line.startswith("bifurcations"))
+    for line in lines[start + 2:]:
+        fields = line.split()
+        if not fields or fields[0] == "run":
+            break
+        rows.append((fields[0], fields[1]))
+    return rows
+
+
+def test_branch_equals_the_program_to_the_last_printed_digit():
+    # The README's worked example of `continue` (Branches and bifurcations), quiet.
+    stdout = cli("continue", ROW2, "--start", "anti-phase", "--param", "k", "--from", "1",
+                 "--to", "100", "--quiet")
+    expected = events_table(stdout)
+    assert [t for t, _ in expected] == ["BP", "NS", "NS"]
+
+    seen = []
+    branch = sympathy.Case(ROW2).continue_branch(
+        start="anti-phase", param="k", from_=1, to=100, progress=seen.append)
+    # The program prints each value with %.12g (print_events): compare the same text.
+    got = [(e.type + ("" if e.trusted else "?"), "%.12g" % e.value) for e in branch.events]
+    assert got == expected
+    assert branch.stop == "parameter bound"
+    n = len(branch.points.value)
+    assert f"{n} points" in stdout
+    # Points as arrays, in parameter order, ending on the bound; the callback saw each one.
+    assert branch.points.state0.shape == (n, len(branch.state_names))
+    assert branch.points.multipliers.dtype == np.complex128
+    assert branch.points.value[0] == 1 and branch.points.value[-1] == 100
+    assert [p.index for p in seen] == list(branch.points.index)
+    bp = branch.events[0]
+    assert bp.name == "branch point" and bp.symmetry == "breaks" and bp.located
+    assert 0 < bp.uncertainty < 1e-6
+    assert abs(abs(bp.crossing) - 1) < 1e-6
+
+
+def test_orbit_equals_the_program():
+    stdout = cli("orbit", ROW2, "--params", "table2", "--start", "anti-phase")
+    period = re.search(r"period\s+(\S+) s", stdout).group(1)
+    orbit = sympathy.Case(ROW2, params="table2").orbit(start="anti-phase")
+    assert orbit.converged
+    assert "%.12g" % orbit.period == period
+    assert orbit.multipliers.dtype == np.complex128
+    assert orbit.kinds.count("trivial") == 1
+    assert orbit.stability == "unstable" and not orbit.stable
+    # The program's list of moduli, to its 12 printed decimals.
+    printed = re.findall(r"^\s+(\d\.\d{12})\s+[+-]", stdout, re.M)
+    assert ["%.12f" % m for m in orbit.moduli] == printed
+    assert orbit.trivial_multiplier_error < 1e-8 and orbit.residual < 1e-9
+
+
+def test_events_over_a_second_parameter_without_files():
+    # A user's sweep: the anti-phase branch point in k for three damping values, in memory.
+    case = sympathy.Case(ROW2)
+    found = {}
+    for c in (0.0, 0.0185, 0.1):
+        branch = case.continue_branch(start="anti-phase", param="k", from_=45, to=48,
+                                      set={"c": c}, accuracy="fast")
+        found[c] = [e.value for e in branch.events if e.type == "BP"]
+    # One BP each; at Table II's c = 0.0185 it is the README's k = 47.0656 (fast preset: 4e-7),
+    # and it hardly moves with damping (README: 47.0996 at c = 0, 46.2095 at c = 0.5).
+    assert all(len(v) == 1 for v in found.values())
+    assert abs(found[0.0185][0] - 47.0655622632) < 1e-5
+    assert abs(found[0.0][0] - 47.0996) < 1e-3
+    assert found[0.1][0] < found[0.0185][0] < found[0.0][0]
+
+
+def test_interrupt_returns_the_points_so_far():
+    # SIGINT from another thread once the first point is in: the engine runs without the GIL, its
+    # stop check sees the signal, and the call returns what it has.
+    first = threading.Event()
+    sender = threading.Thread(
+        target=lambda: first.wait(60) and os.kill(os.getpid(), signal.SIGINT))
+    sender.start()
+    branch = sympathy.Case(ROW2).continue_branch(
+        start="anti-phase", param="k", from_=1, to=100, progress=lambda p: first.set())
+    sender.join()
+    assert branch.stop == "interrupted"
+    assert 1 <= len(branch.points.value) < 65  # the whole branch has 65 points
+
+
+def test_an_exception_in_the_callback_is_raised_after_the_run():
+    def progress(point):
+        if point.index == 2:
+            raise RuntimeError("enough")
+
+    with pytest.raises(RuntimeError, match="enough"):
+        sympathy.Case(HOPF).continue_branch(param="mu", from_=0.25, to=1, progress=progress)
+
+
+def test_bad_options_raise_input_error_naming_the_option():
+    case = sympathy.Case(ROW2)
+    with pytest.raises(sympathy.InputError, match=r"^--step: expected a positive number"):
+        case.continue_branch(start="anti-phase", param="k", from_=1, to=100, step=-1)
+    with pytest.raises(ValueError, match=r"--param q: not a parameter of .*expected one of"):
+        case.continue_branch(start="anti-phase", param="q", from_=1, to=100)
+    with pytest.raises(sympathy.InputError, match=r"--start nowhere"):
+        case.orbit(start="nowhere")
+    with pytest.raises(TypeError, match=r"unexpected keyword argument 'max_stp'"):
+        case.continue_branch(start="anti-phase", param="k", from_=1, to=100, max_stp=0.1)
+    with pytest.raises(sympathy.InputError, match=r"no-such-file.toml"):
+        sympathy.Case(os.path.join(SOURCE, "no-such-file.toml"))
+
+
+def test_equation_case_file_orbit_simulation_and_parameters():
+    # The Hopf normal form: the circle r = sqrt(mu), period 2 pi / w, nontrivial multiplier
+    # exp(-4 pi mu / w) (cases/examples/hopf.toml).
+    case = sympathy.Case(HOPF)
+    assert case.parameters == {"mu": 0.25, "w": 1.0}
+    assert case.state_names == ["x", "y"]
+    fast = sympathy.Case(HOPF, params="fast").with_values(mu=0.36)
+    assert fast.parameters == {"mu": 0.36, "w": 2.0}
+    orbit = fast.orbit()
+    assert abs(orbit.period - math.pi) < 1e-8
+    other = orbit.multipliers[[k != "trivial" for k in orbit.kinds]]
+    assert abs(other[0] - math.exp(-4 * math.pi * 0.36 / 2)) < 1e-8
+    run = case.simulate(t_end=2, dt=0.5, start="outside")
+    assert list(run.t) == [0, 0.5, 1, 1.5, 2]
+    assert run.states.shape == (5, 2) and run.stop == "end time"
+    assert list(run.states[0]) == [1.0, 0.0]
