@@ -11,6 +11,7 @@ import re
 import signal
 import subprocess
 import threading
+import time
 
 import numpy as np
 import pytest
@@ -100,17 +101,49 @@ def test_events_over_a_second_parameter_without_files():
 
 
 def test_interrupt_returns_the_points_so_far():
-    # SIGINT from another thread once the first point is in: the engine runs without the GIL, its
-    # stop check sees the signal, and the call returns what it has.
-    first = threading.Event()
-    sender = threading.Thread(
-        target=lambda: first.wait(60) and os.kill(os.getpid(), signal.SIGINT))
+    # SIGINT from another thread once the first point is in: the engine runs without the GIL and
+    # its stop check runs Python's signal handlers; the call returns what it has. The callback is
+    # list.append, C code in which Python runs no handler: only the stop check can see the signal.
+    seen = []
+
+    def send():
+        while not seen:
+            time.sleep(0.01)
+        os.kill(os.getpid(), signal.SIGINT)
+
+    sender = threading.Thread(target=send)
     sender.start()
     branch = sympathy.Case(ROW2).continue_branch(
-        start="anti-phase", param="k", from_=1, to=100, progress=lambda p: first.set())
+        start="anti-phase", param="k", from_=1, to=100, progress=seen.append)
     sender.join()
     assert branch.stop == "interrupted"
     assert 1 <= len(branch.points.value) < 65  # the whole branch has 65 points
+    assert len(seen) == len(branch.points.value)
+
+
+def test_keyboard_interrupt_in_the_callback_returns_the_points_so_far():
+    def progress(point):
+        if point.index == 3:
+            raise KeyboardInterrupt
+
+    branch = sympathy.Case(HOPF).continue_branch(param="mu", from_=0.25, to=1, progress=progress)
+    assert branch.stop == "interrupted"
+    assert list(branch.points.index) == [0, 1, 2, 3]
+
+
+def test_simulation_interrupted_keeps_its_samples():
+    case = sympathy.Case(ROW2)
+
+    def send():
+        time.sleep(0.3)
+        os.kill(os.getpid(), signal.SIGINT)
+
+    sender = threading.Thread(target=send)
+    sender.start()
+    run = case.simulate(start="anti-phase", t_end=1e4)  # about a minute, were it not stopped
+    sender.join()
+    assert run.stop == "interrupted"
+    assert 1 < len(run.t) < 1e6 and run.states.shape == (len(run.t), len(run.state_names))
 
 
 def test_an_exception_in_the_callback_is_raised_after_the_run():
