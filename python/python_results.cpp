@@ -4,6 +4,7 @@
 #include <cmath>
 #include <complex>
 #include <limits>
+#include <utility>
 
 #include <pybind11/complex.h>
 #include <pybind11/numpy.h>
@@ -52,6 +53,41 @@ py::array multiplier_array(const FloquetAnalysis& floquet) {
     a.mutable_data()[i] = floquet.multipliers[i].value;
   return a;
 }
+
+namespace {
+
+// Multipliers of each of `rows` as a 2-D complex array (NaN where a row has fewer).
+template <typename Row, typename Multipliers>
+py::array complex_rows(const std::vector<Row>& rows, Multipliers of) {
+  std::size_t columns = 0;
+  for (const auto& r : rows) columns = std::max(columns, of(r).size());
+  py::array_t<std::complex<double>> a(
+      {static_cast<py::ssize_t>(rows.size()), static_cast<py::ssize_t>(columns)});
+  auto m = a.mutable_unchecked<2>();
+  for (std::size_t i = 0; i < rows.size(); ++i) {
+    const auto values = of(rows[i]);
+    for (std::size_t j = 0; j < columns; ++j)
+      m(i, j) = j < values.size() ? values[j] : std::complex<double>(std::nan(""), std::nan(""));
+  }
+  return a;
+}
+
+std::vector<std::complex<double>> values_of(const FloquetAnalysis& f) {
+  std::vector<std::complex<double>> v;
+  for (const auto& m : f.multipliers) v.push_back(m.value);
+  return v;
+}
+
+// One field of every row as a 1-D array.
+template <typename Row, typename Field>
+py::array column_of(const std::vector<Row>& rows, Field field) {
+  std::vector<decltype(field(std::declval<const Row&>()))> c;
+  c.reserve(rows.size());
+  for (const auto& r : rows) c.push_back(field(r));
+  return py::array(py::cast(c));
+}
+
+}  // namespace
 
 py::object orbit_result(const OdeSystem& system, const PeriodicOrbit& orbit,
                         const OrbitDescriber& describer) {
@@ -215,6 +251,70 @@ py::object branch_result(const Branch& branch, const OrbitDescriber& describer) 
   fields["seconds"] = branch.seconds;
   fields["state_names"] = branch.state_names;
   fields["rejected"] = rejected;
+  return with_fields(fields);
+}
+
+py::object curve_point_result(const CurvePoint& p) {
+  py::dict fields;
+  fields["index"] = p.index;
+  fields["first"] = p.first;
+  fields["second"] = p.second;
+  fields["period"] = p.period;
+  fields["iterations"] = p.iterations;
+  return with_fields(fields);
+}
+
+py::object curve_result(const BifurcationCurve& curve) {
+  using P = CurvePoint;
+  const auto& points = curve.points;
+  py::dict arrays;
+  arrays["index"] = column_of(points, [](const P& p) { return p.index; });
+  arrays["first"] = column_of(points, [](const P& p) { return p.first; });
+  arrays["second"] = column_of(points, [](const P& p) { return p.second; });
+  arrays["period"] = column_of(points, [](const P& p) { return p.period; });
+  arrays["rotation"] = column_of(points, [](const P& p) { return p.rotation; });
+  arrays["neutral_saddle"] = column_of(points, [](const P& p) { return p.neutral_saddle; });
+  arrays["test"] = column_of(points, [](const P& p) { return p.test; });
+  arrays["residual"] = column_of(points, [](const P& p) { return p.residual; });
+  arrays["trivial_multiplier_error"] =
+      column_of(points, [](const P& p) { return p.floquet.trivial_error; });
+  arrays["uncertainty"] = column_of(points, [](const P& p) { return p.uncertainty; });
+  arrays["iterations"] = column_of(points, [](const P& p) { return p.iterations; });
+  arrays["step"] = column_of(points, [](const P& p) { return p.step; });
+  std::vector<Eigen::VectorXd> states;
+  for (const auto& p : points) states.push_back(p.state0);
+  arrays["state0"] = matrix_array(states, static_cast<int>(curve.state_names.size()));
+  arrays["multipliers"] = complex_rows(points, [](const P& p) { return values_of(p.floquet); });
+  arrays["critical"] = complex_rows(points, [](const P& p) { return p.critical; });
+  py::list events;
+  for (const auto& e : curve.events) {
+    py::dict f;
+    f["type"] = e.type;
+    f["description"] = e.description;
+    f["first"] = e.first;
+    f["second"] = e.second;
+    f["uncertainty"] = e.uncertainty;
+    f["located"] = e.located;
+    f["crossing_symmetry"] = to_string(e.crossing_symmetry);
+    f["note"] = e.note;
+    f["after_point"] = e.after_point;
+    events.append(with_fields(f));
+  }
+  py::dict fields;
+  fields["kind"] = to_string(curve.kind);
+  fields["first_name"] = curve.first_name;
+  fields["second_name"] = curve.second_name;
+  fields["points"] = with_fields(arrays);
+  fields["events"] = events;
+  fields["stop"] = to_string(curve.stop);
+  fields["stop_reason"] = curve.stop_reason;
+  fields["started"] = curve.started();
+  fields["origin"] = curve.origin;
+  fields["symmetry"] = to_string(curve.symmetry);
+  fields["subspace"] = curve.subspace;
+  fields["seconds"] = curve.seconds;
+  fields["evaluations"] = curve.evaluations;
+  fields["state_names"] = curve.state_names;
   return with_fields(fields);
 }
 

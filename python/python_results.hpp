@@ -10,6 +10,7 @@
 #include <pybind11/pybind11.h>
 #include <Eigen/Dense>
 
+#include "sympathy/continuation/bifurcation_curve.hpp"
 #include "sympathy/continuation/branch.hpp"
 #include "sympathy/continuation/orbit_describer.hpp"
 
@@ -39,5 +40,13 @@ py::object event_result(const Bifurcation& e);
 // state0, multipliers, and the describer's groups), events, stop, stop_reason, origin, seconds,
 // state_names, rejected.
 py::object branch_result(const Branch& branch, const OrbitDescriber& describer);
+// A curve point as the progress callback gets it: index, first, second, period, iterations.
+py::object curve_point_result(const CurvePoint& p);
+// kind, first_name, second_name, points (arrays along the curve: index, first, second, period,
+// rotation, neutral_saddle, test, residual, trivial_multiplier_error, uncertainty, iterations,
+// step, state0, multipliers, critical), events (type, description, first, second, uncertainty,
+// located, crossing_symmetry, note, after_point), stop, stop_reason, origin, symmetry, subspace,
+// seconds, evaluations, state_names.
+py::object curve_result(const BifurcationCurve& curve);
 
 }  // namespace sympathy::python

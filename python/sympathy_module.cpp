@@ -20,6 +20,7 @@
 #include "cases/cli/requests.hpp"
 #include "python_options.hpp"
 #include "python_results.hpp"
+#include "sympathy/continuation/curve_output.hpp"
 #include "sympathy/core/errors.hpp"
 
 namespace sympathy::python {
@@ -41,11 +42,13 @@ class PythonHooks {
     return interrupted_ || error_;
   }
 
-  void on_point(const ContinuationPoint& p) {
+  // The callback with the point `make` gives (made with the GIL held).
+  template <typename Make>
+  void report(Make make) {
     if (progress_.is_none() || error_) return;
     py::gil_scoped_acquire gil;
     try {
-      progress_(point_result(p));
+      progress_(make());
     } catch (py::error_already_set& e) {
       keep(std::move(e));
     }
@@ -180,7 +183,9 @@ class Case {
     const cli::BranchSource source = c.source(request.start, request.initial, request.start_data);
     PythonHooks hooks(progress);
     request.progress = nullptr;  // progress goes to the callback, not to stderr
-    request.on_point = [&](const ContinuationPoint& p) { hooks.on_point(p); };
+    request.on_point = [&](const ContinuationPoint& p) {
+      hooks.report([&] { return point_result(p); });
+    };
     request.stop_requested = [&] { return hooks.stop_requested(); };
     Branch branch;
     {
@@ -189,6 +194,44 @@ class Case {
     }
     hooks.raise_kept();
     return branch_result(branch, c.describer());
+  }
+
+  py::object curve(const py::object& progress, const py::kwargs& kwargs) const {
+    const cli::Arguments args = command_arguments("curve", line_, kwargs, cli::curve_options(),
+                                                  {"params", "quiet", "json"});
+    const cli::LoadedSystem c(args);
+    cli::CurveRequest request = cli::curve_request(args, c);
+    const cli::BranchSource source = c.source(request.branch.start, request.branch.initial);
+    PythonHooks hooks(progress);
+    request.branch.stop_requested = [&] { return hooks.stop_requested(); };
+    CurveCallbacks callbacks;
+    std::unique_ptr<CurveCsvWriter> csv;
+    if (!request.csv_path.empty())
+      csv = std::make_unique<CurveCsvWriter>(request.csv_path, c.system(), request.branch.parameter,
+                                             request.second);
+    callbacks.on_point = [&](const CurvePoint& p) {
+      if (csv) csv->write(p);
+      hooks.report([&] { return curve_point_result(p); });
+    };
+    callbacks.stop_requested = [&] { return hooks.stop_requested(); };
+    Branch parent;
+    BifurcationCurve curve;
+    {
+      py::gil_scoped_release release;
+      parent = cli::curve_branch(request, c, source, nullptr);
+      if (parent.started() && !hooks.interrupted()) {
+        const Bifurcation& event = cli::find_event(parent, request.event, "--event");
+        curve = cli::follow_curve(request, c.system(), parent, event, callbacks);
+      } else {
+        curve.stop = hooks.interrupted() ? CurveStop::Interrupted : CurveStop::StartFailed;
+        curve.stop_reason = "the branch: " + parent.stop_reason;
+      }
+      if (csv) csv->close();
+    }
+    hooks.raise_kept();
+    py::object result = curve_result(curve);
+    result.attr("branch") = branch_result(parent, c.describer());
+    return result;
   }
 
  private:
@@ -241,5 +284,9 @@ PYBIND11_MODULE(sympathy, m) {
            "sympathy continue: a branch (points as NumPy arrays, events as objects); options "
            "param, from_, to, at, start, step, max_step, max_points, switch_at, ...; "
            "progress(point) is called per point; Ctrl-C returns the points so far, stop "
-           "'interrupted'");
+           "'interrupted'")
+      .def("curve", &Case::curve, py::arg("progress") = py::none(),
+           "sympathy curve: the two-parameter curve of a branch's event (event='NS1', "
+           "second='c', second_from, second_to; the branch as continue_branch computes it, "
+           "result.branch); progress(point) per curve point");
 }

@@ -3,11 +3,15 @@
 // one reading and one validation for the program and the module.
 #pragma once
 
+#include <atomic>
+#include <string>
 #include <vector>
 
 #include "cases/cli/arguments.hpp"
 #include "cases/cli/branch_run.hpp"
+#include "cases/cli/event_name.hpp"
 #include "cases/cli/loaded_system.hpp"
+#include "sympathy/continuation/bifurcation_curve.hpp"
 #include "sympathy/continuation/periodic_orbit.hpp"
 #include "sympathy/core/flow.hpp"
 
@@ -22,6 +26,25 @@ OrbitOptions orbit_request(const Arguments& args);
 // options, switching, the outputs), checked against the case `c`.
 std::vector<OptionSpec> continue_options();
 BranchRequest continue_request(const Arguments& args, const LoadedSystem& c);
+
+// sympathy curve: its options; the request (the branch, the event's name, the second parameter,
+// the engine's CurveOptions, checked against the case `c`); the branch (computed as continue
+// computes it, or read from --parent); and the event's curve (InputError naming --event for an
+// event that has no curve).
+struct CurveRequest {
+  BranchRequest branch;  // its progress off
+  EventName event;
+  std::string second;
+  int second_index = -1;
+  CurveOptions options;
+  std::string csv_path;  // "" for none
+};
+std::vector<OptionSpec> curve_options();
+CurveRequest curve_request(const Arguments& args, const LoadedSystem& c);
+Branch curve_branch(const CurveRequest& r, const LoadedSystem& c, const BranchSource& source,
+                    const std::atomic<bool>* stop);
+BifurcationCurve follow_curve(const CurveRequest& r, const OdeSystem& system, const Branch& parent,
+                              const Bifurcation& event, const CurveCallbacks& callbacks);
 
 // sympathy simulate: its options, the output times of --t-end and --dt (0, dt, 2 dt, ..., t_end;
 // InputError unless 0 < dt <= t_end) and the integrator options on its defaults (BDF, rtol 1e-8,

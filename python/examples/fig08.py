@@ -22,8 +22,8 @@ for start in ("in-phase", "anti-phase"):
     phase = np.abs(p.phase_differences["th2"])  # th2 - th1, rad
     print(f"{start}: {len(p.value)} points, {branch.stop}")
     for e in branch.events:
-        print(f"  {e.type} at k = {e.value:.10f} +- {e.uncertainty:.1e}  {e.note}")
-    for stable, style in ((True, "k-"), (False, "--")):
+        print(f"  {e.type} at k = {e.value:.10f} +- {e.uncertainty:.1e}  {e.symmetry}")
+    for stable, style in ((True, "-"), (False, "--")):
         ax.plot(p.value, np.where(p.stable == stable, phase, np.nan), style,
                 color="black" if stable else "grey")
     ax.plot([e.value for e in branch.events],

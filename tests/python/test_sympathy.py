@@ -185,3 +185,29 @@ def test_equation_case_file_orbit_simulation_and_parameters():
     assert list(run.t) == [0, 0.5, 1, 1.5, 2]
     assert run.states.shape == (5, 2) and run.stop == "end time"
     assert list(run.states[0]) == [1.0, 0.0]
+
+
+def test_curve_equals_the_program():
+    # A short stretch of the anti-phase BP curve in (k, c) (tests/cli/curve_test.sh's, at the
+    # fast preset to keep it short): Python and the program, the same points, stop and events.
+    options = ["--start", "anti-phase", "--param", "k", "--from", "46", "--to", "48",
+               "--event", "BP1", "--second", "c", "--second-from", "0.0185",
+               "--second-to", "0.021", "--accuracy", "fast", "--quiet"]
+    stdout = cli("curve", ROW2, *options)
+    seen = []
+    curve = sympathy.Case(ROW2).curve(
+        start="anti-phase", param="k", from_=46, to=48, event="BP1", second="c",
+        second_from=0.0185, second_to=0.021, accuracy="fast", progress=seen.append)
+    assert curve.kind == "BP" and curve.first_name == "k" and curve.second_name == "c"
+    n = len(curve.points.first)
+    assert f"  {n} points; stopped: {curve.stop_reason}\n" in stdout
+    assert curve.points.second[-1] == 0.021
+    assert len(seen) == n
+    printed = re.findall(r"^  turn in k\s+(\S+)\s+(\S+)", stdout, re.M)
+    assert printed  # at the fast preset the curve turns in k (ten times) in this window
+    assert [("%.12g" % e.first, "%.12g" % e.second) for e in curve.events] == printed
+    assert len(curve.branch.points.value) == 32 and curve.branch.events[0].type == "BP"
+    with pytest.raises(sympathy.InputError, match=r"--event NS1: the branch has no such event"):
+        sympathy.Case(ROW2).curve(start="anti-phase", param="k", from_=46, to=48, event="NS1",
+                                  second="c", second_from=0.0185, second_to=0.021,
+                                  accuracy="fast")
