@@ -7,9 +7,13 @@
 // between a simulation's output samples) takes the GIL back for a moment to run Python's pending
 // signal handlers (PyErr_CheckSignals): Ctrl-C then ends the run after the current point and the
 // call returns what was computed, its stop "interrupted", as the program does on SIGINT.
+#include <atomic>
+#include <chrono>
+#include <exception>
 #include <memory>
 #include <optional>
 #include <string>
+#include <thread>
 #include <vector>
 
 #include <pybind11/numpy.h>
@@ -245,6 +249,48 @@ class Case {
   std::shared_ptr<const cli::LoadedSystem> loaded_;
 };
 
+// sympathy study: the study file's branches side by side, each as continue_branch computes it,
+// their CSV files written to `out` as the program writes them. The branches run on threads of
+// their own; this one waits, checking for signals every 50 ms (Python runs its handlers on the
+// main thread only, which the branches' own stop checks are not on).
+py::object study(const std::string& path, const py::kwargs& kwargs) {
+  const cli::Arguments args =
+      command_arguments("study", CaseLine{path, "", {}}, kwargs, cli::study_options(), {});
+  cli::StudyRun run = cli::study_run(args);
+  std::atomic<bool> stop{false}, done{false};
+  std::exception_ptr failure;
+  PythonHooks hooks{py::none()};
+  {
+    py::gil_scoped_release release;
+    std::thread branches([&] {
+      try {
+        cli::run_study_branches(run, &stop, nullptr);
+      } catch (...) {
+        failure = std::current_exception();
+      }
+      done = true;
+    });
+    while (!done) {
+      std::this_thread::sleep_for(std::chrono::milliseconds(50));
+      if (!done && hooks.stop_requested()) stop = true;
+    }
+    branches.join();
+  }
+  hooks.raise_kept();
+  if (failure) std::rethrow_exception(failure);
+  py::dict branches;
+  for (std::size_t i = 0; i < run.study.branches.size(); ++i) {
+    py::object b = branch_result(run.results[i], run.systems[i]->describer());
+    b.attr("error") = run.errors[i];
+    branches[py::str(run.study.branches[i].name)] = b;
+  }
+  py::dict fields;
+  fields["title"] = run.study.title;
+  fields["parameter"] = run.study.parameter;
+  fields["branches"] = branches;
+  return py::module_::import("types").attr("SimpleNamespace")(**fields);
+}
+
 }  // namespace
 
 }  // namespace sympathy::python
@@ -253,6 +299,10 @@ PYBIND11_MODULE(sympathy, m) {
   namespace py = pybind11;
   using namespace sympathy;
   using sympathy::python::Case;
+  m.def("study", &sympathy::python::study, py::arg("path"),
+        "sympathy study: the branches of a study file (cases/figures/*.toml), side by side "
+        "(jobs=2), their CSV files written to out (default out/figures); a dict of branches by "
+        "name, each as continue_branch returns it, with `error` (why it has none, or '')");
   m.doc() =
       "Periodic orbits, their Floquet multipliers, branches and bifurcations (sympathy's engine). "
       "Keyword arguments are the options of the command of the same name (sympathy continue "

@@ -4,6 +4,8 @@
 #pragma once
 
 #include <atomic>
+#include <cstdio>
+#include <memory>
 #include <string>
 #include <vector>
 
@@ -11,6 +13,7 @@
 #include "cases/cli/branch_run.hpp"
 #include "cases/cli/event_name.hpp"
 #include "cases/cli/loaded_system.hpp"
+#include "cases/cli/study_file.hpp"
 #include "sympathy/continuation/bifurcation_curve.hpp"
 #include "sympathy/continuation/periodic_orbit.hpp"
 #include "sympathy/core/flow.hpp"
@@ -45,6 +48,24 @@ Branch curve_branch(const CurveRequest& r, const LoadedSystem& c, const BranchSo
                     const std::atomic<bool>* stop);
 BifurcationCurve follow_curve(const CurveRequest& r, const OdeSystem& system, const Branch& parent,
                               const Bifurcation& event, const CurveCallbacks& callbacks);
+
+// sympathy study: its options; the run prepared (the study file read, every branch's case, start
+// and outputs checked, its request made: what is checked before any work), its branches computed
+// side by side on run.jobs threads (each as continue computes it, its CSVs streamed; a line per
+// branch to `progress` unless nullptr; `stop` asked between points).
+struct StudyRun {
+  Study study;
+  std::string out, json_path;
+  int jobs = 2;
+  std::vector<std::unique_ptr<LoadedSystem>> systems;  // per branch
+  std::vector<BranchSource> sources;
+  std::vector<BranchRequest> requests;
+  std::vector<Branch> results;
+  std::vector<std::string> errors;  // why a branch has no result ("" where it has)
+};
+std::vector<OptionSpec> study_options();
+StudyRun study_run(const Arguments& args);
+void run_study_branches(StudyRun& run, const std::atomic<bool>* stop, std::FILE* progress);
 
 // sympathy simulate: its options, the output times of --t-end and --dt (0, dt, 2 dt, ..., t_end;
 // InputError unless 0 < dt <= t_end) and the integrator options on its defaults (BDF, rtol 1e-8,
