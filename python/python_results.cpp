@@ -318,4 +318,44 @@ py::object curve_result(const BifurcationCurve& curve) {
   return with_fields(fields);
 }
 
+py::object fit_result(const OdeSystem& model, const PreparedFit& fit,
+                      const TrajectoryFitResult& result) {
+  auto matrix = [](const Eigen::MatrixXd& m) {
+    py::array_t<double> a({static_cast<py::ssize_t>(m.rows()), static_cast<py::ssize_t>(m.cols())});
+    auto v = a.mutable_unchecked<2>();
+    for (Eigen::Index i = 0; i < m.rows(); ++i)
+      for (Eigen::Index j = 0; j < m.cols(); ++j) v(i, j) = m(i, j);
+    return a;
+  };
+  py::dict column_rms, parameters;
+  for (std::size_t k = 0; k < fit.recording.columns.size(); ++k)
+    column_rms[py::str(fit.recording.columns[k])] =
+        static_cast<Eigen::Index>(k) < result.column_rms.size() ? result.column_rms[k]
+                                                                : std::nan("");
+  const auto names = model.parameter_names();
+  for (int i = 0; i < static_cast<int>(names.size()); ++i)
+    parameters[py::str(names[i])] = model.parameter(result.fitted_parameters, i);
+  py::dict fields;
+  fields["names"] = fit.unknowns;
+  fields["start"] = vector_array(result.start);
+  fields["values"] = vector_array(result.values);
+  fields["errors"] = vector_array(result.errors);
+  fields["covariance"] = matrix(result.covariance);
+  fields["correlation"] = matrix(result.correlation);
+  fields["rss_start"] = result.rss_start;
+  fields["rss"] = result.rss;
+  fields["residuals"] = result.residuals;
+  fields["sigma2"] = result.sigma2;
+  fields["column_rms"] = column_rms;
+  fields["rank"] = result.rank;
+  fields["condition"] = result.condition;
+  fields["evaluations"] = result.evaluations;
+  fields["converged"] = result.converged;
+  fields["stop_reason"] = result.stop_reason;
+  fields["seconds"] = result.seconds;
+  fields["parameters"] = parameters;
+  fields["model"] = fit.model_description;
+  return with_fields(fields);
+}
+
 }  // namespace sympathy::python

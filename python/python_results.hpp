@@ -10,9 +10,11 @@
 #include <pybind11/pybind11.h>
 #include <Eigen/Dense>
 
+#include "sympathy/cases/parameter_fit.hpp"
 #include "sympathy/continuation/bifurcation_curve.hpp"
 #include "sympathy/continuation/branch.hpp"
 #include "sympathy/continuation/orbit_describer.hpp"
+#include "sympathy/core/trajectory_fit.hpp"
 
 namespace sympathy::python {
 
@@ -48,5 +50,10 @@ py::object curve_point_result(const CurvePoint& p);
 // located, crossing_symmetry, note, after_point), stop, stop_reason, origin, symmetry, subspace,
 // seconds, evaluations, state_names.
 py::object curve_result(const BifurcationCurve& curve);
+// names (the unknowns: "d", "th1(0)"), start, values, errors, covariance, correlation, rss_start,
+// rss, residuals, sigma2, column_rms (by recorded column), rank, condition, evaluations,
+// converged, stop_reason, seconds, parameters (every parameter of the model at the fitted values).
+py::object fit_result(const OdeSystem& model, const PreparedFit& fit,
+                      const TrajectoryFitResult& result);
 
 }  // namespace sympathy::python

@@ -200,6 +200,19 @@ class Case {
     return branch_result(branch, c.describer());
   }
 
+  py::object fit(const py::kwargs& kwargs) const {
+    const cli::Arguments args = command_arguments("fit", line_, kwargs, cli::fit_options(),
+                                                  {"params", "out", "json", "csv"});
+    const cli::FitSetup setup = cli::fit_setup(args);
+    const PreparedFit fit = prepare_fit(setup.c->file, setup.c->spec, setup.request);
+    TrajectoryFitResult result;
+    {
+      py::gil_scoped_release release;
+      result = fit_trajectory(*fit.model, fit.problem, setup.options);
+    }
+    return fit_result(*fit.model, fit, result);
+  }
+
   py::object curve(const py::object& progress, const py::kwargs& kwargs) const {
     const cli::Arguments args = command_arguments("curve", line_, kwargs, cli::curve_options(),
                                                   {"params", "quiet", "json"});
@@ -335,6 +348,10 @@ PYBIND11_MODULE(sympathy, m) {
            "param, from_, to, at, start, step, max_step, max_points, switch_at, ...; "
            "progress(point) is called per point; Ctrl-C returns the points so far, stop "
            "'interrupted'")
+      .def("fit", &Case::fit,
+           "sympathy fit: parameters (free=['d', 's']) and initial values (free_initial=['th1']) "
+           "fitted to a recording (data='FILE.csv'): names, values, errors, correlation, rss, "
+           "converged, stop_reason, parameters (the fitted values by name)")
       .def("curve", &Case::curve, py::arg("progress") = py::none(),
            "sympathy curve: the two-parameter curve of a branch's event (event='NS1', "
            "second='c', second_from, second_to; the branch as continue_branch computes it, "

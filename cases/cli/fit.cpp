@@ -10,6 +10,7 @@
 #include "cases/cli/commands.hpp"
 #include "cases/cli/common.hpp"
 #include "cases/cli/report.hpp"
+#include "cases/cli/requests.hpp"
 #include "sympathy/cases/case_writer.hpp"
 #include "sympathy/cases/parameter_fit.hpp"
 #include "sympathy/continuation/branch_output.hpp"
@@ -74,7 +75,7 @@ std::string short_number(double v, int digits = 2) {
 
 }  // namespace
 
-int run_fit(const std::vector<std::string>& argv) {
+std::vector<OptionSpec> fit_options() {
   auto options = case_options();
   options.insert(
       options.end(),
@@ -99,11 +100,15 @@ int run_fit(const std::vector<std::string>& argv) {
        {"--csv", "FILE", false, "write the fitted model at the data's times (scripts/plot_fit)"}});
   const auto integrator = integrator_options();
   options.insert(options.end(), integrator.begin(), integrator.end());
-  Arguments args("fit", argv, options, {"CASE"});
+  return options;
+}
 
-  Stopwatch clock;
-  const LoadedCase c = load_case(args);
-  FitRequest request;
+FitSetup fit_setup(const Arguments& args) {
+  FitSetup setup;
+  // Behind a pointer: request.start points into its case file.
+  setup.c = std::make_unique<LoadedCase>(load_case(args));
+  const LoadedCase& c = *setup.c;
+  FitRequest& request = setup.request;
   if (!args.has("--data")) throw InputError("--data FILE.csv is required (the recording)");
   request.data = *args.value("--data");
   request.free = names(args, "--free");
@@ -114,7 +119,7 @@ int run_fit(const std::vector<std::string>& argv) {
   request.sigma = args.assignments("--sigma");
   for (const auto& r : args.values("--range")) request.ranges.push_back(parse_range(r, "--range"));
 
-  TrajectoryFitOptions o;
+  TrajectoryFitOptions& o = setup.options;
   o.flow = flow_options(args, o.flow);
   o.local = local_method(args.text("--local", "lm"));
   o.polish = !args.flag("--no-polish");
@@ -136,6 +141,16 @@ int run_fit(const std::vector<std::string>& argv) {
                           {"--csv", args.text("--csv", "")}},
                          {{"case file", c.file.path()}, {"recording (--data)", request.data}});
 
+  return setup;
+}
+
+int run_fit(const std::vector<std::string>& argv) {
+  Arguments args("fit", argv, fit_options(), {"CASE"});
+  Stopwatch clock;
+  const FitSetup setup = fit_setup(args);
+  const LoadedCase& c = *setup.c;
+  const FitRequest& request = setup.request;
+  const TrajectoryFitOptions& o = setup.options;
   PreparedFit fit = prepare_fit(c.file, c.spec, request);
   const Recording& rec = fit.recording;
   const auto states = fit.model->state_names();

@@ -14,9 +14,11 @@
 #include "cases/cli/event_name.hpp"
 #include "cases/cli/loaded_system.hpp"
 #include "cases/cli/study_file.hpp"
+#include "sympathy/cases/parameter_fit.hpp"
 #include "sympathy/continuation/bifurcation_curve.hpp"
 #include "sympathy/continuation/periodic_orbit.hpp"
 #include "sympathy/core/flow.hpp"
+#include "sympathy/core/trajectory_fit.hpp"
 
 namespace sympathy::cli {
 
@@ -66,6 +68,16 @@ struct StudyRun {
 std::vector<OptionSpec> study_options();
 StudyRun study_run(const Arguments& args);
 void run_study_branches(StudyRun& run, const std::atomic<bool>* stop, std::FILE* progress);
+
+// sympathy fit: its options, and the case (behind a pointer: the request's start points into it),
+// the request and the engine's options read from them, every output checked (before any work).
+struct FitSetup {
+  std::unique_ptr<LoadedCase> c;
+  FitRequest request;
+  TrajectoryFitOptions options;
+};
+std::vector<OptionSpec> fit_options();
+FitSetup fit_setup(const Arguments& args);
 
 // sympathy simulate: its options, the output times of --t-end and --dt (0, dt, 2 dt, ..., t_end;
 // InputError unless 0 < dt <= t_end) and the integrator options on its defaults (BDF, rtol 1e-8,

@@ -259,3 +259,27 @@ def test_study_interrupted_returns_its_branches_so_far(tmp_path):
     result = sympathy.study(str(study), out=str(tmp_path), accuracy="fast")  # 1.2 s unstopped
     sender.join()
     assert "interrupted" in [b.stop for b in result.branches.values()]
+
+
+def test_fit_equals_the_program(tmp_path):
+    # README's fitting example, from Python: one metronome's angle simulated (10 s here) with noise
+    # of 0.005 rad, d and s fitted from wrong starts, by the program and by Python.
+    single = sympathy.Case(os.path.join(SOURCE, "cases/single.toml"))
+    run = single.simulate(start="swing", t_end=10)
+    th1 = run.states[:, run.state_names.index("th1")]
+    noisy = th1 + np.random.default_rng(1).normal(0.0, 0.005, th1.size)
+    data = tmp_path / "angle.csv"
+    np.savetxt(data, np.column_stack([run.t, noisy]), delimiter=",", header="t,th1",
+               comments="", fmt="%.17g")
+    options = dict(data=str(data), free=["d", "s"], free_initial=["th1"],
+                   set={"d": 2e-6, "s": 5.4e-5})
+    stdout = cli("fit", single.path, "--data", str(data), "--free", "d,s", "--free-initial",
+                 "th1", "--set", "d=2e-6", "--set", "s=5.4e-5")
+    fit = single.fit(**options)
+    assert fit.converged and fit.names == ["d", "s", "th1(0)"]
+    printed = dict(re.findall(r"^\s+(?:fitted\s+)?(d|s|th1\(0\))\s+(\S+)\s", stdout, re.M))
+    assert {n: "%.10g" % v for n, v in zip(fit.names, fit.values)} == printed
+    # Against the truth (Table I: d = 2.4e-6, s = 4.51e-5), within three standard errors.
+    assert abs(fit.parameters["d"] - 2.4e-6) < 3 * fit.errors[0]
+    assert abs(fit.parameters["s"] - 4.51e-5) < 3 * fit.errors[1]
+    assert fit.correlation.shape == (3, 3)
