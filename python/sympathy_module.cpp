@@ -20,6 +20,7 @@
 #include <pybind11/pybind11.h>
 #include <pybind11/stl.h>
 
+#include "case_dict.hpp"
 #include "cases/cli/loaded_system.hpp"
 #include "cases/cli/requests.hpp"
 #include "python_options.hpp"
@@ -86,16 +87,27 @@ class PythonHooks {
 // cache after the first load.
 class Case {
  public:
-  Case(const std::string& path, const std::optional<std::string>& params,
+  // `source`: a path (str or os.PathLike), or a dict of the case file's contents.
+  Case(const py::object& source, const std::optional<std::string>& params,
        const std::optional<py::dict>& set) {
-    line_.path = path;
+    if (py::isinstance<py::dict>(source)) {
+      dict_file_ = case_dict_file(toml_text(source.cast<py::dict>()));
+      line_.path = *dict_file_;
+    } else {
+      line_.path = py::str(py::module_::import("os").attr("fspath")(source)).cast<std::string>();
+    }
     line_.params = params.value_or("");
     if (set)
       for (const auto& [k, v] : *set)
         line_.sets.push_back(
             py::str(k).cast<std::string>() + "=" +
             py::repr(py::float_(py::reinterpret_borrow<py::object>(v))).cast<std::string>());
-    loaded_ = load(py::kwargs());
+    try {
+      loaded_ = load(py::kwargs());
+    } catch (const InputError& e) {
+      // Said here, while the dict's file is alive: the message names its key path.
+      throw InputError(dict_message(e.what()));
+    }
   }
 
   const std::string& path() const { return line_.path; }
@@ -259,6 +271,7 @@ class Case {
   }
 
   CaseLine line_;
+  std::shared_ptr<const std::string> dict_file_;  // a dict's TOML file, removed with the last copy
   std::shared_ptr<const cli::LoadedSystem> loaded_;
 };
 
@@ -320,16 +333,24 @@ PYBIND11_MODULE(sympathy, m) {
       "Periodic orbits, their Floquet multipliers, branches and bifurcations (sympathy's engine). "
       "Keyword arguments are the options of the command of the same name (sympathy continue "
       "--max-step 0.05: max_step=0.05; --from: from_), with its defaults and checks.";
-  // Bad input (a case file, an option): ValueError, with the program's message.
-  py::register_exception<InputError>(m, "InputError", PyExc_ValueError);
+  // Bad input (a case file, an option): ValueError, with the program's message (a case dict's
+  // key path where a file and line would be).
+  static py::exception<InputError> input_error(m, "InputError", PyExc_ValueError);
+  py::register_exception_translator([](std::exception_ptr p) {
+    try {
+      if (p) std::rethrow_exception(p);
+    } catch (const InputError& e) {
+      input_error(sympathy::python::dict_message(e.what()).c_str());
+    }
+  });
   py::register_exception<OutputError>(m, "OutputError", PyExc_OSError);
 
   py::class_<Case>(m, "Case",
-                   "A case file (metronome or equation case file) with a parameter set and "
-                   "values set on top (set={'k': 20.0}).")
-      .def(py::init<const std::string&, const std::optional<std::string>&,
+                   "A case file (metronome or equation case file; a path, or a dict of its "
+                   "contents) with a parameter set and values set on top (set={'k': 20.0}).")
+      .def(py::init<const py::object&, const std::optional<std::string>&,
                     const std::optional<py::dict>&>(),
-           py::arg("path"), py::arg("params") = py::none(), py::arg("set") = py::none())
+           py::arg("source"), py::arg("params") = py::none(), py::arg("set") = py::none())
       .def_property_readonly("path", &Case::path)
       .def_property_readonly("params", &Case::params, "the parameter set applied")
       .def_property_readonly("parameters", &Case::parameters,

@@ -12,6 +12,7 @@ import signal
 import subprocess
 import threading
 import time
+import tomllib
 
 import numpy as np
 import pytest
@@ -283,3 +284,21 @@ def test_fit_equals_the_program(tmp_path):
     assert abs(fit.parameters["d"] - 2.4e-6) < 3 * fit.errors[0]
     assert abs(fit.parameters["s"] - 4.51e-5) < 3 * fit.errors[1]
     assert fit.correlation.shape == (3, 3)
+
+
+def test_case_from_a_dict():
+    # row2.toml read into a dict is the same case; a wrong key is named by its key path.
+    with open(ROW2, "rb") as f:
+        contents = tomllib.load(f)
+    from_dict = sympathy.Case(contents, params="table2")
+    from_file = sympathy.Case(ROW2, params="table2")
+    assert from_dict.parameters == from_file.parameters
+    assert from_dict.orbit(start="anti-phase").period == from_file.orbit(start="anti-phase").period
+    contents["metronome"]["mpp"] = contents["metronome"].pop("mp")
+    with pytest.raises(sympathy.InputError) as error:
+        sympathy.Case(contents)
+    message = str(error.value)
+    assert message.startswith("the case dict: key 'metronome.mpp': expected one of the keys")
+    assert "sympathy-case-" not in message and ".toml" not in message
+    with pytest.raises(sympathy.InputError, match=r"key 'metronome.mp\[0\]': expected a str"):
+        sympathy.Case({"metronome": {"mp": [None]}})
