@@ -318,6 +318,57 @@ py::object curve_result(const BifurcationCurve& curve) {
   return with_fields(fields);
 }
 
+py::object equilibria_result(const EquilibriumBranch& branch) {
+  using P = EquilibriumPoint;
+  const auto& points = branch.points;
+  auto complex_vector = [](const Eigen::VectorXcd& v) {
+    return std::vector<std::complex<double>>(v.data(), v.data() + v.size());
+  };
+  py::dict arrays;
+  arrays["index"] = column_of(points, [](const P& p) { return p.index; });
+  arrays["value"] = column_of(points, [](const P& p) { return p.parameter; });
+  arrays["unstable"] = column_of(points, [](const P& p) { return p.unstable; });
+  arrays["residual"] = column_of(points, [](const P& p) { return p.residual; });
+  arrays["step"] = column_of(points, [](const P& p) { return p.step; });
+  arrays["iterations"] = column_of(points, [](const P& p) { return p.iterations; });
+  std::vector<Eigen::VectorXd> states;
+  for (const auto& p : points) states.push_back(p.state);
+  arrays["state"] = matrix_array(states, static_cast<int>(branch.state_names.size()));
+  arrays["eigenvalues"] =
+      complex_rows(points, [&](const P& p) { return complex_vector(p.eigenvalues); });
+  py::list events;
+  for (const auto& e : branch.events) {
+    py::dict f;
+    f["type"] = to_string(e.type);
+    f["value"] = e.parameter;
+    f["uncertainty"] = e.uncertainty;
+    f["located"] = e.located;
+    f["state"] = vector_array(e.state);
+    const auto eigenvalues = complex_vector(e.eigenvalues);
+    py::array_t<std::complex<double>> ev(static_cast<py::ssize_t>(eigenvalues.size()));
+    std::copy(eigenvalues.begin(), eigenvalues.end(), ev.mutable_data());
+    f["eigenvalues"] = ev;
+    f["note"] = e.note;
+    f["after_point"] = e.after_point;
+    if (e.hopf) {
+      f["omega"] = e.hopf->omega;
+      f["period"] = e.hopf->period;
+      f["lyapunov"] = e.hopf->lyapunov ? py::cast(*e.hopf->lyapunov) : py::none();
+    }
+    events.append(with_fields(f));
+  }
+  py::dict fields;
+  fields["parameter"] = branch.parameter_name;
+  fields["points"] = with_fields(arrays);
+  fields["events"] = events;
+  fields["stop"] = to_string(branch.stop);
+  fields["stop_reason"] = branch.stop_reason;
+  fields["started"] = branch.started();
+  fields["seconds"] = branch.seconds;
+  fields["state_names"] = branch.state_names;
+  return with_fields(fields);
+}
+
 py::object fit_result(const OdeSystem& model, const PreparedFit& fit,
                       const TrajectoryFitResult& result) {
   auto matrix = [](const Eigen::MatrixXd& m) {

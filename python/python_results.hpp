@@ -13,6 +13,7 @@
 #include "sympathy/cases/parameter_fit.hpp"
 #include "sympathy/continuation/bifurcation_curve.hpp"
 #include "sympathy/continuation/branch.hpp"
+#include "sympathy/continuation/equilibrium_branch.hpp"
 #include "sympathy/continuation/orbit_describer.hpp"
 #include "sympathy/core/trajectory_fit.hpp"
 
@@ -50,6 +51,10 @@ py::object curve_point_result(const CurvePoint& p);
 // located, crossing_symmetry, note, after_point), stop, stop_reason, origin, symmetry, subspace,
 // seconds, evaluations, state_names.
 py::object curve_result(const BifurcationCurve& curve);
+// parameter, points (arrays along the branch: index, value, state, eigenvalues, unstable,
+// residual, step, iterations), events (type, value, uncertainty, located, state, eigenvalues,
+// note, after_point, and for HB omega, period, lyapunov), stop, stop_reason, seconds, state_names.
+py::object equilibria_result(const EquilibriumBranch& branch);
 // names (the unknowns: "d", "th1(0)"), start, values, errors, covariance, correlation, rss_start,
 // rss, residuals, sigma2, column_rms (by recorded column), rank, condition, evaluations,
 // converged, stop_reason, seconds, parameters (every parameter of the model at the fitted values).

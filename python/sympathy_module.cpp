@@ -26,6 +26,7 @@
 #include "python_options.hpp"
 #include "python_results.hpp"
 #include "sympathy/continuation/curve_output.hpp"
+#include "sympathy/continuation/equilibrium_output.hpp"
 #include "sympathy/core/errors.hpp"
 
 namespace sympathy::python {
@@ -212,6 +213,40 @@ class Case {
     return branch_result(branch, c.describer());
   }
 
+  py::object equilibria(const py::object& progress, const py::kwargs& kwargs) const {
+    const cli::Arguments args = command_arguments(
+        "equilibria", line_, kwargs, cli::equilibria_options(), {"params", "quiet", "json"});
+    const cli::LoadedSystem c(args);
+    const cli::EquilibriaRequest request = cli::equilibria_request(args, c);
+    const std::string parameter = c.system().parameter_names()[request.problem.parameter];
+    std::unique_ptr<EquilibriumCsvWriter> csv;
+    if (!request.csv_path.empty())
+      csv = std::make_unique<EquilibriumCsvWriter>(request.csv_path, c.system(), parameter);
+    PythonHooks hooks(progress);
+    EquilibriumCallbacks callbacks;
+    callbacks.on_point = [&](const EquilibriumPoint& p) {
+      if (csv) csv->write(p);
+      hooks.report([&] {
+        py::dict f;
+        f["index"] = p.index;
+        f["value"] = p.parameter;
+        f["unstable"] = p.unstable;
+        f["step"] = p.step;
+        f["iterations"] = p.iterations;
+        return py::module_::import("types").attr("SimpleNamespace")(**f);
+      });
+    };
+    callbacks.stop_requested = [&] { return hooks.stop_requested(); };
+    EquilibriumBranch branch;
+    {
+      py::gil_scoped_release release;
+      branch = continue_equilibria(c.system(), request.problem, request.options, callbacks);
+      if (csv) csv->close();
+    }
+    hooks.raise_kept();
+    return equilibria_result(branch);
+  }
+
   py::object fit(const py::kwargs& kwargs) const {
     const cli::Arguments args = command_arguments("fit", line_, kwargs, cli::fit_options(),
                                                   {"params", "out", "json", "csv"});
@@ -369,6 +404,10 @@ PYBIND11_MODULE(sympathy, m) {
            "param, from_, to, at, start, step, max_step, max_points, switch_at, ...; "
            "progress(point) is called per point; Ctrl-C returns the points so far, stop "
            "'interrupted'")
+      .def("equilibria", &Case::equilibria, py::arg("progress") = py::none(),
+           "sympathy equilibria: a branch of equilibria (points: value, state, eigenvalues, "
+           "unstable; events LP, BP, HB with omega, period and lyapunov); options param, from_, "
+           "to, at, start, step, max_step, max_points; progress(point) per point")
       .def("fit", &Case::fit,
            "sympathy fit: parameters (free=['d', 's']) and initial values (free_initial=['th1']) "
            "fitted to a recording (data='FILE.csv'): names, values, errors, correlation, rss, "

@@ -16,6 +16,7 @@
 #include "cases/cli/study_file.hpp"
 #include "sympathy/cases/parameter_fit.hpp"
 #include "sympathy/continuation/bifurcation_curve.hpp"
+#include "sympathy/continuation/equilibrium_branch.hpp"
 #include "sympathy/continuation/periodic_orbit.hpp"
 #include "sympathy/core/flow.hpp"
 #include "sympathy/core/trajectory_fit.hpp"
@@ -68,6 +69,17 @@ struct StudyRun {
 std::vector<OptionSpec> study_options();
 StudyRun study_run(const Arguments& args);
 void run_study_branches(StudyRun& run, const std::atomic<bool>* stop, std::FILE* progress);
+
+// sympathy equilibria: its options, and the engine's problem and options read from them, checked
+// against the case `c` (the problem's and the options' own checks, the range, the outputs).
+struct EquilibriaRequest {
+  std::string start;  // "" for an equation case file's [states]
+  EquilibriumProblem problem;
+  EquilibriumOptions options;
+  std::string csv_path;  // "" for none
+};
+std::vector<OptionSpec> equilibria_options();
+EquilibriaRequest equilibria_request(const Arguments& args, const LoadedSystem& c);
 
 // sympathy fit: its options, and the case (behind a pointer: the request's start points into it),
 // the request and the engine's options read from them, every output checked (before any work).

@@ -37,7 +37,7 @@ def events_table(stdout):
     start = next(i for i, line in enumerate(lines) if line.startswith("bifurcations"))
     for line in lines[start + 2:]:
         fields = line.split()
-        if not fields or fields[0].rstrip("?") not in ("LP", "BP", "PD", "NS", "UZ"):
+        if not fields or fields[0].rstrip("?") not in ("LP", "BP", "PD", "NS", "UZ", "HB"):
             break
         rows.append((fields[0], fields[1]))
     return rows
@@ -302,3 +302,20 @@ def test_case_from_a_dict():
     assert "sympathy-case-" not in message and ".toml" not in message
     with pytest.raises(sympathy.InputError, match=r"key 'metronome.mp\[0\]': expected a str"):
         sympathy.Case({"metronome": {"mp": [None]}})
+
+
+def test_equilibria_equal_the_program():
+    # AUTO's demo abc: four Hopf points of the equilibria (cases/examples/abc.toml; its header
+    # gives AUTO's values, p1 = 0.204184536, 0.229839038, 0.259957854, 0.346208522).
+    abc = os.path.join(SOURCE, "cases/examples/abc.toml")
+    stdout = cli("equilibria", abc, "--param", "p1", "--from", "0", "--to", "0.4", "--quiet")
+    seen = []
+    branch = sympathy.Case(abc).equilibria(param="p1", from_=0, to=0.4, progress=seen.append)
+    assert [(e.type, "%.12g" % e.value) for e in branch.events] == events_table(stdout)
+    assert [round(e.value, 9) for e in branch.events] == [0.204184536, 0.229839038, 0.259957854,
+                                                         0.346208522]
+    first = branch.events[0]
+    assert "omega %.10g, period %.10g" % (first.omega, first.period) in stdout
+    assert first.lyapunov < 0  # supercritical
+    assert len(seen) == len(branch.points.value) and branch.stop == "parameter bound"
+    assert branch.points.eigenvalues.shape == (len(seen), 3)
