@@ -1,7 +1,8 @@
-// The Python module `sympathy`: a case file (of either kind) as a Case, and its simulate, orbit
-// and continue_branch, each the command of the same name run on the same code as the program
-// (cases/cli): keyword arguments are the command's options (python_options.hpp), results the
-// engine's as NumPy arrays and objects (python_results.hpp). Nothing numerical happens here.
+// The Python module `sympathy`: a case file (of either kind, or a dict: case_dict.hpp) as a Case,
+// and its simulate, orbit, continue_branch, curve, equilibria and fit, and study: each the command
+// of the same name run on the same code as the program (cases/cli/requests.hpp): keyword
+// arguments are the command's options (python_options.hpp), results the engine's as NumPy arrays
+// and objects (python_results.hpp). Nothing numerical happens here.
 //
 // The engine runs with the GIL released. Its stop check (polled between a branch's points, and
 // between a simulation's output samples) takes the GIL back for a moment to run Python's pending
