@@ -39,6 +39,15 @@ function(sympathy_target_sanitizers target)
   endif()
 endfunction()
 
+# Static libraries compiled position-independent, so that a shared object can link them: the Python
+# module (python/), or a user's plug-in. -fno-semantic-interposition keeps what -fPIC alone takes
+# from GCC (inlining and direct calls between a library's own functions, which -fPIE allows): the
+# libraries are never interposed.
+function(sympathy_position_independent target)
+  set_target_properties(${target} PROPERTIES POSITION_INDEPENDENT_CODE ON)
+  target_compile_options(${target} PRIVATE $<$<CXX_COMPILER_ID:GNU>:-fno-semantic-interposition>)
+endfunction()
+
 # sympathy_add_library(<name> <source>...): the library sympathy_<name>, used in the tree and
 # by an installed package alike as sympathy::<name> (an ALIAS here, the exported name there),
 # with the public headers of include/ (include/sympathy/<layer>/...).
@@ -46,6 +55,7 @@ function(sympathy_add_library name)
   add_library(sympathy_${name} ${ARGN})
   add_library(sympathy::${name} ALIAS sympathy_${name})
   set_target_properties(sympathy_${name} PROPERTIES EXPORT_NAME ${name})
+  sympathy_position_independent(sympathy_${name})
   target_include_directories(sympathy_${name} PUBLIC
     $<BUILD_INTERFACE:${PROJECT_SOURCE_DIR}/include>
     $<INSTALL_INTERFACE:${CMAKE_INSTALL_INCLUDEDIR}>)

@@ -57,6 +57,7 @@ Branch run_branch(const BranchSource& source, const BranchRequest& request,
   ContinuationCallbacks callbacks;
   callbacks.on_point = [&](const ContinuationPoint& p) {
     if (csv) csv->write(p);
+    if (request.on_point) request.on_point(p);
     if (request.progress)
       std::fprintf(request.progress,
                    "  [%4d] %s = %-14.9g T = %.9f s  %-8s max|mu| %.6f  ds %.2g (%d it)\n", p.index,
@@ -81,7 +82,9 @@ Branch run_branch(const BranchSource& source, const BranchRequest& request,
                    to_string(e.type).c_str(), request.parameter.c_str(), e.parameter, e.uncertainty,
                    e.note.empty() ? "" : ": ", e.note.c_str());
   };
-  callbacks.stop_requested = [&] { return stop && stop->load(); };
+  callbacks.stop_requested = [&] {
+    return (stop && stop->load()) || (request.stop_requested && request.stop_requested());
+  };
   if (request.switch_at.empty()) {
     Branch branch = continue_branch(model, problem, request.continuation, callbacks, &describer);
     if (csv) csv->close();
@@ -97,7 +100,7 @@ Branch run_branch(const BranchSource& source, const BranchRequest& request,
       q.description = describer.describe(q.orbit);
       callbacks.on_point(q);
     };
-    Branch born = run_hopf_branch(source, request, *hb, described, stop);
+    Branch born = run_hopf_branch(source, request, *hb, described);
     for (auto& p : born.points) p.description = describer.describe(p.orbit);
     if (csv) csv->close();
     if (events) events->close();
@@ -128,7 +131,7 @@ Branch run_branch(const BranchSource& source, const BranchRequest& request,
   if (parent.parameter_name != request.parameter)
     throw InputError("--parent " + request.parent_path + ": a branch in " + parent.parameter_name +
                      "; expected one in --param " + request.parameter);
-  if (stop && stop->load()) return parent;
+  if (callbacks.stop_requested()) return parent;
   const Bifurcation& event = find_event(parent, name, "--switch-at");
   if (request.progress)
     std::fprintf(request.progress, "  switching at %s: %s = %.10g\n", name.text.c_str(),

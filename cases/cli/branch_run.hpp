@@ -5,6 +5,7 @@
 
 #include <atomic>
 #include <cstdio>
+#include <functional>
 #include <optional>
 #include <string>
 #include <vector>
@@ -40,6 +41,11 @@ struct BranchRequest {
   std::string parent_path;
   // ... or this one, already computed (a study branch that switches at an event of another).
   const Branch* parent_branch = nullptr;
+  // A caller's own hooks (the Python module's progress callback and signal check): each point of
+  // the branch returned, as it is found (after the CSV row), and a stop check asked beside
+  // run_branch's flag.
+  std::function<void(const ContinuationPoint&)> on_point;
+  std::function<bool()> stop_requested;
 };
 
 // What a branch needs from a case of either kind (a metronome case file, an equation case

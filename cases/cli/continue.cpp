@@ -11,6 +11,7 @@
 #include "cases/cli/hopf_switch.hpp"
 #include "cases/cli/loaded_system.hpp"
 #include "cases/cli/report.hpp"
+#include "cases/cli/requests.hpp"
 #include "cases/cli/start_data.hpp"
 #include "sympathy/cases/equation_case.hpp"
 #include "sympathy/cases/state_describer.hpp"
@@ -19,7 +20,7 @@
 
 namespace sympathy::cli {
 
-int run_continue(const std::vector<std::string>& argv) {
+std::vector<OptionSpec> continue_options() {
   auto options = case_options();
   options.insert(
       options.end(),
@@ -56,12 +57,10 @@ int run_continue(const std::vector<std::string>& argv) {
   options.insert(options.end(), integrator.begin(), integrator.end());
   options.push_back(accuracy_option());
   options.push_back(start_data_option());
-  Arguments args("continue", argv, options, {"CASE"});
+  return options;
+}
 
-  Stopwatch clock;
-  // The case: a metronome case file, or an equation case file (its system compiled or from the
-  // cache; its start the file's [states] unless --start names one).
-  const LoadedSystem c(args);
+BranchRequest continue_request(const Arguments& args, const LoadedSystem& c) {
   const ParameterWindow window = c.window(args);
   BranchRequest request;
   request.start_data = c.start_data();
@@ -111,7 +110,7 @@ int run_continue(const std::vector<std::string>& argv) {
   check_options(o.validate(), "");
   c.check_range(request.parameter, window.ends());
   // The start (fails early with the list of starts).
-  const BranchSource source = c.source(request.start, request.initial, request.start_data);
+  c.source(request.start, request.initial, request.start_data);
   const auto json_path = args.value("--json");
   if (json_path) check_writable(*json_path, "--json");
   request.events_path = args.text("--events", "");
@@ -124,6 +123,18 @@ int run_continue(const std::vector<std::string>& argv) {
                           {"--parent", request.parent_path},
                           {"--start-data", args.text("--start-data", "")}});
 
+  return request;
+}
+
+int run_continue(const std::vector<std::string>& argv) {
+  Arguments args("continue", argv, continue_options(), {"CASE"});
+  Stopwatch clock;
+  // The case: a metronome case file, or an equation case file (its system compiled or from the
+  // cache; its start the file's [states] unless --start names one).
+  const LoadedSystem c(args);
+  const BranchRequest request = continue_request(args, c);
+  const BranchSource source = c.source(request.start, request.initial, request.start_data);
+  const auto json_path = args.value("--json");
   const std::string start_name = request.start_data      ? describe_start_data(*request.start_data)
                                  : request.start.empty() ? "(the file's [states])"
                                                          : request.start;

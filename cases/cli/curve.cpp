@@ -9,6 +9,7 @@
 #include "cases/cli/branch_run.hpp"
 #include "cases/cli/commands.hpp"
 #include "cases/cli/loaded_system.hpp"
+#include "cases/cli/requests.hpp"
 #include "sympathy/continuation/bifurcation_curve.hpp"
 #include "sympathy/continuation/branch_output.hpp"
 #include "sympathy/continuation/curve_output.hpp"
@@ -34,7 +35,7 @@ void print_curve_events(std::FILE* out, const BifurcationCurve& curve) {
 
 }  // namespace
 
-int run_curve(const std::vector<std::string>& argv) {
+std::vector<OptionSpec> curve_options() {
   auto options = case_options();
   options.insert(
       options.end(),
@@ -61,23 +62,25 @@ int run_curve(const std::vector<std::string>& argv) {
   const auto integrator = integrator_options();
   options.insert(options.end(), integrator.begin(), integrator.end());
   options.push_back(accuracy_option());
-  Arguments args("curve", argv, options, {"CASE"});
+  return options;
+}
 
-  Stopwatch clock;
-  const LoadedSystem c(args);
+CurveRequest curve_request(const Arguments& args, const LoadedSystem& c) {
   c.require_autonomous("curve (two-parameter curves)");
   const ParameterWindow window = c.window(args);
   for (const char* required : {"--event", "--second", "--second-from", "--second-to"})
     if (!args.has(required)) throw InputError(std::string(required) + " is required");
   if (!c.equations() && !args.has("--start")) throw InputError("--start is required");
-  BranchRequest request;
+  CurveRequest r;
+  BranchRequest& request = r.branch;
   request.start = args.text("--start", "");
   request.parameter = window.parameter;
   c.require_parameter("--second", *args.value("--second"));
-  const std::string second = *args.value("--second");
+  r.second = *args.value("--second");
+  const std::string& second = r.second;
   if (second == request.parameter)
     throw InputError("--second " + second + ": expected a parameter other than --param");
-  const EventName name = parse_event_name(
+  r.event = parse_event_name(
       *args.value("--event"), "--event",
       {BifurcationType::Fold, BifurcationType::BranchPoint, BifurcationType::PeriodDoubling,
        BifurcationType::NeimarkSacker},
@@ -95,31 +98,63 @@ int run_curve(const std::vector<std::string>& argv) {
   o.orbit.transient_flow.linear_solver = o.orbit.shooting.flow.linear_solver;
   check_options(o.validate(), "");
 
-  CurveOptions curve_options;
-  curve_options.first_lower = std::min(request.from, request.to);
-  curve_options.first_upper = std::max(request.from, request.to);
-  curve_options.second_lower = args.number("--second-from", 0.0);
-  curve_options.second_upper = args.number("--second-to", 0.0);
-  if (curve_options.second_lower > curve_options.second_upper)
-    std::swap(curve_options.second_lower, curve_options.second_upper);
-  if (curve_options.second_lower == curve_options.second_upper)
+  CurveOptions& co = r.options;
+  co.first_lower = std::min(request.from, request.to);
+  co.first_upper = std::max(request.from, request.to);
+  co.second_lower = args.number("--second-from", 0.0);
+  co.second_upper = args.number("--second-to", 0.0);
+  if (co.second_lower > co.second_upper) std::swap(co.second_lower, co.second_upper);
+  if (co.second_lower == co.second_upper)
     throw InputError("--second-from and --second-to: expected different values");
-  curve_options.initial_step = args.number("--step", curve_options.initial_step);
-  curve_options.max_step = args.number("--max-step", curve_options.max_step);
-  curve_options.max_points = args.integer("--max-points", curve_options.max_points);
-  curve_options.orbit = o.orbit;
-  check_options(curve_options.validate(), "");  // names initial_step --step, ...
+  co.initial_step = args.number("--step", co.initial_step);
+  co.max_step = args.number("--max-step", co.max_step);
+  co.max_points = args.integer("--max-points", co.max_points);
+  co.orbit = o.orbit;
+  check_options(co.validate(), "");  // names initial_step --step, ...
   c.check_range(request.parameter, {{"--from", request.from}, {"--to", request.to}});
-  c.check_range(second, {{"--second-from", curve_options.second_lower},
-                         {"--second-to", curve_options.second_upper}});
-  const BranchSource source = c.source(request.start, request.initial);
+  c.check_range(second, {{"--second-from", co.second_lower}, {"--second-to", co.second_upper}});
+  c.source(request.start, request.initial);  // fails early with the list of starts
   // The curve starts at the branch's value of the second parameter: the window must hold it.
   const double base_second = c.value_of(second);
-  if (base_second < curve_options.second_lower || base_second > curve_options.second_upper)
-    throw InputError("--second-from, --second-to: the window " +
-                     format_double(curve_options.second_lower) + " to " +
-                     format_double(curve_options.second_upper) + " does not contain the event (" +
+  if (base_second < co.second_lower || base_second > co.second_upper)
+    throw InputError("--second-from, --second-to: the window " + format_double(co.second_lower) +
+                     " to " + format_double(co.second_upper) + " does not contain the event (" +
                      second + " = " + format_double(base_second) + " on the branch)");
+  const auto names = c.system().parameter_names();
+  r.second_index = static_cast<int>(std::find(names.begin(), names.end(), second) - names.begin());
+  r.csv_path = args.text("--csv", "");
+  return r;
+}
+
+Branch curve_branch(const CurveRequest& r, const LoadedSystem& c, const BranchSource& source,
+                    const std::atomic<bool>* stop) {
+  if (r.branch.parent_path.empty()) return run_branch(source, r.branch, stop);
+  Branch parent = read_branch_json(r.branch.parent_path, c.system(), c.subspace(r.branch.start));
+  if (parent.parameter_name != r.branch.parameter)
+    throw InputError("--parent " + r.branch.parent_path + ": a branch in " + parent.parameter_name +
+                     "; expected one in --param " + r.branch.parameter);
+  return parent;
+}
+
+BifurcationCurve follow_curve(const CurveRequest& r, const OdeSystem& system, const Branch& parent,
+                              const Bifurcation& event, const CurveCallbacks& callbacks) {
+  try {
+    return continue_curve(system, parent, event, r.second_index, r.options, callbacks);
+  } catch (const std::invalid_argument& e) {
+    throw InputError("--event " + r.event.text + ": " + e.what());
+  }
+}
+
+int run_curve(const std::vector<std::string>& argv) {
+  Arguments args("curve", argv, curve_options(), {"CASE"});
+  Stopwatch clock;
+  const LoadedSystem c(args);
+  const CurveRequest r = curve_request(args, c);
+  const BranchRequest& request = r.branch;
+  const EventName& name = r.event;
+  const std::string& second = r.second;
+  const CurveOptions& curve_options = r.options;
+  const BranchSource source = c.source(request.start, request.initial);
   const auto json_path = args.value("--json");
   const std::string csv_path = args.text("--csv", "");
   if (json_path) check_writable(*json_path, "--json");
@@ -137,15 +172,7 @@ int run_curve(const std::vector<std::string>& argv) {
   if (c.equations()) std::printf("  %s\n", c.build_note().c_str());
   std::fflush(stdout);
   const OdeSystem& model = c.system();
-  Branch parent;
-  if (request.parent_path.empty()) {
-    parent = run_branch(source, request, interrupt_flag());
-  } else {
-    parent = read_branch_json(request.parent_path, model, c.subspace(request.start));
-    if (parent.parameter_name != request.parameter)
-      throw InputError("--parent " + request.parent_path + ": a branch in " +
-                       parent.parameter_name + "; expected one in --param " + request.parameter);
-  }
+  const Branch parent = curve_branch(r, c, source, interrupt_flag());
   if (!parent.started()) {
     std::printf("  the branch: %s\n  run time %.3f s\n", parent.stop_reason.c_str(),
                 clock.seconds());
@@ -182,15 +209,7 @@ int run_curve(const std::vector<std::string>& argv) {
                    request.parameter.c_str(), e.first, second.c_str(), e.second);
   };
   callbacks.stop_requested = [] { return interrupt_flag()->load(); };
-  BifurcationCurve curve;
-  try {
-    const auto names = model.parameter_names();
-    const int index =
-        static_cast<int>(std::find(names.begin(), names.end(), second) - names.begin());
-    curve = continue_curve(model, parent, event, index, curve_options, callbacks);
-  } catch (const std::invalid_argument& e) {
-    throw InputError("--event " + name.text + ": " + e.what());
-  }
+  const BifurcationCurve curve = follow_curve(r, model, parent, event, callbacks);
   if (csv) csv->close();
   std::printf("  %zu points; stopped: %s\n", curve.points.size(), curve.stop_reason.c_str());
   std::printf("codimension-two points and turns:\n");

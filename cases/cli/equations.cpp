@@ -6,6 +6,7 @@
 
 #include "cases/cli/common.hpp"
 #include "cases/cli/report.hpp"
+#include "cases/cli/requests.hpp"
 #include "cases/cli/start_data.hpp"
 #include "sympathy/cases/state_describer.hpp"
 #include "sympathy/continuation/branch_output.hpp"
@@ -97,15 +98,7 @@ int run_orbit_equations(const Arguments& args) {
   const Eigen::VectorXd z0 =
       recorded ? recorded->state0 : e.file.initial_state(start, args.assignments("--initial"));
 
-  OrbitOptions o;
-  o.shooting.segments = args.integer("--segments", 1);
-  // A forced system's orbit: Newton from the start at once unless a transient is asked for (its
-  // period is known; a transient would leave an unstable response for whatever attracts).
-  o.transient = args.number("--transient", system.autonomous() ? o.transient : 0.0);
-  apply_accuracy(accuracy(args), o);
-  o.shooting.flow = flow_options(args, o.shooting.flow);
-  o.transient_flow.linear_solver = o.shooting.flow.linear_solver;
-  check_options(o.validate(), "");
+  const OrbitOptions o = orbit_request(args, !system.autonomous());
   if (auto path = args.value("--json")) {
     check_writable(*path, "--json");
     check_distinct_outputs({{"--json", *path}}, {{"case file", e.file.path()},

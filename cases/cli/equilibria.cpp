@@ -9,6 +9,7 @@
 #include "cases/cli/commands.hpp"
 #include "cases/cli/common.hpp"
 #include "cases/cli/loaded_system.hpp"
+#include "cases/cli/requests.hpp"
 #include "sympathy/continuation/branch_output.hpp"
 #include "sympathy/continuation/equilibrium_output.hpp"
 
@@ -53,7 +54,7 @@ void print_equilibrium_events(const EquilibriumBranch& branch) {
 
 }  // namespace
 
-int run_equilibria(const std::vector<std::string>& argv) {
+std::vector<OptionSpec> equilibria_options() {
   auto options = case_options();
   options.insert(
       options.end(),
@@ -72,42 +73,59 @@ int run_equilibria(const std::vector<std::string>& argv) {
        {"--json", "FILE", false,
         "write the branch and its events as JSON (continue --switch-at HB1 --parent reads it)"},
        {"--quiet", "", false, "no progress lines"}});
-  Arguments args("equilibria", argv, options, {"CASE"});
+  return options;
+}
 
-  Stopwatch clock;
-  const LoadedSystem c(args);
+EquilibriaRequest equilibria_request(const Arguments& args, const LoadedSystem& c) {
   c.require_autonomous("equilibria");
+  EquilibriaRequest r;
   const OdeSystem& system = c.system();
   const ParameterWindow window = c.window(args);
   if (!c.equations() && !args.has("--start")) throw InputError("--start is required");
-  const std::string start_name = args.text("--start", "");
+  r.start = args.text("--start", "");
   const std::string& parameter = window.parameter;
 
-  EquilibriumProblem problem;
+  EquilibriumProblem& problem = r.problem;
   problem.parameter = system.parameter_index(parameter);
   problem.from = window.from;
   problem.to = window.to;
   problem.at = window.at;
   c.check_range(parameter, window.ends());
-  const BranchSource source = c.source(start_name, args.assignments("--initial"));
+  const BranchSource source = c.source(r.start, args.assignments("--initial"));
   problem.start_state = source.start_state;
   problem.values = source.values;
   if (const std::string wrong = problem.problem_with(system); !wrong.empty())
     throw InputError("--" + wrong);
-  EquilibriumOptions o;
+  EquilibriumOptions& o = r.options;
   o.initial_step = args.number("--step", o.initial_step);
   o.max_step = args.number("--max-step", o.max_step);
   o.max_points = args.integer("--max-points", o.max_points);
   o.lower = std::min(problem.from, problem.to);
   o.upper = std::max(problem.from, problem.to);
   check_options(o.validate(), "");
-  const std::string csv_path = args.text("--csv", "");
+  r.csv_path = args.text("--csv", "");
+  const std::string& csv_path = r.csv_path;
   const auto json_path = args.value("--json");
   if (!csv_path.empty()) check_writable(csv_path, "--csv");
   if (json_path) check_writable(*json_path, "--json");
   check_distinct_outputs({{"--csv", csv_path}, {"--json", json_path.value_or("")}},
                          {{"case file", c.path()}});
 
+  return r;
+}
+
+int run_equilibria(const std::vector<std::string>& argv) {
+  Arguments args("equilibria", argv, equilibria_options(), {"CASE"});
+  Stopwatch clock;
+  const LoadedSystem c(args);
+  const OdeSystem& system = c.system();
+  const EquilibriaRequest r = equilibria_request(args, c);
+  const EquilibriumProblem& problem = r.problem;
+  const EquilibriumOptions& o = r.options;
+  const std::string& start_name = r.start;
+  const std::string parameter = system.parameter_names()[problem.parameter];
+  const std::string& csv_path = r.csv_path;
+  const auto json_path = args.value("--json");
   std::printf("sympathy equilibria %s  params %s  start %s  %s from %g to %g\n", c.path().c_str(),
               c.params().empty() ? "(none)" : c.params().c_str(),
               start_name.empty() ? "(the file's [states])" : start_name.c_str(), parameter.c_str(),

@@ -12,6 +12,7 @@
 #include "cases/cli/common.hpp"
 #include "cases/cli/equations.hpp"
 #include "cases/cli/report.hpp"
+#include "cases/cli/requests.hpp"
 #include "sympathy/cases/case_writer.hpp"
 #include "sympathy/cases/parameter_fit.hpp"
 #include "sympathy/continuation/branch_output.hpp"
@@ -76,7 +77,7 @@ std::string short_number(double v, int digits = 2) {
 
 }  // namespace
 
-int run_fit(const std::vector<std::string>& argv) {
+std::vector<OptionSpec> fit_options() {
   auto options = case_options();
   options.insert(
       options.end(),
@@ -101,12 +102,12 @@ int run_fit(const std::vector<std::string>& argv) {
        {"--csv", "FILE", false, "write the fitted model at the data's times (scripts/plot_fit)"}});
   const auto integrator = integrator_options();
   options.insert(options.end(), integrator.begin(), integrator.end());
-  Arguments args("fit", argv, options, {"CASE"});
+  return options;
+}
 
-  Stopwatch clock;
+FitSetup fit_setup(const Arguments& args) {
+  FitSetup setup;
   // A metronome case file, or an equation case file (its system compiled, or from the cache).
-  std::optional<LoadedCase> metronomes;
-  std::optional<LoadedEquations> equations;
   if (case_file_kind(args.positional(0)) == "equations") {
     for (const char* option : {"--locked-pendula", "--out"})
       if (args.has(option))
@@ -114,14 +115,19 @@ int run_fit(const std::vector<std::string>& argv) {
                          args.positional(0) +
                          " is an equation case file: its fitted values are in the report and "
                          "--json; run it with --set NAME=VALUE)");
-    equations.emplace(
+    setup.equations = std::make_unique<LoadedEquations>(
         load_equations(args.positional(0), args.text("--params", ""), args.assignments("--set")));
+    setup.case_path = setup.equations->file.path();
+    setup.params = setup.equations->params;
   } else {
-    metronomes.emplace(load_case(args));
+    setup.c = std::make_unique<LoadedCase>(load_case(args));
+    setup.case_path = setup.c->file.path();
+    setup.params = setup.c->params;
   }
-  const std::string case_path = equations ? equations->file.path() : metronomes->file.path();
-  const std::string params = equations ? equations->params : metronomes->params;
-  FitRequest request;
+  const auto& equations = setup.equations;
+  const auto& metronomes = setup.c;
+  const std::string& case_path = setup.case_path;
+  FitRequest& request = setup.request;
   if (!args.has("--data")) throw InputError("--data FILE.csv is required (the recording)");
   request.data = *args.value("--data");
   request.free = names(args, "--free");
@@ -134,7 +140,7 @@ int run_fit(const std::vector<std::string>& argv) {
   request.sigma = args.assignments("--sigma");
   for (const auto& r : args.values("--range")) request.ranges.push_back(parse_range(r, "--range"));
 
-  TrajectoryFitOptions o;
+  TrajectoryFitOptions& o = setup.options;
   o.flow = flow_options(args, o.flow);
   o.local = local_method(args.text("--local", "lm"));
   o.polish = !args.flag("--no-polish");
@@ -156,11 +162,28 @@ int run_fit(const std::vector<std::string>& argv) {
                           {"--csv", args.text("--csv", "")}},
                          {{"case file", case_path}, {"recording (--data)", request.data}});
 
-  PreparedFit fit = equations
-                        ? prepare_fit(equation_fit_model(equations->file, *equations->build.system,
-                                                         equations->values),
-                                      request)
-                        : prepare_fit(metronomes->file, metronomes->spec, request);
+  return setup;
+}
+
+PreparedFit FitSetup::prepare() const {
+  return equations
+             ? sympathy::prepare_fit(
+                   equation_fit_model(equations->file, *equations->build.system, equations->values),
+                   request)
+             : sympathy::prepare_fit(c->file, c->spec, request);
+}
+
+int run_fit(const std::vector<std::string>& argv) {
+  Arguments args("fit", argv, fit_options(), {"CASE"});
+  Stopwatch clock;
+  const FitSetup setup = fit_setup(args);
+  const auto& equations = setup.equations;
+  const auto& metronomes = setup.c;
+  const std::string& case_path = setup.case_path;
+  const std::string& params = setup.params;
+  const FitRequest& request = setup.request;
+  const TrajectoryFitOptions& o = setup.options;
+  PreparedFit fit = setup.prepare();
   // Units of the recorded columns: the metronome model's (m, rad); an equation case file's
   // states have none.
   const auto unit_of = [&](const std::string& state) {

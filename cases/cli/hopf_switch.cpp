@@ -74,7 +74,7 @@ EquilibriumBranch read_equilibria_json(const std::string& path, const OdeSystem&
 }
 
 Branch run_hopf_branch(const BranchSource& source, const BranchRequest& request, int ordinal,
-                       const ContinuationCallbacks& callbacks, const std::atomic<bool>* stop) {
+                       const ContinuationCallbacks& callbacks) {
   const OdeSystem& system = source.system;
   const int parameter = system.parameter_index(request.parameter);
   EquilibriumBranch parent;
@@ -92,7 +92,7 @@ Branch run_hopf_branch(const BranchSource& source, const BranchRequest& request,
     problem.at = request.at;
     problem.start_state = source.start_state;
     EquilibriumCallbacks cb;
-    cb.stop_requested = [&] { return stop && stop->load(); };
+    cb.stop_requested = callbacks.stop_requested;
     if (request.progress)
       cb.on_event = [&](const EquilibriumEvent& e) {
         std::fprintf(request.progress, "  (equilibria) >> %s at %s = %.10g\n",

@@ -21,8 +21,9 @@ std::optional<int> parse_hopf_name(const std::string& text, const std::string& o
 EquilibriumBranch read_equilibria_json(const std::string& path, const OdeSystem& system);
 
 // The family born at the `ordinal`-th Hopf point of the equilibria of `source` over the request's
-// window; points and events reach `callbacks` (the CSV and progress of run_branch).
+// window; points and events reach `callbacks` (the CSV and progress of run_branch), whose stop
+// check stops the equilibria too.
 Branch run_hopf_branch(const BranchSource& source, const BranchRequest& request, int ordinal,
-                       const ContinuationCallbacks& callbacks, const std::atomic<bool>* stop);
+                       const ContinuationCallbacks& callbacks);
 
 }  // namespace sympathy::cli

@@ -10,6 +10,7 @@
 #include "cases/cli/common.hpp"
 #include "cases/cli/equations.hpp"
 #include "cases/cli/report.hpp"
+#include "cases/cli/requests.hpp"
 #include "cases/cli/start_data.hpp"
 #include "sympathy/continuation/branch_output.hpp"
 #include "sympathy/continuation/periodic_orbit.hpp"
@@ -17,7 +18,7 @@
 
 namespace sympathy::cli {
 
-int run_orbit(const std::vector<std::string>& argv) {
+std::vector<OptionSpec> orbit_options() {
   auto options = case_options();
   options.insert(
       options.end(),
@@ -34,7 +35,25 @@ int run_orbit(const std::vector<std::string>& argv) {
   options.insert(options.end(), integrator.begin(), integrator.end());
   options.push_back(accuracy_option());
   options.push_back(start_data_option());
-  Arguments args("orbit", argv, options, {"CASE"});
+  return options;
+}
+
+OrbitOptions orbit_request(const Arguments& args, bool forced) {
+  OrbitOptions o;
+  o.shooting.segments = args.integer("--segments", 1);
+  // A forced system's orbit: Newton from the start at once unless a transient is asked for (its
+  // period is known; a transient would leave an unstable response for whatever attracts).
+  o.transient = args.number("--transient", forced ? 0.0 : o.transient);
+  apply_accuracy(accuracy(args), o);
+  o.shooting.flow = flow_options(args, o.shooting.flow);
+  o.transient_flow.linear_solver = o.shooting.flow.linear_solver;
+  o.use_symmetry = !args.flag("--whole-state");
+  check_options(o.validate(), "");
+  return o;
+}
+
+int run_orbit(const std::vector<std::string>& argv) {
+  Arguments args("orbit", argv, orbit_options(), {"CASE"});
 
   if (case_file_kind(args.positional(0)) == "equations") return run_orbit_equations(args);
   Stopwatch clock;
@@ -53,14 +72,7 @@ int run_orbit(const std::vector<std::string>& argv) {
   const Eigen::VectorXd z0 =
       start ? c.file.initial_state(start, args.assignments("--initial")) : recorded->state0;
 
-  OrbitOptions o;
-  o.shooting.segments = args.integer("--segments", 1);
-  o.transient = args.number("--transient", o.transient);
-  apply_accuracy(accuracy(args), o);
-  o.shooting.flow = flow_options(args, o.shooting.flow);
-  o.transient_flow.linear_solver = o.shooting.flow.linear_solver;
-  o.use_symmetry = !args.flag("--whole-state");
-  check_options(o.validate(), "");
+  const OrbitOptions o = orbit_request(args);
   if (auto path = args.value("--json")) {
     check_writable(*path, "--json");
     check_distinct_outputs({{"--json", *path}}, {{"case file", c.file.path()},

@@ -8,6 +8,7 @@
 #include "cases/cli/common.hpp"
 #include "cases/cli/equations.hpp"
 #include "cases/cli/report.hpp"
+#include "cases/cli/requests.hpp"
 #include "sympathy/cases/equation_case.hpp"
 #include "sympathy/cases/platform_model.hpp"
 #include "sympathy/core/csv.hpp"
@@ -15,7 +16,7 @@
 
 namespace sympathy::cli {
 
-int run_simulate(const std::vector<std::string>& argv) {
+std::vector<OptionSpec> simulate_options() {
   auto options = case_options();
   options.insert(options.end(),
                  {{"--start", "NAME", false, "named start of the case (in-phase, ...)"},
@@ -28,13 +29,36 @@ int run_simulate(const std::vector<std::string>& argv) {
                   {"--verbose", "", false, "the full report of the integration's work"}});
   const auto integrator = integrator_options();
   options.insert(options.end(), integrator.begin(), integrator.end());
-  Arguments args("simulate", argv, options, {"CASE"});
+  return options;
+}
 
-  Stopwatch clock;
+std::vector<double> simulation_times(const Arguments& args) {
   const double t_end = args.number("--t-end", 60.0);
   const double dt = args.number("--dt", 0.01);
   if (!(t_end > 0.0)) throw InputError("--t-end: expected a positive number of seconds");
   if (!(dt > 0.0 && dt <= t_end)) throw InputError("--dt: expected a positive interval <= --t-end");
+  const long count = static_cast<long>(std::floor(t_end / dt + 1e-9));
+  std::vector<double> times;
+  times.reserve(count + 2);
+  for (long i = 0; i <= count; ++i) times.push_back(i * dt);
+  if (t_end - times.back() > 1e-12) times.push_back(t_end);
+  return times;
+}
+
+FlowOptions simulation_flow_options(const Arguments& args) {
+  FlowOptions defaults;
+  defaults.rtol = 1e-8;
+  defaults.atol = 1e-10;
+  return flow_options(args, defaults);
+}
+
+int run_simulate(const std::vector<std::string>& argv) {
+  Arguments args("simulate", argv, simulate_options(), {"CASE"});
+
+  Stopwatch clock;
+  const std::vector<double> times = simulation_times(args);
+  const double t_end = args.number("--t-end", 60.0);
+  const double dt = args.number("--dt", 0.01);
   const bool locked = args.flag("--locked-pendula");
 
   // The system, its start and what the summary watches: an equation case file's (every state
@@ -101,10 +125,7 @@ int run_simulate(const std::vector<std::string>& argv) {
     params_name = c.params;
     directions = c.spec.directions;
   }
-  FlowOptions defaults;
-  defaults.rtol = 1e-8;
-  defaults.atol = 1e-10;
-  Flow flow(*system, flow_options(args, defaults));
+  Flow flow(*system, simulation_flow_options(args));
 
   const auto names = system->state_names();
   std::unique_ptr<CsvWriter> csv;
@@ -116,11 +137,6 @@ int run_simulate(const std::vector<std::string>& argv) {
   }
   OscillationAnalyzer analyzer(angles, watched, std::min(10.0, 0.5 * t_end));
 
-  const long count = static_cast<long>(std::floor(t_end / dt + 1e-9));
-  std::vector<double> times;
-  times.reserve(count + 2);
-  for (long i = 0; i <= count; ++i) times.push_back(i * dt);
-  if (t_end - times.back() > 1e-12) times.push_back(t_end);
   std::vector<double> row(names.size() + 1);
   std::string failure;
   const auto* stop = interrupt_flag();

@@ -11,28 +11,32 @@
 #include "cases/cli/branch_run.hpp"
 #include "cases/cli/commands.hpp"
 #include "cases/cli/loaded_system.hpp"
+#include "cases/cli/requests.hpp"
 #include "cases/cli/study_file.hpp"
 #include "sympathy/continuation/branch_output.hpp"
 
 namespace sympathy::cli {
 
-int run_study(const std::vector<std::string>& argv) {
-  Arguments args("study", argv,
-                 {{"--out", "DIR", false, "where the CSV and JSON files go (default out/figures)"},
-                  {"--jobs", "N", false, "branches computed side by side (default 2)"},
-                  accuracy_option()},
-                 {"STUDY"});
-  Stopwatch clock;
-  Study study = load_study(args.positional(0));
-  const std::string out = args.text("--out", "out/figures");
-  const int jobs = args.integer("--jobs", 2);
-  if (jobs < 1) throw InputError("--jobs: expected a positive integer");
+std::vector<OptionSpec> study_options() {
+  return {{"--out", "DIR", false, "where the CSV and JSON files go (default out/figures)"},
+          {"--jobs", "N", false, "branches computed side by side (default 2)"},
+          accuracy_option()};
+}
+
+StudyRun study_run(const Arguments& args) {
+  StudyRun run;
+  run.study = load_study(args.positional(0));
+  Study& study = run.study;
+  run.out = args.text("--out", "out/figures");
+  const std::string& out = run.out;
+  run.jobs = args.integer("--jobs", 2);
+  if (run.jobs < 1) throw InputError("--jobs: expected a positive integer");
   std::filesystem::create_directories(out);
 
   // Every branch's case, set and start checked before anything is computed: a metronome case
   // file or an equation case file (compiled once, its values per branch).
-  std::vector<std::unique_ptr<LoadedSystem>> systems;
-  std::vector<BranchSource> sources;
+  auto& systems = run.systems;
+  auto& sources = run.sources;
   std::vector<std::optional<RecordedPeriod>> recorded;  // each branch's start_data, if any
   for (auto& b : study.branches) {
     auto c = std::make_unique<LoadedSystem>(study.case_path, study.params, b.sets);
@@ -59,7 +63,8 @@ int run_study(const std::vector<std::string>& argv) {
 
   // Every output named before any work: one CSV per branch (two branches of one name would
   // write one file from two threads) and the JSON, none replacing an input or another.
-  const std::string json_path = out + "/" + study.name + ".json";
+  run.json_path = out + "/" + study.name + ".json";
+  const std::string& json_path = run.json_path;
   std::vector<std::pair<std::string, std::string>> outputs{{"the study's JSON", json_path}};
   for (const auto& b : study.branches) {
     const std::string stem = out + "/" + study.name + "-" + b.name;
@@ -74,14 +79,7 @@ int run_study(const std::vector<std::string>& argv) {
       inputs.emplace_back("branch '" + b.name + "''s start_data", b.start_data);
   check_distinct_outputs(outputs, inputs);
 
-  std::printf("sympathy study %s: %s\n  case %s  params %s  parameter %s\n", study.path.c_str(),
-              study.title.c_str(), first.path().c_str(), first.params().c_str(),
-              study.parameter.c_str());
-  if (first.equations()) std::printf("  %s\n", first.build_note().c_str());
-  std::fflush(stdout);
-  const auto* stop = interrupt_flag();
-  std::vector<Branch> results(study.branches.size());
-  std::vector<BranchRequest> requests;
+  auto& requests = run.requests;
   for (std::size_t i = 0; i < study.branches.size(); ++i) {
     const auto& b = study.branches[i];
     BranchRequest r = b.request;
@@ -92,6 +90,18 @@ int run_study(const std::vector<std::string>& argv) {
     r.progress = nullptr;
     requests.push_back(r);
   }
+  run.results.resize(study.branches.size());
+  run.errors.resize(study.branches.size());
+  return run;
+}
+
+void run_study_branches(StudyRun& run, const std::atomic<bool>* stop, std::FILE* progress) {
+  const Study& study = run.study;
+  auto& results = run.results;
+  auto& errors = run.errors;
+  auto& requests = run.requests;
+  const auto& sources = run.sources;
+  const int jobs = run.jobs;
   // Branches switched at another's event run after the others, from that branch's result.
   std::vector<std::size_t> order;
   for (int chained = 0; chained < 2; ++chained)
@@ -102,7 +112,6 @@ int run_study(const std::vector<std::string>& argv) {
                     [](const StudyBranch& b) { return b.parent.empty(); }));
   std::mutex print;
   std::size_t next = 0;
-  std::vector<std::string> errors(study.branches.size());
   auto worker = [&](std::size_t end) {
     for (;;) {
       std::size_t i;
@@ -123,11 +132,12 @@ int run_study(const std::vector<std::string>& argv) {
       } catch (const std::exception& e) {
         errors[i] = e.what();
       }
+      if (!progress) continue;
       std::lock_guard<std::mutex> lock(print);
-      std::printf("  branch %-14s %zu points in %.1f s; %s\n", study.branches[i].name.c_str(),
-                  results[i].points.size(), results[i].seconds,
-                  !errors[i].empty() ? errors[i].c_str() : results[i].stop_reason.c_str());
-      std::fflush(stdout);
+      std::fprintf(progress, "  branch %-14s %zu points in %.1f s; %s\n",
+                   study.branches[i].name.c_str(), results[i].points.size(), results[i].seconds,
+                   !errors[i].empty() ? errors[i].c_str() : results[i].stop_reason.c_str());
+      std::fflush(progress);
     }
   };
   for (const std::size_t end : {independent, order.size()}) {
@@ -136,6 +146,25 @@ int run_study(const std::vector<std::string>& argv) {
       threads.emplace_back(worker, end);
     for (auto& t : threads) t.join();
   }
+}
+
+int run_study(const std::vector<std::string>& argv) {
+  Arguments args("study", argv, study_options(), {"STUDY"});
+  Stopwatch clock;
+  StudyRun run = study_run(args);
+  const Study& study = run.study;
+  const auto& systems = run.systems;
+  const LoadedSystem& first = *systems.front();
+  const auto& results = run.results;
+  const auto& errors = run.errors;
+  const auto& requests = run.requests;
+  const std::string& json_path = run.json_path;
+  std::printf("sympathy study %s: %s\n  case %s  params %s  parameter %s\n", study.path.c_str(),
+              study.title.c_str(), first.path().c_str(), first.params().c_str(),
+              study.parameter.c_str());
+  if (first.equations()) std::printf("  %s\n", first.build_note().c_str());
+  std::fflush(stdout);
+  run_study_branches(run, interrupt_flag(), stdout);
 
   nlohmann::json j;
   j["study"] = study.name;

@@ -16,8 +16,8 @@
 #include "cases/cli/commands.hpp"
 #include "cases/cli/loaded_system.hpp"
 #include "cases/cli/task_run.hpp"
-#include "sympathy/continuation/periodic_orbit.hpp"
 #include "sympathy/continuation/branch_output.hpp"
+#include "sympathy/continuation/periodic_orbit.hpp"
 #include "sympathy/core/csv.hpp"
 #include "sympathy/core/output_file.hpp"
 

@@ -48,10 +48,10 @@ for f in sweep_events.csv sweep.json; do
   check "$f of the resumed run identical" cmp -s "$work/one/$f" "$work/resumed/$f"
 done
 
-# Without --param, an orbit at each value: lcbp at p2 = 2 from (1.8, 0) falls on the stable
-# circle, r = 2 while p1 < 2 (radial multiplier exp(-2 (2 - p1))), r = p1 beyond (exp(-p1 (p1 -
-# 2))); period 1 each. To 1e-8.
-"$bin" sweep "$lcbp" --over p1=1.25:2.75:4 --out "$work/orbits" > /dev/null 2> "$work/orbits.err"
+# Without --param, an orbit at each value: lcbp at p2 = 2 from (2.5, 0), outside r = 2, falls on
+# the stable circle, r = 2 while p1 < 2 (radial multiplier exp(-2 (2 - p1))), r = p1 beyond
+# (exp(-p1 (p1 - 2))); period 1 each. To 1e-8.
+"$bin" sweep "$lcbp" --initial x=2.5 --over p1=1.25:2.75:4 --out "$work/orbits" > /dev/null 2> "$work/orbits.err"
 check "a sweep of orbits exits 0" test $? -eq 0
 check "... each orbit the stable circle's, exactly" test "$(/usr/bin/python3 -c "
 import json, math, sys

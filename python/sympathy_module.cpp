@@ -1,0 +1,420 @@
+// The Python module `sympathy`: a case file (of either kind, or a dict: case_dict.hpp) as a Case,
+// and its simulate, orbit, continue_branch, curve, equilibria and fit, and study: each the command
+// of the same name run on the same code as the program (cases/cli/requests.hpp): keyword
+// arguments are the command's options (python_options.hpp), results the engine's as NumPy arrays
+// and objects (python_results.hpp). Nothing numerical happens here.
+//
+// The engine runs with the GIL released. Its stop check (polled between a branch's points, and
+// between a simulation's output samples) takes the GIL back for a moment to run Python's pending
+// signal handlers (PyErr_CheckSignals): Ctrl-C then ends the run after the current point and the
+// call returns what was computed, its stop "interrupted", as the program does on SIGINT.
+#include <atomic>
+#include <chrono>
+#include <exception>
+#include <memory>
+#include <optional>
+#include <string>
+#include <thread>
+#include <vector>
+
+#include <pybind11/numpy.h>
+#include <pybind11/pybind11.h>
+#include <pybind11/stl.h>
+
+#include "case_dict.hpp"
+#include "cases/cli/loaded_system.hpp"
+#include "cases/cli/requests.hpp"
+#include "python_options.hpp"
+#include "python_results.hpp"
+#include "sympathy/continuation/curve_output.hpp"
+#include "sympathy/continuation/equilibrium_output.hpp"
+#include "sympathy/core/errors.hpp"
+
+namespace sympathy::python {
+
+namespace {
+
+// What Python code does while the engine runs: the progress callback per point and the signal
+// check. An exception there is not thrown through the engine: it is kept, the run asked to stop,
+// and it is raised once the engine has returned (a KeyboardInterrupt instead ends the run as a
+// signal does, with what was computed).
+class PythonHooks {
+ public:
+  explicit PythonHooks(py::object progress) : progress_(std::move(progress)) {}
+
+  bool stop_requested() {
+    if (interrupted_ || error_) return true;
+    py::gil_scoped_acquire gil;
+    if (PyErr_CheckSignals() != 0) keep(py::error_already_set());
+    return interrupted_ || error_;
+  }
+
+  // The callback with the point `make` gives (made with the GIL held).
+  template <typename Make>
+  void report(Make make) {
+    if (progress_.is_none() || error_) return;
+    py::gil_scoped_acquire gil;
+    try {
+      progress_(make());
+    } catch (py::error_already_set& e) {
+      keep(std::move(e));
+    }
+  }
+
+  bool interrupted() const { return interrupted_; }
+  // With the GIL held, after the engine returned.
+  void raise_kept() {
+    if (error_) {
+      py::error_already_set e = std::move(*error_);
+      error_.reset();
+      throw e;
+    }
+  }
+
+ private:
+  void keep(py::error_already_set e) {
+    if (e.matches(PyExc_KeyboardInterrupt))
+      interrupted_ = true;
+    else
+      error_ = std::move(e);
+  }
+
+  py::object progress_;
+  bool interrupted_ = false;
+  std::optional<py::error_already_set> error_;
+};
+
+// A case file with its parameter set and --set values. Each call loads it again with the call's
+// own options (LoadedSystem, as the program does): an equation case file's system comes from the
+// cache after the first load.
+class Case {
+ public:
+  // `source`: a path (str or os.PathLike), or a dict of the case file's contents.
+  Case(const py::object& source, const std::optional<std::string>& params,
+       const std::optional<py::dict>& set) {
+    if (py::isinstance<py::dict>(source)) {
+      dict_file_ = case_dict_file(toml_text(source.cast<py::dict>()));
+      line_.path = *dict_file_;
+    } else {
+      line_.path = py::str(py::module_::import("os").attr("fspath")(source)).cast<std::string>();
+    }
+    line_.params = params.value_or("");
+    if (set)
+      for (const auto& [k, v] : *set)
+        line_.sets.push_back(
+            py::str(k).cast<std::string>() + "=" +
+            py::repr(py::float_(py::reinterpret_borrow<py::object>(v))).cast<std::string>());
+    try {
+      loaded_ = load(py::kwargs());
+    } catch (const InputError& e) {
+      // Said here, while the dict's file is alive: the message names its key path.
+      throw InputError(dict_message(e.what()));
+    }
+  }
+
+  const std::string& path() const { return line_.path; }
+  std::string params() const { return loaded_->params(); }
+  std::vector<std::string> state_names() const { return loaded_->system().state_names(); }
+  py::dict parameters() const {
+    py::dict d;
+    for (const auto& name : loaded_->system().parameter_names())
+      d[py::str(name)] = loaded_->value_of(name);
+    return d;
+  }
+  // The same case with more --set values on top.
+  Case with_values(const py::kwargs& values) const {
+    Case c = *this;
+    for (const auto& [k, v] : values)
+      c.line_.sets.push_back(
+          py::str(k).cast<std::string>() + "=" +
+          py::repr(py::float_(py::reinterpret_borrow<py::object>(v))).cast<std::string>());
+    c.loaded_ = c.load(py::kwargs());
+    return c;
+  }
+
+  py::object simulate(const py::kwargs& kwargs) const {
+    const cli::Arguments args =
+        cli::Arguments(command_arguments("simulate", line_, kwargs, cli::simulate_options(),
+                                         {"params", "out", "verbose", "locked_pendula"}));
+    const std::vector<double> times = cli::simulation_times(args);
+    const cli::LoadedSystem c(line_.path, line_.params, args.assignments("--set"));
+    const cli::BranchSource source =
+        c.source(args.text("--start", ""), args.assignments("--initial"));
+    Flow flow(c.system(), cli::simulation_flow_options(args));
+    PythonHooks hooks{py::none()};
+    std::vector<double> t;
+    std::vector<Eigen::VectorXd> states;
+    std::string failure;
+    bool interrupted = false;
+    {
+      py::gil_scoped_release release;
+      try {
+        interrupted = flow.sample_until(source.start_state, source.values, 0.0, times,
+                                        [&](double at, const Eigen::VectorXd& z) {
+                                          t.push_back(at);
+                                          states.push_back(z);
+                                          return hooks.stop_requested();
+                                        });
+      } catch (const IntegrationError& e) {
+        failure = e.what();  // what was computed is kept, as the program keeps its rows
+      }
+    }
+    hooks.raise_kept();
+    py::dict fields;
+    fields["t"] = vector_array(Eigen::Map<const Eigen::VectorXd>(t.data(), t.size()));
+    fields["states"] = matrix_array(states, c.system().dimension());
+    fields["state_names"] = c.system().state_names();
+    fields["stop"] = !failure.empty() ? "integration failed"
+                     : interrupted    ? "interrupted"
+                                      : "end time";
+    fields["failure"] = failure;
+    return py::module_::import("types").attr("SimpleNamespace")(**fields);
+  }
+
+  py::object orbit(const py::kwargs& kwargs) const {
+    const cli::Arguments args = command_arguments("orbit", line_, kwargs, cli::orbit_options(),
+                                                  {"params", "verbose", "json"});
+    const cli::LoadedSystem c(args);
+    c.require_orbits();
+    if (c.equations() && args.flag("--whole-state"))
+      throw InputError("--whole-state: only for a metronome case file");
+    const OrbitOptions o = cli::orbit_request(args, !c.system().autonomous());
+    const cli::BranchSource source =
+        c.source(args.text("--start", ""), args.assignments("--initial"), c.start_data());
+    PeriodicOrbit orbit;
+    {
+      py::gil_scoped_release release;
+      orbit = c.start_data() ? orbit_from_recorded_period(c.system(), source.values,
+                                                          *c.start_data(), source.subspace, o)
+                             : find_periodic_orbit(c.system(), source.values, source.start_state,
+                                                   source.subspace, o);
+    }
+    return orbit_result(c.system(), orbit, c.describer());
+  }
+
+  py::object continue_branch(const py::object& progress, const py::kwargs& kwargs) const {
+    const cli::Arguments args =
+        command_arguments("continue_branch", line_, kwargs, cli::continue_options(),
+                          {"params", "quiet", "verbose", "json"});
+    const cli::LoadedSystem c(args);
+    cli::BranchRequest request = cli::continue_request(args, c);
+    const cli::BranchSource source = c.source(request.start, request.initial, request.start_data);
+    PythonHooks hooks(progress);
+    request.progress = nullptr;  // progress goes to the callback, not to stderr
+    request.on_point = [&](const ContinuationPoint& p) {
+      hooks.report([&] { return point_result(p); });
+    };
+    request.stop_requested = [&] { return hooks.stop_requested(); };
+    Branch branch;
+    {
+      py::gil_scoped_release release;
+      branch = cli::run_branch(source, request, nullptr);
+    }
+    hooks.raise_kept();
+    return branch_result(branch, c.describer());
+  }
+
+  py::object equilibria(const py::object& progress, const py::kwargs& kwargs) const {
+    const cli::Arguments args = command_arguments(
+        "equilibria", line_, kwargs, cli::equilibria_options(), {"params", "quiet", "json"});
+    const cli::LoadedSystem c(args);
+    const cli::EquilibriaRequest request = cli::equilibria_request(args, c);
+    const std::string parameter = c.system().parameter_names()[request.problem.parameter];
+    std::unique_ptr<EquilibriumCsvWriter> csv;
+    if (!request.csv_path.empty())
+      csv = std::make_unique<EquilibriumCsvWriter>(request.csv_path, c.system(), parameter);
+    PythonHooks hooks(progress);
+    EquilibriumCallbacks callbacks;
+    callbacks.on_point = [&](const EquilibriumPoint& p) {
+      if (csv) csv->write(p);
+      hooks.report([&] {
+        py::dict f;
+        f["index"] = p.index;
+        f["value"] = p.parameter;
+        f["unstable"] = p.unstable;
+        f["step"] = p.step;
+        f["iterations"] = p.iterations;
+        return py::module_::import("types").attr("SimpleNamespace")(**f);
+      });
+    };
+    callbacks.stop_requested = [&] { return hooks.stop_requested(); };
+    EquilibriumBranch branch;
+    {
+      py::gil_scoped_release release;
+      branch = continue_equilibria(c.system(), request.problem, request.options, callbacks);
+      if (csv) csv->close();
+    }
+    hooks.raise_kept();
+    return equilibria_result(branch);
+  }
+
+  py::object fit(const py::kwargs& kwargs) const {
+    const cli::Arguments args = command_arguments("fit", line_, kwargs, cli::fit_options(),
+                                                  {"params", "out", "json", "csv"});
+    const cli::FitSetup setup = cli::fit_setup(args);
+    const PreparedFit fit = setup.prepare();
+    TrajectoryFitResult result;
+    {
+      py::gil_scoped_release release;
+      result = fit_trajectory(*fit.model, fit.problem, setup.options);
+    }
+    return fit_result(*fit.model, fit, result);
+  }
+
+  py::object curve(const py::object& progress, const py::kwargs& kwargs) const {
+    const cli::Arguments args = command_arguments("curve", line_, kwargs, cli::curve_options(),
+                                                  {"params", "quiet", "json"});
+    const cli::LoadedSystem c(args);
+    cli::CurveRequest request = cli::curve_request(args, c);
+    const cli::BranchSource source = c.source(request.branch.start, request.branch.initial);
+    PythonHooks hooks(progress);
+    request.branch.stop_requested = [&] { return hooks.stop_requested(); };
+    CurveCallbacks callbacks;
+    std::unique_ptr<CurveCsvWriter> csv;
+    if (!request.csv_path.empty())
+      csv = std::make_unique<CurveCsvWriter>(request.csv_path, c.system(), request.branch.parameter,
+                                             request.second);
+    callbacks.on_point = [&](const CurvePoint& p) {
+      if (csv) csv->write(p);
+      hooks.report([&] { return curve_point_result(p); });
+    };
+    callbacks.stop_requested = [&] { return hooks.stop_requested(); };
+    Branch parent;
+    BifurcationCurve curve;
+    {
+      py::gil_scoped_release release;
+      parent = cli::curve_branch(request, c, source, nullptr);
+      if (parent.started() && !hooks.interrupted()) {
+        const Bifurcation& event = cli::find_event(parent, request.event, "--event");
+        curve = cli::follow_curve(request, c.system(), parent, event, callbacks);
+      } else {
+        curve.stop = hooks.interrupted() ? CurveStop::Interrupted : CurveStop::StartFailed;
+        curve.stop_reason = "the branch: " + parent.stop_reason;
+      }
+      if (csv) csv->close();
+    }
+    hooks.raise_kept();
+    py::object result = curve_result(curve);
+    result.attr("branch") = branch_result(parent, c.describer());
+    return result;
+  }
+
+ private:
+  // The case loaded as a call with `kwargs` loads it (the parameter set and --set checked).
+  std::shared_ptr<const cli::LoadedSystem> load(const py::kwargs& kwargs) const {
+    return std::make_shared<const cli::LoadedSystem>(
+        command_arguments("Case", line_, kwargs, cli::orbit_options(), {}));
+  }
+
+  CaseLine line_;
+  std::shared_ptr<const std::string> dict_file_;  // a dict's TOML file, removed with the last copy
+  std::shared_ptr<const cli::LoadedSystem> loaded_;
+};
+
+// sympathy study: the study file's branches side by side, each as continue_branch computes it,
+// their CSV files written to `out` as the program writes them. The branches run on threads of
+// their own; this one waits, checking for signals every 50 ms (Python runs its handlers on the
+// main thread only, which the branches' own stop checks are not on).
+py::object study(const std::string& path, const py::kwargs& kwargs) {
+  const cli::Arguments args =
+      command_arguments("study", CaseLine{path, "", {}}, kwargs, cli::study_options(), {});
+  cli::StudyRun run = cli::study_run(args);
+  std::atomic<bool> stop{false}, done{false};
+  std::exception_ptr failure;
+  PythonHooks hooks{py::none()};
+  {
+    py::gil_scoped_release release;
+    std::thread branches([&] {
+      try {
+        cli::run_study_branches(run, &stop, nullptr);
+      } catch (...) {
+        failure = std::current_exception();
+      }
+      done = true;
+    });
+    while (!done) {
+      std::this_thread::sleep_for(std::chrono::milliseconds(50));
+      if (!done && hooks.stop_requested()) stop = true;
+    }
+    branches.join();
+  }
+  hooks.raise_kept();
+  if (failure) std::rethrow_exception(failure);
+  py::dict branches;
+  for (std::size_t i = 0; i < run.study.branches.size(); ++i) {
+    py::object b = branch_result(run.results[i], run.systems[i]->describer());
+    b.attr("error") = run.errors[i];
+    branches[py::str(run.study.branches[i].name)] = b;
+  }
+  py::dict fields;
+  fields["title"] = run.study.title;
+  fields["parameter"] = run.study.parameter;
+  fields["branches"] = branches;
+  return py::module_::import("types").attr("SimpleNamespace")(**fields);
+}
+
+}  // namespace
+
+}  // namespace sympathy::python
+
+PYBIND11_MODULE(sympathy, m) {
+  namespace py = pybind11;
+  using namespace sympathy;
+  using sympathy::python::Case;
+  m.def("study", &sympathy::python::study, py::arg("path"),
+        "sympathy study: the branches of a study file (cases/figures/*.toml), side by side "
+        "(jobs=2), their CSV files written to out (default out/figures); a dict of branches by "
+        "name, each as continue_branch returns it, with `error` (why it has none, or '')");
+  m.doc() =
+      "Periodic orbits, their Floquet multipliers, branches and bifurcations (sympathy's engine). "
+      "Keyword arguments are the options of the command of the same name (sympathy continue "
+      "--max-step 0.05: max_step=0.05; --from: from_), with its defaults and checks.";
+  // Bad input (a case file, an option): ValueError, with the program's message (a case dict's
+  // key path where a file and line would be).
+  static py::exception<InputError> input_error(m, "InputError", PyExc_ValueError);
+  py::register_exception_translator([](std::exception_ptr p) {
+    try {
+      if (p) std::rethrow_exception(p);
+    } catch (const InputError& e) {
+      input_error(sympathy::python::dict_message(e.what()).c_str());
+    }
+  });
+  py::register_exception<OutputError>(m, "OutputError", PyExc_OSError);
+
+  py::class_<Case>(m, "Case",
+                   "A case file (metronome or equation case file; a path, or a dict of its "
+                   "contents) with a parameter set and values set on top (set={'k': 20.0}).")
+      .def(py::init<const py::object&, const std::optional<std::string>&,
+                    const std::optional<py::dict>&>(),
+           py::arg("source"), py::arg("params") = py::none(), py::arg("set") = py::none())
+      .def_property_readonly("path", &Case::path)
+      .def_property_readonly("params", &Case::params, "the parameter set applied")
+      .def_property_readonly("parameters", &Case::parameters,
+                             "every parameter's value, by name (dict)")
+      .def_property_readonly("state_names", &Case::state_names)
+      .def("with_values", &Case::with_values,
+           "the same case with these parameter values set on top (k=20.0)")
+      .def("simulate", &Case::simulate,
+           "sympathy simulate: t and states (NumPy arrays) from start= or initial=; options "
+           "t_end, dt, rtol, atol, method, ...")
+      .def("orbit", &Case::orbit,
+           "sympathy orbit: a periodic orbit with its multipliers (complex array), kinds, "
+           "stability and accuracy; options start, initial, segments, transient, accuracy, ...")
+      .def("continue_branch", &Case::continue_branch, py::arg("progress") = py::none(),
+           "sympathy continue: a branch (points as NumPy arrays, events as objects); options "
+           "param, from_, to, at, start, step, max_step, max_points, switch_at, ...; "
+           "progress(point) is called per point; Ctrl-C returns the points so far, stop "
+           "'interrupted'")
+      .def("equilibria", &Case::equilibria, py::arg("progress") = py::none(),
+           "sympathy equilibria: a branch of equilibria (points: value, state, eigenvalues, "
+           "unstable; events LP, BP, HB with omega, period and lyapunov); options param, from_, "
+           "to, at, start, step, max_step, max_points; progress(point) per point")
+      .def("fit", &Case::fit,
+           "sympathy fit: parameters (free=['d', 's']) and initial values (free_initial=['th1']) "
+           "fitted to a recording (data='FILE.csv'): names, values, errors, correlation, rss, "
+           "converged, stop_reason, parameters (the fitted values by name)")
+      .def("curve", &Case::curve, py::arg("progress") = py::none(),
+           "sympathy curve: the two-parameter curve of a branch's event (event='NS1', "
+           "second='c', second_from, second_to; the branch as continue_branch computes it, "
+           "result.branch); progress(point) per curve point");
+}

@@ -1,0 +1,321 @@
+"""The Python module against the program: the same case, options and numbers.
+
+Run by ctest (python.module) with PYTHONPATH at the built module, SYMPATHY_CLI the program and
+SYMPATHY_SOURCE_DIR the repository. Every expected number comes from the program run in the same
+test, or from the closed form of the Hopf normal form (cases/examples/hopf.toml).
+"""
+
+import math
+import os
+import re
+import signal
+import subprocess
+import threading
+import time
+import tomllib
+
+import numpy as np
+import pytest
+
+import sympathy
+
+SOURCE = os.environ.get("SYMPATHY_SOURCE_DIR", os.path.join(os.path.dirname(__file__), "../.."))
+CLI = os.environ.get("SYMPATHY_CLI", os.path.join(SOURCE, "build/cases/sympathy"))
+ROW2 = os.path.join(SOURCE, "cases/row2.toml")
+HOPF = os.path.join(SOURCE, "cases/examples/hopf.toml")
+
+
+def cli(*args):
+    run = subprocess.run([CLI, *args], capture_output=True, text=True, check=True)
+    return run.stdout
+
+
+def events_table(stdout):
+    """(type, value as printed) of each row of the program's table of bifurcations."""
+    rows = []
+    lines = stdout.splitlines()
+    start = next(i for i, line in enumerate(lines) if line.startswith("bifurcations"))
+    for line in lines[start + 2:]:
+        fields = line.split()
+        if not fields or fields[0].rstrip("?") not in ("LP", "BP", "PD", "NS", "UZ", "HB"):
+            break
+        rows.append((fields[0], fields[1]))
+    return rows
+
+
+def test_branch_equals_the_program_to_the_last_printed_digit():
+    # The README's worked example of `continue` (Branches and bifurcations), quiet.
+    stdout = cli("continue", ROW2, "--start", "anti-phase", "--param", "k", "--from", "1",
+                 "--to", "100", "--quiet")
+    expected = events_table(stdout)
+    assert [t for t, _ in expected] == ["BP", "NS", "NS"]
+
+    seen = []
+    branch = sympathy.Case(ROW2).continue_branch(
+        start="anti-phase", param="k", from_=1, to=100, progress=seen.append)
+    # The program prints each value with %.12g (print_events): compare the same text.
+    got = [(e.type + ("" if e.trusted else "?"), "%.12g" % e.value) for e in branch.events]
+    assert got == expected
+    assert branch.stop == "parameter bound"
+    n = len(branch.points.value)
+    assert f"{n} points" in stdout
+    # Points as arrays, in parameter order, ending on the bound; the callback saw each one.
+    assert branch.points.state0.shape == (n, len(branch.state_names))
+    assert branch.points.multipliers.dtype == np.complex128
+    assert branch.points.value[0] == 1 and branch.points.value[-1] == 100
+    assert [p.index for p in seen] == list(branch.points.index)
+    bp = branch.events[0]
+    assert bp.name == "branch point" and bp.symmetry == "breaks" and bp.located
+    assert 0 < bp.uncertainty < 1e-6
+    assert abs(abs(bp.crossing) - 1) < 1e-6
+
+
+def test_orbit_equals_the_program():
+    stdout = cli("orbit", ROW2, "--params", "table2", "--start", "anti-phase")
+    period = re.search(r"period\s+(\S+) s", stdout).group(1)
+    orbit = sympathy.Case(ROW2, params="table2").orbit(start="anti-phase")
+    assert orbit.converged
+    assert "%.12g" % orbit.period == period
+    assert orbit.multipliers.dtype == np.complex128
+    assert orbit.kinds.count("trivial") == 1
+    assert orbit.stability == "unstable" and not orbit.stable
+    # The program's list of moduli, to its 12 printed decimals.
+    printed = re.findall(r"^\s+(\d\.\d{12})\s+[+-]", stdout, re.M)
+    assert ["%.12f" % m for m in orbit.moduli] == printed
+    assert orbit.trivial_multiplier_error < 1e-8 and orbit.residual < 1e-9
+
+
+def test_events_over_a_second_parameter_without_files():
+    # A user's sweep: the anti-phase branch point in k for three damping values, in memory.
+    case = sympathy.Case(ROW2)
+    found = {}
+    for c in (0.0, 0.0185, 0.1):
+        branch = case.continue_branch(start="anti-phase", param="k", from_=45, to=48,
+                                      set={"c": c}, accuracy="fast")
+        found[c] = [e.value for e in branch.events if e.type == "BP"]
+    # One BP each; at Table II's c = 0.0185 it is the README's k = 47.0656 (fast preset: 4e-7),
+    # and it hardly moves with damping (README: 47.0996 at c = 0, 46.2095 at c = 0.5).
+    assert all(len(v) == 1 for v in found.values())
+    assert abs(found[0.0185][0] - 47.0655622632) < 1e-5
+    assert abs(found[0.0][0] - 47.0996) < 1e-3
+    assert found[0.1][0] < found[0.0185][0] < found[0.0][0]
+
+
+def test_interrupt_returns_the_points_so_far():
+    # SIGINT from another thread once the first point is in: the engine runs without the GIL and
+    # its stop check runs Python's signal handlers; the call returns what it has. The callback is
+    # list.append, C code in which Python runs no handler: only the stop check can see the signal.
+    seen = []
+
+    def send():
+        while not seen:
+            time.sleep(0.01)
+        os.kill(os.getpid(), signal.SIGINT)
+
+    sender = threading.Thread(target=send)
+    sender.start()
+    branch = sympathy.Case(ROW2).continue_branch(
+        start="anti-phase", param="k", from_=1, to=100, progress=seen.append)
+    sender.join()
+    assert branch.stop == "interrupted"
+    assert 1 <= len(branch.points.value) < 65  # the whole branch has 65 points
+    assert len(seen) == len(branch.points.value)
+
+
+def test_keyboard_interrupt_in_the_callback_returns_the_points_so_far():
+    def progress(point):
+        if point.index == 3:
+            raise KeyboardInterrupt
+
+    branch = sympathy.Case(HOPF).continue_branch(param="mu", from_=0.25, to=1, progress=progress)
+    assert branch.stop == "interrupted"
+    assert list(branch.points.index) == [0, 1, 2, 3]
+
+
+def test_simulation_interrupted_keeps_its_samples():
+    case = sympathy.Case(ROW2)
+
+    def send():
+        time.sleep(0.3)
+        os.kill(os.getpid(), signal.SIGINT)
+
+    sender = threading.Thread(target=send)
+    sender.start()
+    run = case.simulate(start="anti-phase", t_end=1e4)  # about a minute, were it not stopped
+    sender.join()
+    assert run.stop == "interrupted"
+    assert 1 < len(run.t) < 1e6 and run.states.shape == (len(run.t), len(run.state_names))
+
+
+def test_an_exception_in_the_callback_is_raised_after_the_run():
+    def progress(point):
+        if point.index == 2:
+            raise RuntimeError("enough")
+
+    with pytest.raises(RuntimeError, match="enough"):
+        sympathy.Case(HOPF).continue_branch(param="mu", from_=0.25, to=1, progress=progress)
+
+
+def test_bad_options_raise_input_error_naming_the_option():
+    case = sympathy.Case(ROW2)
+    with pytest.raises(sympathy.InputError, match=r"^--step: expected a positive number"):
+        case.continue_branch(start="anti-phase", param="k", from_=1, to=100, step=-1)
+    with pytest.raises(ValueError, match=r"--param q: not a parameter of .*expected one of"):
+        case.continue_branch(start="anti-phase", param="q", from_=1, to=100)
+    with pytest.raises(sympathy.InputError, match=r"--start nowhere"):
+        case.orbit(start="nowhere")
+    with pytest.raises(TypeError, match=r"unexpected keyword argument 'max_stp'"):
+        case.continue_branch(start="anti-phase", param="k", from_=1, to=100, max_stp=0.1)
+    with pytest.raises(sympathy.InputError, match=r"no-such-file.toml"):
+        sympathy.Case(os.path.join(SOURCE, "no-such-file.toml"))
+
+
+def test_equation_case_file_orbit_simulation_and_parameters():
+    # The Hopf normal form: the circle r = sqrt(mu), period 2 pi / w, nontrivial multiplier
+    # exp(-4 pi mu / w) (cases/examples/hopf.toml).
+    case = sympathy.Case(HOPF)
+    assert case.parameters == {"mu": 0.25, "w": 1.0}
+    assert case.state_names == ["x", "y"]
+    fast = sympathy.Case(HOPF, params="fast").with_values(mu=0.36)
+    assert fast.parameters == {"mu": 0.36, "w": 2.0}
+    orbit = fast.orbit()
+    assert abs(orbit.period - math.pi) < 1e-8
+    other = orbit.multipliers[[k != "trivial" for k in orbit.kinds]]
+    assert abs(other[0] - math.exp(-4 * math.pi * 0.36 / 2)) < 1e-8
+    run = case.simulate(t_end=2, dt=0.5, start="outside")
+    assert list(run.t) == [0, 0.5, 1, 1.5, 2]
+    assert run.states.shape == (5, 2) and run.stop == "end time"
+    assert list(run.states[0]) == [1.0, 0.0]
+
+
+def test_curve_equals_the_program():
+    # A short stretch of the anti-phase BP curve in (k, c) (tests/cli/curve_test.sh's, at the
+    # fast preset to keep it short): Python and the program, the same points, stop and events.
+    options = ["--start", "anti-phase", "--param", "k", "--from", "46", "--to", "48",
+               "--event", "BP1", "--second", "c", "--second-from", "0.0185",
+               "--second-to", "0.021", "--accuracy", "fast", "--quiet"]
+    stdout = cli("curve", ROW2, *options)
+    seen = []
+    curve = sympathy.Case(ROW2).curve(
+        start="anti-phase", param="k", from_=46, to=48, event="BP1", second="c",
+        second_from=0.0185, second_to=0.021, accuracy="fast", progress=seen.append)
+    assert curve.kind == "BP" and curve.first_name == "k" and curve.second_name == "c"
+    n = len(curve.points.first)
+    assert f"  {n} points; stopped: {curve.stop_reason}\n" in stdout
+    assert curve.points.second[-1] == 0.021
+    assert len(seen) == n
+    printed = re.findall(r"^  turn in k\s+(\S+)\s+(\S+)", stdout, re.M)
+    assert printed  # at the fast preset the curve turns in k (ten times) in this window
+    assert [("%.12g" % e.first, "%.12g" % e.second) for e in curve.events] == printed
+    assert len(curve.branch.points.value) == 32 and curve.branch.events[0].type == "BP"
+    with pytest.raises(sympathy.InputError, match=r"--event NS1: the branch has no such event"):
+        sympathy.Case(ROW2).curve(start="anti-phase", param="k", from_=46, to=48, event="NS1",
+                                  second="c", second_from=0.0185, second_to=0.021,
+                                  accuracy="fast")
+
+
+SMALL_STUDY = """title = "small"
+case = "{case}"
+params = "table2"
+parameter = "k"
+axis = "phase"
+
+[[branches]]
+name = "anti-phase"
+start = "anti-phase"
+from = 45.0
+to = 50.0
+
+[[branches]]
+name = "in-phase"
+start = "in-phase"
+from = 1.0
+to = 100.0
+"""
+
+
+def test_study_equals_the_program(tmp_path):
+    # A two-branch study (the worked example's, one on a short window, at the fast preset), by the
+    # program and by Python: the same events on each branch to the last printed digit.
+    study = tmp_path / "small.toml"
+    study.write_text(SMALL_STUDY.format(case=ROW2))
+    stdout = cli("study", str(study), "--out", str(tmp_path / "cli"), "--accuracy", "fast")
+    result = sympathy.study(str(study), out=str(tmp_path / "py"), accuracy="fast")
+    assert list(result.branches) == ["anti-phase", "in-phase"]
+    for name, branch in result.branches.items():
+        assert branch.error == "" and branch.stop == "parameter bound"
+        table = stdout[stdout.index(f"bifurcations on {name}:"):]
+        expected = events_table(table)
+        got = [(e.type + ("" if e.trusted else "?"), "%.12g" % e.value) for e in branch.events]
+        assert got == expected and got
+        assert (tmp_path / "py" / f"small-{name}.csv").exists()
+
+
+def test_study_interrupted_returns_its_branches_so_far(tmp_path):
+    # The branches run on threads of their own; the calling thread watches for the signal.
+    study = tmp_path / "small.toml"
+    study.write_text(SMALL_STUDY.format(case=ROW2))
+    sender = threading.Timer(0.2, lambda: os.kill(os.getpid(), signal.SIGINT))
+    sender.start()
+    result = sympathy.study(str(study), out=str(tmp_path), accuracy="fast")  # 1.2 s unstopped
+    sender.join()
+    assert "interrupted" in [b.stop for b in result.branches.values()]
+
+
+def test_fit_equals_the_program(tmp_path):
+    # README's fitting example, from Python: one metronome's angle simulated (10 s here) with noise
+    # of 0.005 rad, d and s fitted from wrong starts, by the program and by Python.
+    single = sympathy.Case(os.path.join(SOURCE, "cases/single.toml"))
+    run = single.simulate(start="swing", t_end=10)
+    th1 = run.states[:, run.state_names.index("th1")]
+    noisy = th1 + np.random.default_rng(1).normal(0.0, 0.005, th1.size)
+    data = tmp_path / "angle.csv"
+    np.savetxt(data, np.column_stack([run.t, noisy]), delimiter=",", header="t,th1",
+               comments="", fmt="%.17g")
+    options = dict(data=str(data), free=["d", "s"], free_initial=["th1"],
+                   set={"d": 2e-6, "s": 5.4e-5})
+    stdout = cli("fit", single.path, "--data", str(data), "--free", "d,s", "--free-initial",
+                 "th1", "--set", "d=2e-6", "--set", "s=5.4e-5")
+    fit = single.fit(**options)
+    assert fit.converged and fit.names == ["d", "s", "th1(0)"]
+    printed = dict(re.findall(r"^\s+(?:fitted\s+)?(d|s|th1\(0\))\s+(\S+)\s", stdout, re.M))
+    assert {n: "%.10g" % v for n, v in zip(fit.names, fit.values)} == printed
+    # Against the truth (Table I: d = 2.4e-6, s = 4.51e-5), within three standard errors.
+    assert abs(fit.parameters["d"] - 2.4e-6) < 3 * fit.errors[0]
+    assert abs(fit.parameters["s"] - 4.51e-5) < 3 * fit.errors[1]
+    assert fit.correlation.shape == (3, 3)
+
+
+def test_case_from_a_dict():
+    # row2.toml read into a dict is the same case; a wrong key is named by its key path.
+    with open(ROW2, "rb") as f:
+        contents = tomllib.load(f)
+    from_dict = sympathy.Case(contents, params="table2")
+    from_file = sympathy.Case(ROW2, params="table2")
+    assert from_dict.parameters == from_file.parameters
+    assert from_dict.orbit(start="anti-phase").period == from_file.orbit(start="anti-phase").period
+    contents["metronome"]["mpp"] = contents["metronome"].pop("mp")
+    with pytest.raises(sympathy.InputError) as error:
+        sympathy.Case(contents)
+    message = str(error.value)
+    assert message.startswith("the case dict: key 'metronome.mpp': expected one of the keys")
+    assert "sympathy-case-" not in message and ".toml" not in message
+    with pytest.raises(sympathy.InputError, match=r"key 'metronome.mp\[0\]': expected a str"):
+        sympathy.Case({"metronome": {"mp": [None]}})
+
+
+def test_equilibria_equal_the_program():
+    # AUTO's demo abc: four Hopf points of the equilibria (cases/examples/abc.toml; its header
+    # gives AUTO's values, p1 = 0.204184536, 0.229839038, 0.259957854, 0.346208522).
+    abc = os.path.join(SOURCE, "cases/examples/abc.toml")
+    stdout = cli("equilibria", abc, "--param", "p1", "--from", "0", "--to", "0.4", "--quiet")
+    seen = []
+    branch = sympathy.Case(abc).equilibria(param="p1", from_=0, to=0.4, progress=seen.append)
+    assert [(e.type, "%.12g" % e.value) for e in branch.events] == events_table(stdout)
+    assert [round(e.value, 9) for e in branch.events] == [0.204184536, 0.229839038, 0.259957854,
+                                                         0.346208522]
+    first = branch.events[0]
+    assert "omega %.10g, period %.10g" % (first.omega, first.period) in stdout
+    assert first.lyapunov < 0  # supercritical
+    assert len(seen) == len(branch.points.value) and branch.stop == "parameter bound"
+    assert branch.points.eigenvalues.shape == (len(seen), 3)
