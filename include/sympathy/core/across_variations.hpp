@@ -73,6 +73,12 @@ class AcrossVariations final : public OdeSystem {
 
  private:
   Eigen::VectorXd embed(const double* w) const;
+  struct Scratch {  // rhs's temporaries
+    Eigen::VectorXd z, dz;
+    Eigen::MatrixXd in, out;
+    std::vector<const double*> in_columns;
+    std::vector<double*> out_columns;
+  };
 
   const OdeSystem& system_;
   ReducedSystem reduced_;  // y's equations, zones and names
