@@ -7,6 +7,8 @@
 #include <cmath>
 #include <complex>
 #include <numbers>
+#include <string>
+#include <utility>
 #include <vector>
 
 #include "sympathy/cases/case_file.hpp"
@@ -247,6 +249,51 @@ TEST(SymmetricBlocks, BranchInAParameterThatActsAcross) {
     const double w = system.parameter(point.orbit.parameters, problem.parameter);
     EXPECT_NEAR(point.orbit.period, 2.0 * kPi / w, 1e-9) << w;
   }
+}
+
+// The row setup at Table II, k from 14.7 to 20 N/m at the library's defaults: on the anti-phase
+// branch (the platform still: k acts only across the subspace) the points after the first are
+// served by the across block, and their multipliers are those of Newton on the whole state at
+// the same k to 1e-8 (both at rtol 1e-11: the multipliers' own accuracy is about 2e-9); on the
+// in-phase branch (th2 = th1 is a reflection's fixed space too, but the platform moves and the
+// orbit with k) none is.
+TEST(SymmetricBlocks, RowSetupAntiPhaseServedInPhaseNot) {
+  const CaseFile file = CaseFile::load(testing::case_path("row2"));
+  const MetronomeModel model(file.spec("table2"));
+  auto branch_from = [&](const std::string& name) {
+    const StartSpec& start = file.start(name);
+    BranchProblem problem;
+    problem.parameter = model.parameter_index("k");
+    problem.values = model.default_parameters();
+    problem.from = model.parameter(problem.values, problem.parameter);
+    problem.to = 20.0;
+    problem.start_state = file.initial_state(&start);
+    problem.subspace = file.invariant_subspace(start, model);
+    return std::pair{continue_branch(model, problem, ContinuationOptions{}), problem.subspace};
+  };
+  const auto [anti, subspace] = branch_from("anti-phase");
+  ASSERT_TRUE(anti.started());
+  ASSERT_GE(anti.points.size(), 3u);
+  EXPECT_GE(anti.across_evaluations, static_cast<int>(anti.points.size()) - 1);
+  OrbitOptions whole;
+  whole.use_symmetry = false;
+  for (std::size_t i = 1; i < anti.points.size(); i += anti.points.size() / 2) {
+    const PeriodicOrbit& a = anti.points[i].orbit;
+    const PeriodicOrbit b =
+        solve_periodic_orbit(model, a.parameters, a.state0, a.period, subspace, whole);
+    ASSERT_TRUE(b.converged()) << i;
+    ASSERT_EQ(a.floquet.multipliers.size(), b.floquet.multipliers.size());
+    for (const auto& m : a.floquet.multipliers) {  // the nearest (a conjugate pair's order)
+      double nearest = INFINITY;
+      for (const auto& other : b.floquet.multipliers)
+        nearest = std::min(nearest, std::abs(m.value - other.value));
+      EXPECT_LT(nearest, 1e-8) << i << " " << m.value;
+    }
+  }
+  const auto [in, in_subspace] = branch_from("in-phase");
+  ASSERT_TRUE(in.started());
+  ASSERT_TRUE(in_subspace.reflection(6));
+  EXPECT_EQ(in.across_evaluations, 0);
 }
 
 }  // namespace
