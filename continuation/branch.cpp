@@ -100,6 +100,7 @@ Branch join_branches(Branch backward, Branch forward) {
   joined.rejected += forward.rejected;
   joined.flow = backward.flow;
   joined.flow += forward.flow;
+  joined.across_evaluations = backward.across_evaluations + forward.across_evaluations;
   joined.seconds = backward.seconds + forward.seconds;
   return joined;
 }

@@ -248,6 +248,7 @@ Branch Continuation::run_switched(const PeriodicOrbit& base, const Eigen::Vector
   joined.stop_reason = "backward: " + back.stop_reason + "; forward: " + joined.stop_reason;
   joined.rejected += back.rejected;
   joined.flow += back.flow;
+  joined.across_evaluations += back.across_evaluations;
   joined.seconds += back.seconds;
   return joined;
 }

@@ -199,6 +199,7 @@ Branch Continuation::run_from(const PeriodicOrbit& start, int direction,
     branch.stop = stop;
     branch.stop_reason = reason;
     branch.flow = problem_->statistics();
+    branch.across_evaluations = problem_->across_evaluations();
     branch.seconds = started.seconds();
     return branch;
   };
@@ -207,6 +208,9 @@ Branch Continuation::run_from(const PeriodicOrbit& start, int direction,
     throw std::invalid_argument("continuation: the starting orbit carries no parameter values");
   system_.check_parameters(start.parameters);
   subspace_ = start.subspace;
+  // A symmetric orbit that the parameter does not move: each point integrates only the block
+  // across its subspace (shooting.hpp); checked at every point, the whole computation otherwise.
+  problem_->use_symmetry(options_.orbit.use_symmetry ? subspace_ : InvariantSubspace());
   space_ = std::make_unique<BranchSpace>(system_, *problem_, parameter_, start.parameters,
                                          options_.upper - options_.lower,
                                          options_.orbit.newton.rank_tolerance);

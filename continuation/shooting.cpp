@@ -4,12 +4,141 @@
 #include <cmath>
 #include <numbers>
 #include <stdexcept>
+#include <utility>
+
+#include "sympathy/core/across_variations.hpp"
+#include "sympathy/core/reduced_system.hpp"
 
 namespace sympathy {
 
 namespace {
 constexpr double kTwoPi = 2.0 * std::numbers::pi;
+// Every how many of the period's samples the restricted field and its Jacobian are compared with
+// the remembered ones (use_symmetry): 41 of 801, a tenth of a plain period's cost.
+constexpr int kFieldCheckStride = 20;
 }  // namespace
+
+// The last full evaluation with derivatives of an orbit in a reflection's fixed space V, and what
+// reusing it needs (shooting.hpp).
+struct ShootingProblem::SymmetricOrbit {
+  SymmetricOrbit(const OdeSystem& system, const InvariantSubspace& subspace_, Reflection g,
+                 const FlowOptions& options)
+      : subspace(subspace_),
+        reflection(std::move(g)),
+        across(system, subspace_),
+        flow(across, options),
+        inside(subspace_.bases(system.dimension()).inside) {}
+  InvariantSubspace subspace;
+  Reflection reflection;
+  AcrossVariations across;
+  Flow flow;                               // plain runs of `across`
+  Eigen::MatrixXd inside;                  // an orthonormal basis of V
+  int served = 0;                          // evaluations served by the across block alone
+  bool known = false;                      // the remembered full evaluation:
+  Eigen::VectorXd x;                       // its unknowns
+  Evaluation evaluation;                   // itself
+  Eigen::MatrixXd block;                   // V's block of its monodromy, inside^T Phi inside
+  Eigen::VectorXd scale;                   // the orbit's largest amplitude per component
+  std::vector<Eigen::VectorXd> field;      // R f at every kFieldCheckStride-th sample
+  std::vector<Eigen::MatrixXd> jacobians;  // R J P there
+};
+
+ShootingProblem::~ShootingProblem() = default;
+
+void ShootingProblem::use_symmetry(const InvariantSubspace& subspace) {
+  symmetric_.reset();
+  if (subspace.is_whole_space()) return;
+  if (auto g = subspace.reflection(n_))
+    symmetric_ = std::make_unique<SymmetricOrbit>(system_, subspace, std::move(*g), options_.flow);
+}
+
+int ShootingProblem::across_evaluations() const {
+  return symmetric_ ? symmetric_->served : 0;
+}
+
+void ShootingProblem::remember(const Eigen::VectorXd& x, const Evaluation& e) {
+  SymmetricOrbit& s = *symmetric_;
+  s.known = false;
+  const Eigen::VectorXd z0 = x.head(n_);
+  const double size = std::max(1.0, z0.cwiseAbs().maxCoeff());
+  if ((z0 - s.subspace.project(z0)).cwiseAbs().maxCoeff() > 1e-13 * size) return;
+  if (!e.samples.of(z0, period(x))) return;
+  s.x = x;
+  s.evaluation = e;
+  s.block = s.inside.transpose() * e.transitions[0] * s.inside;
+  s.scale = e.samples.states.cwiseAbs().rowwise().maxCoeff();
+  // Components that stay zero on V (the platform) are probed off V at the orbit's own size.
+  const double largest = std::max(s.scale.maxCoeff(), 1e-300);
+  for (int i = 0; i < n_; ++i) s.scale[i] = std::max(s.scale[i], 0.1 * largest);
+  s.field.clear();
+  s.jacobians.clear();
+  const ReducedSystem reduced(system_, s.subspace);
+  for (int k = 0; k <= PeriodSamples::intervals; k += kFieldCheckStride) {
+    const Eigen::VectorXd y = s.across.coordinates().restrict(e.samples.states.col(k));
+    s.field.push_back(reduced.rhs(0.0, y, e.parameters));
+    s.jacobians.push_back(reduced.jacobian(0.0, y, e.parameters));
+  }
+  s.known = true;
+}
+
+std::optional<ShootingProblem::Evaluation> ShootingProblem::across_evaluation(
+    const Eigen::VectorXd& x, const ParameterValues& p, int parameter) {
+  SymmetricOrbit& s = *symmetric_;
+  if (!s.known || parameter != s.evaluation.parameter) return std::nullopt;
+  const Eigen::VectorXd dx = x - s.x;
+  if (dx.cwiseAbs().maxCoeff() > 1e-10 * std::max(1.0, s.x.cwiseAbs().maxCoeff()))
+    return std::nullopt;
+  // f keeps the reflection at p.
+  const Reflection& g = s.reflection;
+  if (!(equivariance_defect(system_, p, s.scale,
+                            [&](const Eigen::VectorXd& z) { return g.apply(z); }) <= 1e-12))
+    return std::nullopt;
+  // The restricted field does not move with the parameter along the orbit: its derivative is
+  // exactly zero at every sample, and it and its Jacobian are the remembered ones at every
+  // kFieldCheckStride-th.
+  const ReducedSystem reduced(system_, s.subspace);
+  const auto& coordinates = s.across.coordinates();
+  const auto& states = s.evaluation.samples.states;
+  if (parameter >= 0) {
+    Eigen::VectorXd dfdp(reduced.dimension());
+    for (int k = 0; k < states.cols(); ++k) {
+      const Eigen::VectorXd y = coordinates.restrict(states.col(k));
+      reduced.parameter_derivative(0.0, y.data(), p.data(), parameter, dfdp.data());
+      if (dfdp.cwiseAbs().maxCoeff() != 0.0) return std::nullopt;
+    }
+  }
+  for (int k = 0, j = 0; k < states.cols(); k += kFieldCheckStride, ++j) {
+    const Eigen::VectorXd y = coordinates.restrict(states.col(k));
+    if (reduced.rhs(0.0, y, p) != s.field[j] || reduced.jacobian(0.0, y, p) != s.jacobians[j])
+      return std::nullopt;
+  }
+  // The orbit in V with W's block, over the remembered period.
+  const Eigen::VectorXd z0 = s.x.head(n_);
+  const double T = period(s.x);
+  const Eigen::VectorXd w = s.flow.advance(s.across.start(z0), p, 0.0, T);
+  const Eigen::VectorXd end = z0 + s.evaluation.residual.head(n_) + winding_;
+  const Eigen::VectorXd y_end = w.head(s.across.inside());
+  if ((y_end - coordinates.restrict(end)).cwiseAbs().maxCoeff() > 1e-7 * s.scale.maxCoeff())
+    return std::nullopt;
+  const Eigen::MatrixXd& C = s.across.breaking_basis();
+  Evaluation e;
+  e.parameters = p;
+  e.derivatives = true;
+  e.parameter = parameter;
+  e.transitions.push_back(s.inside * s.block * s.inside.transpose() +
+                          C * s.across.block(w) * C.transpose());
+  e.end_rates.push_back(system_.rhs(T, end, p));
+  if (parameter >= 0) e.parameter_sensitivities = Eigen::MatrixXd::Zero(n_, 1);
+  // The remembered residual, to first order in the unknowns' difference; the phase condition on
+  // the section as it is now.
+  e.residual = s.evaluation.residual;
+  e.residual.head(n_) += (e.transitions[0] - Eigen::MatrixXd::Identity(n_, n_)) * dx.head(n_) +
+                         e.end_rates[0] * dx[n_];
+  e.residual[n_] = f_ref_.dot(x.head(n_) - z_ref_);
+  if (dx.head(n_).cwiseAbs().maxCoeff() == 0.0 && dx[n_] == 0.0) e.samples = s.evaluation.samples;
+  ++s.served;
+  return e;
+}
 
 ShootingProblem::ShootingProblem(const OdeSystem& system, ShootingOptions options,
                                  double forced_period)
@@ -66,12 +195,17 @@ Eigen::VectorXd ShootingProblem::unknowns_from(const Eigen::VectorXd& z0, const 
 FlowStatistics ShootingProblem::statistics() const {
   FlowStatistics s = flow_.statistics();
   if (plain_flow_) s += plain_flow_->statistics();
+  if (symmetric_) s += symmetric_->flow.statistics();
   return s;
 }
 
 void ShootingProblem::reset_statistics() {
   flow_.reset_statistics();
   if (plain_flow_) plain_flow_->reset_statistics();
+  if (symmetric_) {
+    symmetric_->flow.reset_statistics();
+    symmetric_->served = 0;
+  }
 }
 
 Eigen::VectorXd ShootingProblem::residual(const Eigen::VectorXd& x, const ParameterValues& p) {
@@ -88,7 +222,13 @@ Eigen::VectorXd ShootingProblem::residual(const Eigen::VectorXd& x, const Parame
 ShootingProblem::Evaluation ShootingProblem::evaluate(const Eigen::VectorXd& x,
                                                       const ParameterValues& p, bool derivatives,
                                                       int parameter) {
-  return evaluate(x, p, derivatives, parameter, flow_);
+  const bool symmetric =
+      derivatives && symmetric_ && options_.segments == 1 && autonomous_ && record_samples_;
+  if (symmetric)
+    if (auto e = across_evaluation(x, p, parameter)) return std::move(*e);
+  Evaluation e = evaluate(x, p, derivatives, parameter, flow_);
+  if (symmetric) remember(x, e);
+  return e;
 }
 
 ShootingProblem::Evaluation ShootingProblem::evaluate(const Eigen::VectorXd& x,

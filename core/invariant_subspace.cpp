@@ -231,6 +231,57 @@ InvariantSubspace InvariantSubspace::within(const InvariantSubspace& larger, int
   return s;
 }
 
+Eigen::VectorXd Reflection::apply(const Eigen::VectorXd& z) const {
+  Eigen::VectorXd out(z.size());
+  for (int i = 0; i < z.size(); ++i) out[i] = sign[i] * z[image[i]];
+  return out;
+}
+
+Eigen::MatrixXd Reflection::breaking_basis() const {
+  const int n = static_cast<int>(image.size());
+  std::vector<Eigen::VectorXd> columns;
+  for (int i = 0; i < n; ++i) {
+    Eigen::VectorXd v = Eigen::VectorXd::Zero(n);
+    if (image[i] == i && sign[i] < 0.0) {
+      v[i] = 1.0;
+    } else if (image[i] > i) {
+      v[i] = std::sqrt(0.5);
+      v[image[i]] = -sign[i] * std::sqrt(0.5);
+    } else {
+      continue;
+    }
+    columns.push_back(std::move(v));
+  }
+  Eigen::MatrixXd basis(n, static_cast<int>(columns.size()));
+  for (std::size_t j = 0; j < columns.size(); ++j) basis.col(static_cast<int>(j)) = columns[j];
+  return basis;
+}
+
+std::optional<Reflection> InvariantSubspace::reflection(int dimension) const {
+  if (groups_.empty()) return std::nullopt;
+  Reflection g;
+  g.image.resize(dimension);
+  std::iota(g.image.begin(), g.image.end(), 0);
+  g.sign.assign(dimension, 1.0);
+  for (const Group& group : groups_) {
+    if (group.members.size() > 2) return std::nullopt;
+    if (group.zero) {
+      for (const Member& m : group.members) g.sign[m.component] = -1.0;
+      continue;
+    }
+    if (group.members.size() < 2) continue;  // a component tied to nothing: not moved
+    // z_a = s_a z_r and z_b = s_b z_r: z_a = s_a s_b z_b, and g swaps them with that sign.
+    const Member& a = group.members[0];
+    const Member& b = group.members[1];
+    const double s = a.sign * b.sign;
+    g.image[a.component] = b.component;
+    g.image[b.component] = a.component;
+    g.sign[a.component] = s;
+    g.sign[b.component] = s;
+  }
+  return g;
+}
+
 Eigen::VectorXd PermutationSymmetry::swapped(Eigen::VectorXd z, int a, int b) const {
   for (std::size_t k = 0; k < units[a].size(); ++k) std::swap(z[units[a][k]], z[units[b][k]]);
   return z;

@@ -142,6 +142,35 @@ class HopfCycle final : public AutoDiffSystem<HopfCycle> {
   bool transverse_;
 };
 
+// Two Hopf oscillators (a_i, b_i) of frequency w on a damped "platform" x: a_i' = -w b_i + a_i g_i
+// - kappa (a_1 + a_2) + eps x, b_i' = w a_i + b_i g_i - kappa (b_1 + b_2), g_i = 1 - a_i^2 - b_i^2,
+// x' = -gamma x + mu (a_1 + a_2). It keeps the reflection (a1, b1, a2, b2, x) -> (-a2, -b2, -a1,
+// -b1, -x), whose fixed space x = 0, a2 = -a1, b2 = -b1 holds the anti-phase orbit a1 = cos(w t),
+// b1 = sin(w t) of period 2 pi / w, on which kappa, eps, gamma and mu do not act (w does).
+// Inside the fixed space its multipliers are the Hopf cycle's, 1 and exp(-4 pi / w). Across it
+// (the sums s = (a1 + a2, b1 + b2) / sqrt(2) and x), with eps = 0: s' = (J_Hopf(t) - 2 kappa) s
+// gives exp(-4 pi kappa / w) and exp(-4 pi (1 + kappa) / w), and x, driven by s but not driving
+// it, exp(-2 pi gamma / w).
+class SymmetricPair final : public AutoDiffSystem<SymmetricPair> {
+ public:
+  explicit SymmetricPair(double eps = 0.0) {
+    set_parameter_layout({{"w", {0}}, {"kappa", {1}}, {"eps", {2}}, {"gamma", {3}}, {"mu", {4}}},
+                         {1.0, 0.1, eps, 0.5, 0.3});
+  }
+  int dimension() const override { return 5; }
+  std::vector<std::string> state_names() const override { return {"a1", "b1", "a2", "b2", "x"}; }
+  template <class T, class P>
+  void evaluate(double, const T* z, const P* p, T* dz) const {
+    const T sa = z[0] + z[2], sb = z[1] + z[3];
+    for (int k = 0; k < 4; k += 2) {
+      const T g = 1.0 - (z[k] * z[k] + z[k + 1] * z[k + 1]);
+      dz[k] = -p[0] * z[k + 1] + z[k] * g - p[1] * sa + p[2] * z[4];
+      dz[k + 1] = p[0] * z[k] + z[k + 1] * g - p[1] * sb;
+    }
+    dz[4] = -p[3] * z[4] + p[4] * sa;
+  }
+};
+
 // Two uncoupled Hopf oscillators of the same frequency: every phase difference gives a periodic
 // orbit (a one-parameter family), with multipliers 1, 1, exp(-4 pi), exp(-4 pi).
 class TwoHopf final : public AutoDiffSystem<TwoHopf> {

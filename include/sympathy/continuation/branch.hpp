@@ -137,6 +137,9 @@ struct Branch {
   std::optional<StopReason> backward_stop;  // a two-way branch: why its backward part ended
   double seconds = 0.0;
   FlowStatistics flow;
+  // Evaluations with derivatives served by the block across a symmetric orbit alone, the orbit
+  // reused (ShootingProblem::use_symmetry).
+  int across_evaluations = 0;
   // What made it: the options (bounds included) and the parameter values it started from.
   ContinuationOptions options;
   ParameterValues start_values;

@@ -20,15 +20,38 @@
 // 5e-9 after one period at rtol 1e-11). Tightened, the plain run agrees with it to about 1e-10
 // at about a tenth of its cost, and Newton-like steps on plain residuals can finish a point that
 // a run with sensitivities then accepts.
+//
+// Symmetric orbits whose symmetric motion the parameter leaves alone (use_symmetry). An orbit in
+// the fixed space V of a reflection g that f keeps (InvariantSubspace::reflection; the row
+// setup's anti-phase orbit: x = 0, th2 = -th1) has a monodromy that is block diagonal in V and
+// its complement W (core/across_variations.hpp). Where, moreover, the field restricted to V does
+// not depend on the continued parameter along the orbit (the anti-phase orbit's platform stands
+// still: k, c and M act only across V), the orbit and V's block are the same at every parameter
+// value and only W's block changes. An evaluation with derivatives then reuses the last full one
+// (its orbit, V's block, residual and samples) and integrates only the orbit in V with W's block
+// (2 + 4 x 4 entries instead of 6 + 7 x 6 on the row setup), provided, at the new parameter values
+// and each time:
+//   - the unknowns are within 1e-10 (relative) of the remembered ones (the residual and the
+//     Jacobian are then the remembered ones updated to first order in the difference);
+//   - f keeps the reflection (equivariance_defect below 1e-12);
+//   - the restricted field's derivative in the parameter is exactly zero at every one of the
+//     orbit's 801 samples, and the restricted field and its Jacobian on V are bit for bit the
+//     remembered ones at every 20th sample;
+//   - the orbit integrated with W's block closes on itself as the remembered one did (within
+//     1e-7 of its scale).
+// Otherwise (a parameter that moves the orbit, several segments, a point off V) the whole
+// computation runs, as without symmetry.
 #pragma once
 
 #include <memory>
+#include <optional>
 #include <vector>
 
 #include <Eigen/Dense>
 #include <Eigen/SparseCore>
 
 #include "sympathy/core/flow.hpp"
+#include "sympathy/core/invariant_subspace.hpp"
 #include "sympathy/core/ode_system.hpp"
 
 namespace sympathy {
@@ -64,6 +87,14 @@ class ShootingProblem {
  public:
   // `forced_period`: the period of a non-autonomous system (ignored for autonomous ones).
   ShootingProblem(const OdeSystem& system, ShootingOptions options, double forced_period = 0.0);
+  ~ShootingProblem();
+
+  // Orbits lying in `subspace` may reuse the last evaluation with derivatives and integrate only
+  // the block across it (see the header comment), where the subspace is the fixed space of a
+  // reflection; otherwise (or with the whole space) this does nothing.
+  void use_symmetry(const InvariantSubspace& subspace);
+  // Evaluations with derivatives served that way since the last reset_statistics().
+  int across_evaluations() const;
 
   int segments() const { return options_.segments; }
   int dimension() const { return n_; }
@@ -128,6 +159,11 @@ class ShootingProblem {
 
   Evaluation evaluate(const Eigen::VectorXd& x, const ParameterValues& p, bool derivatives,
                       int parameter, Flow& flow);
+  struct SymmetricOrbit;  // shooting.cpp
+  std::unique_ptr<SymmetricOrbit> symmetric_;
+  std::optional<Evaluation> across_evaluation(const Eigen::VectorXd& x, const ParameterValues& p,
+                                              int parameter);
+  void remember(const Eigen::VectorXd& x, const Evaluation& e);
   Eigen::VectorXd z_ref_, f_ref_;
   Eigen::VectorXd winding_;  // n: 2 pi k per rotating angle
   bool record_samples_ = false;

@@ -44,6 +44,23 @@ struct PermutationSymmetry {
   Eigen::VectorXd swapped(Eigen::VectorXd z, int a, int b) const;
 };
 
+// A signed permutation g of the state components, (g z)_i = sign_i z_(image_i), with g g = I: the
+// reflection whose fixed space is a subspace of ties between pairs (InvariantSubspace::reflection;
+// the anti-phase orbit's "x = 0, th2 = -th1": the two pendula swapped with their signs flipped, the
+// platform's sign flipped). Where f(g z) = g f(z) (checked: equivariance_defect), the Jacobian at a
+// state of the fixed space commutes with g, so it maps the fixed space (g's +1 eigenspace) and its
+// orthogonal complement (the -1 eigenspace) each into itself: the two isotypic components of Z2, in
+// which the variational equations split into two blocks.
+struct Reflection {
+  std::vector<int> image;
+  std::vector<double> sign;
+  Eigen::VectorXd apply(const Eigen::VectorXd& z) const;
+  // An orthonormal basis (columns) of g's -1 eigenspace, the directions that break the symmetry:
+  // e_i for each component whose sign g flips in place, (e_a - s e_b) / sqrt(2) for each pair g
+  // swaps with sign s.
+  Eigen::MatrixXd breaking_basis() const;
+};
+
 class InvariantSubspace {
  public:
   InvariantSubspace() = default;  // the whole space
@@ -77,6 +94,11 @@ class InvariantSubspace {
     Eigen::VectorXd restrict(const Eigen::VectorXd& z) const;  // y: z's representatives
   };
   Coordinates coordinates(int dimension) const;
+  // The reflection whose fixed space this is, where there is one: every tied group holds one or
+  // two components (a zero group's components change sign, a pair is swapped with the sign that
+  // ties it); nullopt for the whole space and where a group ties three or more components (S_N,
+  // not Z2: symmetry_reduction.hpp).
+  std::optional<Reflection> reflection(int dimension) const;
   // This subspace as a subspace of `larger` (which contains it), in larger's coordinates.
   InvariantSubspace within(const InvariantSubspace& larger, int dimension) const;
   // Whether two subspaces of a space of `dimension` components are the same.

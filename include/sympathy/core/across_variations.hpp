@@ -1,0 +1,89 @@
+// An orbit of a symmetric subspace with its variational equations across the subspace, as one
+// plain system: the block of the monodromy that breaks the symmetry, at the cost of that block.
+//
+// Where a reflection g keeps f (f(g z) = g f(z); InvariantSubspace::reflection) and an orbit lies
+// in g's fixed space V, the Jacobian along the orbit commutes with g and maps V and its orthogonal
+// complement W (g's -1 eigenspace) each into itself: in the basis [coordinates of V, C] (C an
+// orthonormal basis of W, Reflection::breaking_basis) the variational equations are two blocks,
+// the one inside V (the restricted system's, ReducedSystem) and A(t) = C^T J(z(t)) C across it.
+// This system's state is w = (y, U): y the coordinates of V (z = P y), U the a x a matrix
+// (column-major) of the across block's solution, with
+//   y' = R f(P y),    U' = C^T J(P y) C U,
+// so a plain integration from (y0, I) over a period gives the orbit and the across block of its
+// monodromy: on the row setup's anti-phase orbit 2 + 16 entries in the flow's vector instead of
+// 6 + 6 x 6 (+ 6 for a parameter column), and one dual-number evaluation with 4 directions a step
+// instead of 7. U is in the error test, as the flows keep sensitivities (flow.hpp).
+//
+// The Jacobian handed to an implicit method is the block diagonal of df/dy and I (x) A(t): the
+// U equations' dependence on y (through J) is left out, a modified Newton iteration (exact for
+// y; U's equations are linear). `state_names` name y by V's representative components and U by
+// its entries.
+#pragma once
+
+#include <vector>
+
+#include <Eigen/Dense>
+
+#include "sympathy/core/invariant_subspace.hpp"
+#include "sympathy/core/ode_system.hpp"
+#include "sympathy/core/reduced_system.hpp"
+
+namespace sympathy {
+
+class AcrossVariations final : public OdeSystem {
+ public:
+  // `system` must outlive this; `subspace` must have a reflection (throws std::invalid_argument
+  // otherwise). The caller checks that f keeps the reflection at the parameter values it uses.
+  AcrossVariations(const OdeSystem& system, const InvariantSubspace& subspace);
+
+  int inside() const { return coordinates_.size(); }                 // r: V's coordinates
+  int across() const { return static_cast<int>(breaking_.cols()); }  // a: W's dimension
+  const InvariantSubspace::Coordinates& coordinates() const { return coordinates_; }
+  const Eigen::MatrixXd& breaking_basis() const { return breaking_; }  // C, n x a
+  // The state (y0, I) for an orbit through z0 (in V), and the across block U read from a state.
+  Eigen::VectorXd start(const Eigen::VectorXd& z0) const;
+  Eigen::MatrixXd block(const Eigen::VectorXd& w) const;
+
+  using OdeSystem::jacobian;
+  using OdeSystem::rhs;
+  int dimension() const override { return inside() + across() * across(); }
+  std::vector<std::string> state_names() const override;
+  std::vector<std::string> parameter_names() const override { return system_.parameter_names(); }
+  ParameterValues default_parameters() const override { return system_.default_parameters(); }
+  double parameter(const ParameterValues& p, int index) const override {
+    return system_.parameter(p, index);
+  }
+  void set_parameter(ParameterValues& p, int index, double value) const override {
+    system_.set_parameter(p, index, value);
+  }
+  void rhs(double t, const double* w, const double* p, double* dw) const override;
+  void jacobian(double t, const double* w, const double* p, Eigen::MatrixXd& jac) const override;
+  // J * S with the Jacobian above (for completeness; a flow of this system needs no
+  // sensitivities). Parameter columns are refused (std::invalid_argument).
+  void variational_rhs(double t, const double* w, const double* p, int columns,
+                       const double* const* S, double* const* out,
+                       std::span<const int> parameters) const override;
+  // Refused (std::invalid_argument): the block carries no parameter sensitivities.
+  void parameter_derivative(double t, const double* w, const double* p, int parameter,
+                            double* dfdp) const override;
+  bool autonomous() const override { return system_.autonomous(); }
+  std::vector<SteepZone> steep_zones(const double* p) const override;  // y's, as ReducedSystem's
+  int switching_count() const override { return system_.switching_count(); }
+  void switching_functions(double t, const double* w, const double* p, double* g) const override;
+
+ private:
+  Eigen::VectorXd embed(const double* w) const;
+  struct Scratch {  // rhs's temporaries
+    Eigen::VectorXd z, dz;
+    Eigen::MatrixXd in, out;
+    std::vector<const double*> in_columns;
+    std::vector<double*> out_columns;
+  };
+
+  const OdeSystem& system_;
+  ReducedSystem reduced_;  // y's equations, zones and names
+  const InvariantSubspace::Coordinates& coordinates_;
+  Eigen::MatrixXd breaking_;
+};
+
+}  // namespace sympathy
