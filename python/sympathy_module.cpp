@@ -10,6 +10,7 @@
 // call returns what was computed, its stop "interrupted", as the program does on SIGINT.
 #include <atomic>
 #include <chrono>
+#include <cmath>
 #include <exception>
 #include <memory>
 #include <optional>
@@ -82,6 +83,41 @@ class PythonHooks {
   py::object progress_;
   bool interrupted_ = false;
   std::optional<py::error_already_set> error_;
+};
+
+// progress=True: a tqdm bar over the continued parameter's range (advanced by how far each point
+// moved along it), when tqdm is installed; without it a warning, once, and no bar. Anything else
+// is the callback itself (None: none).
+struct ProgressBar {
+  py::object callback = py::none();
+  py::object bar = py::none();
+  ProgressBar(const py::object& progress, double from, double to, const std::string& parameter) {
+    if (!py::isinstance<py::bool_>(progress)) {
+      callback = progress;
+      return;
+    }
+    if (!progress.cast<bool>()) return;
+    try {
+      bar = py::module_::import("tqdm").attr("tqdm")(
+          py::arg("total") = std::abs(to - from), py::arg("unit") = parameter,
+          py::arg("desc") = "continue " + parameter,
+          py::arg("bar_format") =
+              "{desc}: {percentage:3.0f}%|{bar}| {n:.4g}/{total:.4g} [{elapsed}]");
+    } catch (py::error_already_set&) {
+      PyErr_WarnEx(PyExc_UserWarning, "progress=True: tqdm is not installed; no progress bar", 1);
+      return;
+    }
+    auto last = std::make_shared<double>(from);
+    py::object b = bar;
+    callback = py::cpp_function([b, last](const py::object& point) {
+      const double value = point.attr("value").cast<double>();
+      b.attr("update")(std::abs(value - *last));
+      *last = value;
+    });
+  }
+  ~ProgressBar() {
+    if (!bar.is_none()) bar.attr("close")();
+  }
 };
 
 // A case file with its parameter set and --set values. Each call loads it again with the call's
@@ -199,7 +235,8 @@ class Case {
     const cli::LoadedSystem c(args);
     cli::BranchRequest request = cli::continue_request(args, c);
     const cli::BranchSource source = c.source(request.start, request.initial, request.start_data);
-    PythonHooks hooks(progress);
+    const ProgressBar shown(progress, request.from, request.to, request.parameter);
+    PythonHooks hooks(shown.callback);
     request.progress = nullptr;  // progress goes to the callback, not to stderr
     request.on_point = [&](const ContinuationPoint& p) {
       hooks.report([&] { return point_result(p); });
@@ -403,7 +440,8 @@ PYBIND11_MODULE(sympathy, m) {
       .def("continue_branch", &Case::continue_branch, py::arg("progress") = py::none(),
            "sympathy continue: a branch (points as NumPy arrays, events as objects); options "
            "param, from_, to, at, start, step, max_step, max_points, switch_at, ...; "
-           "progress(point) is called per point; Ctrl-C returns the points so far, stop "
+           "progress(point) is called per point (progress=True: a tqdm bar, when tqdm is "
+           "installed); Ctrl-C returns the points so far, stop "
            "'interrupted'")
       .def("equilibria", &Case::equilibria, py::arg("progress") = py::none(),
            "sympathy equilibria: a branch of equilibria (points: value, state, eigenvalues, "

@@ -147,6 +147,15 @@ def test_simulation_interrupted_keeps_its_samples():
     assert 1 < len(run.t) < 1e6 and run.states.shape == (len(run.t), len(run.state_names))
 
 
+def test_progress_true_draws_a_tqdm_bar_over_the_parameter_range(capsys):
+    pytest.importorskip("tqdm")
+    branch = sympathy.Case(HOPF).continue_branch(param="mu", from_=0.25, to=1, progress=True)
+    assert branch.stop == "parameter bound"
+    err = capsys.readouterr().err
+    # The bar's last state: the whole range, 0.75 of mu, covered.
+    assert "continue mu: 100%" in err and "0.75/0.75" in err
+
+
 def test_an_exception_in_the_callback_is_raised_after_the_run():
     def progress(point):
         if point.index == 2:
