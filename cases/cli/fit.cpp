@@ -21,9 +21,6 @@
 
 namespace sympathy::cli {
 
-namespace {
-
-// Comma-separated names of a repeatable option, in order.
 std::vector<std::string> names(const Arguments& args, const std::string& option) {
   std::vector<std::string> out;
   for (const auto& value : args.values(option)) {
@@ -35,6 +32,8 @@ std::vector<std::string> names(const Arguments& args, const std::string& option)
   }
   return out;
 }
+
+namespace {
 
 LocalMethod local_method(const std::string& name) {
   if (name == "slsqp") return LocalMethod::Slsqp;

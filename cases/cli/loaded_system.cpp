@@ -153,4 +153,10 @@ InvariantSubspace LoadedSystem::subspace(const std::string& start) const {
   return metronomes_->file.invariant_subspace(metronomes_->file.start(start), *model_);
 }
 
+FitModel LoadedSystem::fit_model() const {
+  if (equations_)
+    return equation_fit_model(equations_->file, *equations_->build.system, equations_->values);
+  return metronome_fit_model(metronomes_->file, metronomes_->spec, false);
+}
+
 }  // namespace sympathy::cli

@@ -15,6 +15,7 @@
 #include "cases/cli/equations.hpp"
 #include "cases/cli/start_data.hpp"
 #include "sympathy/cases/metronome_model.hpp"
+#include "sympathy/cases/parameter_fit.hpp"
 
 namespace sympathy::cli {
 
@@ -77,6 +78,9 @@ class LoadedSystem {
   BranchSource source(const std::string& start, const std::vector<Assignment>& initial,
                       const std::optional<RecordedPeriod>& data = std::nullopt) const;
   InvariantSubspace subspace(const std::string& start) const;
+  // The model a fit adjusts (parameter_fit.hpp), at the case's values: the metronome model (the
+  // pendula free) or the equation case file's system.
+  FitModel fit_model() const;
 
  private:
   std::vector<Assignment> sets_;  // --set, for range checks of an equation case file

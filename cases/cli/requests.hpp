@@ -96,6 +96,9 @@ struct FitSetup {
 };
 std::vector<OptionSpec> fit_options();
 FitSetup fit_setup(const Arguments& args);
+// Comma-separated names of a repeatable option (--free d,s --free c), in order; InputError for an
+// empty name.
+std::vector<std::string> names(const Arguments& args, const std::string& option);
 
 // sympathy simulate: its options, the output times of --t-end and --dt (0, dt, 2 dt, ..., t_end;
 // InputError unless 0 < dt <= t_end) and the integrator options on its defaults (BDF, rtol 1e-8,

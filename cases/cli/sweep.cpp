@@ -1,10 +1,11 @@
-// sympathy sweep: one-parameter branches over a grid of a second parameter, or one orbit at each
-// of its values, as independent tasks (cli/task_run.hpp: threads, or the ranks of an MPI job; a
-// journal that a resumed run does not compute again). The branches are a coarse cross-check of
-// the two-parameter curves (curve, map): each branch's located events at its value of the second
-// parameter. Files, in --out DIR: sweep_journal.csv (a row per task as it finishes), and at the
-// end, in task order whatever the threads, sweep_events.csv (a row per located event) or
-// sweep_orbits.csv (a row per orbit), and sweep.json.
+// sympathy sweep: one-parameter branches over a grid of a second parameter, or one orbit or one
+// fit (the fit's profile in the swept parameter) at each of its values, as independent tasks
+// (cli/task_run.hpp: threads, or the ranks of an MPI job; a journal that a resumed run does not
+// compute again). The branches are a coarse cross-check of the two-parameter curves (curve, map):
+// each branch's located events at its value of the second parameter. Files, in --out DIR:
+// sweep_journal.csv (a row per task as it finishes), and at the end, in task order whatever the
+// threads, sweep_events.csv (a row per located event), sweep_orbits.csv (a row per orbit) or
+// sweep_fits.csv (a row per fit), and sweep.json.
 #include <cstdio>
 #include <filesystem>
 #include <optional>
@@ -15,6 +16,7 @@
 #include "cases/cli/branch_run.hpp"
 #include "cases/cli/commands.hpp"
 #include "cases/cli/loaded_system.hpp"
+#include "cases/cli/requests.hpp"
 #include "cases/cli/task_run.hpp"
 #include "sympathy/continuation/branch_output.hpp"
 #include "sympathy/continuation/periodic_orbit.hpp"
@@ -27,7 +29,10 @@ namespace {
 
 struct Sweep {
   std::unique_ptr<LoadedSystem> c;
-  bool orbits = false;  // no --param: an orbit at each value, not a branch
+  // --param: a branch at each value; --data: a fit; neither: an orbit.
+  enum class Job { Branches, Orbits, Fits } job = Job::Branches;
+  FitRequest fit;  // the fit of every task (--data, --free, --free-initial)
+  TrajectoryFitOptions fit_options;
   ParameterWindow window;
   GridAxis over;
   std::vector<double> values;  // of the second parameter, one per task
@@ -65,30 +70,57 @@ Sweep prepare(const Arguments& args, int ranks) {
   Sweep w;
   w.c = std::make_unique<LoadedSystem>(args);
   w.c->require_orbits();
-  w.orbits = !args.has("--param");
-  if (w.orbits) {
+  if (args.has("--param") && args.has("--data"))
+    throw InputError(
+        "--data: a fit at each value, given with --param (a branch at each value); "
+        "expected one or the other");
+  w.job = args.has("--param")  ? Sweep::Job::Branches
+          : args.has("--data") ? Sweep::Job::Fits
+                               : Sweep::Job::Orbits;
+  if (w.job != Sweep::Job::Branches) {
     for (const char* option : {"--from", "--to", "--at", "--step", "--max-step", "--max-points"})
       if (args.has(option))
         throw InputError(std::string(option) +
-                         ": a branch's option, given without --param (a sweep of orbits); "
-                         "expected --param P too, for a branch at each value");
+                         ": a branch's option, given without --param (a sweep of orbits or "
+                         "fits); expected --param P too, for a branch at each value");
   } else {
     w.window = w.c->window(args);
   }
+  if (w.job != Sweep::Job::Fits)
+    for (const char* option : {"--free", "--free-initial"})
+      if (args.has(option))
+        throw InputError(std::string(option) +
+                         ": a fit's option, given without --data; expected "
+                         "--data FILE.csv too, for a fit at each value");
   if (!args.has("--over"))
     throw InputError("--over is required: the second parameter's grid, NAME=FROM:TO:COUNT");
   w.over = parse_grid(*args.value("--over"), "--over");
   w.c->require_parameter("--over", w.over.parameter);
-  if (!w.orbits && w.over.parameter == w.window.parameter)
+  if (w.job == Sweep::Job::Branches && w.over.parameter == w.window.parameter)
     throw InputError("--over " + w.over.parameter + ": expected a parameter other than --param");
   if (w.over.count < 1)
     throw InputError("--over " + *args.value("--over") + ": an empty grid; expected COUNT >= 1");
   w.values = w.over.values();
   w.c->check_range(w.over.parameter, {{"--over (from)", w.over.from}, {"--over (to)", w.over.to}});
-  if (!w.orbits) w.c->check_range(w.window.parameter, w.window.ends());
+  if (w.job == Sweep::Job::Branches) w.c->check_range(w.window.parameter, w.window.ends());
   if (!w.c->equations() && !args.has("--start")) throw InputError("--start is required");
   w.start = args.text("--start", "");
-  w.c->source(w.start, args.assignments("--initial"));  // the start named, checked
+  const BranchSource start = w.c->source(w.start, args.assignments("--initial"));  // checked
+  if (w.job == Sweep::Job::Fits) {
+    w.fit.data = *args.value("--data");
+    w.fit.free = names(args, "--free");
+    w.fit.free_initial = names(args, "--free-initial");
+    for (const auto& name : w.fit.free)
+      if (name == w.over.parameter)
+        throw InputError("--free " + name +
+                         ": the swept parameter (--over), held at each value; "
+                         "expected another");
+    w.fit_options.flow = flow_options(args, w.fit_options.flow);
+    // The request checked once, before any work: the recording, the names, the sample count.
+    FitModel model = w.c->fit_model();
+    model.initial = start.start_state;
+    prepare_fit(std::move(model), w.fit);
+  }
   BranchRequest& r = w.request;
   r.start = w.start;
   r.parameter = w.window.parameter;
@@ -118,7 +150,9 @@ Sweep prepare(const Arguments& args, int ranks) {
                      " ranks (one manager)");
   w.out = args.text("--out", "out/sweep");
   w.journal_path = w.out + "/sweep_journal.csv";
-  w.table_path = w.out + (w.orbits ? "/sweep_orbits.csv" : "/sweep_events.csv");
+  w.table_path = w.out + (w.job == Sweep::Job::Orbits ? "/sweep_orbits.csv"
+                          : w.job == Sweep::Job::Fits ? "/sweep_fits.csv"
+                                                      : "/sweep_events.csv");
   w.json_path = w.out + "/sweep.json";
   check_distinct_outputs(
       {{"journal", w.journal_path}, {"table", w.table_path}, {"json", w.json_path}},
@@ -130,9 +164,15 @@ Sweep prepare(const Arguments& args, int ranks) {
 // (events_field), or an orbit's convergence, period, stability, largest multiplier but the
 // trivial one, trivial-multiplier error and residual.
 TaskJournal::Row header(const Sweep& w) {
-  if (w.orbits)
+  if (w.job == Sweep::Job::Orbits)
     return {w.over.parameter, "converged",     "period",  "stability",
             "max_modulus",    "trivial_error", "residual"};
+  if (w.job == Sweep::Job::Fits) {
+    TaskJournal::Row h{w.over.parameter, "converged", "rss"};
+    for (const auto& name : w.fit.free) h.push_back(name);
+    for (const auto& name : w.fit.free_initial) h.push_back(name + "(0)");
+    return h;
+  }
   return {w.over.parameter, "points", "stop", "events"};
 }
 
@@ -196,23 +236,48 @@ nlohmann::json orbits_json(const Sweep& w) {
   return orbits;
 }
 
+// The fits: sweep_fits.csv (the journal's rows in task order), and the JSON's list.
+nlohmann::json fits_json(const Sweep& w) {
+  const TaskJournal::Row names = header(w);
+  CsvWriter csv(w.table_path, names);
+  nlohmann::json fits = nlohmann::json::array();
+  for (const auto& [index, row] : w.journal->rows()) {
+    csv.row(row);
+    nlohmann::json values = nlohmann::json::object();
+    for (std::size_t k = 3; k < row.size(); ++k) values[names[k]] = std::stod(row[k]);
+    fits.push_back({{"task", index},
+                    {"value", std::stod(row[0])},
+                    {"converged", row[1] == "1"},
+                    {"rss", std::stod(row[2])},
+                    {"values", values}});
+  }
+  csv.close();
+  return fits;
+}
+
 void write_results(const Sweep& w, const TaskRunSummary& summary, const Stopwatch& clock) {
   nlohmann::json j;
   j["case"] = w.c->path();
   j["params_set"] = w.c->params();
   j["start"] = w.start;
-  if (!w.orbits)
+  if (w.job == Sweep::Job::Branches)
     j["parameter"] = {{"name", w.window.parameter}, {"from", w.window.from}, {"to", w.window.to}};
+  if (w.job == Sweep::Job::Fits) j["data"] = w.fit.data;
   j["over"] = {{"name", w.over.parameter},
                {"from", w.over.from},
                {"to", w.over.to},
                {"count", w.over.count}};
   j["complete"] = w.journal->rows().size() == w.values.size();
-  j[w.orbits ? "orbits" : "branches"] = w.orbits ? orbits_json(w) : branches_json(w);
+  const char* kind = w.job == Sweep::Job::Orbits ? "orbits"
+                     : w.job == Sweep::Job::Fits ? "fits"
+                                                 : "branches";
+  j[kind] = w.job == Sweep::Job::Orbits ? orbits_json(w)
+            : w.job == Sweep::Job::Fits ? fits_json(w)
+                                        : branches_json(w);
   write_file_atomically(w.json_path, j.dump(1) + "\n");
   std::fprintf(stderr, "  %zu of %zu %s (%zu computed now, on %d %s)%s; run time %.1f s\n",
-               w.journal->rows().size(), w.values.size(), w.orbits ? "orbits" : "branches",
-               summary.computed, summary.threads, summary.threads == 1 ? "worker" : "workers",
+               w.journal->rows().size(), w.values.size(), kind, summary.computed, summary.threads,
+               summary.threads == 1 ? "worker" : "workers",
                summary.interrupted ? ", interrupted: --resume continues" : "", clock.seconds());
   std::printf("wrote %s, %s and %s\n", w.journal_path.c_str(), w.table_path.c_str(),
               w.json_path.c_str());
@@ -228,7 +293,7 @@ int run_sweep(const std::vector<std::string>& argv) {
         "named start of the case (required for a metronome case file; an equation case file's "
         "default: its [states])"},
        {"--param", "P", false,
-        "each branch's parameter (without it: an orbit at each value, not a branch)"},
+        "each branch's parameter (without it and --data: an orbit at each value)"},
        {"--from", "A", false, "each branch's first value (required with --param)"},
        {"--to", "B", false, "each branch's last value (required with --param)"},
        {"--at", "V", false, "start each branch at V instead and continue both ways"},
@@ -236,6 +301,10 @@ int run_sweep(const std::vector<std::string>& argv) {
         "the second parameter's grid: a branch (or an orbit) at each of its COUNT values "
         "(required)"},
        {"--initial", "VAR=VALUE", true, "initial state value (on top of --start)"},
+       {"--data", "FILE.csv", false,
+        "a fit to this recording at each value (the swept parameter held there), as fit's"},
+       {"--free", "NAME[,NAME...]", true, "with --data: the parameters fitted"},
+       {"--free-initial", "VAR[,VAR...]", true, "with --data: initial values fitted too"},
        {"--segments", "M", false, "shooting segments (default 1)"},
        {"--step", "DS", false, "initial arclength step, scaled (default 0.02)"},
        {"--max-step", "DS", false, "largest arclength step, scaled (default 0.1)"},
@@ -265,7 +334,19 @@ int run_sweep(const std::vector<std::string>& argv) {
   const auto work = [&](std::size_t index) -> std::optional<TaskRow> {
     BranchSource source = base;
     source.values = system.with_parameter(base.values, over, w->values[index]);
-    if (w->orbits) {
+    if (w->job == Sweep::Job::Fits) {
+      // The case's model with the swept value set, unrecorded states from the start.
+      FitModel model = w->c->fit_model();
+      model.values = source.values;
+      model.initial = source.start_state;
+      model.initial_source = w->start.empty() ? "start" : "--start " + w->start;
+      const PreparedFit fit = prepare_fit(std::move(model), w->fit);
+      const TrajectoryFitResult r = fit_trajectory(*fit.model, fit.problem, w->fit_options);
+      TaskRow row{format_double(w->values[index]), r.converged ? "1" : "0", format_double(r.rss)};
+      for (int k = 0; k < r.values.size(); ++k) row.push_back(format_double(r.values[k]));
+      return row;
+    }
+    if (w->job == Sweep::Job::Orbits) {
       const PeriodicOrbit o = find_periodic_orbit(system, source.values, source.start_state,
                                                   source.subspace, w->request.continuation.orbit);
       const auto& f = o.floquet;
@@ -285,8 +366,10 @@ int run_sweep(const std::vector<std::string>& argv) {
   }
   const std::size_t to_compute = w->values.size() - w->journal->resumed();
   char job[160];
-  if (w->orbits)
+  if (w->job == Sweep::Job::Orbits)
     std::snprintf(job, sizeof job, "an orbit");
+  else if (w->job == Sweep::Job::Fits)
+    std::snprintf(job, sizeof job, "a fit to %s", w->fit.data.c_str());
   else
     std::snprintf(job, sizeof job, "%s from %g to %g", w->window.parameter.c_str(), w->window.from,
                   w->window.to);

@@ -65,6 +65,41 @@ for o in j['orbits']:
 print(ok)" "$work/orbits/sweep.json")" = True
 check "... and its table" test "$(head -1 "$work/orbits/sweep_orbits.csv")" = "p1,converged,period,stability,max_modulus,trivial_error,residual"
 
+# With --data, a fit at each value: the profile of a fit in the swept parameter. The damped
+# oscillator x'' + 2 zeta w x' + w^2 x = 0 (exact samples of exp(-zeta w t) cos(w_d t) at w = 1,
+# zeta = 0.05), w fitted at zeta = 0.04, 0.05, 0.06: the residual least at the true zeta, where w
+# is 1 to 1e-6.
+cat > "$work/oscillator.toml" <<'TOML'
+kind = "equations"
+[states]
+x = 1.0
+v = -0.05
+[parameters]
+w = { value = 1.2, min = 0.0 }
+zeta = { value = 0.08, min = 0.0 }
+[equations]
+x = "v"
+v = "-2*zeta*w*v - w^2*x"
+TOML
+/usr/bin/python3 -c "
+import math
+wd = math.sqrt(1 - 0.05 ** 2)
+print('t,x')
+for k in range(201): t = 0.1 * k; print('%r,%r' % (t, math.exp(-0.05 * t) * math.cos(wd * t)))" > "$work/oscillator.csv"
+"$bin" sweep "$work/oscillator.toml" --over zeta=0.04:0.06:3 --data "$work/oscillator.csv" --free w \
+  --out "$work/fits" > /dev/null 2> "$work/fits.err"
+check "a sweep of fits exits 0" test $? -eq 0
+check "... least residual at the true zeta, w = 1 there" test "$(/usr/bin/python3 -c "
+import json, sys
+f = json.load(open(sys.argv[1]))['fits']
+rss = [x['rss'] for x in f]
+print(all(x['converged'] for x in f) and rss[1] < rss[0] and rss[1] < rss[2] and
+      abs(f[1]['values']['w'] - 1) < 1e-6)" "$work/fits/sweep.json")" = True
+"$bin" sweep "$work/oscillator.toml" --over zeta=0.04:0.06:3 --data "$work/oscillator.csv" \
+  --free zeta --out "$work/bad" > /dev/null 2> "$work/free_swept.err"
+check "fitting the swept parameter: exit 2" test $? -eq 2
+check "... saying so" grep -qF -- "--free zeta: the swept parameter (--over)" "$work/free_swept.err"
+
 # Bad input: exit 2 before any work.
 bad() {  # bad NAME EXPECTED-MESSAGE ARGS...
   local name=$1 expected=$2; shift 2
@@ -79,6 +114,8 @@ bad unknown "--over q: not a parameter of $lcbp" --param p1 --from 1 --to 3 --ov
 bad malformed "--over p2=1:2: expected NAME=FROM:TO:COUNT" --param p1 --from 1 --to 3 --over p2=1:2 --out "$work/bad"
 bad journal_exists "is the journal of an earlier run; expected --resume" \
   --param p1 --from 1 --to 3 --over p2=1.5:2.5:3 --out "$work/one"
+bad fit_with_param "--data: a fit at each value, given with --param" \
+  --param p1 --from 1 --to 3 --over p2=1:2:3 --data "$work/oscillator.csv" --out "$work/bad"
 bad branch_option_without_param "--from: a branch's option, given without --param" \
   --from 1 --over p2=1:2:3 --out "$work/bad"
 check "no file written for bad input" test ! -e "$work/bad"
