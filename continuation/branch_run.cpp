@@ -41,7 +41,7 @@ std::string BranchProblem::problem_with(const OdeSystem& system) const {
     // The branch keeps the start's period: the continued parameter must not move the forcing's.
     const double declared = system.forcing_period(values.data());
     if (declared > 0.0) {
-      const auto& name = system.parameter_names()[parameter];
+      const std::string name = system.parameter_names()[parameter];
       for (double v : {from, to, first_value()}) {
         const double at = system.forcing_period(system.with_parameter(values, parameter, v).data());
         if (!(std::abs(at - declared) <= 1e-14 * declared))
