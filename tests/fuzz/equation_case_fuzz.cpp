@@ -38,6 +38,11 @@ sympathy::EquationSystem renamed(sympathy::EquationSystem system) {
     d.name = names.at(d.name);
     rename(d.tree, names);
   }
+  for (auto& zone : system.steep) {
+    rename(zone.width, names);
+    if (zone.scale) rename(*zone.scale, names);
+  }
+  if (system.forcing_period) rename(*system.forcing_period, names);
   return system;
 }
 
