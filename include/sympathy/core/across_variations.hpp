@@ -67,6 +67,7 @@ class AcrossVariations final : public OdeSystem {
   void parameter_derivative(double t, const double* w, const double* p, int parameter,
                             double* dfdp) const override;
   bool autonomous() const override { return system_.autonomous(); }
+  double forcing_period(const double* p) const override { return system_.forcing_period(p); }
   std::vector<SteepZone> steep_zones(const double* p) const override;  // y's, as ReducedSystem's
   int switching_count() const override { return system_.switching_count(); }
   void switching_functions(double t, const double* w, const double* p, double* g) const override;
