@@ -20,6 +20,30 @@
 
 namespace sympathy::cli {
 
+std::vector<OptionSpec> branch_step_options() {
+  return {{"--segments", "M", false, "shooting segments (default 1)"},
+          {"--step", "DS", false, "initial arclength step, scaled (default 0.02)"},
+          {"--max-step", "DS", false, "largest arclength step, scaled (default 0.1)"},
+          {"--max-points", "N", false, "point limit per direction (default 400)"},
+          {"--transient", "SECONDS", false,
+           "integration before the first Newton (default 60; 0 for a forced system)"}};
+}
+
+ContinuationOptions branch_continuation(const Arguments& args, const OdeSystem& system) {
+  ContinuationOptions o;
+  // A forced system's start: Newton at once unless a transient is asked for (its period is the
+  // forcing's; a transient would leave an unstable response for whatever attracts).
+  o.orbit.transient = args.number("--transient", system.autonomous() ? o.orbit.transient : 0.0);
+  o.orbit.shooting.segments = args.integer("--segments", 1);
+  o.initial_step = args.number("--step", o.initial_step);
+  o.max_step = args.number("--max-step", o.max_step);
+  o.max_points = args.integer("--max-points", o.max_points);
+  apply_accuracy(accuracy(args), o.orbit);
+  o.orbit.shooting.flow = flow_options(args, o.orbit.shooting.flow);
+  o.orbit.transient_flow.linear_solver = o.orbit.shooting.flow.linear_solver;
+  return o;
+}
+
 std::vector<OptionSpec> continue_options() {
   auto options = case_options();
   options.insert(
@@ -32,14 +56,8 @@ std::vector<OptionSpec> continue_options() {
        {"--to", "B", false, "last parameter value (required)"},
        {"--at", "V", false, "start at V instead and continue both ways, to A and to B"},
        {"--initial", "VAR=VALUE", true, "initial state value (on top of --start)"},
-       {"--segments", "M", false, "shooting segments (default 1)"},
-       {"--step", "DS", false, "initial arclength step, scaled (default 0.02)"},
-       {"--max-step", "DS", false, "largest arclength step, scaled (default 0.1)"},
-       {"--max-points", "N", false, "point limit per direction (default 400)"},
        {"--user-points", "V1,V2,...", false,
         "report the branch's orbit at each of these values of --param (AUTO's UZ), as events"},
-       {"--transient", "SECONDS", false,
-        "integration before the first Newton (default 60; 0 for a forced system)"},
        {"--csv", "FILE", false, "stream every point to this CSV"},
        {"--json", "FILE", false, "write the branch and its bifurcations as JSON"},
        {"--events", "FILE", false, "stream each bifurcation to this CSV as it is located"},
@@ -53,6 +71,8 @@ std::vector<OptionSpec> continue_options() {
         "no symmetry reduction: integrate every metronome (for comparison)"},
        {"--quiet", "", false, "no progress lines"},
        {"--verbose", "", false, "multipliers on each progress line; the full report at the end"}});
+  const auto steps = branch_step_options();
+  options.insert(options.end(), steps.begin(), steps.end());
   const auto integrator = integrator_options();
   options.insert(options.end(), integrator.begin(), integrator.end());
   options.push_back(accuracy_option());
@@ -90,22 +110,13 @@ BranchRequest continue_request(const Arguments& args, const LoadedSystem& c) {
   if (args.flag("--quiet")) request.progress = nullptr;
   request.verbose = args.flag("--verbose");
   auto& o = request.continuation;
-  // A forced system's start: Newton at once unless a transient is asked for (its period is the
-  // forcing's; a transient would leave an unstable response for whatever attracts).
-  o.orbit.transient = args.number("--transient", c.system().autonomous() ? o.orbit.transient : 0.0);
-  o.orbit.shooting.segments = args.integer("--segments", 1);
-  o.initial_step = args.number("--step", o.initial_step);
-  o.max_step = args.number("--max-step", o.max_step);
-  o.max_points = args.integer("--max-points", o.max_points);
+  o = branch_continuation(args, c.system());
   o.user_points = args.numbers("--user-points");
   for (double v : o.user_points)
     if (v < std::min(request.from, request.to) || v > std::max(request.from, request.to))
       throw InputError("--user-points " + format_number(v) + ": outside --from " +
                        format_number(request.from) + " .. --to " + format_number(request.to) +
                        "; expected values the branch can reach");
-  apply_accuracy(accuracy(args), o.orbit);
-  o.orbit.shooting.flow = flow_options(args, o.orbit.shooting.flow);
-  o.orbit.transient_flow.linear_solver = o.orbit.shooting.flow.linear_solver;
   o.orbit.use_symmetry = !args.flag("--whole-state");
   check_options(o.validate(), "");
   c.check_range(request.parameter, window.ends());

@@ -29,6 +29,12 @@ namespace sympathy::cli {
 std::vector<OptionSpec> orbit_options();
 OrbitOptions orbit_request(const Arguments& args, bool forced = false);
 
+// What every branch run reads besides its window and start (continue, sweep): --segments, --step,
+// --max-step, --max-points and --transient (0 by default for a forced system), with --accuracy
+// and the integrator's options, into ContinuationOptions; the caller adds its own and validates.
+std::vector<OptionSpec> branch_step_options();
+ContinuationOptions branch_continuation(const Arguments& args, const OdeSystem& system);
+
 // sympathy continue: its options, and the request (the window, the start, the continuation
 // options, switching, the outputs), checked against the case `c`.
 std::vector<OptionSpec> continue_options();

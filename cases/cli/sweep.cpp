@@ -31,8 +31,11 @@ struct Sweep {
   std::unique_ptr<LoadedSystem> c;
   // --param: a branch at each value; --data: a fit; neither: an orbit.
   enum class Job { Branches, Orbits, Fits } job = Job::Branches;
-  FitRequest fit;  // the fit of every task (--data, --free, --free-initial)
+  FitRequest fit;  // the fit of every task (--data, --free, --free-initial) ...
   TrajectoryFitOptions fit_options;
+  // ... prepared once (the recording read, the names and unknowns checked): each task fits a copy
+  // of its problem with the swept value set.
+  std::optional<PreparedFit> prepared;
   ParameterWindow window;
   GridAxis over;
   std::vector<double> values;  // of the second parameter, one per task
@@ -116,10 +119,12 @@ Sweep prepare(const Arguments& args, int ranks) {
                          ": the swept parameter (--over), held at each value; "
                          "expected another");
     w.fit_options.flow = flow_options(args, w.fit_options.flow);
-    // The request checked once, before any work: the recording, the names, the sample count.
+    // Once, before any work: the recording read, the names and the sample count checked; the
+    // unrecorded states from the start.
     FitModel model = w.c->fit_model();
     model.initial = start.start_state;
-    prepare_fit(std::move(model), w.fit);
+    model.initial_source = w.start.empty() ? "start" : "--start " + w.start;
+    w.prepared = prepare_fit(std::move(model), w.fit);
   }
   BranchRequest& r = w.request;
   r.start = w.start;
@@ -129,17 +134,8 @@ Sweep prepare(const Arguments& args, int ranks) {
   r.at = w.window.at;
   r.initial = args.assignments("--initial");
   r.progress = nullptr;
-  auto& o = r.continuation;
-  o.orbit.transient =
-      args.number("--transient", w.c->system().autonomous() ? o.orbit.transient : 0.0);
-  o.orbit.shooting.segments = args.integer("--segments", 1);
-  o.initial_step = args.number("--step", o.initial_step);
-  o.max_step = args.number("--max-step", o.max_step);
-  o.max_points = args.integer("--max-points", o.max_points);
-  apply_accuracy(accuracy(args), o.orbit);
-  o.orbit.shooting.flow = flow_options(args, o.orbit.shooting.flow);
-  o.orbit.transient_flow.linear_solver = o.orbit.shooting.flow.linear_solver;
-  check_options(o.validate(), "");
+  r.continuation = branch_continuation(args, w.c->system());
+  check_options(r.continuation.validate(), "");
   w.run.threads = args.integer("--threads", 0);
   if (args.has("--threads") && w.run.threads < 1)
     throw InputError("--threads: expected a positive number of threads");
@@ -305,17 +301,13 @@ int run_sweep(const std::vector<std::string>& argv) {
         "a fit to this recording at each value (the swept parameter held there), as fit's"},
        {"--free", "NAME[,NAME...]", true, "with --data: the parameters fitted"},
        {"--free-initial", "VAR[,VAR...]", true, "with --data: initial values fitted too"},
-       {"--segments", "M", false, "shooting segments (default 1)"},
-       {"--step", "DS", false, "initial arclength step, scaled (default 0.02)"},
-       {"--max-step", "DS", false, "largest arclength step, scaled (default 0.1)"},
-       {"--max-points", "N", false, "point limit per direction (default 400)"},
-       {"--transient", "SECONDS", false,
-        "integration before the first Newton (default 60; 0 for a forced system)"},
        {"--threads", "N", false,
         "tasks run side by side (default: one per core; under mpirun one per rank)"},
        {"--out", "DIR", false, "where the files go (default out/sweep)"},
        {"--resume", "", false, "continue the journal in DIR: its tasks are not computed again"},
        accuracy_option()});
+  const auto steps = branch_step_options();
+  options.insert(options.end(), steps.begin(), steps.end());
   const auto integrator = integrator_options();
   options.insert(options.end(), integrator.begin(), integrator.end());
   Arguments args("sweep", argv, options, {"CASE"});
@@ -335,13 +327,10 @@ int run_sweep(const std::vector<std::string>& argv) {
     BranchSource source = base;
     source.values = system.with_parameter(base.values, over, w->values[index]);
     if (w->job == Sweep::Job::Fits) {
-      // The case's model with the swept value set, unrecorded states from the start.
-      FitModel model = w->c->fit_model();
-      model.values = source.values;
-      model.initial = source.start_state;
-      model.initial_source = w->start.empty() ? "start" : "--start " + w->start;
-      const PreparedFit fit = prepare_fit(std::move(model), w->fit);
-      const TrajectoryFitResult r = fit_trajectory(*fit.model, fit.problem, w->fit_options);
+      // The prepared problem with the swept value held.
+      TrajectoryFitProblem problem = w->prepared->problem;
+      problem.parameter_values = source.values;
+      const TrajectoryFitResult r = fit_trajectory(*w->prepared->model, problem, w->fit_options);
       TaskRow row{format_double(w->values[index]), r.converged ? "1" : "0", format_double(r.rss)};
       for (int k = 0; k < r.values.size(); ++k) row.push_back(format_double(r.values[k]));
       return row;

@@ -7,6 +7,7 @@ set -u
 bin=$1 src=$2 work=$3
 mkdir -p "$work"
 . "$(dirname "$0")/check.sh"
+. "$(dirname "$0")/damped_oscillator.sh"
 json() { /usr/bin/python3 -c "import json,sys; j=json.load(open(sys.argv[1])); print($2)" "$1"; }
 # noisy IN OUT COLUMN SIGMA SEED: a recording of one column with Gaussian noise (scripts/add_noise).
 noisy() { "$src/scripts/add_noise" "$1" "$2" --columns "$3" --sigma "$4" --seed "$5"; }
@@ -109,26 +110,7 @@ bad unknown_parameter 't,x\n0,0.01\n0.1,0.008\n0.2,0.004\n' \
 # samples of x at w = 1, zeta = 0.05 (t = 0 .. 20 by 0.1), fitted from w = 1.2, zeta = 0.08 (v
 # starts at the file's [states], the true -zeta w): both recovered to 1e-6 (the integration's
 # accuracy at the fit's defaults, far below it).
-cat > "$work/oscillator.toml" <<'TOML'
-kind = "equations"
-[states]
-x = 1.0
-v = -0.05
-[parameters]
-w = { value = 1.2, min = 0.0 }
-zeta = { value = 0.08, min = 0.0 }
-[equations]
-x = "v"
-v = "-2*zeta*w*v - w^2*x"
-TOML
-/usr/bin/python3 -c "
-import math
-w, z = 1.0, 0.05
-wd = w * math.sqrt(1 - z * z)
-print('t,x')
-for k in range(201):
-    t = 0.1 * k
-    print('%r,%r' % (t, math.exp(-z * w * t) * (math.cos(wd * t))))" > "$work/oscillator.csv"
+write_damped_oscillator "$work"
 SYMPATHY_CACHE_DIR="$work/cache" "$bin" fit "$work/oscillator.toml" --data "$work/oscillator.csv" \
   --free w,zeta --json "$work/oscillator.json" > "$work/oscillator.out" 2>&1
 check "fit on an equation case file exits 0" test $? -eq 0
