@@ -12,10 +12,12 @@
 #include <random>
 
 #include "sympathy/cases/case_writer.hpp"
+#include "sympathy/cases/equation_case.hpp"
 #include "sympathy/cases/metronome_model.hpp"
 #include "sympathy/cases/platform_model.hpp"
 #include "sympathy/core/csv.hpp"
 #include "tests/support/errors.hpp"
+#include "tests/support/test_systems.hpp"
 
 namespace sympathy {
 namespace {
@@ -377,6 +379,56 @@ TEST_F(CaseWriter, NoParameterSet) {
   EXPECT_EQ(spec.get("d1"), 2.5e-6);
   EXPECT_EQ(spec.get("d2"), 2.4e-6);
   EXPECT_NE(read(out()).find("[[metronomes]]\nd = 2.5e-06  # fitted\n"), std::string::npos);
+}
+
+// An equation case file's model (equation_fit_model): a parameter is positive (fitted on a log
+// scale, bounded below by 0, the global box start / 10 .. start * 10) where the file bounds it
+// below by min >= 0 and it starts above 0; otherwise signed, in units of its start's size (1 at
+// 0), the box 10 units either side; the file's min and max bound both kinds. Unrecorded states
+// start at the file's [states]. The system is the hand-written one of the same names
+// (tests/support/test_systems.hpp): the model's domain and start come from the file alone.
+TEST(EquationFit, DomainsAndStartFromTheFile) {
+  const std::string dir = scratch().string();
+  std::ofstream(dir + "/equation_fit.toml") << R"toml(kind = "equations"
+[states]
+x = 1.0
+v = -0.25
+[parameters]
+m = { value = 2.0, min = 0.0 }
+c = 0.1
+k = { value = 0.0, min = -1.0, max = 3.0 }
+[equations]
+x = "v"
+v = "(-c*v - k*x)/m"
+)toml";
+  std::ofstream(dir + "/equation_fit.csv") << "t,x\n0,1\n0.1,0.99\n0.2,0.97\n0.3,0.94\n0.4,0.9\n";
+  const EquationCase file = EquationCase::load(dir + "/equation_fit.toml");
+  const testing::DampedOscillator system(2.0, 0.1, 0.0);
+  FitRequest request;
+  request.data = dir + "/equation_fit.csv";
+  request.free = {"m", "c", "k"};
+  const PreparedFit fit =
+      prepare_fit(equation_fit_model(file, system, file.parameter_values()), request);
+  const auto& m = fit.problem.parameters[0];
+  EXPECT_TRUE(m.logarithmic);
+  EXPECT_EQ(m.lower, 0.0);
+  EXPECT_EQ(m.search_lower, 0.2);
+  EXPECT_EQ(m.search_upper, 20.0);
+  const auto& c = fit.problem.parameters[1];
+  EXPECT_FALSE(c.logarithmic);
+  EXPECT_DOUBLE_EQ(c.scale, 0.1);
+  EXPECT_DOUBLE_EQ(c.search_lower, 0.1 - 1.0);
+  EXPECT_DOUBLE_EQ(c.search_upper, 0.1 + 1.0);
+  const auto& k = fit.problem.parameters[2];
+  EXPECT_FALSE(k.logarithmic);  // min < 0
+  EXPECT_EQ(k.scale, 1.0);      // starts at 0
+  EXPECT_EQ(k.lower, -1.0);
+  EXPECT_EQ(k.upper, 3.0);
+  EXPECT_EQ(k.search_lower, -1.0);  // the box cut to the bounds
+  EXPECT_EQ(k.search_upper, 3.0);
+  EXPECT_EQ(fit.problem.initial_state[1], -0.25);  // v from [states]
+  EXPECT_EQ(fit.initial_source[1], "[states]");
+  EXPECT_EQ(fit.initial_source[0], "data");
 }
 
 }  // namespace
