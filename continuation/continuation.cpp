@@ -341,9 +341,11 @@ Branch Continuation::run_from(const PeriodicOrbit& start, int direction,
       const Locator locator = [&](BifurcationType type, int multiplicity, std::complex<double> mu_a,
                                   std::complex<double> mu_b) {
         problem_->set_phase_section(a.section, a.section_normal);
-        return locate(a, b, type, multiplicity, mu_a, mu_b, options_.location_tolerance,
-                      0.01 * (options_.upper - options_.lower),
-                      [&](double s, std::string& why) { return point_at(a, s, why); });
+        Bifurcation e = locate(a, b, type, multiplicity, mu_a, mu_b, options_.location_tolerance,
+                               0.01 * (options_.upper - options_.lower),
+                               [&](double s, std::string& why) { return point_at(a, s, why); });
+        refine_branch_point(e, a, b);
+        return e;
       };
       events = detect(tracked, a, b, options_.trust_limit, locator);
       // An event that could not be located in this step: try a shorter one (the multipliers

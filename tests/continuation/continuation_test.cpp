@@ -194,6 +194,10 @@ TEST(Continuation, BranchPointLocated) {
   ASSERT_EQ(bps.size(), 1u) << branch.stop_reason;
   EXPECT_NEAR(bps[0].parameter, 0.0, 1e-8);
   EXPECT_EQ(bps[0].multiplicity, 1);
+  // No subspace declared: located on the regular branch-point system (a pitchfork of cycles is a
+  // simple branch point too: the branches w = 0 and mu = w^2 cross transversally).
+  EXPECT_NE(bps[0].note.find("regular BP system"), std::string::npos) << bps[0].note;
+  EXPECT_LE(std::abs(bps[0].parameter), bps[0].uncertainty);
   EXPECT_TRUE(events_of(branch, BifurcationType::Fold).empty());
   EXPECT_EQ(branch.stop, StopReason::ParameterBound) << branch.stop_reason;
   // Multipliers along the branch: exp(2 pi mu), to the integration accuracy.
@@ -237,21 +241,23 @@ TEST(Continuation, NeimarkSackerLocated) {
 }
 
 // The reported uncertainty of a crossing: the bracket plus the multipliers' error over the
-// crossing speed. On the pitchfork the crossing multiplier is exp(2 pi mu), whose |mu| - 1 moves
-// at 2 pi per unit of mu at the crossing; the speed is taken over the step that found it (a few
-// hundredths of mu wide), so within 10% of 2 pi. The error is the located orbit's trivial one.
+// crossing speed. On the Moebius band the crossing multiplier is -exp(2 pi mu), whose |mu| - 1
+// moves at 2 pi per unit of mu at the crossing; the speed is taken over the step that found it
+// (a few hundredths of mu wide), so within 10% of 2 pi. The error is the located orbit's trivial
+// one. (Branch points off a symmetric subspace are located on their regular system instead:
+// branch_point_test.cpp.)
 TEST(Continuation, UncertaintyIsBracketPlusErrorOverCrossingSpeed) {
-  NormalForm system(Kind::Pitchfork, -0.4);
+  NormalForm system(Kind::Moebius, -0.3);
   const auto start = circle(system);
   Continuation c(system, 0, options(-0.5, 0.5));
   const Branch branch = c.run(start, +1);
-  const auto bps = events_of(branch, BifurcationType::BranchPoint);
-  ASSERT_EQ(bps.size(), 1u);
-  const Bifurcation& bp = bps[0];
-  EXPECT_GT(bp.floquet.trivial_error, 0.0);
-  const double implied_speed = bp.floquet.trivial_error / (bp.uncertainty - bp.bracket);
+  const auto pds = events_of(branch, BifurcationType::PeriodDoubling);
+  ASSERT_EQ(pds.size(), 1u);
+  const Bifurcation& pd = pds[0];
+  EXPECT_GT(pd.floquet.trivial_error, 0.0);
+  const double implied_speed = pd.floquet.trivial_error / (pd.uncertainty - pd.bracket);
   EXPECT_NEAR(implied_speed, 2 * kPi, 0.1 * 2 * kPi);
-  EXPECT_LE(bp.bracket, 1e-8);
+  EXPECT_LE(pd.bracket, 1e-8);
 }
 
 // A real multiplier -exp(2 pi mu) crosses -1 at mu = 0: period doubling.

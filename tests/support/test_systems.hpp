@@ -2,6 +2,7 @@
 #pragma once
 
 #include <cmath>
+#include <numbers>
 #include <string>
 #include <vector>
 
@@ -325,6 +326,28 @@ class ScaledCircle final : public AutoDiffSystem<ScaledCircle> {
 
  private:
   double radius_;
+};
+
+// AUTO-07p's demo lcbp: x' = -x G - 2 pi y, y' = -y G + 2 pi x, G = (r - p1)(r - p2) with
+// r = sqrt(x^2 + y^2). The circles r = p1 and r = p2 are orbits of period 1 whatever the
+// parameters; the circle r = p2 has the radial multiplier exp(-p2 (p2 - p1)) (r' = -r G
+// linearized there), which crosses +1 at p1 = p2, where the two families cross transversally:
+// a transcritical branch point of cycles, exactly at p1 = p2.
+class CrossingCircles final : public AutoDiffSystem<CrossingCircles> {
+ public:
+  CrossingCircles(double p1, double p2) {
+    set_parameter_layout({{"p1", {0}}, {"p2", {1}}}, {p1, p2});
+  }
+  int dimension() const override { return 2; }
+  std::vector<std::string> state_names() const override { return {"x", "y"}; }
+  template <class T, class P>
+  void evaluate(double, const T* z, const P* p, T* dz) const {
+    using std::sqrt;
+    const T r = sqrt(z[0] * z[0] + z[1] * z[1]);
+    const T g = (r - p[0]) * (r - p[1]);
+    dz[0] = -z[0] * g - 2.0 * std::numbers::pi * z[1];
+    dz[1] = -z[1] * g + 2.0 * std::numbers::pi * z[0];
+  }
 };
 
 // Branches of equilibria with exactly known events, a second state y' = -y beside them:

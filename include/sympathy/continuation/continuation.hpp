@@ -89,6 +89,13 @@ class Continuation {
   std::vector<Bifurcation> user_points_between(const ContinuationPoint& a,
                                                const ContinuationPoint& b) const;
 
+  // A branch point located by its crossing, moved to the solution of the regular branch-point
+  // system (branch_point.hpp) where the crossing alone is not regular: a crossing of one
+  // multiplier that keeps the subspace (or none declared), on a branch of isolated orbits. The
+  // solution must lie between a and b; otherwise the event stays as located, with a note.
+  void refine_branch_point(Bifurcation& e, const ContinuationPoint& a,
+                           const ContinuationPoint& b) const;
+
   // The Hopf point where a branch that turned back at `turn` (no multiplier at +1) ends, if its
   // orbits shrank into an equilibrium there (hopf.hpp); nullopt otherwise.
   std::optional<HopfPoint> hopf_end(const Bifurcation& turn) const;
