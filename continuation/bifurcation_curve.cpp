@@ -310,6 +310,12 @@ void CurveRun::detect(const CurvePoint& from, const Eigen::MatrixXd& jacobian, c
               tracked};
       const double f0 = std::log(std::abs(m0)), f1 = std::log(std::abs(m1));
       CurveEvent e = locate(w, from, jacobian, to, step, f0, f1);
+      // A crossing at the curve's own start is the start's degeneracy, which its origin names:
+      // a BP curve born at a 1:1 resonance has the pair's other multiplier at +1 there too, and
+      // it leaves +1 in the first step (located 7e-9 N/m from the R1 point it was born at on the
+      // row setup's (k, c) map). Within 1e-6 of the window in the scaled norm.
+      if (from.index == 0 && e.located && system_.norm(e.at.unknowns - from.unknowns) <= 1e-6)
+        continue;
       e.after_point = from.index;
       events.push_back(e);
       if (callbacks_.on_event) callbacks_.on_event(events.back());

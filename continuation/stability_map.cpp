@@ -89,7 +89,14 @@ std::vector<BifurcationCurve> event_curves(const OdeSystem& system, const Branch
         if (dash == std::string::npos || meeting.type.rfind("turn", 0) == 0) continue;
         other = meeting.type.substr(dash + 1);
       }
-      if (!meeting.located) continue;
+      // An unlocated meeting is tried too, from where its probes got (the curve's start is
+      // corrected onto it at that value of the second parameter): the NS curve's test function
+      // is itself singular where another multiplier reaches +1 (the trivial one times it is 1
+      // in the exterior square), so probes of an NS-LP point fail near it (the in-phase (k, c)
+      // map's at k = 56.07).
+      if (!meeting.located &&
+          meeting.uncertainty > 0.01 * (options.first_upper - options.first_lower))
+        continue;
       // A point tried already (located again from another probe sequence, or a start that
       // failed) is not tried twice.
       const auto same = [&](const std::pair<double, double>& t) {

@@ -191,6 +191,52 @@ TEST(BifurcationCurve, NeimarkSackerCurveAndItsResonances) {
   EXPECT_EQ(found, 2);
 }
 
+// At a 1:1 resonance the NS pair of the resonance form meets at +1 ((mu, omega) = (0, 0)) and
+// turns real, exp(2 pi (mu +- sqrt(-omega))): one of them at +1 on omega = -mu^2, a BP curve
+// through the resonance (the pair breaks u = v = 0). The map follows it from the resonance,
+// which is its start, not a meeting on it: the other multiplier of the pair leaves +1 there too,
+// and was reported as a "BP-BP" point at the curve's own start (the row setup's (k, c) map, 7e-9
+// from its R1 origin).
+TEST(BifurcationCurve, BranchPointCurveFromAOneToOneResonance) {
+  const NormalForm system(Kind::Resonance, -0.3, 1, 0.0, 0.09);
+  const InvariantSubspace subspace(4, {{2, -1, 1.0}, {3, -1, 1.0}}, "u = 0, v = 0");
+  const Start s = branch_to(system, -0.3, -0.5, 0.5, 1.0, BifurcationType::NeimarkSacker, subspace);
+  ASSERT_NE(s.event, nullptr);
+  EXPECT_NEAR(s.event->parameter, 0.0, 1e-8);
+  const auto curves = event_curves(system, s.branch, 2, window(-0.5, 0.5, -0.2, 0.2));
+  const BifurcationCurve* ns = nullptr;
+  const BifurcationCurve* bp = nullptr;
+  for (const auto& c : curves) {
+    if (c.kind == BifurcationType::NeimarkSacker) ns = &c;
+    if (c.kind == BifurcationType::BranchPoint) bp = &c;
+  }
+  ASSERT_NE(ns, nullptr);
+  ASSERT_NE(bp, nullptr);
+  int resonances = 0;
+  for (const auto& e : ns->events)
+    if (e.type == "R1") {
+      ++resonances;
+      EXPECT_TRUE(e.located) << e.note;
+      EXPECT_NEAR(e.first, 0.0, 1e-7);
+      EXPECT_NEAR(e.second, 0.0, 1e-7);
+    }
+  EXPECT_EQ(resonances, 1);
+  ASSERT_TRUE(bp->started()) << bp->stop_reason;
+  EXPECT_EQ(bp->origin.rfind("R1 point at mu = ", 0), 0u) << bp->origin;
+  ASSERT_GE(bp->points.size(), 10u);
+  for (const auto& p : bp->points) {
+    EXPECT_NEAR(p.second, -p.first * p.first, 1e-8) << "mu = " << p.first;
+    EXPECT_NEAR(std::abs(p.critical[0] - 1.0), 0.0, 1e-8);
+  }
+  // Both halves, mu < 0 and mu > 0, out to omega = -0.2.
+  EXPECT_NEAR(bp->points.front().second, -0.2, 1e-12);
+  EXPECT_NEAR(bp->points.back().second, -0.2, 1e-12);
+  EXPECT_LT(bp->points.front().first * bp->points.back().first, 0.0);
+  for (const auto& e : bp->events)
+    EXPECT_EQ(e.type.find('-'), std::string::npos)
+        << e.type << " at " << e.first << ", " << e.second << ": a meeting at the curve's start";
+}
+
 // PD of the Moebius twist in (mu, a): mu = a^2, the critical multiplier -1.
 TEST(BifurcationCurve, PeriodDoublingCurveIsTheParabola) {
   const NormalForm system(Kind::Moebius, -0.3);

@@ -208,13 +208,25 @@ class TwoHopf final : public AutoDiffSystem<TwoHopf> {
 //   PitchforkAndGrowth: the pitchfork's w1 beside s' = (a - 1/2) s - s^3, whose multiplier
 //               exp(2 pi (a - 1/2)) crosses +1 at a = 1/2: on the BP curve mu = a^2, at
 //               (mu, a) = (1/4, 1/2), another multiplier crosses the unit circle.
+//   Resonance:  as Rotation with the transverse block [mu, 1; -omega, mu]: the pair
+//               exp(2 pi (mu +- sqrt(-omega))), complex for omega > 0 (NS on mu = 0, rotation
+//               number sqrt(omega)), meeting at +1 at (mu, omega) = (0, 0) (1:1 resonance) and
+//               real beyond, one of them at +1 on omega = -mu^2 (a BP curve through it).
 //   Moebius:    r' from a transverse plane (a = r - 1, z) that turns half a revolution per
 //               period: in the frame turning with theta / 2, xi' = mu xi - xi^3 and eta' = -eta,
 //               so the multipliers are -exp(2 pi mu) and -exp(-2 pi): period doubling at
 //               mu = 0, the doubled orbit xi = +-sqrt(mu) of period 4 pi beyond it.
 class NormalForm final : public AutoDiffSystem<NormalForm> {
  public:
-  enum class Kind { Fold, Pitchfork, Rotation, Moebius, PitchforkAndGrowth, ShearedFold };
+  enum class Kind {
+    Fold,
+    Pitchfork,
+    Rotation,
+    Moebius,
+    PitchforkAndGrowth,
+    ShearedFold,
+    Resonance
+  };
   NormalForm(Kind kind, double mu, int copies = 1, double a = 0.0, double omega = 0.3)
       : kind_(kind), copies_(copies) {
     set_parameter_layout({{"mu", {0}}, {"a", {1}}, {"omega", {2}}}, {mu, a, omega});
@@ -227,6 +239,7 @@ class NormalForm final : public AutoDiffSystem<NormalForm> {
       case Kind::Pitchfork:
         return 2 + copies_;
       case Kind::Rotation:
+      case Kind::Resonance:
         return 4;
       case Kind::Moebius:
         return 3;
@@ -282,6 +295,11 @@ class NormalForm final : public AutoDiffSystem<NormalForm> {
       const T q = z[2] * z[2] + z[3] * z[3];
       dz[2] = mu * z[2] - omega * z[3] - z[2] * q;
       dz[3] = omega * z[2] + mu * z[3] - z[3] * q;
+    }
+    if (kind_ == Kind::Resonance) {
+      const T q = z[2] * z[2] + z[3] * z[3];
+      dz[2] = mu * z[2] + z[3] - z[2] * q;
+      dz[3] = -omega * z[2] + mu * z[3] - z[3] * q;
     }
   }
 
