@@ -199,6 +199,12 @@ void Continuation::refine_branch_point(Bifurcation& e, const ContinuationPoint& 
   e.floquet = p.orbit.floquet;
   e.state0 = p.orbit.state0;
   e.unknowns = p.unknowns;
+  // The old branch's tangent from the step's ends: at the crossing's point, 1e-8 from the branch
+  // point, the Jacobian's two smallest singular values are both tiny and its null vector is any
+  // mix of the two branches' directions (on lcbp it was the other family's, and switching there
+  // followed the old branch).
+  Eigen::VectorXd tangent = a.tangent + b.tangent;
+  e.tangent = tangent / std::sqrt(space_->dot(tangent, tangent));
   double nearest = std::numeric_limits<double>::infinity();
   for (const auto& m : nontrivial(e.floquet))
     if (std::abs(m.value - 1.0) < nearest) {

@@ -75,10 +75,53 @@ Eigen::VectorXd critical_eigenvector(const Eigen::MatrixXd& m, double target,
 
 }  // namespace
 
+Eigen::VectorXd Continuation::branching_direction(const Eigen::VectorXd& y0,
+                                                  const Eigen::MatrixXd& jacobian,
+                                                  const Eigen::VectorXd& psi,
+                                                  const Eigen::MatrixXd& kernel,
+                                                  const Eigen::VectorXd& old) const {
+  // The algebraic branching equation on the kernel {phi_1, phi_2} (scaled): the tangents
+  // t = a phi_1 + b phi_2 of the branches through the point solve
+  //   sum_ij c_ij t_i t_j = 0,   c_ij = psi^T F_yy[phi_i, phi_j],
+  // two real directions at a simple branch point (c indefinite). F_yy[., phi_j] by a forward
+  // difference of the sensitivities' Jacobians along phi_j: one evaluation each.
+  const int N = problem_->unknowns();
+  const Eigen::VectorXd winv = space_->weights().cwiseInverse();
+  constexpr double h = 1e-6;  // scaled: Jacobians good to about 1e-11 relative, so c to 1e-5
+  Eigen::Matrix2d c;
+  for (int j = 0; j < 2; ++j) {
+    const Eigen::VectorXd y = y0 + h * winv.cwiseProduct(kernel.col(j));
+    const auto ej = problem_->evaluate(y.head(N), space_->values_at(y[N]), true, parameter_);
+    const Eigen::MatrixXd dj =
+        (Eigen::MatrixXd(problem_->jacobian(ej, true)) - jacobian) * winv.asDiagonal() / h;
+    for (int i = 0; i < 2; ++i) c(i, j) = psi.dot(dj * kernel.col(i));
+  }
+  const Eigen::SelfAdjointEigenSolver<Eigen::Matrix2d> eig(0.5 * (c + c.transpose()));
+  const double l1 = eig.eigenvalues()[0], l2 = eig.eigenvalues()[1];
+  if (!(l1 * l2 < 0.0))
+    throw std::runtime_error(
+        "branch switching: the branching equation has no two real roots here (not a simple "
+        "branch point)");
+  // In the eigenvectors' coordinates l1 u^2 + l2 v^2 = 0: (u, v) = (sqrt|l2|, +-sqrt|l1|).
+  Eigen::VectorXd best;
+  double best_cos = 2.0;
+  for (const double sign : {+1.0, -1.0}) {
+    const Eigen::Vector2d uv(std::sqrt(std::abs(l2)), sign * std::sqrt(std::abs(l1)));
+    const Eigen::VectorXd t = (kernel * (eig.eigenvectors() * uv)).normalized();
+    const double cosine = std::abs(t.dot(old));
+    if (cosine < best_cos) {
+      best_cos = cosine;
+      best = t;
+    }
+  }
+  // The other root is the old branch: within the differences' error of the old tangent.
+  return best;
+}
+
 Branch Continuation::run_switched(const PeriodicOrbit& base, const Eigen::VectorXd& critical,
                                   const Eigen::VectorXd& old_tangent,
                                   const ContinuationCallbacks& callbacks, SwitchStart& start,
-                                  const Eigen::MatrixXd& mirror) {
+                                  const Eigen::MatrixXd& mirror, bool transcritical) {
   if (!system_.autonomous())
     throw std::invalid_argument("branch switching: for autonomous systems (not yet forced ones)");
   const int N = problem_->unknowns();
@@ -108,16 +151,23 @@ Branch Continuation::run_switched(const PeriodicOrbit& base, const Eigen::Vector
   // The null space of [F_x F_p] in the scaled norm: the right singular vectors of J W^-1 with the
   // smallest singular values, two (the old branch and the new) plus the family's.
   const Eigen::VectorXd w = space.weights();
-  const Eigen::MatrixXd scaled =
-      Eigen::MatrixXd(problem_->jacobian(e, true)) * w.cwiseInverse().asDiagonal();
-  const Eigen::JacobiSVD<Eigen::MatrixXd> svd(scaled, Eigen::ComputeFullV);
+  const Eigen::MatrixXd jacobian(problem_->jacobian(e, true));
+  const Eigen::MatrixXd scaled = jacobian * w.cwiseInverse().asDiagonal();
+  const Eigen::JacobiSVD<Eigen::MatrixXd> svd(scaled, Eigen::ComputeFullU | Eigen::ComputeFullV);
   const int k = std::min(N + 1, 2 + base.family_dimension);
   const Eigen::MatrixXd kernel = svd.matrixV().rightCols(k);
   // The constraint: orthogonal to the old tangent, or no parameter component.
   const Eigen::VectorXd a = old_tangent.size() == N + 1
                                 ? Eigen::VectorXd(w.asDiagonal() * old_tangent)
                                 : Eigen::VectorXd(Eigen::VectorXd::Unit(N + 1, N));
-  Eigen::VectorXd tau = nearest_in_span(kernel, w.asDiagonal() * critical, a);
+  Eigen::VectorXd tau;
+  double expected_old = 0.0;  // the new direction's own component along the old tangent
+  if (transcritical && old_tangent.size() == N + 1 && k == 2) {
+    tau = branching_direction(y0, jacobian, svd.matrixU().col(N - 1), kernel, a.normalized());
+    expected_old = std::abs(tau.dot(a.normalized()));
+  } else {
+    tau = nearest_in_span(kernel, w.asDiagonal() * critical, a);
+  }
   tau = w.cwiseInverse().asDiagonal() * tau;  // unit in the scaled norm
   start.direction = tau;
 
@@ -141,7 +191,7 @@ Branch Continuation::run_switched(const PeriodicOrbit& base, const Eigen::Vector
       }
       if (old_norm > 0.0) {
         const double along_old = std::abs(space.dot(old_tangent, c.y - y0)) / (old_norm * h);
-        if (along_old > 0.5) {
+        if (along_old > expected_old + 0.5) {
           why =
               "the step off the event went back onto the branch it started on (its component "
               "along the old tangent is " +
@@ -340,7 +390,11 @@ Branch switch_branch(const OdeSystem& system, const Branch& branch, const Bifurc
   const Eigen::VectorXd old_tangent = doubling ? Eigen::VectorXd() : event.tangent;
   base.floquet = FloquetAnalysis();
   base.newton.converged = true;
-  Branch born = continuation.run_switched(base, critical, old_tangent, callbacks, s, mirror);
+  // A BP that breaks no declared symmetry (two families crossing, lcbp's circles): the new
+  // branch's tangent from the branching equation, not orthogonal to the old one.
+  const bool transcritical = !doubling && event.symmetry != SymmetryKind::Breaking;
+  Branch born =
+      continuation.run_switched(base, critical, old_tangent, callbacks, s, mirror, transcritical);
   born.origin = to_string(event.type) + " at " + branch.parameter_name + " = " +
                 format_double(event.parameter) + (doubling ? " (period doubled)" : "");
   s.base = base;

@@ -71,6 +71,11 @@ check "nothing ran" test ! -e SMUGGLED -a ! -e "$work/SMUGGLED"
 check "continue on an equation case file exits 0" test $? -eq 0
 check "lcbp: one event, a BP at p1 = 2 (1e-9, within its uncertainty)" test "$(json_value "$work/lcbp.json" "[(e['type'], abs(e['value'] - 2) < 1e-9 and abs(e['value'] - 2) <= e['uncertainty']) for e in j['events']]")" = "[('BP', True)]"
 check "lcbp: the period stays 1 along r = 2" test "$(json_value "$work/lcbp.json" "max(abs(p['period'] - 1) for p in j['points']) < 1e-8")" = True
+# Switching at that BP lands on the other family, the circle r = p1: every point's radius is its
+# p1 (to 1e-8; measured 5.5e-9 at most), on both sides of the branch point.
+"$bin" continue "$src/cases/examples/lcbp.toml" --param p1 --from 1 --to 3 --switch-at BP1 --quiet --json "$work/lcbp_born.json" > /dev/null
+check "lcbp: switching at BP1 exits 0" test $? -eq 0
+check "lcbp: the born branch is the circle r = p1, both sides" test "$(json_value "$work/lcbp_born.json" "max(abs(math.hypot(*p['state0']) - p['value']) for p in j['points']) < 1e-8 and min(p['value'] for p in j['points']) < 1.5 < 2.5 < max(p['value'] for p in j['points'])")" = True
 # abc from p1 = 0.25 down to 0.205: the folds of AUTO-07p's log (test/hyper.all) at
 # p1 = 0.213697 (T 7.61104) and 0.211903 (T 8.28914), to the digits AUTO prints (its trust: about
 # 1e-4 relative at NTST 25; the periods here are 7.611039 and 8.289204).

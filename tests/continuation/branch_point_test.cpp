@@ -65,7 +65,9 @@ TEST(BranchPoint, TranscriticalCrossingOfCirclesLocatedOnTheRegularSystem) {
       EXPECT_NE(bp.note.find("regular BP system"), std::string::npos) << bp.note;
       EXPECT_LE(std::abs(bp.parameter - p2), bp.uncertainty);
       EXPECT_LE(bp.uncertainty, 1e-8);
-      if (preset) EXPECT_NEAR(bp.parameter, p2, 1e-10);
+      if (preset) {
+        EXPECT_NEAR(bp.parameter, p2, 1e-10);
+      }
       EXPECT_NEAR(bp.state0.norm(), p2, preset ? 1e-10 : 1e-8);
       EXPECT_NEAR(bp.period, 1.0, 1e-9);
       EXPECT_NEAR(bp.crossing.real(), 1.0, 1e-8);

@@ -102,6 +102,53 @@ TEST(BranchSwitching, TransversePitchforkLandsOnTheBornBranch) {
   }
 }
 
+// AUTO's lcbp (CrossingCircles): from the circle r = p2 = 2 continued in p1, its BP at p1 = 2
+// (located on the regular branch-point system) is where the family r = p1 crosses it at an
+// angle. Switching there lands on r = p1 (every point's radius its p1 to 1e-8, period 1), both
+// ways out to the window, starting at the event (within 1e-6 of it); before the branching
+// equation it stepped orthogonally to a tangent that was the other family's and followed r = 2
+// again (this test then fails: the radius stays 2). With the CLI's default preset (Adams,
+// augmented, rtol 5e-12): near the branch point the corrector's error is magnified by the
+// Jacobian's small singular value (1.6e-8 at 0.03 from it with BDF at the library's rtol).
+TEST(BranchSwitching, TranscriticalCrossingLandsOnTheOtherFamily) {
+  const testing::CrossingCircles system(1.0, 2.0);
+  ContinuationOptions o = window(1.0, 3.0);
+  FlowOptions& f = o.orbit.shooting.flow;
+  f.method = Method::Adams;
+  f.nonlinear_solver = NonlinearSolver::FixedPoint;
+  f.sensitivities = Sensitivities::Augmented;
+  f.rtol = 5e-12;
+  f.atol = 5e-14;
+  Eigen::VectorXd z(2);
+  z << 2.0, 0.0;
+  const auto orbit =
+      solve_periodic_orbit(system, system.default_parameters(), z, 1.0, {}, OrbitOptions{});
+  ASSERT_TRUE(orbit.converged()) << orbit.newton.reason;
+  Continuation c(system, 0, o);
+  const Branch old = c.run(orbit, +1);
+  const Bifurcation& bp = only(old, BifurcationType::BranchPoint);
+  ASSERT_NEAR(bp.parameter, 2.0, 1e-10);
+  SwitchStart start;
+  const Branch born = switch_branch(system, old, bp, o, {}, &start);
+  EXPECT_LT(start.off_event, 0.1);
+  const auto zero = std::find_if(born.points.begin(), born.points.end(),
+                                 [](const ContinuationPoint& p) { return p.index == 0; });
+  ASSERT_NE(zero, born.points.end());
+  EXPECT_LT((zero->orbit.state0 - bp.state0).cwiseAbs().maxCoeff(), 1e-6);
+  ASSERT_GE(born.points.size(), 6u) << born.stop_reason;
+  int below = 0, above = 0;
+  for (const auto& p : born.points) {
+    EXPECT_NEAR(p.orbit.state0.norm(), p.parameter, 1e-8) << "p1 = " << p.parameter;
+    EXPECT_NEAR(p.orbit.period, 1.0, 1e-8);
+    if (p.parameter < 1.9) ++below;
+    if (p.parameter > 2.1) ++above;
+  }
+  EXPECT_GT(below, 0);
+  EXPECT_GT(above, 0);
+  EXPECT_EQ(born.stop, StopReason::ParameterBound) << born.stop_reason;
+  EXPECT_EQ(born.backward_stop, StopReason::ParameterBound) << born.stop_reason;
+}
+
 // From the circle's PD at mu = 0: the doubled orbit, of period 4 pi, with xi^2 = mu and eta = 0
 // in the frame turning with theta / 2 (xi^2 + eta^2 from the transverse plane (a, w)).
 TEST(BranchSwitching, MoebiusPeriodDoublingLandsOnTheDoubledOrbit) {

@@ -9,7 +9,11 @@
 // branch's scaled norm; widened by a family's directions where there are some) nearest to the
 // critical multiplier's eigenvector, orthogonal to the old branch's tangent (BP) or with no
 // parameter component (PD: the doubled orbits are born in a pitchfork, p - p_PD ~ s^2; the
-// symmetry-breaking BP of the paper's cases is one too). One step along it is corrected (the
+// symmetry-breaking BP of the paper's cases is one too). At a BP that breaks no declared symmetry
+// (two families crossing at an angle, AUTO's lcbp) the new branch is not orthogonal to the old
+// one: its tangent is the root of the algebraic branching equation (psi^T F_yy on the null
+// space, psi the left null vector; second derivatives by differences of Jacobians) least
+// parallel to the old tangent. One step along it is corrected (the
 // arclength condition along the new direction is regular there, where the point itself is
 // singular), and the new branch is continued both ways from that point: away from the event,
 // and back through it onto its other half (for a pitchfork, the mirror image).

@@ -58,9 +58,13 @@ class Continuation {
   // way, and the branch continued away from the event from each. `start` receives the direction
   // and the checks of the first steps. `mirror` (if not empty): a symmetry of f that maps one
   // half of the new branch onto the other, which is then reflected rather than computed.
+  // `transcritical`: the new direction is instead the root of the algebraic branching equation
+  // least parallel to `old_tangent` (branching_direction): where two families cross at an angle
+  // (a BP that breaks no symmetry) the new branch is not orthogonal to the old one.
   Branch run_switched(const PeriodicOrbit& base, const Eigen::VectorXd& critical,
                       const Eigen::VectorXd& old_tangent, const ContinuationCallbacks& callbacks,
-                      SwitchStart& start, const Eigen::MatrixXd& mirror = Eigen::MatrixXd());
+                      SwitchStart& start, const Eigen::MatrixXd& mirror = Eigen::MatrixXd(),
+                      bool transcritical = false);
 
   const ContinuationOptions& options() const { return options_; }
 
@@ -88,6 +92,14 @@ class Continuation {
   // the step (user_points.cpp).
   std::vector<Bifurcation> user_points_between(const ContinuationPoint& a,
                                                const ContinuationPoint& b) const;
+
+  // The new branch's unit tangent (scaled) at a branch point y0 with Jacobian [F_x F_p],
+  // left null vector psi and kernel (two orthonormal columns, scaled): the root of the algebraic
+  // branching equation least parallel to `old` (unit, scaled). Throws std::runtime_error where
+  // the equation has no two real roots (branch_switching.cpp).
+  Eigen::VectorXd branching_direction(const Eigen::VectorXd& y0, const Eigen::MatrixXd& jacobian,
+                                      const Eigen::VectorXd& psi, const Eigen::MatrixXd& kernel,
+                                      const Eigen::VectorXd& old) const;
 
   // A branch point located by its crossing, moved to the solution of the regular branch-point
   // system (branch_point.hpp) where the crossing alone is not regular: a crossing of one
