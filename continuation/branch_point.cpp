@@ -45,6 +45,20 @@ Linearization linearize(ShootingProblem& problem, const BranchSpace& space, int 
 
 }  // namespace
 
+std::optional<Eigen::VectorXd> hessian_along(ShootingProblem& problem, const BranchSpace& space,
+                                             int parameter, const Eigen::VectorXd& y,
+                                             const Eigen::VectorXd& psi,
+                                             const Eigen::VectorXd& gradient,
+                                             const Eigen::VectorXd& direction, double h,
+                                             std::string& failure) {
+  const Linearization d = linearize(problem, space, parameter, y + h * direction);
+  if (!d.ok) {
+    failure = d.failure;
+    return std::nullopt;
+  }
+  return Eigen::VectorXd((d.jacobian.transpose() * psi - gradient) / h);
+}
+
 BranchPointSolution solve_branch_point(ShootingProblem& problem, const BranchSpace& space,
                                        int parameter, const Eigen::VectorXd& guess,
                                        double residual_noise, double monodromy_noise,
@@ -85,16 +99,16 @@ BranchPointSolution solve_branch_point(ShootingProblem& problem, const BranchSpa
     // d(F_y^T psi)/dy: the Hessian of psi^T F, symmetric; its differences symmetrized.
     Eigen::MatrixXd hessian(N + 1, N + 1);
     for (int j = 0; j <= N; ++j) {
-      const double h = kDifferenceStep / w[j];
-      Eigen::VectorXd shifted = y;
-      shifted[j] += h;
-      const Linearization d = linearize(problem, space, parameter, shifted);
+      std::string failure;
+      const auto column =
+          hessian_along(problem, space, parameter, y, psi, gradient,
+                        Eigen::VectorXd::Unit(N + 1, j), kDifferenceStep / w[j], failure);
       ++out.evaluations;
-      if (!d.ok) {
-        out.reason = "integration failed: " + d.failure;
+      if (!column) {
+        out.reason = "integration failed: " + failure;
         return out;
       }
-      hessian.col(j) = (d.jacobian.transpose() * psi - gradient) / h;
+      hessian.col(j) = *column;
     }
     hessian = 0.5 * (hessian + hessian.transpose()).eval();
     Eigen::MatrixXd a = Eigen::MatrixXd::Zero(size, size);

@@ -8,6 +8,7 @@
 #include <Eigen/Eigenvalues>
 #include <Eigen/SVD>
 
+#include "sympathy/continuation/branch_point.hpp"
 #include "sympathy/core/csv.hpp"
 #include "sympathy/core/text.hpp"
 
@@ -85,16 +86,16 @@ Eigen::VectorXd Continuation::branching_direction(const Eigen::VectorXd& y0,
   //   sum_ij c_ij t_i t_j = 0,   c_ij = psi^T F_yy[phi_i, phi_j],
   // two real directions at a simple branch point (c indefinite). F_yy[., phi_j] by a forward
   // difference of the sensitivities' Jacobians along phi_j: one evaluation each.
-  const int N = problem_->unknowns();
   const Eigen::VectorXd winv = space_->weights().cwiseInverse();
   constexpr double h = 1e-6;  // scaled: Jacobians good to about 1e-11 relative, so c to 1e-5
   Eigen::Matrix2d c;
+  const Eigen::VectorXd gradient = jacobian.transpose() * psi;
   for (int j = 0; j < 2; ++j) {
-    const Eigen::VectorXd y = y0 + h * winv.cwiseProduct(kernel.col(j));
-    const auto ej = problem_->evaluate(y.head(N), space_->values_at(y[N]), true, parameter_);
-    const Eigen::MatrixXd dj =
-        (Eigen::MatrixXd(problem_->jacobian(ej, true)) - jacobian) * winv.asDiagonal() / h;
-    for (int i = 0; i < 2; ++i) c(i, j) = psi.dot(dj * kernel.col(i));
+    std::string failure;
+    const auto hj = hessian_along(*problem_, *space_, parameter_, y0, psi, gradient,
+                                  winv.cwiseProduct(kernel.col(j)), h, failure);
+    if (!hj) throw std::runtime_error("branch switching: " + failure);
+    for (int i = 0; i < 2; ++i) c(i, j) = hj->dot(winv.cwiseProduct(kernel.col(i)));
   }
   const Eigen::SelfAdjointEigenSolver<Eigen::Matrix2d> eig(0.5 * (c + c.transpose()));
   const double l1 = eig.eigenvalues()[0], l2 = eig.eigenvalues()[1];

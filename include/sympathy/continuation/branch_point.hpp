@@ -18,6 +18,7 @@
 // derivatives per unknown and Newton step, so the solver is for small shooting problems.
 #pragma once
 
+#include <optional>
 #include <string>
 
 #include <Eigen/Dense>
@@ -54,6 +55,17 @@ struct BranchPointSolution {
   int iterations = 0;
   int evaluations = 0;
 };
+
+// The Hessian of psi^T F at y applied to `direction` (unscaled): (F_y(y + h d)^T psi - gradient)
+// / h, `gradient` being F_y(y)^T psi; one evaluation with derivatives. What the regular system's
+// second derivatives and switching's branching equation are made of. nullopt, with `failure`,
+// where y + h d cannot be integrated.
+std::optional<Eigen::VectorXd> hessian_along(ShootingProblem& problem, const BranchSpace& space,
+                                             int parameter, const Eigen::VectorXd& y,
+                                             const Eigen::VectorXd& psi,
+                                             const Eigen::VectorXd& gradient,
+                                             const Eigen::VectorXd& direction, double h,
+                                             std::string& failure);
 
 // Newton on Moore's system from `guess` (unknowns, parameter), for the continued `parameter`,
 // in the problem's current phase section; `space` gives the parameter values and the scaled norm.
