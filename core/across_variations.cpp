@@ -70,17 +70,17 @@ void AcrossVariations::rhs(double t, const double* w, const double* p, double* d
   s.out_columns.resize(a);
   const auto& k = coordinates_;
   for (int c = 0; c < n; ++c) s.z[c] = k.coordinate[c] < 0 ? 0.0 : k.sign[c] * w[k.coordinate[c]];
-  system_.rhs(t, s.z.data(), p, s.dz.data());
-  for (int i = 0; i < r; ++i) dw[i] = s.dz[k.representative[i]];
-  // U' = C^T J C U: J applied to the columns C U_j in one call of the model's variational
-  // right-hand side (one dual-number evaluation for all a columns).
+  // f and U' = C^T J C U: J applied to the columns C U_j, all in one call of the model (one
+  // dual-number evaluation for f and all a columns; OdeSystem::rhs_and_variational).
   const Eigen::Map<const Eigen::MatrixXd> U(w + r, a, a);
   s.in.noalias() = breaking_ * U;
   for (int j = 0; j < a; ++j) {
     s.in_columns[j] = s.in.col(j).data();
     s.out_columns[j] = s.out.col(j).data();
   }
-  system_.variational_rhs(t, s.z.data(), p, a, s.in_columns.data(), s.out_columns.data(), {});
+  system_.rhs_and_variational(t, s.z.data(), p, s.dz.data(), a, s.in_columns.data(),
+                              s.out_columns.data(), {});
+  for (int i = 0; i < r; ++i) dw[i] = s.dz[k.representative[i]];
   Eigen::Map<Eigen::MatrixXd>(dw + r, a, a).noalias() = breaking_.transpose() * s.out;
 }
 

@@ -12,18 +12,17 @@ int augmented_rhs(FlowCall& call, double t, const double* y, double* ydot,
   try {
     const int n = call.system.dimension();
     const double* p = call.values.data();
-    call.system.rhs(t, y, p, ydot);
-    for (int i = 0; i < n; ++i)
-      if (!std::isfinite(ydot[i])) return 1;  // recoverable: the integrator retries a smaller step
-    if (call.columns == 0) return 0;
     columns_in.resize(call.columns);
     columns_out.resize(call.columns);
     for (int j = 0; j < call.columns; ++j) {
       columns_in[j] = y + n * (j + 1);
       columns_out[j] = ydot + n * (j + 1);
     }
-    call.system.variational_rhs(t, y, p, call.columns, columns_in.data(), columns_out.data(),
-                                call.parameters);
+    // f and the columns from one evaluation where the system can (OdeSystem::rhs_and_variational).
+    call.system.rhs_and_variational(t, y, p, ydot, call.columns, columns_in.data(),
+                                    columns_out.data(), call.parameters);
+    for (int i = 0; i < n; ++i)
+      if (!std::isfinite(ydot[i])) return 1;  // recoverable: the integrator retries a smaller step
     return 0;
   } catch (...) {
     call.callback_error = std::current_exception();

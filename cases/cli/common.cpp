@@ -101,6 +101,10 @@ Accuracy parse_accuracy(const std::string& text, const std::string& where) {
 // started with the run with sensitivities where predictions land (2026-11-24, bench section (f),
 // CPU seconds, the machine's load average about 5): fast 2.9e-9 in 0.43 s, default 1.1e-10 in
 // 1.39 s, high 3.3e-11 in 1.62 s; the choice above stands.
+// After the one-evaluation right-hand side (2026-11-24, bench section (f), CPU seconds): fast
+// 1.5e-9 in 0.26 s, default 9.9e-11 in 0.73 s, high 3.9e-11 in 0.84 s. Dormand-Prince alone at
+// rtol 1e-7 (a BDF transient) gave 1.4e-7 in 0.21 s, within AUTO's best but 30 times fast's
+// error; the choice above stands.
 void apply_accuracy(Accuracy accuracy, OrbitOptions& o) {
   FlowOptions& f = o.shooting.flow;
   switch (accuracy) {
