@@ -78,8 +78,8 @@ class OdeSystem {
   // system's right-hand side needs at every step. This default makes the two calls;
   // AutoDiffSystem reads f off the values of the dual numbers that give J * S (one model
   // evaluation a step fewer: on the anti-phase k-branch, where it is a third of the cost of a
-  // step of the orbit with its across block, the fast preset's branch took 0.24 s instead of
-  // 0.27 s).
+  // step of the orbit with its across block, the fast preset's branch took 0.26 s instead of
+  // 0.30 s, bench section (f)).
   virtual void rhs_and_variational(double t, const double* z, const double* p, double* dz,
                                    int columns, const double* const* S, double* const* out,
                                    std::span<const int> parameters) const {
