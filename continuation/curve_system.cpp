@@ -20,6 +20,9 @@ constexpr double kDifferenceStep = 1e-5;
 constexpr double kStepTolerance = 1e-8;
 // ... or, where the integration's noise stops the chord contracting, below this.
 constexpr double kNoiseStep = 1e-7;
+// How near the curve a corrected point lies in the scaled norm (after kStepTolerance): the floor
+// of every point's uncertainty.
+constexpr double kCorrectedPoint = 1e-9;
 
 ShootingOptions single_shooting(ShootingOptions o) {
   // The curve needs the monodromy of one period; multiple shooting would add nothing here.
@@ -318,6 +321,10 @@ CurvePoint CurveSystem::point(const Eigen::VectorXd& u, const Evaluation& e,
   p.uncertainty = speed > 0.0 && std::abs(t1[m_ + 1]) > 0.0
                       ? error * e.test.eigenvalue_rate() / speed
                       : std::numeric_limits<double>::infinity();
+  // At least what the corrector leaves: about 1e-9 of the first parameter's window (see
+  // kStepTolerance). On an LP curve the one-parameter branch turns at the point, t1's parameter
+  // component vanishes and the quotient above with it (1e-22 on abc's fold curve).
+  p.uncertainty = std::max(p.uncertainty, kCorrectedPoint / weights_[m_ + 1]);
   p.unknowns = u;
   p.tangent = tangent;
   return p;
