@@ -77,69 +77,20 @@ class AutoDiffSystem : public OdeSystem {
   void variational_rhs(double t, const double* z, const double* p, int columns,
                        const double* const* S, double* const* out,
                        std::span<const int> parameters) const override {
-    const int n = dimension();
-    const int state_columns = columns - static_cast<int>(parameters.size());
-    for (int c0 = 0; c0 < state_columns;) {
-      const int width = std::min(state_columns - c0, 8);
-      auto seed = [&](auto tag) {
-        using D = decltype(tag);
-        std::vector<D> zd(n), dzd(n);
-        for (int i = 0; i < n; ++i) {
-          zd[i] = D(z[i]);
-          for (int k = 0; k < width; ++k) zd[i].d[k] = S[c0 + k][i];
-        }
-        derived().evaluate(t, zd.data(), p, dzd.data());
-        for (int k = 0; k < width; ++k)
-          for (int i = 0; i < n; ++i) out[c0 + k][i] = dzd[i].d[k];
-      };
-      dispatch_width(width, seed);
-      c0 += width;
-    }
-    for (int k = 0; k < static_cast<int>(parameters.size()); ++k) {
-      // J*s + df/dp in one pass: the state seeded with s, the parameter direction seeded too.
-      const int column = state_columns + k;
-      using D = Dual<1>;
-      std::vector<D> zd(n), dzd(n);
-      for (int i = 0; i < n; ++i) {
-        zd[i] = D(z[i]);
-        zd[i].d[0] = S[column][i];
-      }
-      const auto pd = seeded_parameters(p, parameters[k]);
-      derived().evaluate(t, zd.data(), pd.data(), dzd.data());
-      for (int i = 0; i < n; ++i) out[column][i] = dzd[i].d[0];
-    }
+    variational(t, z, p, columns, S, out, parameters, nullptr);
   }
 
-  // f from the values of the first state columns' dual numbers (the same operations on the same
-  // doubles as rhs, rounded differently in places: within 1.6e-16 of its largest entry, tested),
-  // the rest as variational_rhs.
+  // f read off the values of the dual numbers of the first state columns (the same operations on
+  // the same doubles as rhs, rounded differently in places: within 1.6e-16 of its largest entry,
+  // tested); without state columns, the two calls.
   void rhs_and_variational(double t, const double* z, const double* p, double* dz, int columns,
                            const double* const* S, double* const* out,
                            std::span<const int> parameters) const override {
-    const int n = dimension();
-    const int width = std::min(columns - static_cast<int>(parameters.size()), 8);
-    if (width <= 0) {
+    if (columns - static_cast<int>(parameters.size()) <= 0) {
       OdeSystem::rhs_and_variational(t, z, p, dz, columns, S, out, parameters);
       return;
     }
-    auto seed = [&](auto tag) {
-      using D = decltype(tag);
-      // Kept per thread between calls: one system serves several threads.
-      thread_local std::vector<D> zd, dzd;
-      zd.assign(n, D{});
-      dzd.assign(n, D{});
-      for (int i = 0; i < n; ++i) {
-        zd[i] = D(z[i]);
-        for (int k = 0; k < width; ++k) zd[i].d[k] = S[k][i];
-      }
-      derived().evaluate(t, zd.data(), p, dzd.data());
-      for (int i = 0; i < n; ++i) dz[i] = dzd[i].v;
-      for (int k = 0; k < width; ++k)
-        for (int i = 0; i < n; ++i) out[k][i] = dzd[i].d[k];
-    };
-    dispatch_width(width, seed);
-    if (columns > width)
-      variational_rhs(t, z, p, columns - width, S + width, out + width, parameters);
+    variational(t, z, p, columns, S, out, parameters, dz);
   }
 
   void parameter_derivative(double t, const double* z, const double* p, int parameter,
@@ -165,6 +116,49 @@ class AutoDiffSystem : public OdeSystem {
 
  private:
   const Derived& derived() const { return static_cast<const Derived&>(*this); }
+
+  // J * S for the state columns in chunks of up to 8 directions, then J * s + df/dp for each
+  // parameter column; with `f`, f too, from the first chunk's values.
+  void variational(double t, const double* z, const double* p, int columns, const double* const* S,
+                   double* const* out, std::span<const int> parameters, double* f) const {
+    const int n = dimension();
+    const int state_columns = columns - static_cast<int>(parameters.size());
+    for (int c0 = 0; c0 < state_columns;) {
+      const int width = std::min(state_columns - c0, 8);
+      auto seed = [&](auto tag) {
+        using D = decltype(tag);
+        // Kept per thread between calls (one system serves several threads): no allocation a
+        // step on the augmented flows' hot path.
+        thread_local std::vector<D> zd, dzd;
+        zd.assign(n, D{});
+        dzd.assign(n, D{});
+        for (int i = 0; i < n; ++i) {
+          zd[i] = D(z[i]);
+          for (int k = 0; k < width; ++k) zd[i].d[k] = S[c0 + k][i];
+        }
+        derived().evaluate(t, zd.data(), p, dzd.data());
+        if (f && c0 == 0)
+          for (int i = 0; i < n; ++i) f[i] = dzd[i].v;
+        for (int k = 0; k < width; ++k)
+          for (int i = 0; i < n; ++i) out[c0 + k][i] = dzd[i].d[k];
+      };
+      dispatch_width(width, seed);
+      c0 += width;
+    }
+    for (int k = 0; k < static_cast<int>(parameters.size()); ++k) {
+      // J*s + df/dp in one pass: the state seeded with s, the parameter direction seeded too.
+      const int column = state_columns + k;
+      using D = Dual<1>;
+      std::vector<D> zd(n), dzd(n);
+      for (int i = 0; i < n; ++i) {
+        zd[i] = D(z[i]);
+        zd[i].d[0] = S[column][i];
+      }
+      const auto pd = seeded_parameters(p, parameters[k]);
+      derived().evaluate(t, zd.data(), pd.data(), dzd.data());
+      for (int i = 0; i < n; ++i) out[column][i] = dzd[i].d[0];
+    }
+  }
 
   std::vector<Dual<1>> seeded_parameters(const double* values, int parameter) const {
     std::vector<Dual<1>> pd(values, values + raw_.size());
