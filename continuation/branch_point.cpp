@@ -182,9 +182,7 @@ void Continuation::refine_branch_point(Bifurcation& e, const ContinuationPoint& 
   const int N = problem_->unknowns();
   Eigen::VectorXd guess(N + 1);
   guess << e.unknowns, e.parameter;
-  const double residual_noise =
-      attainable_tolerance(options_.corrector_tolerance, options_.orbit.newton.rtol_factor,
-                           options_.orbit.shooting.flow, space_->sizes().maxCoeff());
+  const double residual_noise = corrector_tolerance();
   const double monodromy_noise =
       std::max(e.floquet.trivial_error, std::numeric_limits<double>::epsilon());
   const BranchPointSolution s =

@@ -71,6 +71,11 @@ Continuation::Continuation(const OdeSystem& system, int parameter, ContinuationO
   }
 }
 
+double Continuation::corrector_tolerance() const {
+  return attainable_tolerance(options_.corrector_tolerance, options_.orbit.newton.rtol_factor,
+                              options_.orbit.shooting.flow, space_->sizes().maxCoeff());
+}
+
 Correction Continuation::correct_step(const Eigen::VectorXd& from, const Eigen::VectorXd& tangent,
                                       double step, const Eigen::VectorXd& guess,
                                       const Eigen::SparseMatrix<double>* chord) const {
@@ -78,9 +83,7 @@ Correction Continuation::correct_step(const Eigen::VectorXd& from, const Eigen::
   corrector.max_iterations = options_.max_corrector_iterations;
   corrector.max_chord_steps = options_.max_chord_steps;
   corrector.derivatives_first = predictions_land_;
-  corrector.tolerance =
-      attainable_tolerance(options_.corrector_tolerance, options_.orbit.newton.rtol_factor,
-                           options_.orbit.shooting.flow, space_->sizes().maxCoeff());
+  corrector.tolerance = corrector_tolerance();
   return correct(*problem_, *space_, parameter_, corrector, from, tangent, step, guess, chord);
 }
 

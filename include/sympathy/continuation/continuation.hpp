@@ -75,6 +75,9 @@ class Continuation {
   // run(), with the state scales widened to at least `sizes` (if not empty).
   Branch run_from(const PeriodicOrbit& start, int direction, const ContinuationCallbacks& callbacks,
                   const Eigen::VectorXd& initial_tangent, const Eigen::VectorXd& sizes);
+  // The corrector's residual tolerance: the options', or what the integration attains at the
+  // branch's state scale if that is larger (attainable_tolerance).
+  double corrector_tolerance() const;
   Correction correct_step(const Eigen::VectorXd& from, const Eigen::VectorXd& tangent, double step,
                           const Eigen::VectorXd& guess,
                           const Eigen::SparseMatrix<double>* chord) const;
