@@ -21,7 +21,7 @@ Eigen::MatrixXd breaking_basis_of(const InvariantSubspace& subspace, int dimensi
 }  // namespace
 
 AcrossVariations::AcrossVariations(const OdeSystem& system, const InvariantSubspace& subspace)
-    : system_(system),
+    : SystemOver(system),
       reduced_(system, subspace),
       coordinates_(reduced_.coordinates()),
       breaking_(breaking_basis_of(subspace, system.dimension())) {}

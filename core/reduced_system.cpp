@@ -5,7 +5,7 @@
 namespace sympathy {
 
 ReducedSystem::ReducedSystem(const OdeSystem& system, const InvariantSubspace& subspace)
-    : system_(system), coordinates_(subspace.coordinates(system.dimension())) {}
+    : SystemOver(system), coordinates_(subspace.coordinates(system.dimension())) {}
 
 std::vector<std::string> ReducedSystem::state_names() const {
   const auto names = system_.state_names();

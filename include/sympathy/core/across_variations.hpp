@@ -27,10 +27,11 @@
 #include "sympathy/core/invariant_subspace.hpp"
 #include "sympathy/core/ode_system.hpp"
 #include "sympathy/core/reduced_system.hpp"
+#include "sympathy/core/system_over.hpp"
 
 namespace sympathy {
 
-class AcrossVariations final : public OdeSystem {
+class AcrossVariations final : public SystemOver {
  public:
   // `system` must outlive this; `subspace` must have a reflection (throws std::invalid_argument
   // otherwise). The caller checks that f keeps the reflection at the parameter values it uses.
@@ -48,14 +49,6 @@ class AcrossVariations final : public OdeSystem {
   using OdeSystem::rhs;
   int dimension() const override { return inside() + across() * across(); }
   std::vector<std::string> state_names() const override;
-  std::vector<std::string> parameter_names() const override { return system_.parameter_names(); }
-  ParameterValues default_parameters() const override { return system_.default_parameters(); }
-  double parameter(const ParameterValues& p, int index) const override {
-    return system_.parameter(p, index);
-  }
-  void set_parameter(ParameterValues& p, int index, double value) const override {
-    system_.set_parameter(p, index, value);
-  }
   void rhs(double t, const double* w, const double* p, double* dw) const override;
   void jacobian(double t, const double* w, const double* p, Eigen::MatrixXd& jac) const override;
   // J * S with the Jacobian above (for completeness; a flow of this system needs no
@@ -66,10 +59,7 @@ class AcrossVariations final : public OdeSystem {
   // Refused (std::invalid_argument): the block carries no parameter sensitivities.
   void parameter_derivative(double t, const double* w, const double* p, int parameter,
                             double* dfdp) const override;
-  bool autonomous() const override { return system_.autonomous(); }
-  double forcing_period(const double* p) const override { return system_.forcing_period(p); }
   std::vector<SteepZone> steep_zones(const double* p) const override;  // y's, as ReducedSystem's
-  int switching_count() const override { return system_.switching_count(); }
   void switching_functions(double t, const double* w, const double* p, double* g) const override;
 
  private:
@@ -81,7 +71,6 @@ class AcrossVariations final : public OdeSystem {
     std::vector<double*> out_columns;
   };
 
-  const OdeSystem& system_;
   ReducedSystem reduced_;  // y's equations, zones and names
   const InvariantSubspace::Coordinates& coordinates_;
   Eigen::MatrixXd breaking_;

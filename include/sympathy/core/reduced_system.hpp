@@ -13,10 +13,11 @@
 
 #include "sympathy/core/invariant_subspace.hpp"
 #include "sympathy/core/ode_system.hpp"
+#include "sympathy/core/system_over.hpp"
 
 namespace sympathy {
 
-class ReducedSystem final : public OdeSystem {
+class ReducedSystem final : public SystemOver {
  public:
   // `system` must outlive this.
   ReducedSystem(const OdeSystem& system, const InvariantSubspace& subspace);
@@ -27,14 +28,6 @@ class ReducedSystem final : public OdeSystem {
 
   int dimension() const override { return coordinates_.size(); }
   std::vector<std::string> state_names() const override;
-  std::vector<std::string> parameter_names() const override { return system_.parameter_names(); }
-  ParameterValues default_parameters() const override { return system_.default_parameters(); }
-  double parameter(const ParameterValues& p, int index) const override {
-    return system_.parameter(p, index);
-  }
-  void set_parameter(ParameterValues& p, int index, double value) const override {
-    system_.set_parameter(p, index, value);
-  }
   void rhs(double t, const double* y, const double* p, double* dy) const override;
   bool differentiable() const override { return system_.differentiable(); }
   void jacobian(double t, const double* y, const double* p, Eigen::MatrixXd& jac) const override;
@@ -43,18 +36,14 @@ class ReducedSystem final : public OdeSystem {
                        std::span<const int> parameters) const override;
   void parameter_derivative(double t, const double* y, const double* p, int parameter,
                             double* dfdp) const override;
-  bool autonomous() const override { return system_.autonomous(); }
-  double forcing_period(const double* p) const override { return system_.forcing_period(p); }
   // The whole system's zones on components that are coordinates here (a zero component has
   // none to resolve).
   std::vector<SteepZone> steep_zones(const double* p) const override;
-  int switching_count() const override { return system_.switching_count(); }
   void switching_functions(double t, const double* y, const double* p, double* g) const override;
 
  private:
   Eigen::VectorXd embed(const double* y) const;
 
-  const OdeSystem& system_;
   InvariantSubspace::Coordinates coordinates_;
 };
 
