@@ -27,7 +27,10 @@ OptionCheck ContinuationOptions::validate() const {
   if (!(std::isfinite(max_step) && max_step >= initial_step))
     return OptionProblem{"max_step", "a number at least the initial step (--step)"};
   if (!non_negative(max_parameter_step))
-    return OptionProblem{"max_parameter_step", "0 (a 25th of the range) or a positive number"};
+    return OptionProblem{"max_parameter_step",
+                         "0 (the range over parameter_steps) or a positive number"};
+  if (!(positive(parameter_steps) && parameter_steps >= 1.0))
+    return OptionProblem{"parameter_steps", "a number of at least 1"};
   if (max_points < 2) return OptionProblem{"max_points", "an integer of at least 2"};
   if (max_corrector_iterations < 1)
     return OptionProblem{"max_corrector_iterations", "a positive integer"};
@@ -60,7 +63,7 @@ Continuation::Continuation(const OdeSystem& system, int parameter, ContinuationO
   if (!(options_.upper > options_.lower))
     throw std::invalid_argument("continuation: the upper bound must exceed the lower bound");
   if (options_.max_parameter_step <= 0.0)
-    options_.max_parameter_step = (options_.upper - options_.lower) / 25.0;
+    options_.max_parameter_step = (options_.upper - options_.lower) / options_.parameter_steps;
   if (parameter < 0 || parameter >= system.parameter_count())
     throw std::invalid_argument("continuation: no parameter with index " +
                                 std::to_string(parameter));

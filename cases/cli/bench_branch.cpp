@@ -71,7 +71,7 @@ BranchRun run(const LoadedCase& c, const BranchRequest& branch, const BranchSett
     const MetronomeModel model(c.spec);
     BranchRequest request = branch;
     if (s.preset)
-      apply_accuracy(*s.preset, request.continuation.orbit);
+      apply_accuracy(*s.preset, request.continuation);
     else
       request.continuation.orbit.shooting.flow = s.flow;
     request.continuation.orbit.use_symmetry = s.symmetry;

@@ -11,6 +11,7 @@
 #include "sympathy/cases/case_file.hpp"
 #include "sympathy/cases/metronome_model.hpp"
 #include "sympathy/cases/names.hpp"
+#include "sympathy/continuation/continuation_options.hpp"
 #include "sympathy/continuation/periodic_orbit.hpp"
 #include "sympathy/core/flow.hpp"
 #include "sympathy/core/option_check.hpp"
@@ -40,6 +41,9 @@ Accuracy accuracy(const Arguments& args);
 // The preset's method, sensitivities and tolerances: the shooting flow's, and for Fast the
 // transient's method too.
 void apply_accuracy(Accuracy accuracy, OrbitOptions& options);
+// ... and a branch's step control: Fast takes coarser steps where the multipliers move (see
+// common.cpp), Default and High the library's.
+void apply_accuracy(Accuracy accuracy, ContinuationOptions& options);
 
 LoadedCase load_case(const Arguments& args);
 // InputError naming the case file and its escapement unless the model is differentiable: the

@@ -38,7 +38,7 @@ ContinuationOptions branch_continuation(const Arguments& args, const OdeSystem& 
   o.initial_step = args.number("--step", o.initial_step);
   o.max_step = args.number("--max-step", o.max_step);
   o.max_points = args.integer("--max-points", o.max_points);
-  apply_accuracy(accuracy(args), o.orbit);
+  apply_accuracy(accuracy(args), o);
   o.orbit.shooting.flow = flow_options(args, o.orbit.shooting.flow);
   o.orbit.transient_flow.linear_solver = o.orbit.shooting.flow.linear_solver;
   return o;

@@ -93,7 +93,7 @@ CurveRequest curve_request(const Arguments& args, const LoadedSystem& c) {
   request.parent_path = args.text("--parent", "");
   auto& o = request.continuation;
   o.orbit.transient = args.number("--transient", o.orbit.transient);
-  apply_accuracy(accuracy(args), o.orbit);
+  apply_accuracy(accuracy(args), o);
   o.orbit.shooting.flow = flow_options(args, o.orbit.shooting.flow);
   o.orbit.transient_flow.linear_solver = o.orbit.shooting.flow.linear_solver;
   check_options(o.validate(), "");

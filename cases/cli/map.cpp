@@ -140,7 +140,7 @@ int run_map(const std::vector<std::string>& argv) {
         if (!request.at && own > map.first.from && own < map.first.to) request.at = own;
         request.progress = nullptr;
         apply_accuracy(args.has("--accuracy") ? accuracy(args) : map.accuracy,
-                       request.continuation.orbit);
+                       request.continuation);
         r.branch = run_branch(sources[i], request, stop);
         say("  %s: branch of %zu points, %zu events in %.1f s\n", o.name.c_str(),
             r.branch.points.size(), r.branch.events.size(), r.branch.seconds);

@@ -84,7 +84,7 @@ StudyRun study_run(const Arguments& args) {
     const auto& b = study.branches[i];
     BranchRequest r = b.request;
     r.start_data = recorded[i];
-    if (args.has("--accuracy")) apply_accuracy(accuracy(args), r.continuation.orbit);
+    if (args.has("--accuracy")) apply_accuracy(accuracy(args), r.continuation);
     r.csv_path = out + "/" + study.name + "-" + b.name + ".csv";
     r.events_path = out + "/" + study.name + "-" + b.name + "-events.csv";
     r.progress = nullptr;

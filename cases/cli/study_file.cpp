@@ -97,7 +97,7 @@ Study load_study(const std::string& path) {
       parse_event_name(b.request.switch_at, in.where(*n) + ": key '" + prefix + "switch_at'");
     }
     auto& o = b.request.continuation;
-    apply_accuracy(accuracy, o.orbit);
+    apply_accuracy(accuracy, o);
     if (auto* n = t.get("transient")) {
       o.orbit.transient = in.number(*n, prefix + "transient");
       b.transient_given = true;

@@ -131,6 +131,8 @@ Spoilers<ContinuationOptions> all_continuation_spoilers() {
       {"max_step", [](O& o) { o.max_step = kNaN; }},
       {"max_parameter_step", [](O& o) { o.max_parameter_step = -1.0; }},
       {"max_parameter_step", [](O& o) { o.max_parameter_step = kNaN; }},
+      {"parameter_steps", [](O& o) { o.parameter_steps = 0.5; }},
+      {"parameter_steps", [](O& o) { o.parameter_steps = kNaN; }},
       {"max_points", [](O& o) { o.max_points = 1; }},
       {"max_corrector_iterations", [](O& o) { o.max_corrector_iterations = 0; }},
       {"max_chord_steps", [](O& o) { o.max_chord_steps = -1; }},

@@ -14,7 +14,8 @@ struct ContinuationOptions {
   double initial_step = 0.02;       // scaled arclength
   double min_step = 1e-6;
   double max_step = 0.1;
-  double max_parameter_step = 0.0;  // |dp| per step; 0: (upper - lower) / 25
+  double max_parameter_step = 0.0;  // |dp| per step; 0: (upper - lower) / parameter_steps
+  double parameter_steps = 25.0;    // at least this many steps over the range (unless the above)
   int max_points = 400;
   int max_corrector_iterations = 7;
   int max_chord_steps = 6;  // before them, on plain integrations (0: Newton from the start)
