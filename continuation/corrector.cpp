@@ -1,5 +1,6 @@
 #include "sympathy/continuation/corrector.hpp"
 
+#include <cmath>
 #include <limits>
 #include <optional>
 #include <sstream>
@@ -87,6 +88,10 @@ Correction correct(ShootingProblem& problem, const BranchSpace& space, int param
       y += *z;
       known.reset();  // y moved
       ++c.chord_steps;
+      // Where the contraction so far says this step lands within a quarter tolerance, the run
+      // with sensitivities below checks it, and the plain run that would only have said so is
+      // saved (one of the 5-7 runs a point on the in-phase k-branch, where the orbit moves).
+      if (std::isfinite(last) && norm * (norm / last) <= 0.25 * tolerance) break;
       last = norm;
     }
   }
