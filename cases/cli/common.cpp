@@ -130,7 +130,7 @@ void apply_accuracy(Accuracy accuracy, OrbitOptions& o) {
   }
 }
 
-// Fast's steps (2026-11-25, the same branch, single runs of `continue --accuracy fast`): the
+// Fast's steps (2026-11-24, the same branch, single runs of `continue --accuracy fast`): the
 // multipliers' motion near the unit circle set most of the 65 points (47 of them between k = 45
 // and 58) and the range's 25th the rest. Letting a multiplier's modulus move 0.05 a step instead
 // of 0.02 and the parameter a tenth of the range: 44 points, the same three events, each moved
