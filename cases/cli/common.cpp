@@ -134,10 +134,10 @@ void apply_accuracy(Accuracy accuracy, OrbitOptions& o) {
 // multipliers' motion near the unit circle set most of the 65 points (47 of them between k = 45
 // and 58) and the range's 25th the rest. Letting a multiplier's modulus move 0.05 a step instead
 // of 0.02 and the parameter a tenth of the range: 44 points, the same three events, each moved
-// by at most 1.5e-9 relative (the location, not the integration, sets that). A multiplier that
-// crosses the unit circle and comes back within one step goes unseen by either setting unless
-// it moves more than the limit; a pair of crossings closer than a step, at the fast preset's
-// accuracy, is what the default is for.
+// by at most 1.5e-9 relative (the location, not the integration, sets that). Neither setting sees
+// a multiplier that leaves the unit circle and comes back within one step; the looser one lets
+// such an excursion be larger (0.05 in modulus instead of 0.02): crossings that close together
+// are what the default preset is for.
 void apply_accuracy(Accuracy accuracy, ContinuationOptions& o) {
   apply_accuracy(accuracy, o.orbit);
   const ContinuationOptions library;
