@@ -86,8 +86,9 @@ class CurveRun {
               double step, std::vector<CurveEvent>& events);
   CurveEvent locate(const Watch& w, const CurvePoint& from, const Eigen::MatrixXd& jacobian,
                     const CurvePoint& to, double step, double f0, double f1);
-  CurveEvent locate_turn(int k, const CurvePoint& from, const Eigen::MatrixXd& jacobian,
-                         const CurvePoint& to, double step, double t0);
+  std::optional<CurveEvent> locate_turn(int k, const CurvePoint& from,
+                                        const Eigen::MatrixXd& jacobian, const CurvePoint& to,
+                                        double step, double t0);
 
   CurveSystem& system_;
   const BifurcationCurve& curve_;
@@ -206,8 +207,9 @@ CurveEvent CurveRun::locate(const Watch& w, const CurvePoint& from, const Eigen:
   return e;
 }
 
-CurveEvent CurveRun::locate_turn(int k, const CurvePoint& from, const Eigen::MatrixXd& jacobian,
-                                 const CurvePoint& to, double step, double t0) {
+std::optional<CurveEvent> CurveRun::locate_turn(int k, const CurvePoint& from,
+                                                const Eigen::MatrixXd& jacobian,
+                                                const CurvePoint& to, double step, double t0) {
   // Near a turn the curve's value of parameter k is a parabola in the arclength s from `from`
   // (along its tangent, each probe corrected onto the curve under the arclength condition), its
   // vertex the turn: parabolic interpolation through the three latest samples converges
@@ -224,6 +226,7 @@ CurveEvent CurveRun::locate_turn(int k, const CurvePoint& from, const Eigen::Mat
   // the uncertainty says how far it got (the turned parameter's value is fixed far better).
   const double tolerance = std::max(options_.location_tolerance, 1e-7);
   double t = t0, previous = step;
+  double vertex = t0;  // the latest parabola's, before it is clamped to the step
   bool have = false;
   for (int probe = 0; probe < 12; ++probe) {
     t = std::clamp(t, 0.0, step);
@@ -251,8 +254,16 @@ CurveEvent CurveRun::locate_turn(int k, const CurvePoint& from, const Eigen::Mat
     const double d01 = (v1 - v0) / (s1 - s0), d12 = (v2 - v1) / (s2 - s1);
     const double curvature = (d12 - d01) / (s2 - s0);
     if (!(std::abs(curvature) > 0.0) || !std::isfinite(curvature)) break;
-    t = 0.5 * (s0 + s1) - d01 / (2.0 * curvature);
+    vertex = 0.5 * (s0 + s1) - d01 / (2.0 * curvature);
+    t = vertex;
   }
+  // The parabola through the samples has its vertex outside the step: the tangents' signs
+  // disagreed by noise (a BP curve in (k, c) that runs almost along c at the fast preset: its k
+  // component, 2e-3 of the scaled tangent, flipped sign ten times in 30 points whose k fell
+  // steadily). Not a turn. (A turn at a point of the curve, e.g. its start, has its vertex there.)
+  if (have && std::abs(t - previous) <= tolerance &&
+      (vertex < -tolerance || vertex > step + tolerance))
+    return std::nullopt;
   const auto& best =
       std::min_element(samples.begin(), samples.end(), [t](const auto& a, const auto& b) {
         return std::abs(a.first - t) < std::abs(b.first - t);
@@ -330,7 +341,9 @@ void CurveRun::detect(const CurvePoint& from, const Eigen::MatrixXd& jacobian, c
     const double a = from.tangent[indices[k]] * system_.weight(indices[k]);
     const double b = to.tangent[indices[k]] * system_.weight(indices[k]);
     if ((a < 0.0) == (b < 0.0) || std::max(std::abs(a), std::abs(b)) < 1e-3) continue;
-    events.push_back(locate_turn(k, from, jacobian, to, step, step * a / (a - b)));
+    auto turn = locate_turn(k, from, jacobian, to, step, step * a / (a - b));
+    if (!turn) continue;
+    events.push_back(std::move(*turn));
     if (callbacks_.on_event) callbacks_.on_event(events.back());
   }
 }
