@@ -117,6 +117,11 @@ void apply_accuracy(Accuracy accuracy, OrbitOptions& o) {
       // The transient too: plain Dormand-Prince on the state at the transient's own tolerance.
       o.transient_flow.method = Method::ERK;
       o.transient_flow.sensitivities = Sensitivities::Augmented;
+      // Dormand-Prince's steps here are the turning-point caps' (above): each a larger share of
+      // the band it crosses, still below the 2/3 that would let a step jump a level (Flow): fast
+      // 0.22 -> 0.21 CPU s (medians of five), 47 875 -> 43 730 steps, the events within 1e-8.
+      f.steep_step_fraction = 0.6;
+      o.transient_flow.steep_step_fraction = 0.6;
       break;
     case Accuracy::Default:
     case Accuracy::High:
