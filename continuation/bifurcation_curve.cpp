@@ -86,9 +86,8 @@ class CurveRun {
               double step, std::vector<CurveEvent>& events);
   CurveEvent locate(const Watch& w, const CurvePoint& from, const Eigen::MatrixXd& jacobian,
                     const CurvePoint& to, double step, double f0, double f1);
-  std::optional<CurveEvent> locate_turn(int k, const CurvePoint& from,
-                                        const Eigen::MatrixXd& jacobian, const CurvePoint& to,
-                                        double step, double t0);
+  CurveEvent locate_turn(int k, const CurvePoint& from, const Eigen::MatrixXd& jacobian,
+                         const CurvePoint& to, double step, double t0);
 
   CurveSystem& system_;
   const BifurcationCurve& curve_;
@@ -207,9 +206,8 @@ CurveEvent CurveRun::locate(const Watch& w, const CurvePoint& from, const Eigen:
   return e;
 }
 
-std::optional<CurveEvent> CurveRun::locate_turn(int k, const CurvePoint& from,
-                                                const Eigen::MatrixXd& jacobian,
-                                                const CurvePoint& to, double step, double t0) {
+CurveEvent CurveRun::locate_turn(int k, const CurvePoint& from, const Eigen::MatrixXd& jacobian,
+                                 const CurvePoint& to, double step, double t0) {
   // Near a turn the curve's value of parameter k is a parabola in the arclength s from `from`
   // (along its tangent, each probe corrected onto the curve under the arclength condition), its
   // vertex the turn: parabolic interpolation through the three latest samples converges
@@ -226,7 +224,6 @@ std::optional<CurveEvent> CurveRun::locate_turn(int k, const CurvePoint& from,
   // the uncertainty says how far it got (the turned parameter's value is fixed far better).
   const double tolerance = std::max(options_.location_tolerance, 1e-7);
   double t = t0, previous = step;
-  double vertex = t0;  // the latest parabola's, before it is clamped to the step
   bool have = false;
   for (int probe = 0; probe < 12; ++probe) {
     t = std::clamp(t, 0.0, step);
@@ -254,16 +251,8 @@ std::optional<CurveEvent> CurveRun::locate_turn(int k, const CurvePoint& from,
     const double d01 = (v1 - v0) / (s1 - s0), d12 = (v2 - v1) / (s2 - s1);
     const double curvature = (d12 - d01) / (s2 - s0);
     if (!(std::abs(curvature) > 0.0) || !std::isfinite(curvature)) break;
-    vertex = 0.5 * (s0 + s1) - d01 / (2.0 * curvature);
-    t = vertex;
+    t = 0.5 * (s0 + s1) - d01 / (2.0 * curvature);
   }
-  // The parabola through the samples has its vertex outside the step: the tangents' signs
-  // disagreed by noise (a BP curve in (k, c) that runs almost along c at the fast preset: its k
-  // component, 2e-3 of the scaled tangent, flipped sign ten times in 30 points whose k fell
-  // steadily). Not a turn. (A turn at a point of the curve, e.g. its start, has its vertex there.)
-  if (have && std::abs(t - previous) <= tolerance &&
-      (vertex < -tolerance || vertex > step + tolerance))
-    return std::nullopt;
   const auto& best =
       std::min_element(samples.begin(), samples.end(), [t](const auto& a, const auto& b) {
         return std::abs(a.first - t) < std::abs(b.first - t);
@@ -341,9 +330,18 @@ void CurveRun::detect(const CurvePoint& from, const Eigen::MatrixXd& jacobian, c
     const double a = from.tangent[indices[k]] * system_.weight(indices[k]);
     const double b = to.tangent[indices[k]] * system_.weight(indices[k]);
     if ((a < 0.0) == (b < 0.0) || std::max(std::abs(a), std::abs(b)) < 1e-3) continue;
-    auto turn = locate_turn(k, from, jacobian, to, step, step * a / (a - b));
-    if (!turn) continue;
-    events.push_back(std::move(*turn));
+    CurveEvent turn = locate_turn(k, from, jacobian, to, step, step * a / (a - b));
+    // A turn is an extremum of the parameter: its value beyond both points' (or at the curve's
+    // start, where the component is below the gate: a start at a vertex). Else the tangents' signs
+    // disagreed by noise: a BP curve in (k, c) that runs almost along c at the fast preset, its k
+    // component 2e-3 of the scaled tangent, "turned" ten times in 30 points whose k fell
+    // steadily. (A turn whose excess over an end is below the points' noise is lost with them.)
+    const auto value = [k](double first, double second) { return k == 0 ? first : second; };
+    const double v = value(turn.first, turn.second), v0 = value(from.first, from.second),
+                 v1 = value(to.first, to.second);
+    const bool at_start = from.index == 0 && turn.located && std::abs(a) < 1e-3;
+    if (!((v - v0) * (v - v1) > 0.0) && !at_start) continue;
+    events.push_back(std::move(turn));
     if (callbacks_.on_event) callbacks_.on_event(events.back());
   }
 }
