@@ -31,7 +31,10 @@ check "... unstable" test "$(json_value "$work/r1.json" "j['stable']")" = False
 
 # A metronome case: the in-phase orbit of row2, its period recorded by simulate from the orbit's
 # own state (as given, to the last bit), 1.5 periods long (the guess is then the first return):
-# read back, Newton in the whole state lands on the same orbit, state and period to 1e-9.
+# read back, Newton in the whole state lands on the same orbit: period to 1e-9, state to 1e-8 (two
+# solutions within Newton's 1e-9 of the residual; along the multiplier 0.988 a residual moves the
+# state by up to 1 / (1 - 0.988) = 80 times itself: measured below 1e-9 from the 60 s transient's
+# phase, 2e-9 from the early start's, OrbitOptions::early_newton_below).
 "$bin" orbit "$src/cases/row2.toml" --start in-phase --json "$work/in.json" > /dev/null
 initial=$(json_value "$work/in.json" "' '.join('--initial %s=%r' % (n, v) for n, v in zip(j['state_names'], j['state0']))")
 t_end=$(json_value "$work/in.json" "1.5 * j['period']")
@@ -41,10 +44,10 @@ t_end=$(json_value "$work/in.json" "1.5 * j['period']")
 check "metronome: orbit --start-data exits 0" test $? -eq 0
 check "metronome: the guess is the first return" grep -q "its first return, line" "$work/in_data.out"
 check "metronome: the same period to 1e-9" test "$(json_value "$work/in_data.json" "abs(j['period'] - $(json_value "$work/in.json" "j['period']")) < 1e-9")" = True
-check "metronome: the same state to 1e-9" /usr/bin/python3 -c "
+check "metronome: the same state to 1e-8" /usr/bin/python3 -c "
 import json,sys
 a=json.load(open(sys.argv[1]))['state0']; b=json.load(open(sys.argv[2]))['state0']
-sys.exit(0 if max(abs(x-y) for x,y in zip(a,b)) < 1e-9 else 1)" "$work/in.json" "$work/in_data.json"
+sys.exit(0 if max(abs(x-y) for x,y in zip(a,b)) < 1e-8 else 1)" "$work/in.json" "$work/in_data.json"
 
 # A study file's start_data and user_points keys: the in-phase branch of row2 from the recorded
 # period and from the named start (in its symmetric subspace) give the same orbit at k = 15.

@@ -105,6 +105,9 @@ Spoilers<OrbitOptions> all_orbit_spoilers() {
       {"transient", [](OrbitOptions& o) { o.transient = kNaN; }},
       {"max_period", [](OrbitOptions& o) { o.max_period = 0.0; }},
       {"max_period", [](OrbitOptions& o) { o.max_period = kNaN; }},
+      {"early_newton_below", [](OrbitOptions& o) { o.early_newton_below = -1e-3; }},
+      {"early_newton_below", [](OrbitOptions& o) { o.early_newton_below = 1.0; }},
+      {"early_newton_below", [](OrbitOptions& o) { o.early_newton_below = kNaN; }},
   };
   for (const auto& [field, spoil] : all_shooting_spoilers())
     all.push_back({"shooting." + field, [spoil](OrbitOptions& o) { spoil(o.shooting); }});

@@ -2,6 +2,8 @@
 
 #include <gtest/gtest.h>
 
+#include <algorithm>
+#include <cmath>
 #include <numbers>
 
 #include "tests/support/test_systems.hpp"
@@ -162,6 +164,57 @@ TEST(PeriodicOrbit, FoundFromAStart) {
   ASSERT_TRUE(orbit.converged()) << orbit.newton.reason;
   EXPECT_NEAR(orbit.period, 2 * kPi, 1e-10);
   EXPECT_LE(orbit.newton.iterations, 4);
+}
+
+// A slowly approached cycle: the pitchfork form at mu = -0.1, the unit circle of period 2 pi with
+// multipliers exp(-4 pi) (radial) and exp(2 pi mu) = exp(-0.2 pi) = 0.53 (w), from w = 0.1. The
+// motion in one period falls to 1e-4 of the state only after about 70 s (w about 2e-4), so the
+// 60 s transient never settles; at the check at 40.5 s (w about 2e-3) it moves by 8e-4, and
+// Newton tried there (OrbitOptions::early_newton_below) finds the same orbit, exactly.
+TEST(PeriodicOrbit, EarlyNewtonFindsTheOrbitTheTransientApproaches) {
+  using testing::NormalForm;
+  const NormalForm system(NormalForm::Kind::Pitchfork, -0.1);
+  Eigen::VectorXd start(3);
+  start << 1.0, 0.0, 0.1;
+  OrbitOptions whole = tight();
+  whole.early_newton_below = 0.0;  // the whole 60 s
+  OrbitOptions early = tight();
+  const auto p = system.default_parameters();
+  const auto a = find_periodic_orbit(system, p, start, {}, whole);
+  const auto b = find_periodic_orbit(system, p, start, {}, early);
+  for (const auto* orbit : {&a, &b}) {
+    ASSERT_TRUE(orbit->converged()) << orbit->newton.reason;
+    EXPECT_NEAR(orbit->period, 2 * kPi, 1e-10);
+    EXPECT_NEAR(orbit->state0.head(2).norm(), 1.0, 1e-10);
+    EXPECT_NEAR(orbit->state0[2], 0.0, 1e-10);
+    std::vector<double> others;
+    for (const auto& m : orbit->floquet.multipliers)
+      if (!m.trivial) others.push_back(m.value.real());
+    ASSERT_EQ(others.size(), 2u);
+    std::sort(others.begin(), others.end());
+    EXPECT_NEAR(others[0], std::exp(-4 * kPi), 1e-10);
+    EXPECT_NEAR(others[1], std::exp(-0.2 * kPi), 1e-9);
+    EXPECT_LT(orbit->floquet.trivial_error, 1e-9);
+  }
+  // The early path was taken: the transient stopped at a check (its one-second integrations are
+  // most of the calls: 74 with the whole transient, 55 here). On this smooth system a transient
+  // second costs little against Newton's runs at rtol 1e-12, so steps are no measure of it here.
+  EXPECT_LT(b.flow.calls + 10, a.flow.calls) << a.flow.calls << " " << b.flow.calls;
+}
+
+// Newton tried early takes only an orbit the transient could be approaching: one stable where the
+// transient runs. The pitchfork form at mu = +0.1 from w = 1e-3 on the circle: the circle (w = 0)
+// is unstable in w (multiplier exp(0.2 pi)), and the transient leaves it for the cycles at
+// w = +-sqrt(0.1); the orbit found is the one at w = +sqrt(0.1), whatever the checks met.
+TEST(PeriodicOrbit, EarlyNewtonTakesNoUnstableOrbit) {
+  using testing::NormalForm;
+  const NormalForm system(NormalForm::Kind::Pitchfork, 0.1);
+  Eigen::VectorXd start(3);
+  start << 1.0, 0.0, 1e-3;
+  const auto orbit = find_periodic_orbit(system, system.default_parameters(), start, {}, tight());
+  ASSERT_TRUE(orbit.converged()) << orbit.newton.reason;
+  EXPECT_NEAR(orbit.state0[2], std::sqrt(0.1), 1e-9);
+  EXPECT_EQ(orbit.floquet.stability, Stability::Stable);
 }
 
 // An equilibrium has no return to the section: a clear failure, not a crash.
