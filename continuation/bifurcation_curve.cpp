@@ -191,9 +191,32 @@ CurveEvent CurveRun::locate(const Watch& w, const CurvePoint& from, const Eigen:
     for (const auto& mu : rest)
       if (std::abs(std::log(std::abs(mu))) < std::abs(std::log(std::abs(nearest)))) nearest = mu;
     if (w.tracked) nearest = *w.tracked;  // the multiplier followed, where the last probe had it
+    // Its label: that of the point's other multiplier nearest to it (the tracked value is the
+    // last probe's; the point named may be another probe's).
     SymmetryKind symmetry = SymmetryKind::Unlabelled;
-    for (const auto& m : named.floquet.multipliers)
-      if (m.value == nearest) symmetry = m.symmetry;
+    double distance = INFINITY;
+    for (int i : system_.other_indices(named)) {
+      const Multiplier& m = named.floquet.multipliers[i];
+      if (std::abs(m.value - nearest) < distance) {
+        distance = std::abs(m.value - nearest);
+        symmetry = m.symmetry;
+      }
+    }
+    // Where the curve is a fold or a branch point, its own critical multiplier sits at +1 beside
+    // the crossing one, and which of the two the curve took as its own is rounding (the (k, c)
+    // map's in-phase fold curve meets a BP curve at (53.726, 0.426) with 1 + 1.3e-10, breaking
+    // the symmetry, taken as the fold's, and 1 - 1.5e-10, keeping it, as the other): the other is
+    // the one whose label is not the curve's own kind's, where the two differ.
+    if (curve_.kind == BifurcationType::Fold || curve_.kind == BifurcationType::BranchPoint) {
+      const SymmetryKind own = curve_.kind == BifurcationType::BranchPoint ? SymmetryKind::Breaking
+                                                                           : SymmetryKind::Keeping;
+      for (int i = 0; i < static_cast<int>(named.floquet.multipliers.size()); ++i) {
+        const Multiplier& m = named.floquet.multipliers[i];
+        if (i != named.floquet.trivial && std::abs(m.value - nearest) <= 1e-6 &&
+            m.symmetry != SymmetryKind::Unlabelled && m.symmetry != own)
+          symmetry = m.symmetry;
+      }
+    }
     const std::string other = kind_of_crossing(nearest, symmetry);
     e.crossing_symmetry = symmetry;
     e.type = to_string(curve_.kind) + "-" + other;

@@ -330,17 +330,24 @@ CurvePoint CurveSystem::point(const Eigen::VectorXd& u, const Evaluation& e,
   return p;
 }
 
-std::vector<std::complex<double>> CurveSystem::others(const CurvePoint& p) const {
-  std::vector<std::complex<double>> rest;
+std::vector<int> CurveSystem::other_indices(const CurvePoint& p) const {
+  std::vector<int> rest;
   for (int i = 0; i < static_cast<int>(p.floquet.multipliers.size()); ++i)
-    if (i != p.floquet.trivial) rest.push_back(p.floquet.multipliers[i].value);
+    if (i != p.floquet.trivial) rest.push_back(i);
+  const auto value = [&](int i) { return p.floquet.multipliers[i].value; };
   for (const auto& c : p.critical) {
     if (rest.empty()) break;
-    const auto nearest = std::min_element(rest.begin(), rest.end(), [&](auto a, auto b) {
-      return std::abs(a - c) < std::abs(b - c);
+    const auto nearest = std::min_element(rest.begin(), rest.end(), [&](int a, int b) {
+      return std::abs(value(a) - c) < std::abs(value(b) - c);
     });
     rest.erase(nearest);
   }
+  return rest;
+}
+
+std::vector<std::complex<double>> CurveSystem::others(const CurvePoint& p) const {
+  std::vector<std::complex<double>> rest;
+  for (int i : other_indices(p)) rest.push_back(p.floquet.multipliers[i].value);
   return rest;
 }
 

@@ -94,7 +94,9 @@ class CurveSystem {
   // The point at u (converged: e), with its multipliers and critical ones.
   CurvePoint point(const Eigen::VectorXd& u, const Evaluation& e, const Eigen::MatrixXd& jacobian,
                    const Eigen::VectorXd& tangent) const;
-  // The multipliers of the whole monodromy other than the trivial and the critical ones.
+  // The multipliers of the whole monodromy other than the trivial and the critical ones: their
+  // indices in p.floquet.multipliers, and their values.
+  std::vector<int> other_indices(const CurvePoint& p) const;
   std::vector<std::complex<double>> others(const CurvePoint& p) const;
 
   FlowStatistics statistics() const { return problem_.statistics(); }
