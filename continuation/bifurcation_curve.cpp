@@ -358,13 +358,12 @@ void CurveRun::detect(const CurvePoint& from, const Eigen::MatrixXd& jacobian, c
     // start, where the component is below the gate: a start at a vertex). Else the tangents' signs
     // disagreed by noise: a BP curve in (k, c) that runs almost along c at the fast preset, its k
     // component 2e-3 of the scaled tangent, "turned" ten times in 30 points whose k fell
-    // steadily. (A turn whose excess over an end is below the points' noise is lost with them;
-    // one whose probes failed is kept, with its note.)
+    // steadily. (A turn whose excess over an end is below the points' noise is lost with them.)
     const auto value = [k](double first, double second) { return k == 0 ? first : second; };
     const double v = value(turn.first, turn.second), v0 = value(from.first, from.second),
                  v1 = value(to.first, to.second);
     const bool at_start = from.index == 0 && turn.located && std::abs(a) < 1e-3;
-    if (turn.located && !((v - v0) * (v - v1) > 0.0) && !at_start) continue;
+    if (!((v - v0) * (v - v1) > 0.0) && !at_start) continue;
     events.push_back(std::move(turn));
     if (callbacks_.on_event) callbacks_.on_event(events.back());
   }
