@@ -97,8 +97,8 @@ class AutoDiffSystem : public OdeSystem {
                             double* dfdp) const override {
     using D = Dual<1>;
     const int n = dimension();
-    std::vector<D> zd(z, z + n), dzd(n);
-    const auto pd = seeded_parameters(p, parameter);
+    std::vector<D> zd(z, z + n), dzd(n), pd;
+    seed_parameters(p, parameter, pd);
     derived().evaluate(t, zd.data(), pd.data(), dzd.data());
     for (int i = 0; i < n; ++i) dfdp[i] = dzd[i].d[0];
   }
@@ -146,25 +146,28 @@ class AutoDiffSystem : public OdeSystem {
       c0 += width;
     }
     for (int k = 0; k < static_cast<int>(parameters.size()); ++k) {
-      // J*s + df/dp in one pass: the state seeded with s, the parameter direction seeded too.
+      // J*s + df/dp in one pass: the state seeded with s, the parameter direction seeded too
+      // (per-thread buffers, as above: this runs at every step of a flow with a parameter column).
       const int column = state_columns + k;
       using D = Dual<1>;
-      std::vector<D> zd(n), dzd(n);
+      thread_local std::vector<D> zd, dzd, pd;
+      zd.resize(n);
+      dzd.assign(n, D{});
       for (int i = 0; i < n; ++i) {
         zd[i] = D(z[i]);
         zd[i].d[0] = S[column][i];
       }
-      const auto pd = seeded_parameters(p, parameters[k]);
+      seed_parameters(p, parameters[k], pd);
       derived().evaluate(t, zd.data(), pd.data(), dzd.data());
       for (int i = 0; i < n; ++i) out[column][i] = dzd[i].d[0];
     }
   }
 
-  std::vector<Dual<1>> seeded_parameters(const double* values, int parameter) const {
-    std::vector<Dual<1>> pd(values, values + raw_.size());
+  // The raw parameter values as dual numbers, the direction of named parameter `parameter` seeded.
+  void seed_parameters(const double* values, int parameter, std::vector<Dual<1>>& pd) const {
+    pd.assign(values, values + raw_.size());
     const auto& p = named_.at(parameter);
     for (int r : p.raw) pd[r].d[0] = p.scale;
-    return pd;
   }
 
   // Narrow duals for narrow chunks: a 2-state system should not pay for 8 directions.
