@@ -62,6 +62,11 @@ struct Watch {
   std::shared_ptr<std::complex<double>> tracked = nullptr;
 };
 
+// The curve's first (k = 0) or second parameter at p.
+double parameter_value(int k, const CurvePoint& p) {
+  return k == 0 ? p.first : p.second;
+}
+
 const char* kind_of_crossing(std::complex<double> mu, SymmetryKind symmetry) {
   if (std::abs(mu.imag()) > 1e-6) return "NS";
   if (mu.real() < 0.0) return "PD";
@@ -236,7 +241,7 @@ CurveEvent CurveRun::locate_turn(int k, const CurvePoint& from, const Eigen::Mat
   // vertex the turn: parabolic interpolation through the three latest samples converges
   // superlinearly, and the value at the vertex is fixed to the square of the error in s.
   const std::string name = k == 0 ? curve_.first_name : curve_.second_name;
-  const auto value = [k](const CurvePoint& p) { return k == 0 ? p.first : p.second; };
+  const auto value = [k](const CurvePoint& p) { return parameter_value(k, p); };
   CurveEvent e;
   e.type = "turn in " + name;
   e.description = "the curve turns back in " + name;
@@ -359,9 +364,8 @@ void CurveRun::detect(const CurvePoint& from, const Eigen::MatrixXd& jacobian, c
     // disagreed by noise: a BP curve in (k, c) that runs almost along c at the fast preset, its k
     // component 2e-3 of the scaled tangent, "turned" ten times in 30 points whose k fell
     // steadily. (A turn whose excess over an end is below the points' noise is lost with them.)
-    const auto value = [k](double first, double second) { return k == 0 ? first : second; };
-    const double v = value(turn.first, turn.second), v0 = value(from.first, from.second),
-                 v1 = value(to.first, to.second);
+    const double v = parameter_value(k, turn.at), v0 = parameter_value(k, from),
+                 v1 = parameter_value(k, to);
     const bool at_start = from.index == 0 && turn.located && std::abs(a) < 1e-3;
     if (!((v - v0) * (v - v1) > 0.0) && !at_start) continue;
     events.push_back(std::move(turn));

@@ -58,8 +58,8 @@ LoadedCase load_case(const std::string& path, const std::string& params,
 OptionSpec accuracy_option() {
   return {"--accuracy", "fast|default|high", false,
           "integrator preset (--rtol, --method, --sensitivities override it): fast = explicit "
-          "Runge-Kutta, located points to about 4e-7; default = located points within 1e-8; "
-          "high = tighter (default: default)"};
+          "Runge-Kutta and coarser branch steps, located points to about 4e-7; default = "
+          "located points within 1e-8; high = tighter (default: default)"};
 }
 
 Accuracy parse_accuracy(const std::string& text, const std::string& where) {

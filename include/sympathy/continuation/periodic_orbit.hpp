@@ -89,8 +89,8 @@ struct OrbitOptions {
   // tolerance): an orbit the transient was approaching. Otherwise the transient goes on. The
   // anti-phase orbit (row setup, Table II, k = 1) is approached at 0.92 a period, so the motion
   // moves by 1.4e-3 at 12 s and by 1e-4 only after 32 s; Newton from 12 s converges in four
-  // iterations, and the start costs 0.05 s instead of 0.11 s (fast preset; default 0.10 s
-  // instead of 0.18 s). 0: never.
+  // iterations, and the start costs 0.04 s instead of 0.07 s (fast preset; default 0.09 s
+  // instead of 0.17 s; `orbit --start anti-phase --set k=1`, 2026-11-24). 0: never.
   double early_newton_below = 2e-3;
   double max_period = 10.0;    // s: the longest period looked for
   FlowOptions transient_flow;  // for the transient and the period estimate
