@@ -101,6 +101,7 @@ Branch join_branches(Branch backward, Branch forward) {
   joined.flow = backward.flow;
   joined.flow += forward.flow;
   joined.across_evaluations = backward.across_evaluations + forward.across_evaluations;
+  joined.split_evaluations = backward.split_evaluations + forward.split_evaluations;
   joined.seconds = backward.seconds + forward.seconds;
   return joined;
 }

@@ -300,6 +300,7 @@ Branch Continuation::run_switched(const PeriodicOrbit& base, const Eigen::Vector
   joined.rejected += back.rejected;
   joined.flow += back.flow;
   joined.across_evaluations += back.across_evaluations;
+  joined.split_evaluations += back.split_evaluations;
   joined.seconds += back.seconds;
   return joined;
 }

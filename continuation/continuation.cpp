@@ -206,6 +206,7 @@ Branch Continuation::run_from(const PeriodicOrbit& start, int direction,
     branch.stop_reason = reason;
     branch.flow = problem_->statistics();
     branch.across_evaluations = problem_->across_evaluations();
+    branch.split_evaluations = problem_->split_evaluations();
     branch.seconds = started.seconds();
     return branch;
   };

@@ -2,7 +2,9 @@
 
 #include <algorithm>
 #include <cmath>
+#include <functional>
 #include <numbers>
+#include <random>
 #include <stdexcept>
 #include <utility>
 
@@ -16,6 +18,33 @@ constexpr double kTwoPi = 2.0 * std::numbers::pi;
 // Every how many of the period's samples the restricted field and its Jacobian are compared with
 // the remembered ones (use_symmetry): 41 of 801, a tenth of a plain period's cost.
 constexpr int kFieldCheckStride = 20;
+
+// Where f's symmetry is probed around a state: its own size per component, at least a tenth of
+// its largest (a component that is zero at this point is not zero on the orbit).
+Eigen::VectorXd probe_scale(const Eigen::VectorXd& z) {
+  const double largest = std::max(z.cwiseAbs().maxCoeff(), 1e-300);
+  return z.cwiseAbs().cwiseMax(0.1 * largest);
+}
+
+// equivariance_defect's test for df/dp: dfdp(g z) = g dfdp(z) at random points of that size.
+double parameter_equivariance_defect(
+    const OdeSystem& system, const ParameterValues& p, int parameter, const Eigen::VectorXd& scale,
+    const std::function<Eigen::VectorXd(const Eigen::VectorXd&)>& g) {
+  const int n = system.dimension();
+  std::mt19937 rng(3);
+  std::uniform_real_distribution<double> u(-1.0, 1.0);
+  double worst = 0.0;
+  Eigen::VectorXd z(n), dfdp(n), at_gz(n);
+  for (int trial = 0; trial < 3; ++trial) {
+    for (int i = 0; i < n; ++i) z[i] = scale[i] * u(rng);
+    system.parameter_derivative(0.0, z.data(), p.data(), parameter, dfdp.data());
+    const Eigen::VectorXd gz = g(z);
+    system.parameter_derivative(0.0, gz.data(), p.data(), parameter, at_gz.data());
+    const double norm = std::max(dfdp.cwiseAbs().maxCoeff(), 1e-300);
+    worst = std::max(worst, (at_gz - g(dfdp)).cwiseAbs().maxCoeff() / norm);
+  }
+  return worst;
+}
 }  // namespace
 
 // The last full evaluation with derivatives of an orbit in a reflection's fixed space V, and what
@@ -27,20 +56,36 @@ struct ShootingProblem::SymmetricOrbit {
         reflection(std::move(g)),
         across(system, subspace_),
         flow(across, options),
-        inside(subspace_.bases(system.dimension()).inside) {}
+        inside(subspace_.bases(system.dimension()).inside) {
+    const auto& k = across.coordinates();
+    const int n = system.dimension();
+    embedding = Eigen::MatrixXd::Zero(n, k.size());
+    for (int c = 0; c < n; ++c)
+      if (k.coordinate[c] >= 0) embedding(c, k.coordinate[c]) = k.sign[c];
+    Eigen::MatrixXd representatives = Eigen::MatrixXd::Zero(k.size(), n);
+    for (int j = 0; j < k.size(); ++j) representatives(j, k.representative[j]) = 1.0;
+    reading = representatives * inside * inside.transpose();
+  }
   InvariantSubspace subspace;
   Reflection reflection;
   AcrossVariations across;
-  Flow flow;                               // plain runs of `across`
-  Eigen::MatrixXd inside;                  // an orthonormal basis of V
-  int served = 0;                          // evaluations served by the across block alone
-  bool known = false;                      // the remembered full evaluation:
-  Eigen::VectorXd x;                       // its unknowns
-  Evaluation evaluation;                   // itself
-  Eigen::MatrixXd block;                   // V's block of its monodromy, inside^T Phi inside
-  Eigen::VectorXd scale;                   // the orbit's largest amplitude per component
-  std::vector<Eigen::VectorXd> field;      // R f at every kFieldCheckStride-th sample
-  std::vector<Eigen::MatrixXd> jacobians;  // R J P there
+  Flow flow;                                // plain runs of `across`
+  Eigen::MatrixXd inside;                   // an orthonormal basis of V
+  Eigen::MatrixXd embedding;                // P: z = P y for y V's coordinates
+  Eigen::MatrixXd reading;                  // R Pi_V: the coordinates of a vector's part in V
+  std::unique_ptr<AcrossVariations> split;  // with V's block and a parameter column
+  std::unique_ptr<Flow> split_flow;         // plain runs of `split`
+  std::unique_ptr<ReducedSystem> reduced;   // the orbit alone in V (residual)
+  std::unique_ptr<Flow> reduced_flow;       // tightened as plain_flow_
+  int served = 0;                           // evaluations served by the across block alone
+  int split_served = 0;                     // by split_evaluation
+  bool known = false;                       // the remembered full evaluation:
+  Eigen::VectorXd x;                        // its unknowns
+  Evaluation evaluation;                    // itself
+  Eigen::MatrixXd block;                    // V's block of its monodromy, inside^T Phi inside
+  Eigen::VectorXd scale;                    // the orbit's largest amplitude per component
+  std::vector<Eigen::VectorXd> field;       // R f at every kFieldCheckStride-th sample
+  std::vector<Eigen::MatrixXd> jacobians;   // R J P there
 };
 
 ShootingProblem::~ShootingProblem() = default;
@@ -54,6 +99,10 @@ void ShootingProblem::use_symmetry(const InvariantSubspace& subspace) {
 
 int ShootingProblem::across_evaluations() const {
   return symmetric_ ? symmetric_->served : 0;
+}
+
+int ShootingProblem::split_evaluations() const {
+  return symmetric_ ? symmetric_->split_served : 0;
 }
 
 void ShootingProblem::remember(const Eigen::VectorXd& x, const Evaluation& e) {
@@ -140,6 +189,79 @@ std::optional<ShootingProblem::Evaluation> ShootingProblem::across_evaluation(
   return e;
 }
 
+std::optional<Eigen::VectorXd> ShootingProblem::part_in_subspace(const Eigen::VectorXd& z) const {
+  // The corrector's steps leave a branch in V only to rounding (~1e-16 of the state): within
+  // 1e-13 of the state's size, as remember() asks, the state is taken as its part in V.
+  const auto& k = symmetric_->across.coordinates();
+  Eigen::VectorXd zV = k.embed(k.restrict(symmetric_->subspace.project(z)));
+  const double size = std::max(1.0, z.cwiseAbs().maxCoeff());
+  if ((z - zV).cwiseAbs().maxCoeff() > 1e-13 * size) return std::nullopt;
+  return zV;
+}
+
+std::optional<ShootingProblem::Evaluation> ShootingProblem::split_evaluation(
+    const Eigen::VectorXd& x, const ParameterValues& p, int parameter) {
+  SymmetricOrbit& s = *symmetric_;
+  // The forward-sensitivity module stays what it is asked to be: the cross-check of the
+  // augmented systems.
+  if (options_.flow.sensitivities != Sensitivities::Augmented) return std::nullopt;
+  const auto& k = s.across.coordinates();
+  const Eigen::VectorXd z0 = x.head(n_);
+  const auto zV = part_in_subspace(z0);
+  if (!zV) return std::nullopt;
+  // f keeps the reflection at p, and so does df/dp (a parameter that detunes the symmetry, such
+  // as one metronome's length, moves the orbit off V: its column has a part in W).
+  const Eigen::VectorXd scale = probe_scale(z0);
+  const Reflection& g = s.reflection;
+  const auto apply = [&](const Eigen::VectorXd& z) { return g.apply(z); };
+  if (!(equivariance_defect(system_, p, scale, apply) <= 1e-12)) return std::nullopt;
+  if (parameter >= 0 &&
+      !(parameter_equivariance_defect(system_, p, parameter, scale, apply) <= 1e-12))
+    return std::nullopt;
+  const double T = period(x);
+  if (!(T > 0.0)) throw IntegrationError("shooting: the period is not positive", 0.0);
+  if (!s.split || s.split->parameter() != parameter) {
+    s.split_flow.reset();
+    s.split = std::make_unique<AcrossVariations>(system_, s.subspace, true, parameter);
+    s.split_flow = std::make_unique<Flow>(*s.split, options_.flow);
+  }
+  const AcrossVariations& split = *s.split;
+  const int r = split.inside();
+  Evaluation e;
+  e.parameters = p;
+  e.derivatives = true;
+  e.parameter = parameter;
+  Eigen::VectorXd w;
+  if (record_samples_) {
+    constexpr int intervals = PeriodSamples::intervals;
+    std::vector<double> times(intervals + 1);
+    for (int i = 0; i <= intervals; ++i) times[i] = T * i / intervals;
+    e.samples.period = T;
+    e.samples.states.resize(n_, intervals + 1);
+    int i = 0;
+    s.split_flow->sample(split.start(*zV), p, 0.0, times, [&](double, const Eigen::VectorXd& wi) {
+      e.samples.states.col(i) = k.embed(wi.head(r));
+      if (++i == intervals + 1) w = wi;
+    });
+    e.samples.states.col(0) = z0;  // within 1e-13 of *zV (part_in_subspace)
+  } else {
+    w = s.split_flow->advance(split.start(*zV), p, 0.0, T);
+  }
+  const Eigen::VectorXd end = k.embed(w.head(r));
+  const Eigen::MatrixXd& C = split.breaking_basis();
+  e.transitions.push_back(s.embedding * split.inside_block(w) * s.reading +
+                          C * split.block(w) * C.transpose());
+  e.end_rates.push_back(system_.rhs(T, end, p));
+  if (parameter >= 0) e.parameter_sensitivities = s.embedding * split.parameter_column(w);
+  // At z0 itself, to first order in its part across V.
+  e.residual.resize(unknowns());
+  e.residual.head(n_) =
+      end - *zV - winding_ + (e.transitions[0] - Eigen::MatrixXd::Identity(n_, n_)) * (z0 - *zV);
+  e.residual[n_] = f_ref_.dot(z0 - z_ref_);
+  ++s.split_served;
+  return e;
+}
+
 ShootingProblem::ShootingProblem(const OdeSystem& system, ShootingOptions options,
                                  double forced_period)
     : system_(system),
@@ -195,7 +317,11 @@ Eigen::VectorXd ShootingProblem::unknowns_from(const Eigen::VectorXd& z0, const 
 FlowStatistics ShootingProblem::statistics() const {
   FlowStatistics s = flow_.statistics();
   if (plain_flow_) s += plain_flow_->statistics();
-  if (symmetric_) s += symmetric_->flow.statistics();
+  if (symmetric_) {
+    s += symmetric_->flow.statistics();
+    if (symmetric_->split_flow) s += symmetric_->split_flow->statistics();
+    if (symmetric_->reduced_flow) s += symmetric_->reduced_flow->statistics();
+  }
   return s;
 }
 
@@ -204,19 +330,50 @@ void ShootingProblem::reset_statistics() {
   if (plain_flow_) plain_flow_->reset_statistics();
   if (symmetric_) {
     symmetric_->flow.reset_statistics();
+    if (symmetric_->split_flow) symmetric_->split_flow->reset_statistics();
+    if (symmetric_->reduced_flow) symmetric_->reduced_flow->reset_statistics();
     symmetric_->served = 0;
+    symmetric_->split_served = 0;
   }
 }
 
+FlowOptions ShootingProblem::plain_options() const {
+  FlowOptions tight = options_.flow;
+  // Not below 1e-13: CVODES reports tolerances near the unit roundoff as too much accuracy.
+  tight.rtol = std::max(options_.flow.rtol / 100.0, std::min(options_.flow.rtol, 1e-13));
+  tight.atol = options_.flow.atol / 10.0;
+  return tight;
+}
+
 Eigen::VectorXd ShootingProblem::residual(const Eigen::VectorXd& x, const ParameterValues& p) {
-  if (!plain_flow_) {
-    FlowOptions tight = options_.flow;
-    // Not below 1e-13: CVODES reports tolerances near the unit roundoff as too much accuracy.
-    tight.rtol = std::max(options_.flow.rtol / 100.0, std::min(options_.flow.rtol, 1e-13));
-    tight.atol = options_.flow.atol / 10.0;
-    plain_flow_ = std::make_unique<Flow>(system_, tight);
-  }
+  if (symmetric_ && options_.segments == 1 && autonomous_)
+    if (auto r = residual_in_subspace(x, p)) return std::move(*r);
+  if (!plain_flow_) plain_flow_ = std::make_unique<Flow>(system_, plain_options());
   return evaluate(x, p, false, -1, *plain_flow_).residual;
+}
+
+std::optional<Eigen::VectorXd> ShootingProblem::residual_in_subspace(const Eigen::VectorXd& x,
+                                                                     const ParameterValues& p) {
+  SymmetricOrbit& s = *symmetric_;
+  const auto& k = s.across.coordinates();
+  const Eigen::VectorXd z0 = x.head(n_);
+  const auto zV = part_in_subspace(z0);
+  if (!zV) return std::nullopt;
+  const Reflection& g = s.reflection;
+  if (!(equivariance_defect(system_, p, probe_scale(z0),
+                            [&](const Eigen::VectorXd& z) { return g.apply(z); }) <= 1e-12))
+    return std::nullopt;
+  const double T = period(x);
+  if (!(T > 0.0)) throw IntegrationError("shooting: the period is not positive", 0.0);
+  if (!s.reduced) {
+    s.reduced = std::make_unique<ReducedSystem>(system_, s.subspace);
+    s.reduced_flow = std::make_unique<Flow>(*s.reduced, plain_options());
+  }
+  // The residual of z0's part in V (z0's part across V, at most 1e-13 of it, left out).
+  Eigen::VectorXd r(unknowns());
+  r.head(n_) = k.embed(s.reduced_flow->advance(k.restrict(*zV), p, 0.0, T)) - *zV - winding_;
+  r[n_] = f_ref_.dot(z0 - z_ref_);
+  return r;
 }
 
 ShootingProblem::Evaluation ShootingProblem::evaluate(const Eigen::VectorXd& x,
@@ -224,8 +381,13 @@ ShootingProblem::Evaluation ShootingProblem::evaluate(const Eigen::VectorXd& x,
                                                       int parameter) {
   const bool symmetric =
       derivatives && symmetric_ && options_.segments == 1 && autonomous_ && record_samples_;
-  if (symmetric)
+  if (symmetric) {
     if (auto e = across_evaluation(x, p, parameter)) return std::move(*e);
+    if (auto e = split_evaluation(x, p, parameter)) {
+      remember(x, *e);
+      return std::move(*e);
+    }
+  }
   Evaluation e = evaluate(x, p, derivatives, parameter, flow_);
   if (symmetric) remember(x, e);
   return e;

@@ -28,14 +28,18 @@ std::string source(const std::string& path) {
   return std::string(SYMPATHY_SOURCE_DIR) + "/" + path;
 }
 
-std::filesystem::path scratch() {
-  const auto dir = std::filesystem::temp_directory_path() / "sympathy_fit_tests";
-  std::filesystem::create_directories(dir);
-  return dir;
-}
-
 std::string test_name() {
   return ::testing::UnitTest::GetInstance()->current_test_info()->name();
+}
+
+// A folder of the running test's own: ctest -j2 runs the tests side by side, and a folder they
+// shared let one read another's half-written good.csv ("the file is empty").
+std::filesystem::path scratch() {
+  const auto* info = ::testing::UnitTest::GetInstance()->current_test_info();
+  const auto dir = std::filesystem::temp_directory_path() / "sympathy_fit_tests" /
+                   (std::string(info->test_suite_name()) + "." + info->name());
+  std::filesystem::create_directories(dir);
+  return dir;
 }
 
 // Integrates `system` from z0 at the given times (tightly) and writes the named columns, with

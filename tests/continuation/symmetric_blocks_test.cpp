@@ -209,6 +209,118 @@ TEST(SymmetricBlocks, ShootingReusesTheOrbitOnlyWhereTheParameterLeavesIt) {
   EXPECT_GT(c.parameter_sensitivities.cwiseAbs().maxCoeff(), 0.1);
 }
 
+// Augmented Adams at rtol 1e-11, as the default preset integrates.
+FlowOptions augmented() {
+  FlowOptions o = tight();
+  o.method = Method::Adams;
+  o.nonlinear_solver = NonlinearSolver::FixedPoint;
+  o.sensitivities = Sensitivities::Augmented;
+  return o;
+}
+
+// An orbit in V that the parameter moves (w, SymmetricPair at eps = 0): with augmented
+// sensitivities the evaluation integrates V's block with its parameter column and W's block in
+// one run. Exact answers: over T = 2 pi from z0 = (1, 0, -1, 0, 0), z(T) = (cos wT, sin wT, ...),
+// so dz(T)/dw = T (-sin wT, cos wT, sin wT, -cos wT, 0) = (0, 2 pi, 0, -2 pi, 0) at w = 1, and
+// the monodromy's moduli are {1, exp(-4 pi)} inside and {exp(-0.4 pi), exp(-pi), exp(-4.4 pi)}
+// across (SymmetricPair); each to 1e-8 (rtol 1e-11). Against the whole evaluation (no symmetry)
+// residual, monodromy and column to 1e-9; the samples are the orbit's (the whole run's to 1e-9).
+TEST(SymmetricBlocks, SplitEvaluationOfAnOrbitThatMovesEqualsTheWhole) {
+  const SymmetricPair system;
+  const ParameterValues p = system.default_parameters();
+  ShootingOptions options;
+  options.flow = augmented();
+  const Eigen::VectorXd z0 = (Eigen::VectorXd(5) << 1.0, 0.0, -1.0, 0.0, 0.0).finished();
+  auto make = [&](bool symmetric) {
+    auto problem = std::make_unique<ShootingProblem>(system, options);
+    problem->record_samples(true);
+    if (symmetric) problem->use_symmetry(pair_subspace());
+    problem->set_phase_reference(z0, p);
+    return problem;
+  };
+  auto split = make(true);
+  auto whole = make(false);
+  Eigen::VectorXd x(6);
+  x << z0, 2.0 * kPi;
+  const int w = system.parameter_index("w");
+  const auto a = split->evaluate(x, p, true, w);
+  EXPECT_EQ(split->split_evaluations(), 1);
+  EXPECT_EQ(split->across_evaluations(), 0);
+  const auto b = whole->evaluate(x, p, true, w);
+  EXPECT_EQ(whole->split_evaluations(), 0);
+  const Eigen::VectorXd exact_column =
+      (Eigen::VectorXd(5) << 0.0, 2.0 * kPi, 0.0, -2.0 * kPi, 0.0).finished();
+  EXPECT_LT((a.parameter_sensitivities.col(0) - exact_column).cwiseAbs().maxCoeff(), 1e-8);
+  std::vector<double> expected{1.0, std::exp(-4.0 * kPi), std::exp(-0.4 * kPi), std::exp(-kPi),
+                               std::exp(-4.4 * kPi)};
+  std::sort(expected.rbegin(), expected.rend());
+  const std::vector<double> found = moduli(a.transitions[0]);
+  for (int i = 0; i < 5; ++i) EXPECT_NEAR(found[i], expected[i], 1e-8) << i;
+  EXPECT_LT(a.residual.cwiseAbs().maxCoeff(), 1e-9);  // the orbit closes
+  EXPECT_LT((a.residual - b.residual).cwiseAbs().maxCoeff(), 1e-9);
+  EXPECT_LT((a.transitions[0] - b.transitions[0]).cwiseAbs().maxCoeff(), 1e-9);
+  EXPECT_LT((a.parameter_sensitivities - b.parameter_sensitivities).cwiseAbs().maxCoeff(), 1e-9);
+  EXPECT_LT((a.end_rates[0] - b.end_rates[0]).cwiseAbs().maxCoeff(), 1e-9);
+  ASSERT_TRUE(a.samples.of(z0, 2.0 * kPi));
+  EXPECT_LT((a.samples.states - b.samples.states).cwiseAbs().maxCoeff(), 1e-9);
+  // The plain residual integrates the orbit in V alone: the whole problem's to 1e-9.
+  EXPECT_LT((split->residual(x, p) - whole->residual(x, p)).cwiseAbs().maxCoeff(), 1e-9);
+}
+
+// A parameter that detunes the reflection (the second metronome's pendulum length lp2, on the row
+// setup's in-phase orbit) moves the orbit off V: its column has a part across V, which V's block
+// cannot carry. The split refuses it and the whole evaluation runs: the column's th1 and th2
+// entries differ by more than a tenth of their size, as without symmetry (to 1e-9); k keeps the
+// reflection and is served split, equal to the whole to 1e-8 relative (the monodromy's largest
+// entry is about 10; rtol 1e-11).
+TEST(SymmetricBlocks, SplitRefusesAParameterThatDetunesTheReflection) {
+  const CaseFile file = CaseFile::load(testing::case_path("row2"));
+  const MetronomeModel model(file.spec("table2"));
+  const StartSpec& start = file.start("in-phase");
+  const InvariantSubspace subspace = file.invariant_subspace(start, model);
+  OrbitOptions orbit_options;
+  orbit_options.shooting.flow = augmented();
+  const PeriodicOrbit orbit = find_periodic_orbit(
+      model, model.default_parameters(), file.initial_state(&start), subspace, orbit_options);
+  ASSERT_TRUE(orbit.converged());
+  ShootingOptions options;
+  options.flow = augmented();
+  auto make = [&](bool symmetric) {
+    auto problem = std::make_unique<ShootingProblem>(model, options);
+    problem->record_samples(true);
+    if (symmetric) problem->use_symmetry(subspace);
+    problem->set_phase_reference(orbit.state0, orbit.parameters);
+    return problem;
+  };
+  auto split = make(true);
+  auto whole = make(false);
+  const Eigen::VectorXd x = split->unknowns_from(orbit.state0, orbit.parameters, orbit.period);
+  whole->unknowns_from(orbit.state0, orbit.parameters, orbit.period);
+  const auto names = model.state_names();
+  const auto at = [&](const std::string& name) {
+    return static_cast<int>(std::find(names.begin(), names.end(), name) - names.begin());
+  };
+  const int th1 = at("th1"), th2 = at("th2");
+  ASSERT_LT(th2, 6);
+  const int lp2 = model.parameter_index("lp2");
+  const auto a = split->evaluate(x, orbit.parameters, true, lp2);
+  EXPECT_EQ(split->split_evaluations(), 0);
+  const auto b = whole->evaluate(x, orbit.parameters, true, lp2);
+  const Eigen::VectorXd column = a.parameter_sensitivities.col(0);
+  EXPECT_GT(std::abs(column[th1] - column[th2]),
+            0.1 * std::max(std::abs(column[th1]), std::abs(column[th2])));
+  EXPECT_LT((column - b.parameter_sensitivities.col(0)).cwiseAbs().maxCoeff(), 1e-9);
+  const int k = model.parameter_index("k");
+  const auto c = split->evaluate(x, orbit.parameters, true, k);
+  EXPECT_EQ(split->split_evaluations(), 1);
+  const auto d = whole->evaluate(x, orbit.parameters, true, k);
+  const double size = d.transitions[0].cwiseAbs().maxCoeff();
+  EXPECT_LT((c.transitions[0] - d.transitions[0]).cwiseAbs().maxCoeff(), 1e-8 * size);
+  EXPECT_LT((c.parameter_sensitivities - d.parameter_sensitivities).cwiseAbs().maxCoeff(),
+            1e-8 * d.parameter_sensitivities.cwiseAbs().maxCoeff());
+  EXPECT_LT((c.residual - d.residual).cwiseAbs().maxCoeff(), 1e-9);
+}
+
 // A gamma-branch of SymmetricPair (eps = 0) from 0.5 to 2: every point's across multiplier
 // exp(-2 pi gamma) and the others exactly known, to 1e-8, the breaking ones labelled so, and all
 // points after the first served by the across block. The same branch in w (which moves the
@@ -298,6 +410,47 @@ TEST(SymmetricBlocks, RowSetupAntiPhaseServedInPhaseNot) {
   ASSERT_TRUE(in.started());
   ASSERT_TRUE(in_subspace.reflection(6));
   EXPECT_EQ(in.across_evaluations, 0);
+}
+
+// The in-phase branch of the same stretch with augmented sensitivities (the default preset's
+// kind): its points are integrated block by block (the orbit with V's block and parameter column,
+// and W's block, in one run; split_evaluation) and plain residuals in V alone. Each point's
+// multipliers are those of Newton on the whole state at the same k to 1e-8 (rtol 1e-11: the
+// multipliers' own accuracy is about 2e-9), and the trivial one is 1 to 1e-8.
+TEST(SymmetricBlocks, RowSetupInPhaseBranchSplitAgreesWithTheWhole) {
+  const CaseFile file = CaseFile::load(testing::case_path("row2"));
+  const MetronomeModel model(file.spec("table2"));
+  const StartSpec& start = file.start("in-phase");
+  BranchProblem problem;
+  problem.parameter = model.parameter_index("k");
+  problem.values = model.default_parameters();
+  problem.from = model.parameter(problem.values, problem.parameter);
+  problem.to = 20.0;
+  problem.start_state = file.initial_state(&start);
+  problem.subspace = file.invariant_subspace(start, model);
+  ContinuationOptions options;
+  options.orbit.shooting.flow = augmented();
+  const Branch branch = continue_branch(model, problem, options);
+  ASSERT_TRUE(branch.started());
+  ASSERT_GE(branch.points.size(), 3u);
+  EXPECT_GE(branch.split_evaluations, static_cast<int>(branch.points.size()));
+  OrbitOptions whole;
+  whole.use_symmetry = false;
+  whole.shooting.flow = augmented();
+  for (std::size_t i = 0; i < branch.points.size(); i += branch.points.size() / 2) {
+    const PeriodicOrbit& a = branch.points[i].orbit;
+    EXPECT_LT(a.floquet.trivial_error, 1e-8) << i;
+    const PeriodicOrbit b =
+        solve_periodic_orbit(model, a.parameters, a.state0, a.period, problem.subspace, whole);
+    ASSERT_TRUE(b.converged()) << i;
+    ASSERT_EQ(a.floquet.multipliers.size(), b.floquet.multipliers.size());
+    for (const auto& m : a.floquet.multipliers) {
+      double nearest = INFINITY;
+      for (const auto& other : b.floquet.multipliers)
+        nearest = std::min(nearest, std::abs(m.value - other.value));
+      EXPECT_LT(nearest, 1e-8) << i << " " << m.value;
+    }
+  }
 }
 
 }  // namespace

@@ -140,6 +140,9 @@ struct Branch {
   // Evaluations with derivatives served by the block across a symmetric orbit alone, the orbit
   // reused (ShootingProblem::use_symmetry).
   int across_evaluations = 0;
+  // Evaluations with derivatives of a symmetric orbit that the parameter moves, integrated block
+  // by block in one run (ShootingProblem::split_evaluations).
+  int split_evaluations = 0;
   // What made it: the options (bounds included) and the parameter values it started from.
   ContinuationOptions options;
   ParameterValues start_values;
