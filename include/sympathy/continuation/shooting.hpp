@@ -44,9 +44,9 @@
 // module stays the whole computation, the cross-check), an evaluation with derivatives of a point
 // in V integrates the orbit in V with V's own block, its parameter column and W's block in one
 // plain run (AcrossVariations with its inside block): on the row setup 4 + 16 + 4 + 4 = 28 entries
-// instead of 6 + 36 + 6 = 48, the in-phase k-branch at the default preset 1.81 -> 1.43 CPU s. And
-// a plain residual integrates the orbit in V alone (4 states instead of 6; with the split 1.43 ->
-// 1.12 s). Each time, provided:
+// instead of 6 + 36 + 6 = 48, the in-phase k-branch at the default preset 1.81 -> 1.16 CPU s. And
+// a plain residual integrates the orbit in V alone (4 states instead of 6: 1.16 -> 1.12 s, single
+// runs alternated three times). Each time, provided:
 //   - the point is in V to 1e-13 of its size (the corrector's steps leave it there only to
 //     rounding, ~1e-16): its part in V is integrated, and the residual with derivatives is
 //     corrected to first order by the monodromy for the rest; the plain residual leaves it out;
