@@ -4,6 +4,7 @@
 #include <cmath>
 #include <memory>
 #include <stdexcept>
+#include <utility>
 
 #include "curve_system.hpp"
 #include "sympathy/core/text.hpp"
@@ -67,6 +68,15 @@ double parameter_value(int k, const CurvePoint& p) {
   return k == 0 ? p.first : p.second;
 }
 
+// How far a point is from (first, second), in the curve's scaled norm (each parameter by its
+// window).
+double window_distance(const CurveSystem& system, const CurvePoint& a,
+                       const std::pair<double, double>& b) {
+  const double d0 = (a.first - b.first) * system.weight(system.first_index());
+  const double d1 = (a.second - b.second) * system.weight(system.second_index());
+  return std::hypot(d0, d1);
+}
+
 const char* kind_of_crossing(std::complex<double> mu, SymmetryKind symmetry) {
   if (std::abs(mu.imag()) > 1e-6) return "NS";
   if (mu.real() < 0.0) return "PD";
@@ -75,9 +85,10 @@ const char* kind_of_crossing(std::complex<double> mu, SymmetryKind symmetry) {
 
 class CurveRun {
  public:
+  // `origin`: the event's (first, second) parameters, where the curve was started.
   CurveRun(CurveSystem& system, const BifurcationCurve& curve, const CurveOptions& options,
-           const CurveCallbacks& callbacks)
-      : system_(system), curve_(curve), options_(options), callbacks_(callbacks) {}
+           const CurveCallbacks& callbacks, std::pair<double, double> origin)
+      : system_(system), curve_(curve), options_(options), callbacks_(callbacks), origin_(origin) {}
 
   // From the corrected start (u, its Jacobian), in `direction` of the second parameter.
   CurveStop run(const CurvePoint& start, const Eigen::MatrixXd& start_jacobian, int direction,
@@ -98,6 +109,7 @@ class CurveRun {
   const BifurcationCurve& curve_;
   const CurveOptions& options_;
   const CurveCallbacks& callbacks_;
+  std::pair<double, double> origin_;
 };
 
 bool CurveRun::inside(const Eigen::VectorXd& u) const {
@@ -341,9 +353,12 @@ void CurveRun::detect(const CurvePoint& from, const Eigen::MatrixXd& jacobian, c
       // A crossing at the curve's own start is the start's degeneracy, which its origin names:
       // a BP curve born at a 1:1 resonance has the pair's other multiplier at +1 there too, and
       // it leaves +1 in the first step (located 7e-9 N/m from the R1 point it was born at on the
-      // row setup's (k, c) map). Within 1e-6 of the window in the scaled norm.
-      if (from.index == 0 && e.located && system_.norm(e.at.unknowns - from.unknowns) <= 1e-6)
-        continue;
+      // row setup's (k, c) map). Within 1e-6 of the window from the event the curve was started
+      // at, in the two parameters: not from the first point, which a curve that leaves its origin
+      // as a square root puts far from it (the resonance form's BP curve omega = -mu^2 from an
+      // R1 located at omega = -2.3e-11 starts at mu = 4.8e-6; its meeting at the R1 point, at
+      // mu = 3e-11, was taken for a meeting on the curve).
+      if (from.index == 0 && e.located && window_distance(system_, e.at, origin_) <= 1e-6) continue;
       e.after_point = from.index;
       events.push_back(e);
       if (callbacks_.on_event) callbacks_.on_event(events.back());
@@ -588,7 +603,7 @@ BifurcationCurve continue_curve(const OdeSystem& system, const Branch& branch,
   start.iterations = r.iterations;
 
   CurveCallbacks quiet = callbacks;
-  CurveRun run(s, curve, options, quiet);
+  CurveRun run(s, curve, options, quiet, {event.parameter, p2});
   std::vector<CurvePoint> backward, forward;
   std::vector<CurveEvent> backward_events, forward_events;
   std::string forward_reason, backward_reason;

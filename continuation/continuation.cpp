@@ -159,12 +159,22 @@ std::optional<ContinuationPoint> Continuation::point_on_bound(const Continuation
   return p;
 }
 
-std::optional<ContinuationPoint> Continuation::point_at(const ContinuationPoint& a, double s,
-                                                        std::string& why) const {
+std::optional<ContinuationPoint> Continuation::point_at(
+    const ContinuationPoint& a, double s, std::string& why, const ContinuationPoint* b,
+    const Eigen::SparseMatrix<double>* jacobian_b) const {
   const int N = problem_->unknowns();
   Eigen::VectorXd ya(N + 1);
   ya << a.unknowns, a.parameter;
-  const Correction c = correct_step(ya, a.tangent, s, ya + s * a.tangent, &chord_jacobian_);
+  Eigen::VectorXd guess = ya + s * a.tangent;
+  Eigen::SparseMatrix<double> chord = chord_jacobian_;
+  if (b) {
+    if (auto between = predict_between(*space_, a, *b, s, options_.min_tangent_cosine)) {
+      guess = std::move(between->y);
+      if (jacobian_b && jacobian_b->rows() == chord.rows() && jacobian_b->cols() == chord.cols())
+        chord = (1.0 - between->fraction) * chord_jacobian_ + between->fraction * *jacobian_b;
+    }
+  }
+  const Correction c = correct_step(ya, a.tangent, s, guess, &chord);
   if (!c.converged) {
     why = c.reason;
     return std::nullopt;
@@ -344,13 +354,17 @@ Branch Continuation::run_from(const PeriodicOrbit& start, int direction,
     }
     std::vector<Bifurcation> events;
     if (options_.detect_bifurcations) {
-      // Location probes along a's tangent in a's section, from a's Jacobian.
+      // Location probes along a's tangent in a's section, guessed on the cubic through a and b
+      // and corrected from the Jacobian interpolated between theirs (b's is the bound point's
+      // neighbour's when b was moved onto the bound: a's alone then).
       const Locator locator = [&](BifurcationType type, int multiplicity, std::complex<double> mu_a,
                                   std::complex<double> mu_b) {
         problem_->set_phase_section(a.section, a.section_normal);
-        Bifurcation e = locate(a, b, type, multiplicity, mu_a, mu_b, options_.location_tolerance,
-                               0.01 * (options_.upper - options_.lower),
-                               [&](double s, std::string& why) { return point_at(a, s, why); });
+        Bifurcation e =
+            locate(a, b, type, multiplicity, mu_a, mu_b, options_.location_tolerance,
+                   0.01 * (options_.upper - options_.lower), [&](double s, std::string& why) {
+                     return point_at(a, s, why, &b, on_bound ? nullptr : &jacobian_b);
+                   });
         refine_branch_point(e, a, b);
         return e;
       };

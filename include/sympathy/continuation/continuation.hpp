@@ -83,9 +83,13 @@ class Continuation {
                           const Eigen::SparseMatrix<double>* chord) const;
   ContinuationPoint make_point(const Correction& c, const Eigen::VectorXd& tangent, int index,
                                double step) const;
-  // The point at arclength s from a along a's tangent, in a's section: what location probes.
-  std::optional<ContinuationPoint> point_at(const ContinuationPoint& a, double s,
-                                            std::string& why) const;
+  // The point at arclength s from a along a's tangent, in a's section: what location probes. With
+  // the step's end b and its Jacobian (in a's section), the guess comes from the cubic through a
+  // and b (predict_between) and the quasi-Newton steps from the Jacobian interpolated between
+  // a's and b's; from a's tangent and a's Jacobian otherwise.
+  std::optional<ContinuationPoint> point_at(
+      const ContinuationPoint& a, double s, std::string& why, const ContinuationPoint* b = nullptr,
+      const Eigen::SparseMatrix<double>* jacobian_b = nullptr) const;
   // The branch's point at the parameter value `bound`, between a and b (b beyond it), in a's
   // section; nullopt when it cannot be corrected.
   std::optional<ContinuationPoint> point_on_bound(const ContinuationPoint& a,
