@@ -18,6 +18,8 @@ constexpr double kTwoPi = 2.0 * std::numbers::pi;
 // Every how many of the period's samples the restricted field and its Jacobian are compared with
 // the remembered ones (use_symmetry): 41 of 801, a tenth of a plain period's cost.
 constexpr int kFieldCheckStride = 20;
+// How much looser a coarse plain run is (ShootingProblem::residual).
+constexpr double kCoarse = 1e3;
 
 // Where f's symmetry is probed around a state: its own size per component, at least a tenth of
 // its largest (a component that is zero at this point is not zero on the orbit).
@@ -76,7 +78,7 @@ struct ShootingProblem::SymmetricOrbit {
   std::unique_ptr<AcrossVariations> split;  // with V's block and a parameter column
   std::unique_ptr<Flow> split_flow;         // plain runs of `split`
   std::unique_ptr<ReducedSystem> reduced;   // the orbit alone in V (residual)
-  std::unique_ptr<Flow> reduced_flow;       // tightened as plain_flow_
+  std::unique_ptr<Flow> reduced_flows[2];   // tightened as plain_flows_
   int served = 0;                           // evaluations served by the across block alone
   int split_served = 0;                     // by split_evaluation
   bool known = false;                       // the remembered full evaluation:
@@ -316,44 +318,55 @@ Eigen::VectorXd ShootingProblem::unknowns_from(const Eigen::VectorXd& z0, const 
 
 FlowStatistics ShootingProblem::statistics() const {
   FlowStatistics s = flow_.statistics();
-  if (plain_flow_) s += plain_flow_->statistics();
+  for (const auto& f : plain_flows_)
+    if (f) s += f->statistics();
   if (symmetric_) {
     s += symmetric_->flow.statistics();
     if (symmetric_->split_flow) s += symmetric_->split_flow->statistics();
-    if (symmetric_->reduced_flow) s += symmetric_->reduced_flow->statistics();
+    for (const auto& f : symmetric_->reduced_flows)
+      if (f) s += f->statistics();
   }
   return s;
 }
 
 void ShootingProblem::reset_statistics() {
   flow_.reset_statistics();
-  if (plain_flow_) plain_flow_->reset_statistics();
+  for (auto& f : plain_flows_)
+    if (f) f->reset_statistics();
   if (symmetric_) {
     symmetric_->flow.reset_statistics();
     if (symmetric_->split_flow) symmetric_->split_flow->reset_statistics();
-    if (symmetric_->reduced_flow) symmetric_->reduced_flow->reset_statistics();
+    for (auto& f : symmetric_->reduced_flows)
+      if (f) f->reset_statistics();
     symmetric_->served = 0;
     symmetric_->split_served = 0;
   }
 }
 
-FlowOptions ShootingProblem::plain_options() const {
+FlowOptions ShootingProblem::plain_options(bool coarse) const {
   FlowOptions tight = options_.flow;
   // Not below 1e-13: CVODES reports tolerances near the unit roundoff as too much accuracy.
   tight.rtol = std::max(options_.flow.rtol / 100.0, std::min(options_.flow.rtol, 1e-13));
   tight.atol = options_.flow.atol / 10.0;
+  if (coarse) {
+    tight.rtol *= kCoarse;
+    tight.atol *= kCoarse;
+  }
   return tight;
 }
 
-Eigen::VectorXd ShootingProblem::residual(const Eigen::VectorXd& x, const ParameterValues& p) {
+Eigen::VectorXd ShootingProblem::residual(const Eigen::VectorXd& x, const ParameterValues& p,
+                                          bool coarse) {
   if (symmetric_ && options_.segments == 1 && autonomous_)
-    if (auto r = residual_in_subspace(x, p)) return std::move(*r);
-  if (!plain_flow_) plain_flow_ = std::make_unique<Flow>(system_, plain_options());
-  return evaluate(x, p, false, -1, *plain_flow_).residual;
+    if (auto r = residual_in_subspace(x, p, coarse)) return std::move(*r);
+  auto& flow = plain_flows_[coarse ? 1 : 0];
+  if (!flow) flow = std::make_unique<Flow>(system_, plain_options(coarse));
+  return evaluate(x, p, false, -1, *flow).residual;
 }
 
 std::optional<Eigen::VectorXd> ShootingProblem::residual_in_subspace(const Eigen::VectorXd& x,
-                                                                     const ParameterValues& p) {
+                                                                     const ParameterValues& p,
+                                                                     bool coarse) {
   SymmetricOrbit& s = *symmetric_;
   const auto& k = s.across.coordinates();
   const Eigen::VectorXd z0 = x.head(n_);
@@ -365,13 +378,12 @@ std::optional<Eigen::VectorXd> ShootingProblem::residual_in_subspace(const Eigen
     return std::nullopt;
   const double T = period(x);
   if (!(T > 0.0)) throw IntegrationError("shooting: the period is not positive", 0.0);
-  if (!s.reduced) {
-    s.reduced = std::make_unique<ReducedSystem>(system_, s.subspace);
-    s.reduced_flow = std::make_unique<Flow>(*s.reduced, plain_options());
-  }
+  if (!s.reduced) s.reduced = std::make_unique<ReducedSystem>(system_, s.subspace);
+  auto& flow = s.reduced_flows[coarse ? 1 : 0];
+  if (!flow) flow = std::make_unique<Flow>(*s.reduced, plain_options(coarse));
   // The residual of z0's part in V (z0's part across V, at most 1e-13 of it, left out).
   Eigen::VectorXd r(unknowns());
-  r.head(n_) = k.embed(s.reduced_flow->advance(k.restrict(*zV), p, 0.0, T)) - *zV - winding_;
+  r.head(n_) = k.embed(flow->advance(k.restrict(*zV), p, 0.0, T)) - *zV - winding_;
   r[n_] = f_ref_.dot(z0 - z_ref_);
   return r;
 }

@@ -155,7 +155,9 @@ class ShootingProblem {
   Evaluation evaluate(const Eigen::VectorXd& x, const ParameterValues& p, bool derivatives,
                       int parameter = -1);
   // The residual alone, from plain integrations as accurate as those with derivatives.
-  Eigen::VectorXd residual(const Eigen::VectorXd& x, const ParameterValues& p);
+  // `coarse`: at a thousand times the tolerances, for a Newton-like step far from the solution,
+  // where the residual is large against that run's error (CorrectorOptions::coarse_above).
+  Eigen::VectorXd residual(const Eigen::VectorXd& x, const ParameterValues& p, bool coarse = false);
 
   // d(residual)/dx as a sparse matrix, rows = unknowns(); with `parameter_column` the column
   // d(residual)/dp appended (the evaluation must carry it).
@@ -171,8 +173,8 @@ class ShootingProblem {
   int n_;
   bool autonomous_;
   double forced_period_;
-  Flow flow_;                         // integrations with derivatives, unknowns_from
-  std::unique_ptr<Flow> plain_flow_;  // residual(): tightened, made on first use
+  Flow flow_;                             // integrations with derivatives, unknowns_from
+  std::unique_ptr<Flow> plain_flows_[2];  // residual(): tightened, and coarse; made on first use
 
   Evaluation evaluate(const Eigen::VectorXd& x, const ParameterValues& p, bool derivatives,
                       int parameter, Flow& flow);
@@ -180,10 +182,10 @@ class ShootingProblem {
   std::unique_ptr<SymmetricOrbit> symmetric_;
   std::optional<Evaluation> across_evaluation(const Eigen::VectorXd& x, const ParameterValues& p,
                                               int parameter);
-  FlowOptions plain_options() const;  // residual()'s: tightened
+  FlowOptions plain_options(bool coarse) const;  // residual()'s: tightened, or coarse
   std::optional<Eigen::VectorXd> part_in_subspace(const Eigen::VectorXd& z) const;
   std::optional<Eigen::VectorXd> residual_in_subspace(const Eigen::VectorXd& x,
-                                                      const ParameterValues& p);
+                                                      const ParameterValues& p, bool coarse);
   std::optional<Evaluation> split_evaluation(const Eigen::VectorXd& x, const ParameterValues& p,
                                              int parameter);
   void remember(const Eigen::VectorXd& x, const Evaluation& e);
