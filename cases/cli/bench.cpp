@@ -9,7 +9,8 @@
 // Sections (d) and (e) measure the cost of a continuation point and of one period against the
 // number of metronomes; (f), the accuracy presets and integrators on a whole branch beside
 // AUTO-07p's measured points, is in bench_branch.cpp; (g) in bench_identical.cpp; (h), equation
-// case files generated against hand-written, in bench_equations.cpp.
+// case files generated against hand-written, in bench_equations.cpp; (i), the Fig. 8 study, in
+// bench_study.cpp.
 #include <algorithm>
 #include <cmath>
 #include <cstdio>
@@ -21,6 +22,7 @@
 #include "cases/cli/bench_branch.hpp"
 #include "cases/cli/bench_equations.hpp"
 #include "cases/cli/bench_identical.hpp"
+#include "cases/cli/bench_study.hpp"
 #include "cases/cli/commands.hpp"
 #include "cases/cli/common.hpp"
 #include "sympathy/continuation/continuation.hpp"
@@ -283,20 +285,21 @@ int run_bench(const std::vector<std::string>& argv) {
       {{"--out", "DIR", false, "where bench.csv and bench.md go (default out/bench)"},
        {"--quick", "", false, "fewer tolerances (for a smoke run)"},
        {"--sections", "LIST", false,
-        "which parts, e.g. abc (default abcdefgh): (a)-(c) error against run time, "
+        "which parts, e.g. abc (default abcdefghi): (a)-(c) error against run time, "
         "(d) cost of a continuation point, (e) cost against the number of metronomes, "
         "(f) the anti-phase k-branch per accuracy preset and integrator, with AUTO-07p's "
         "measured points, (g) identical metronomes in phase, reduced and whole, (h) equation "
-        "case files, generated against hand-written, and their compile time"}},
+        "case files, generated against hand-written, and their compile time, (i) the Fig. 8 "
+        "study from its file, wall time"}},
       {});
   Stopwatch clock;
   const std::string out = args.text("--out", "out/bench");
   std::filesystem::create_directories(out);
   const bool quick = args.flag("--quick");
-  const std::string sections = args.text("--sections", "abcdefgh");
+  const std::string sections = args.text("--sections", "abcdefghi");
   for (char ch : sections)
-    if (ch < 'a' || ch > 'h')
-      throw InputError("--sections: expected letters from a to h (e.g. abc), got '" + sections +
+    if (ch < 'a' || ch > 'i')
+      throw InputError("--sections: expected letters from a to i (e.g. abc), got '" + sections +
                        "'");
   auto want = [&](char section) { return sections.find(section) != std::string::npos; };
   const std::string root =
@@ -503,6 +506,7 @@ int run_bench(const std::vector<std::string>& argv) {
   if (want('f')) bench_branch_accuracy(root, quick, csv, md);
   if (want('g')) bench_identical(root, out, quick, md);
   if (want('h')) bench_equations(root, quick, md);
+  if (want('i')) bench_study(root, out, quick, md);
   std::ofstream(out + "/bench.md") << md.str();
   std::printf("wrote %s/bench.csv and %s/bench.md; run time %.1f s\n", out.c_str(), out.c_str(),
               clock.seconds());

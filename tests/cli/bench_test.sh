@@ -84,9 +84,17 @@ rows = list(csv.DictReader(open('$work/identical.csv')))
 sys.exit(0 if [r['metronomes'] for r in rows] == ['2', '4', '8'] and all(float(r['multiplier_difference']) < 1e-8 for r in rows) else 1)"
 check "(h): generated and hand-written systems compared" grep -q '^(h) lrz   rhs ' "$work/bench.out"
 check "(h): the compile time, first and cached" grep -q '^(h) lrz: compiled in .* s, from the cache in' "$work/bench.out"
+# (i): the Fig. 8 study as the command runs it, both branches with the paper's events (Table II:
+# NS pair on the in-phase branch, BP and two NS on the anti-phase one) and a wall time.
+check "(i) the Fig. 8 study: both branches, their events, a wall time" /usr/bin/python3 -c "
+import csv, sys
+rows = list(csv.DictReader(open('$work/study.csv')))
+ok = [r['branch'] for r in rows] == ['in-phase', 'anti-phase'] and float(rows[0]['wall_seconds']) > 0
+ok = ok and rows[0]['events'].count('NS') == 2 and rows[1]['events'].startswith('BP 47.06')
+sys.exit(0 if ok else 1)"
 "$bin" bench --bogus > /dev/null 2> "$work/bad.err"
 check "an unknown option exits 2" test $? -eq 2
 "$bin" bench --sections xyz > /dev/null 2> "$work/bad.err"
 check "--sections with an unknown letter exits 2 and says what it expected" \
-  grep -q "expected letters from a to h" "$work/bad.err"
+  grep -q "expected letters from a to i" "$work/bad.err"
 exit $failures
