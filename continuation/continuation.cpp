@@ -81,12 +81,14 @@ double Continuation::corrector_tolerance() const {
 
 Correction Continuation::correct_step(const Eigen::VectorXd& from, const Eigen::VectorXd& tangent,
                                       double step, const Eigen::VectorXd& guess,
-                                      const Eigen::SparseMatrix<double>* chord) const {
+                                      const Eigen::SparseMatrix<double>* chord,
+                                      double expected) const {
   CorrectorOptions corrector;
   corrector.max_iterations = options_.max_corrector_iterations;
   corrector.max_chord_steps = options_.max_chord_steps;
   corrector.derivatives_first = predictions_land_;
   corrector.tolerance = corrector_tolerance();
+  corrector.expected_residual = expected;
   return correct(*problem_, *space_, parameter_, corrector, from, tangent, step, guess, chord);
 }
 
@@ -211,6 +213,7 @@ Branch Continuation::run_from(const PeriodicOrbit& start, int direction,
   branch.start_values = start.parameters;
   problem_->reset_statistics();
   predictions_land_ = false;
+  guess_residual_ = std::numeric_limits<double>::infinity();  // unknown: the first step learns it
   auto finish = [&](StopReason stop, const std::string& reason) {
     branch.stop = stop;
     branch.stop_reason = reason;
@@ -301,8 +304,9 @@ Branch Continuation::run_from(const PeriodicOrbit& start, int direction,
     const Correction c = correct_step(
         ya, a.tangent, ds,
         predict(space, previous, a, ds, options_.curved_predictor, options_.min_tangent_cosine),
-        &chord);
+        &chord, guess_residual_);
     predictions_land_ = c.converged && c.chord_steps == 0 && c.iterations == 0;
+    if (std::isfinite(c.guess_residual)) guess_residual_ = c.guess_residual;
     if (!c.converged) {
       ++branch.rejected.corrector;
       ds *= 0.5;

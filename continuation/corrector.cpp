@@ -64,6 +64,7 @@ Correction correct(ShootingProblem& problem, const BranchSpace& space, int param
     std::vector<Eigen::VectorXd> steps;
     double last = std::numeric_limits<double>::infinity();
     double ratio = 0.1;  // the contraction so far (a guess before two residuals)
+    double expected = options.expected_residual;  // the next residual's
     Eigen::VectorXd before = y;
     for (int k = 0; k < options.max_chord_steps; ++k) {
       // Far from the point (the prediction's residual, or the last one's times the contraction
@@ -72,8 +73,8 @@ Correction correct(ShootingProblem& problem, const BranchSpace& space, int param
       // prediction that landed, as every one on the anti-phase k-branch does, would otherwise
       // take a step on the coarse run's error, and the next point would not start with the run
       // with sensitivities: fast 0.18 -> 0.27 s, default 0.69 -> 0.97 s there).
-      const bool coarse =
-          options.coarse_above > 0.0 && ratio * last > options.coarse_above * tolerance;
+      if (k > 0) expected = ratio * last;
+      const bool coarse = options.coarse_above > 0.0 && expected > options.coarse_above * tolerance;
       Eigen::VectorXd residual;
       try {
         const ParameterValues values = space.values_at(y[N]);
@@ -85,6 +86,7 @@ Correction correct(ShootingProblem& problem, const BranchSpace& space, int param
         break;
       }
       const double norm = inf_norm(residual);
+      if (k == 0) c.guess_residual = norm;
       if (norm <= 0.25 * tolerance) break;
       // Not contracting: Newton takes over, from the better of the last two.
       if (norm > 0.5 * last) {

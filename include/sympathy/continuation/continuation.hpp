@@ -78,9 +78,10 @@ class Continuation {
   // The corrector's residual tolerance: the options', or what the integration attains at the
   // branch's state scale if that is larger (attainable_tolerance).
   double corrector_tolerance() const;
+  // `expected`: the guess's residual expected (CorrectorOptions::expected_residual).
   Correction correct_step(const Eigen::VectorXd& from, const Eigen::VectorXd& tangent, double step,
-                          const Eigen::VectorXd& guess,
-                          const Eigen::SparseMatrix<double>* chord) const;
+                          const Eigen::VectorXd& guess, const Eigen::SparseMatrix<double>* chord,
+                          double expected = 0.0) const;
   ContinuationPoint make_point(const Correction& c, const Eigen::VectorXd& tangent, int index,
                                double step) const;
   // The point at arclength s from a along a's tangent, in a's section: what location probes. With
@@ -133,6 +134,7 @@ class Continuation {
   // The last step's prediction was on the branch as it stood (no chord step, no iteration): the
   // next corrections start with the integration with sensitivities (derivatives_first).
   bool predictions_land_ = false;
+  double guess_residual_ = 0.0;  // of the last step's guess, where it was computed
 };
 
 }  // namespace sympathy

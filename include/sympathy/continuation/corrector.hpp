@@ -8,6 +8,7 @@
 // branch (CorrectorOptions::derivatives_first) that integration comes first.
 #pragma once
 
+#include <limits>
 #include <string>
 
 #include "sympathy/continuation/branch_space.hpp"
@@ -26,6 +27,11 @@ struct CorrectorOptions {
   // the 1e-6 it then steers from (tests/cases/orbit_test.cpp). In-phase k-branch at the default
   // 0.99 -> 0.89 CPU s (medians of five; 266 000 -> 239 000 steps). 0: never.
   double coarse_above = 1e3;
+  // The guess's residual expected: the first run is coarse only where this is above
+  // coarse_above tolerances (a continuation passes its last step's; its own runs, whose guesses
+  // land closer, 0). Where predictions come close, as on the Hopf normal form's branch, a coarse
+  // first run would come out small and be run again tight: 123 -> 153 integrations there.
+  double expected_residual = 0.0;
   // Start with an integration with sensitivities at the guess, and the quasi-Newton steps (if it
   // is not on the branch yet) from its Jacobian: for callers whose predictions have been landing
   // (saves the plain run before it).
@@ -40,6 +46,7 @@ struct Correction {
   double residual = 0.0;                   // |F|_inf at y
   int iterations = 0;                      // with sensitivities
   int chord_steps = 0;                     // on plain integrations, before the iterations
+  double guess_residual = std::numeric_limits<double>::quiet_NaN();  // |F|_inf at the guess
 };
 
 // Corrects `guess` onto the branch at arclength `step` from `from` along `tangent`, for the
