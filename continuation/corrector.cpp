@@ -74,11 +74,13 @@ Correction correct(ShootingProblem& problem, const BranchSpace& space, int param
       // take a step on the coarse run's error, and the next point would not start with the run
       // with sensitivities: fast 0.18 -> 0.27 s, default 0.69 -> 0.97 s there).
       if (k > 0) expected = ratio * last;
-      const bool coarse = options.coarse_above > 0.0 && expected > options.coarse_above * tolerance;
+      const bool given = k == 0 && known;  // the run with sensitivities' own residual
+      const bool coarse =
+          !given && options.coarse_above > 0.0 && expected > options.coarse_above * tolerance;
       Eigen::VectorXd residual;
       try {
         const ParameterValues values = space.values_at(y[N]);
-        residual = k == 0 && known ? known->residual : problem.residual(y.head(N), values, coarse);
+        residual = given ? known->residual : problem.residual(y.head(N), values, coarse);
         if (coarse && inf_norm(residual) <= options.coarse_above * tolerance)
           residual = problem.residual(y.head(N), values);
       } catch (const IntegrationError&) {
