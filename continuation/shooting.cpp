@@ -58,16 +58,9 @@ struct ShootingProblem::SymmetricOrbit {
         reflection(std::move(g)),
         across(system, subspace_),
         flow(across, options),
-        inside(subspace_.bases(system.dimension()).inside) {
-    const auto& k = across.coordinates();
-    const int n = system.dimension();
-    embedding = Eigen::MatrixXd::Zero(n, k.size());
-    for (int c = 0; c < n; ++c)
-      if (k.coordinate[c] >= 0) embedding(c, k.coordinate[c]) = k.sign[c];
-    Eigen::MatrixXd representatives = Eigen::MatrixXd::Zero(k.size(), n);
-    for (int j = 0; j < k.size(); ++j) representatives(j, k.representative[j]) = 1.0;
-    reading = representatives * inside * inside.transpose();
-  }
+        inside(subspace_.bases(system.dimension()).inside),
+        embedding(across.coordinates().embedding()),
+        reading(across.coordinates().restriction() * inside * inside.transpose()) {}
   InvariantSubspace subspace;
   Reflection reflection;
   AcrossVariations across;
@@ -191,13 +184,19 @@ std::optional<ShootingProblem::Evaluation> ShootingProblem::across_evaluation(
   return e;
 }
 
-std::optional<Eigen::VectorXd> ShootingProblem::part_in_subspace(const Eigen::VectorXd& z) const {
+std::optional<Eigen::VectorXd> ShootingProblem::symmetric_part(const Eigen::VectorXd& z,
+                                                               const ParameterValues& p) const {
   // The corrector's steps leave a branch in V only to rounding (~1e-16 of the state): within
   // 1e-13 of the state's size, as remember() asks, the state is taken as its part in V.
-  const auto& k = symmetric_->across.coordinates();
-  Eigen::VectorXd zV = k.embed(k.restrict(symmetric_->subspace.project(z)));
+  const SymmetricOrbit& s = *symmetric_;
+  const auto& k = s.across.coordinates();
+  Eigen::VectorXd zV = k.embed(k.restrict(s.subspace.project(z)));
   const double size = std::max(1.0, z.cwiseAbs().maxCoeff());
   if ((z - zV).cwiseAbs().maxCoeff() > 1e-13 * size) return std::nullopt;
+  const Reflection& g = s.reflection;
+  if (!(equivariance_defect(system_, p, probe_scale(z),
+                            [&](const Eigen::VectorXd& v) { return g.apply(v); }) <= 1e-12))
+    return std::nullopt;
   return zV;
 }
 
@@ -209,16 +208,14 @@ std::optional<ShootingProblem::Evaluation> ShootingProblem::split_evaluation(
   if (options_.flow.sensitivities != Sensitivities::Augmented) return std::nullopt;
   const auto& k = s.across.coordinates();
   const Eigen::VectorXd z0 = x.head(n_);
-  const auto zV = part_in_subspace(z0);
+  const auto zV = symmetric_part(z0, p);
   if (!zV) return std::nullopt;
-  // f keeps the reflection at p, and so does df/dp (a parameter that detunes the symmetry, such
-  // as one metronome's length, moves the orbit off V: its column has a part in W).
-  const Eigen::VectorXd scale = probe_scale(z0);
+  // df/dp keeps the reflection too (a parameter that detunes the symmetry, such as one
+  // metronome's length, moves the orbit off V: its column has a part in W).
   const Reflection& g = s.reflection;
-  const auto apply = [&](const Eigen::VectorXd& z) { return g.apply(z); };
-  if (!(equivariance_defect(system_, p, scale, apply) <= 1e-12)) return std::nullopt;
-  if (parameter >= 0 &&
-      !(parameter_equivariance_defect(system_, p, parameter, scale, apply) <= 1e-12))
+  if (parameter >= 0 && !(parameter_equivariance_defect(
+                              system_, p, parameter, probe_scale(z0),
+                              [&](const Eigen::VectorXd& z) { return g.apply(z); }) <= 1e-12))
     return std::nullopt;
   const double T = period(x);
   if (!(T > 0.0)) throw IntegrationError("shooting: the period is not positive", 0.0);
@@ -245,7 +242,7 @@ std::optional<ShootingProblem::Evaluation> ShootingProblem::split_evaluation(
       e.samples.states.col(i) = k.embed(wi.head(r));
       if (++i == intervals + 1) w = wi;
     });
-    e.samples.states.col(0) = z0;  // within 1e-13 of *zV (part_in_subspace)
+    e.samples.states.col(0) = z0;  // within 1e-13 of *zV (symmetric_part)
   } else {
     w = s.split_flow->advance(split.start(*zV), p, 0.0, T);
   }
@@ -370,12 +367,8 @@ std::optional<Eigen::VectorXd> ShootingProblem::residual_in_subspace(const Eigen
   SymmetricOrbit& s = *symmetric_;
   const auto& k = s.across.coordinates();
   const Eigen::VectorXd z0 = x.head(n_);
-  const auto zV = part_in_subspace(z0);
+  const auto zV = symmetric_part(z0, p);
   if (!zV) return std::nullopt;
-  const Reflection& g = s.reflection;
-  if (!(equivariance_defect(system_, p, probe_scale(z0),
-                            [&](const Eigen::VectorXd& z) { return g.apply(z); }) <= 1e-12))
-    return std::nullopt;
   const double T = period(x);
   if (!(T > 0.0)) throw IntegrationError("shooting: the period is not positive", 0.0);
   if (!s.reduced) s.reduced = std::make_unique<ReducedSystem>(system_, s.subspace);

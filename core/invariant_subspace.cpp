@@ -201,6 +201,19 @@ Eigen::VectorXd InvariantSubspace::Coordinates::restrict(const Eigen::VectorXd& 
   return y;
 }
 
+Eigen::MatrixXd InvariantSubspace::Coordinates::embedding() const {
+  Eigen::MatrixXd P = Eigen::MatrixXd::Zero(static_cast<int>(coordinate.size()), size());
+  for (int c = 0; c < P.rows(); ++c)
+    if (coordinate[c] >= 0) P(c, coordinate[c]) = sign[c];
+  return P;
+}
+
+Eigen::MatrixXd InvariantSubspace::Coordinates::restriction() const {
+  Eigen::MatrixXd R = Eigen::MatrixXd::Zero(size(), static_cast<int>(coordinate.size()));
+  for (int k = 0; k < size(); ++k) R(k, representative[k]) = 1.0;
+  return R;
+}
+
 InvariantSubspace InvariantSubspace::within(const InvariantSubspace& larger, int dimension) const {
   const Coordinates outer = larger.coordinates(dimension);
   const Coordinates inner = coordinates(dimension);

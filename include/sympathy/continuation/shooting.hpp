@@ -183,7 +183,10 @@ class ShootingProblem {
   std::optional<Evaluation> across_evaluation(const Eigen::VectorXd& x, const ParameterValues& p,
                                               int parameter);
   FlowOptions plain_options(bool coarse) const;  // residual()'s: tightened, or coarse
-  std::optional<Eigen::VectorXd> part_in_subspace(const Eigen::VectorXd& z) const;
+  // z's part in the symmetric subspace V, where z is in V to 1e-13 and f keeps the reflection at
+  // p (what split_evaluation and residual_in_subspace both need); nullopt otherwise.
+  std::optional<Eigen::VectorXd> symmetric_part(const Eigen::VectorXd& z,
+                                                const ParameterValues& p) const;
   std::optional<Eigen::VectorXd> residual_in_subspace(const Eigen::VectorXd& x,
                                                       const ParameterValues& p, bool coarse);
   std::optional<Evaluation> split_evaluation(const Eigen::VectorXd& x, const ParameterValues& p,

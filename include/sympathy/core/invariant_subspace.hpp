@@ -92,6 +92,9 @@ class InvariantSubspace {
     int size() const { return static_cast<int>(representative.size()); }
     Eigen::VectorXd embed(const Eigen::VectorXd& y) const;     // z from y
     Eigen::VectorXd restrict(const Eigen::VectorXd& z) const;  // y: z's representatives
+    // The same as matrices: P (n x r, z = P y) and R (r x n, y = R z).
+    Eigen::MatrixXd embedding() const;
+    Eigen::MatrixXd restriction() const;
   };
   Coordinates coordinates(int dimension) const;
   // The reflection whose fixed space this is, where there is one: every tied group holds one or
