@@ -38,14 +38,9 @@ OrbitOptions adams() {
 
 Branch anti_phase_k(const CaseFile& file, const MetronomeModel& model, ParameterValues values,
                     double from, double to) {
-  const StartSpec& start = file.start("anti-phase");
-  BranchProblem problem;
-  problem.parameter = model.parameter_index("k");
+  BranchProblem problem = testing::branch_problem(file, model, "anti-phase", "k", to);
   problem.values = std::move(values);
   problem.from = from;
-  problem.to = to;
-  problem.start_state = file.initial_state(&start);
-  problem.subspace = file.invariant_subspace(start, model);
   ContinuationOptions o;
   o.orbit = adams();
   return continue_branch(model, problem, o);

@@ -73,15 +73,63 @@ Blocks blocks(const OdeSystem& system, const InvariantSubspace& subspace, const 
   Flow inner(reduced, options);
   const auto& k = reduced.coordinates();
   const Eigen::MatrixXd My = inner.advance_with_sensitivities(k.restrict(z0), p, 0.0, T).transition;
-  Eigen::MatrixXd P = Eigen::MatrixXd::Zero(n, k.size()), R = Eigen::MatrixXd::Zero(k.size(), n);
-  for (int c = 0; c < n; ++c)
-    if (k.coordinate[c] >= 0) P(c, k.coordinate[c]) = k.sign[c];
-  for (int j = 0; j < k.size(); ++j) R(j, k.representative[j]) = 1.0;
-  b.inside = B.transpose() * P * My * R * B;
+  b.inside = B.transpose() * k.embedding() * My * k.restriction() * B;
   const AcrossVariations across(system, subspace);
   Flow plain(across, options);
   b.across = across.block(plain.advance(across.start(z0), p, 0.0, T));
   return b;
+}
+
+// A shooting problem that samples its period (as a continuation's does), its phase section
+// through z0, told `symmetry` where one is given.
+std::unique_ptr<ShootingProblem> sampled_problem(const OdeSystem& system,
+                                                 const ShootingOptions& options,
+                                                 const Eigen::VectorXd& z0,
+                                                 const ParameterValues& p,
+                                                 const InvariantSubspace* symmetry) {
+  auto problem = std::make_unique<ShootingProblem>(system, options);
+  problem->record_samples(true);
+  if (symmetry) problem->use_symmetry(*symmetry);
+  problem->set_phase_reference(z0, p);
+  return problem;
+}
+
+// The branch's points first, first + size / 2, ...: each one's multipliers are those of Newton
+// on the whole state (no symmetry) at its parameter values, from it, to `tolerance` (each to the
+// nearest: a conjugate pair's order is arbitrary).
+void expect_multipliers_of_the_whole(const OdeSystem& model, const Branch& branch,
+                                     const InvariantSubspace& subspace, OrbitOptions whole,
+                                     std::size_t first, double tolerance) {
+  whole.use_symmetry = false;
+  for (std::size_t i = first; i < branch.points.size(); i += branch.points.size() / 2) {
+    const PeriodicOrbit& a = branch.points[i].orbit;
+    const PeriodicOrbit b =
+        solve_periodic_orbit(model, a.parameters, a.state0, a.period, subspace, whole);
+    ASSERT_TRUE(b.converged()) << i;
+    ASSERT_EQ(a.floquet.multipliers.size(), b.floquet.multipliers.size());
+    for (const auto& m : a.floquet.multipliers) {
+      double nearest = INFINITY;
+      for (const auto& other : b.floquet.multipliers)
+        nearest = std::min(nearest, std::abs(m.value - other.value));
+      EXPECT_LT(nearest, tolerance) << i << " " << m.value;
+    }
+  }
+}
+
+// A subspace's coordinates as matrices: P y = embed(y) and R z = restrict(z) exactly, R P = I,
+// and P R is the identity on the subspace (x = 0, a2 = -a1, b2 = -b1).
+TEST(SymmetricBlocks, CoordinatesAsMatrices) {
+  const auto k = pair_subspace().coordinates(5);
+  const Eigen::MatrixXd P = k.embedding(), R = k.restriction();
+  ASSERT_EQ(P.rows(), 5);
+  ASSERT_EQ(P.cols(), 2);
+  const Eigen::VectorXd y = (Eigen::VectorXd(2) << 0.3, -0.7).finished();
+  const Eigen::VectorXd z = (Eigen::VectorXd(5) << 0.3, -0.7, 1.1, 0.2, -0.4).finished();
+  EXPECT_EQ(P * y, k.embed(y));
+  EXPECT_EQ(R * z, k.restrict(z));
+  EXPECT_EQ(R * P, Eigen::MatrixXd::Identity(2, 2));
+  const Eigen::VectorXd in_v = pair_subspace().project(z);
+  EXPECT_LT((P * R * in_v - in_v).cwiseAbs().maxCoeff(), 1e-15);
 }
 
 // The reflection of a subspace of pairs and zeros: an involution that fixes the subspace and
@@ -178,15 +226,9 @@ TEST(SymmetricBlocks, ShootingReusesTheOrbitOnlyWhereTheParameterLeavesIt) {
   ShootingOptions options;
   options.flow = tight();
   const Eigen::VectorXd z0 = (Eigen::VectorXd(5) << 1.0, 0.0, -1.0, 0.0, 0.0).finished();
-  auto make = [&](bool symmetric) {
-    auto problem = std::make_unique<ShootingProblem>(system, options);
-    problem->record_samples(true);
-    if (symmetric) problem->use_symmetry(pair_subspace());
-    problem->set_phase_reference(z0, p0);
-    return problem;
-  };
-  auto symmetric = make(true);
-  auto whole = make(false);
+  const InvariantSubspace subspace = pair_subspace();
+  auto symmetric = sampled_problem(system, options, z0, p0, &subspace);
+  auto whole = sampled_problem(system, options, z0, p0, nullptr);
   const Eigen::VectorXd x = symmetric->unknowns_from(z0, p0, 2.0 * kPi);
   whole->unknowns_from(z0, p0, 2.0 * kPi);
   const int gamma = system.parameter_index("gamma"), w = system.parameter_index("w");
@@ -231,15 +273,9 @@ TEST(SymmetricBlocks, SplitEvaluationOfAnOrbitThatMovesEqualsTheWhole) {
   ShootingOptions options;
   options.flow = augmented();
   const Eigen::VectorXd z0 = (Eigen::VectorXd(5) << 1.0, 0.0, -1.0, 0.0, 0.0).finished();
-  auto make = [&](bool symmetric) {
-    auto problem = std::make_unique<ShootingProblem>(system, options);
-    problem->record_samples(true);
-    if (symmetric) problem->use_symmetry(pair_subspace());
-    problem->set_phase_reference(z0, p);
-    return problem;
-  };
-  auto split = make(true);
-  auto whole = make(false);
+  const InvariantSubspace subspace = pair_subspace();
+  auto split = sampled_problem(system, options, z0, p, &subspace);
+  auto whole = sampled_problem(system, options, z0, p, nullptr);
   Eigen::VectorXd x(6);
   x << z0, 2.0 * kPi;
   const int w = system.parameter_index("w");
@@ -285,15 +321,8 @@ TEST(SymmetricBlocks, SplitRefusesAParameterThatDetunesTheReflection) {
   ASSERT_TRUE(orbit.converged());
   ShootingOptions options;
   options.flow = augmented();
-  auto make = [&](bool symmetric) {
-    auto problem = std::make_unique<ShootingProblem>(model, options);
-    problem->record_samples(true);
-    if (symmetric) problem->use_symmetry(subspace);
-    problem->set_phase_reference(orbit.state0, orbit.parameters);
-    return problem;
-  };
-  auto split = make(true);
-  auto whole = make(false);
+  auto split = sampled_problem(model, options, orbit.state0, orbit.parameters, &subspace);
+  auto whole = sampled_problem(model, options, orbit.state0, orbit.parameters, nullptr);
   const Eigen::VectorXd x = split->unknowns_from(orbit.state0, orbit.parameters, orbit.period);
   whole->unknowns_from(orbit.state0, orbit.parameters, orbit.period);
   const auto names = model.state_names();
@@ -377,35 +406,14 @@ TEST(SymmetricBlocks, RowSetupAntiPhaseServedInPhaseNot) {
   const CaseFile file = CaseFile::load(testing::case_path("row2"));
   const MetronomeModel model(file.spec("table2"));
   auto branch_from = [&](const std::string& name) {
-    const StartSpec& start = file.start(name);
-    BranchProblem problem;
-    problem.parameter = model.parameter_index("k");
-    problem.values = model.default_parameters();
-    problem.from = model.parameter(problem.values, problem.parameter);
-    problem.to = 20.0;
-    problem.start_state = file.initial_state(&start);
-    problem.subspace = file.invariant_subspace(start, model);
+    const BranchProblem problem = testing::branch_problem(file, model, name, "k", 20.0);
     return std::pair{continue_branch(model, problem, ContinuationOptions{}), problem.subspace};
   };
   const auto [anti, subspace] = branch_from("anti-phase");
   ASSERT_TRUE(anti.started());
   ASSERT_GE(anti.points.size(), 3u);
   EXPECT_GE(anti.across_evaluations, static_cast<int>(anti.points.size()) - 1);
-  OrbitOptions whole;
-  whole.use_symmetry = false;
-  for (std::size_t i = 1; i < anti.points.size(); i += anti.points.size() / 2) {
-    const PeriodicOrbit& a = anti.points[i].orbit;
-    const PeriodicOrbit b =
-        solve_periodic_orbit(model, a.parameters, a.state0, a.period, subspace, whole);
-    ASSERT_TRUE(b.converged()) << i;
-    ASSERT_EQ(a.floquet.multipliers.size(), b.floquet.multipliers.size());
-    for (const auto& m : a.floquet.multipliers) {  // the nearest (a conjugate pair's order)
-      double nearest = INFINITY;
-      for (const auto& other : b.floquet.multipliers)
-        nearest = std::min(nearest, std::abs(m.value - other.value));
-      EXPECT_LT(nearest, 1e-8) << i << " " << m.value;
-    }
-  }
+  expect_multipliers_of_the_whole(model, anti, subspace, OrbitOptions{}, 1, 1e-8);
   const auto [in, in_subspace] = branch_from("in-phase");
   ASSERT_TRUE(in.started());
   ASSERT_TRUE(in_subspace.reflection(6));
@@ -420,37 +428,17 @@ TEST(SymmetricBlocks, RowSetupAntiPhaseServedInPhaseNot) {
 TEST(SymmetricBlocks, RowSetupInPhaseBranchSplitAgreesWithTheWhole) {
   const CaseFile file = CaseFile::load(testing::case_path("row2"));
   const MetronomeModel model(file.spec("table2"));
-  const StartSpec& start = file.start("in-phase");
-  BranchProblem problem;
-  problem.parameter = model.parameter_index("k");
-  problem.values = model.default_parameters();
-  problem.from = model.parameter(problem.values, problem.parameter);
-  problem.to = 20.0;
-  problem.start_state = file.initial_state(&start);
-  problem.subspace = file.invariant_subspace(start, model);
+  const BranchProblem problem = testing::branch_problem(file, model, "in-phase", "k", 20.0);
   ContinuationOptions options;
   options.orbit.shooting.flow = augmented();
   const Branch branch = continue_branch(model, problem, options);
   ASSERT_TRUE(branch.started());
   ASSERT_GE(branch.points.size(), 3u);
   EXPECT_GE(branch.split_evaluations, static_cast<int>(branch.points.size()));
+  for (const auto& point : branch.points) EXPECT_LT(point.orbit.floquet.trivial_error, 1e-8);
   OrbitOptions whole;
-  whole.use_symmetry = false;
   whole.shooting.flow = augmented();
-  for (std::size_t i = 0; i < branch.points.size(); i += branch.points.size() / 2) {
-    const PeriodicOrbit& a = branch.points[i].orbit;
-    EXPECT_LT(a.floquet.trivial_error, 1e-8) << i;
-    const PeriodicOrbit b =
-        solve_periodic_orbit(model, a.parameters, a.state0, a.period, problem.subspace, whole);
-    ASSERT_TRUE(b.converged()) << i;
-    ASSERT_EQ(a.floquet.multipliers.size(), b.floquet.multipliers.size());
-    for (const auto& m : a.floquet.multipliers) {
-      double nearest = INFINITY;
-      for (const auto& other : b.floquet.multipliers)
-        nearest = std::min(nearest, std::abs(m.value - other.value));
-      EXPECT_LT(nearest, 1e-8) << i << " " << m.value;
-    }
-  }
+  expect_multipliers_of_the_whole(model, branch, problem.subspace, whole, 0, 1e-8);
 }
 
 }  // namespace

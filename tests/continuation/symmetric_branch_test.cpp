@@ -23,14 +23,7 @@ namespace {
 TEST(SymmetricBranch, ReducedBranchPointsAreWholeOrbits) {
   const CaseFile file = CaseFile::load(testing::case_path("row/row4"));
   const MetronomeModel model(file.spec());
-  const StartSpec& start = file.start("in-phase");
-  BranchProblem problem;
-  problem.parameter = model.parameter_index("k");
-  problem.values = model.default_parameters();
-  problem.from = model.parameter(problem.values, problem.parameter);
-  problem.to = 36.0;
-  problem.start_state = file.initial_state(&start);
-  problem.subspace = file.invariant_subspace(start, model);
+  const BranchProblem problem = testing::branch_problem(file, model, "in-phase", "k", 36.0);
   const MetronomeDescriber describer(model);
   int handed_out = 0;
   ContinuationCallbacks callbacks;

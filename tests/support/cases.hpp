@@ -8,6 +8,7 @@
 
 #include "sympathy/cases/case_file.hpp"
 #include "sympathy/cases/metronome_model.hpp"
+#include "sympathy/continuation/branch_run.hpp"
 
 namespace sympathy::testing {
 
@@ -40,6 +41,22 @@ inline Eigen::VectorXd random_state(const MetronomeModel& model, std::mt19937& r
     z[m + D + i] = 4.0 * u(rng);
   }
   return z;
+}
+
+// A branch of a case file's named start in `parameter`, from the model's own value of it to `to`,
+// in the subspace the start declares.
+inline BranchProblem branch_problem(const CaseFile& file, const MetronomeModel& model,
+                                    const std::string& start_name, const std::string& parameter,
+                                    double to) {
+  const StartSpec& start = file.start(start_name);
+  BranchProblem problem;
+  problem.parameter = model.parameter_index(parameter);
+  problem.values = model.default_parameters();
+  problem.from = model.parameter(problem.values, problem.parameter);
+  problem.to = to;
+  problem.start_state = file.initial_state(&start);
+  problem.subspace = file.invariant_subspace(start, model);
+  return problem;
 }
 
 }  // namespace sympathy::testing
