@@ -83,6 +83,7 @@ Branch join_branches(Branch backward, Branch forward) {
   joined.state_names = forward.state_names;
   joined.options = forward.options;
   joined.start_values = forward.start_values;
+  joined.stiffness = backward.stiffness ? backward.stiffness : forward.stiffness;
   for (auto& p : backward.points) p.index = -p.index;
   // The point before each event along the joined branch: -(k+1) for one between -k and -(k+1).
   for (auto& e : backward.events) e.after_point = -(e.after_point + 1);

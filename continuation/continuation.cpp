@@ -186,6 +186,30 @@ std::optional<ContinuationPoint> Continuation::point_at(
   return make_point(c, tau, a.index, s);
 }
 
+void Continuation::choose_integrator(const PeriodicOrbit& start) {
+  FlowOptions& flow = options_.orbit.shooting.flow;
+  if (!options_.orbit.switch_when_stiff || flow.method == Method::BDF ||
+      !(start.period > 0.0 && std::isfinite(start.period)))
+    return;
+  options_.orbit.switch_when_stiff = false;  // measured once, for every run of this object
+  // The start's own measurement where it carries one (an orbit found with the switch on: the
+  // same period, two plain runs saved), else measured here.
+  try {
+    stiffness_ = start.stiffness ? *start.stiffness
+                                 : measure_stiffness(system_, flow, start.state0, start.parameters,
+                                                     0.0, start.period);
+  } catch (const IntegrationError&) {
+    return;  // the start's own integration will say why
+  }
+  const FlowOptions chosen = after_stiffness(flow, *stiffness_);
+  if (chosen.method == flow.method) return;
+  flow = chosen;
+  if (system_.autonomous()) {
+    problem_ = std::make_unique<ShootingProblem>(system_, options_.orbit.shooting);
+    problem_->record_samples(true);
+  }
+}
+
 Branch Continuation::run(const PeriodicOrbit& start, int direction,
                          const ContinuationCallbacks& callbacks,
                          const Eigen::VectorXd& initial_tangent) {
@@ -197,6 +221,7 @@ Branch Continuation::run_from(const PeriodicOrbit& start, int direction,
                               const Eigen::VectorXd& initial_tangent,
                               const Eigen::VectorXd& sizes) {
   const Stopwatch started;
+  choose_integrator(start);
   // A periodically forced system: the period is the forcing's, the start's, fixed along the
   // branch (the continued parameter must not change it); the unknowns are the segment states.
   if (!system_.autonomous()) {
@@ -209,7 +234,7 @@ Branch Continuation::run_from(const PeriodicOrbit& start, int direction,
   branch.parameter_name = system_.parameter_names()[parameter_];
   branch.parameter = parameter_;
   branch.state_names = system_.state_names();
-  branch.options = options_;
+  branch.options = options_;  // after choose_integrator: the method used
   branch.start_values = start.parameters;
   problem_->reset_statistics();
   predictions_land_ = false;
@@ -220,6 +245,7 @@ Branch Continuation::run_from(const PeriodicOrbit& start, int direction,
     branch.flow = problem_->statistics();
     branch.across_evaluations = problem_->across_evaluations();
     branch.split_evaluations = problem_->split_evaluations();
+    branch.stiffness = stiffness_;
     branch.seconds = started.seconds();
     return branch;
   };

@@ -147,10 +147,24 @@ PeriodicOrbit solve_periodic_orbit(const OdeSystem& system, const ParameterValue
       orbit.seconds = started.seconds();
       return orbit;
     }
-  ShootingProblem problem(system, options.shooting, period);
+  // The integrator: the method as set, or BDF where the guess's period is stiff for it (measured
+  // over one period at the shooting's tolerance: a plain run, 1-3% of an orbit's cost on the row
+  // setup). A guess that cannot be integrated is left to Newton's first evaluation to report.
+  ShootingOptions shooting = options.shooting;
+  std::optional<StiffnessEstimate> stiffness;
+  if (options.switch_when_stiff && shooting.flow.method != Method::BDF) {
+    try {
+      stiffness = measure_stiffness(system, shooting.flow, subspace.project(z0), p, 0.0, period);
+      shooting.flow = after_stiffness(shooting.flow, *stiffness);
+    } catch (const IntegrationError&) {
+    }
+  }
+  ShootingProblem problem(system, shooting, period);
   problem.record_samples(true);  // for the orbit's describers and a branch's first scales
   const int n = problem.dimension(), m = problem.segments();
   PeriodicOrbit orbit;
+  orbit.method = shooting.flow.method;
+  orbit.stiffness = stiffness;
   orbit.segments = m;
   orbit.parameters = p;
   orbit.subspace = subspace;
@@ -350,6 +364,29 @@ PeriodicOrbit find_periodic_orbit(const OdeSystem& system, const ParameterValues
   OrbitOptions polish = options;
   polish.newton.residual_tolerance /= 10.0;
   polish.newton.rtol_factor = std::max(1.0, options.newton.rtol_factor / 10.0);
+  OrbitOptions last = options;  // for Newton after the whole transient
+  // One stiffness measurement for the whole search (OrbitOptions::switch_when_stiff): at the first
+  // period known, at the shooting's own tolerance; every Newton after it runs the method chosen
+  // (a measurement per Newton would cost 7 ms each on the row setup at the default).
+  std::optional<StiffnessEstimate> stiffness;
+  bool chosen = !options.switch_when_stiff || options.shooting.flow.method == Method::BDF;
+  auto choose_method = [&](const Eigen::VectorXd& at, double period) {
+    if (chosen) return;
+    chosen = true;
+    try {
+      stiffness = measure_stiffness(system, options.shooting.flow, at, p, 0.0, period);
+    } catch (const IntegrationError&) {
+      return;  // the method as set; Newton's own integrations will say what fails
+    }
+    for (OrbitOptions* o : {&early, &polish, &last}) {
+      o->shooting.flow = after_stiffness(o->shooting.flow, *stiffness);
+      o->switch_when_stiff = false;
+    }
+  };
+  auto measured = [&](PeriodicOrbit orbit) {
+    if (stiffness) orbit.stiffness = stiffness;
+    return orbit;
+  };
   try {
     double next_check = 8.0;
     for (double t = 0.0; t < options.transient;) {
@@ -372,6 +409,7 @@ PeriodicOrbit find_periodic_orbit(const OdeSystem& system, const ParameterValues
             break;
           }
           if (moved <= options.early_newton_below * size) {
+            choose_method(z, period);
             const PeriodicOrbit rough = solve_periodic_orbit(system, p, z, period, subspace, early);
             tried += rough.flow;
             if (rough.converged()) {
@@ -381,7 +419,7 @@ PeriodicOrbit find_periodic_orbit(const OdeSystem& system, const ParameterValues
                 orbit.flow += flow.statistics();
                 orbit.flow += tried;
                 orbit.seconds = started.seconds();
-                return orbit;
+                return measured(std::move(orbit));
               }
               tried += orbit.flow;
             }
@@ -407,7 +445,8 @@ PeriodicOrbit find_periodic_orbit(const OdeSystem& system, const ParameterValues
     failed.seconds = started.seconds();
     return failed;
   }
-  PeriodicOrbit orbit = solve_periodic_orbit(system, p, z, period, subspace, options);
+  choose_method(z, period);
+  PeriodicOrbit orbit = measured(solve_periodic_orbit(system, p, z, period, subspace, last));
   if (!orbit.converged()) {
     // Say whether the transient had settled: how far the motion still moved in one period.
     try {

@@ -270,6 +270,22 @@ Eigen::VectorXd Flow::advance(const Eigen::VectorXd& z0, const ParameterValues& 
   return Eigen::Map<const Eigen::VectorXd>(stepper_->state(), system_.dimension());
 }
 
+Eigen::VectorXd Flow::advance_observing_steps(
+    const Eigen::VectorXd& z0, const ParameterValues& p, double t0, double t1,
+    const std::function<void(double, double, const Eigen::VectorXd&)>& observer) {
+  if (!(t1 >= t0)) throw std::invalid_argument("flow: end time before start time");
+  start(z0, p, t0, {}, {});
+  const int n = system_.dimension();
+  Eigen::VectorXd z(n);
+  integrate_to(t1, [&](double t_old, double t_new) {
+    z = Eigen::Map<const Eigen::VectorXd>(stepper_->state(), n);
+    observer(t_old, t_new, z);
+    return false;
+  });
+  collect_statistics();
+  return Eigen::Map<const Eigen::VectorXd>(stepper_->state(), n);
+}
+
 void Flow::sample(const Eigen::VectorXd& z0, const ParameterValues& p, double t0,
                   std::span<const double> times,
                   const std::function<void(double, const Eigen::VectorXd&)>& observer) {

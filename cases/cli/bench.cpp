@@ -10,7 +10,7 @@
 // number of metronomes; (f), the accuracy presets and integrators on a whole branch beside
 // AUTO-07p's measured points, is in bench_branch.cpp; (g) in bench_identical.cpp; (h), equation
 // case files generated against hand-written, in bench_equations.cpp; (i), the Fig. 8 study, in
-// bench_study.cpp.
+// bench_study.cpp; (j), the integrator chosen by the measured stiffness, in bench_stiffness.cpp.
 #include <algorithm>
 #include <cmath>
 #include <cstdio>
@@ -22,6 +22,7 @@
 #include "cases/cli/bench_branch.hpp"
 #include "cases/cli/bench_equations.hpp"
 #include "cases/cli/bench_identical.hpp"
+#include "cases/cli/bench_stiffness.hpp"
 #include "cases/cli/bench_study.hpp"
 #include "cases/cli/commands.hpp"
 #include "cases/cli/common.hpp"
@@ -285,21 +286,22 @@ int run_bench(const std::vector<std::string>& argv) {
       {{"--out", "DIR", false, "where bench.csv and bench.md go (default out/bench)"},
        {"--quick", "", false, "fewer tolerances (for a smoke run)"},
        {"--sections", "LIST", false,
-        "which parts, e.g. abc (default abcdefghi): (a)-(c) error against run time, "
+        "which parts, e.g. abc (default abcdefghij): (a)-(c) error against run time, "
         "(d) cost of a continuation point, (e) cost against the number of metronomes, "
         "(f) the anti-phase k-branch per accuracy preset and integrator, with AUTO-07p's "
         "measured points, (g) identical metronomes in phase, reduced and whole, (h) equation "
         "case files, generated against hand-written, and their compile time, (i) the Fig. 8 "
-        "study from its file, wall time"}},
+        "study from its file, wall time, (j) the integrator chosen by the measured stiffness "
+        "against each forced"}},
       {});
   Stopwatch clock;
   const std::string out = args.text("--out", "out/bench");
   std::filesystem::create_directories(out);
   const bool quick = args.flag("--quick");
-  const std::string sections = args.text("--sections", "abcdefghi");
+  const std::string sections = args.text("--sections", "abcdefghij");
   for (char ch : sections)
-    if (ch < 'a' || ch > 'i')
-      throw InputError("--sections: expected letters from a to i (e.g. abc), got '" + sections +
+    if (ch < 'a' || ch > 'j')
+      throw InputError("--sections: expected letters from a to j (e.g. abc), got '" + sections +
                        "'");
   auto want = [&](char section) { return sections.find(section) != std::string::npos; };
   const std::string root =
@@ -507,6 +509,7 @@ int run_bench(const std::vector<std::string>& argv) {
   if (want('g')) bench_identical(root, out, quick, md);
   if (want('h')) bench_equations(root, quick, md);
   if (want('i')) bench_study(root, out, quick, md);
+  if (want('j')) bench_stiffness(root, out, quick, md);
   std::ofstream(out + "/bench.md") << md.str();
   std::printf("wrote %s/bench.csv and %s/bench.md; run time %.1f s\n", out.c_str(), out.c_str(),
               clock.seconds());

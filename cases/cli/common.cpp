@@ -22,7 +22,9 @@ std::vector<OptionSpec> integrator_options() {
       {"--atol", "A", false, "absolute tolerance of the integrator"},
       {"--method", "bdf|adams|erk", false,
        "integration method: CVODES's BDF or Adams, or ARKODE's explicit Runge-Kutta "
-       "(Dormand-Prince 5(4); with it the sensitivities are augmented) (default bdf)"},
+       "(Dormand-Prince 5(4); with it the sensitivities are augmented) (default: bdf; for orbits "
+       "and branches the --accuracy preset's, switched to bdf where the start measures stiff; "
+       "given, it is used whatever the stiffness)"},
       {"--sensitivities", "forward|augmented", false,
        "how the monodromy is integrated: CVODES's forward-sensitivity module, or the variational "
        "equations appended to the state (default forward)"},
@@ -107,6 +109,8 @@ Accuracy parse_accuracy(const std::string& text, const std::string& where) {
 // error; the choice above stands.
 void apply_accuracy(Accuracy accuracy, OrbitOptions& o) {
   FlowOptions& f = o.shooting.flow;
+  // Every preset's integrator is a non-stiff one: BDF where the start measures stiff for it.
+  o.switch_when_stiff = true;
   switch (accuracy) {
     case Accuracy::Fast:
       f.method = Method::ERK;
@@ -192,6 +196,12 @@ FlowOptions flow_options(const Arguments& args, FlowOptions o) {
   else
     throw InputError("--linear-solver " + solver + ": expected dense, klu or structured");
   return o;
+}
+
+void shooting_flow_options(const Arguments& args, OrbitOptions& o) {
+  o.shooting.flow = flow_options(args, o.shooting.flow);
+  o.transient_flow.linear_solver = o.shooting.flow.linear_solver;
+  if (args.has("--method")) o.switch_when_stiff = false;  // the method asked for, stiff or not
 }
 
 namespace {

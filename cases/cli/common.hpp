@@ -58,6 +58,10 @@ LoadedCase load_case(const std::string& path, const std::string& params,
 // orbit and continue: the accuracy preset's); without --linear-solver, defaults.linear_solver (by
 // default Automatic: the flow chooses, see LinearSolver).
 FlowOptions flow_options(const Arguments& args, FlowOptions defaults);
+// The same for an orbit's shooting flow (orbit, continue, curve): a --method given turns off the
+// presets' switch to BDF where the start is stiff (OrbitOptions::switch_when_stiff), and the
+// transient takes the shooting's linear solver.
+void shooting_flow_options(const Arguments& args, OrbitOptions& options);
 
 // Throws the InputError of an options problem (the engine's validate()), named as the command
 // line names it ("--step: expected ...", where = "") or as a study file does (where =

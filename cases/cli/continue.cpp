@@ -39,8 +39,7 @@ ContinuationOptions branch_continuation(const Arguments& args, const OdeSystem& 
   o.max_step = args.number("--max-step", o.max_step);
   o.max_points = args.integer("--max-points", o.max_points);
   apply_accuracy(accuracy(args), o);
-  o.orbit.shooting.flow = flow_options(args, o.orbit.shooting.flow);
-  o.orbit.transient_flow.linear_solver = o.orbit.shooting.flow.linear_solver;
+  shooting_flow_options(args, o.orbit);
   return o;
 }
 
@@ -172,8 +171,13 @@ int run_continue(const std::vector<std::string>& argv) {
   std::printf("bifurcations:\n");
   print_events(stdout, branch);
   if (request.verbose) print_flow_statistics(stdout, branch.flow);
-  std::printf("  run time %.3f s (%ld integrations, %ld steps)\n", clock.seconds(),
-              branch.flow.calls, branch.flow.steps);
+  // The integrator, where the start's stiffness chose it (the presets).
+  const std::string chosen = branch.stiffness
+                                 ? "; " + to_string(branch.options.orbit.shooting.flow.method) +
+                                       ", " + stiffness_note(*branch.stiffness)
+                                 : "";
+  std::printf("  run time %.3f s (%ld integrations, %ld steps%s)\n", clock.seconds(),
+              branch.flow.calls, branch.flow.steps, chosen.c_str());
   if (json_path) {
     nlohmann::json j = branch_json(branch, request, c.describer());
     j["case"] = c.path();

@@ -94,8 +94,7 @@ CurveRequest curve_request(const Arguments& args, const LoadedSystem& c) {
   auto& o = request.continuation;
   o.orbit.transient = args.number("--transient", o.orbit.transient);
   apply_accuracy(accuracy(args), o);
-  o.orbit.shooting.flow = flow_options(args, o.orbit.shooting.flow);
-  o.orbit.transient_flow.linear_solver = o.orbit.shooting.flow.linear_solver;
+  shooting_flow_options(args, o.orbit);
   check_options(o.validate(), "");
 
   CurveOptions& co = r.options;

@@ -45,8 +45,7 @@ OrbitOptions orbit_request(const Arguments& args, bool forced) {
   // period is known; a transient would leave an unstable response for whatever attracts).
   o.transient = args.number("--transient", forced ? 0.0 : o.transient);
   apply_accuracy(accuracy(args), o);
-  o.shooting.flow = flow_options(args, o.shooting.flow);
-  o.transient_flow.linear_solver = o.shooting.flow.linear_solver;
+  shooting_flow_options(args, o);
   o.use_symmetry = !args.flag("--whole-state");
   check_options(o.validate(), "");
   return o;

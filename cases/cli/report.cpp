@@ -68,7 +68,10 @@ void print_orbit(std::FILE* out, const OdeSystem& model, const PeriodicOrbit& or
   for (double r : s.residual_norms) std::fprintf(out, " %.1e", r);
   std::fprintf(out, "\n");
   const auto& st = orbit.flow;
-  const auto& flow = options.shooting.flow;
+  // The integrator as run: BDF where the measured stiffness switched to it.
+  const FlowOptions flow = orbit.stiffness
+                               ? after_stiffness(options.shooting.flow, *orbit.stiffness)
+                               : options.shooting.flow;
   // The system integrated: the reduction's where a symmetry reduced the computation.
   const auto reduction = orbit.reduction.empty()
                              ? std::nullopt
@@ -88,10 +91,11 @@ void print_orbit(std::FILE* out, const OdeSystem& model, const PeriodicOrbit& or
   std::fprintf(
       out,
       "  work         %d segment%s, %s%s, %s sensitivities, rtol %g: %ld integrations, %ld steps, "
-      "%ld rhs and %ld sensitivity-rhs evaluations, %ld Jacobians\n",
+      "%ld rhs and %ld sensitivity-rhs evaluations, %ld Jacobians%s\n",
       orbit.segments, orbit.segments > 1 ? "s" : "", to_string(flow.method).c_str(), solver.c_str(),
       to_string(flow.sensitivities).c_str(), flow.rtol, st.calls, st.steps, st.rhs_evaluations,
-      st.variational_evaluations, st.jacobian_evaluations);
+      st.variational_evaluations, st.jacobian_evaluations,
+      orbit.stiffness ? ("; " + stiffness_note(*orbit.stiffness)).c_str() : "");
 }
 
 void print_flow_statistics(std::FILE* out, const FlowStatistics& s) {

@@ -143,6 +143,9 @@ struct Branch {
   // Evaluations with derivatives of a symmetric orbit that the parameter moves, integrated block
   // by block in one run (ShootingProblem::split_evaluations).
   int split_evaluations = 0;
+  // The stiffness measured at the start where OrbitOptions::switch_when_stiff asked for it (the
+  // method it chose is options.orbit.shooting.flow.method).
+  std::optional<StiffnessEstimate> stiffness;
   // What made it: the options (bounds included) and the parameter values it started from.
   ContinuationOptions options;
   ParameterValues start_values;

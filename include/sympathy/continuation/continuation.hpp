@@ -120,9 +120,15 @@ class Continuation {
   // orbits shrank into an equilibrium there (hopf.hpp); nullopt otherwise.
   std::optional<HopfPoint> hopf_end(const Bifurcation& turn) const;
 
+  // Where options_.orbit.switch_when_stiff asks for it: the stiffness at the start (the start's
+  // own measurement where it carries one), and the shooting problem remade with BDF where it is
+  // stiff (once: later runs keep the choice).
+  void choose_integrator(const PeriodicOrbit& start);
+
   const OdeSystem& system_;
   int parameter_;
   ContinuationOptions options_;
+  std::optional<StiffnessEstimate> stiffness_;  // where it was measured
   std::unique_ptr<ShootingProblem> problem_;
   std::unique_ptr<BranchSpace> space_;  // made for each run, from its start
   InvariantSubspace subspace_;          // the start's: every point's multipliers labelled by it

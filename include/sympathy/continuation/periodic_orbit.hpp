@@ -7,6 +7,7 @@
 #pragma once
 
 #include <algorithm>
+#include <optional>
 #include <string>
 #include <vector>
 
@@ -14,6 +15,7 @@
 
 #include "sympathy/continuation/shooting.hpp"
 #include "sympathy/core/invariant_subspace.hpp"
+#include "sympathy/core/stiffness.hpp"
 #include "sympathy/floquet/floquet.hpp"
 
 namespace sympathy {
@@ -97,6 +99,11 @@ struct OrbitOptions {
   // Orbits of interchangeable units that move alike are computed in their smallest block
   // (symmetry_reduction.hpp); false: in the whole state (for comparison).
   bool use_symmetry = true;
+  // Where the shooting flow's method is a non-stiff one (Adams, ERK): measure the stiffness
+  // indicator (core/stiffness.hpp) over the guess's period at the shooting's own tolerance before
+  // Newton, and run BDF with Newton instead where it is above kStiffIndicator. A continuation
+  // measures once, at its start orbit. false: the method as set.
+  bool switch_when_stiff = false;
   OrbitOptions();
 
   OptionCheck validate() const;
@@ -117,6 +124,10 @@ struct PeriodicOrbit {
   FlowStatistics flow;  // integration work of the whole computation
   double seconds = 0.0;
   std::string reduction;  // how a symmetry reduced the computation; empty: the whole state
+  // The shooting's integrator (BDF where OrbitOptions::switch_when_stiff switched to it), and
+  // the stiffness measured where that option asked for it.
+  Method method = Method::BDF;
+  std::optional<StiffnessEstimate> stiffness;
   // The period sampled by the run that confirmed the orbit (empty where none was kept; checked
   // against state0 and period before use: PeriodSamples::of).
   PeriodSamples samples;

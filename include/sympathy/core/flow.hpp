@@ -163,6 +163,13 @@ class Flow {
   Eigen::VectorXd advance(const Eigen::VectorXd& z0, const ParameterValues& p, double t0,
                           double t1);
 
+  // Integrates from z0 at t0 to t1 (no sensitivities) and calls `observer(t_old, t_new, z)` after
+  // each of the integrator's internal steps, with the step's ends and the state where it ended:
+  // the steps themselves, for measurements of the run (core/stiffness.hpp). Returns z(t1).
+  Eigen::VectorXd advance_observing_steps(
+      const Eigen::VectorXd& z0, const ParameterValues& p, double t0, double t1,
+      const std::function<void(double, double, const Eigen::VectorXd&)>& observer);
+
   // Integrates from z0 at t0 and calls `observer(t, z)` at each of `times` (increasing, >= t0).
   void sample(const Eigen::VectorXd& z0, const ParameterValues& p, double t0,
               std::span<const double> times,
