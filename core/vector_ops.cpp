@@ -1,0 +1,38 @@
+#include "vector_ops.hpp"
+
+namespace sympathy::detail {
+
+int linear_combination(int nvec, sunrealtype* c, N_Vector* X, N_Vector z) {
+  if (nvec < 1) return -1;
+  // One or two vectors: SUNDIALS's own scale and linear sum, which also allow z to be X[1].
+  if (nvec == 1) {
+    N_VScale_Serial(c[0], X[0], z);
+    return 0;
+  }
+  if (nvec == 2) {
+    N_VLinearSum_Serial(c[0], X[0], c[1], X[1], z);
+    return 0;
+  }
+  const sunindextype n = NV_LENGTH_S(z);
+  sunrealtype* zd = NV_DATA_S(z);
+  const sunrealtype* x0 = NV_DATA_S(X[0]);
+  // z = c[0] X[0] first (in place where z is X[0]; nothing to do for c[0] = 1), then each term
+  // added in turn: SUNDIALS's order of operations, so the sums round alike.
+  if (X[0] != z) {
+    for (sunindextype j = 0; j < n; ++j) zd[j] = c[0] * x0[j];
+  } else if (c[0] != 1.0) {
+    for (sunindextype j = 0; j < n; ++j) zd[j] *= c[0];
+  }
+  for (int i = 1; i < nvec; ++i) {
+    const sunrealtype* xi = NV_DATA_S(X[i]);
+    const sunrealtype ci = c[i];
+    for (sunindextype j = 0; j < n; ++j) zd[j] += ci * xi[j];
+  }
+  return 0;
+}
+
+void use_project_vector_ops(N_Vector v) {
+  v->ops->nvlinearcombination = linear_combination;
+}
+
+}  // namespace sympathy::detail
