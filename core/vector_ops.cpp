@@ -1,5 +1,7 @@
 #include "vector_ops.hpp"
 
+#include <cmath>
+
 namespace sympathy::detail {
 
 int linear_combination(int nvec, sunrealtype* c, N_Vector* X, N_Vector z) {
@@ -31,8 +33,30 @@ int linear_combination(int nvec, sunrealtype* c, N_Vector* X, N_Vector z) {
   return 0;
 }
 
+void scale(sunrealtype c, N_Vector x, N_Vector z) {
+  const sunindextype n = NV_LENGTH_S(z);
+  const sunrealtype* xd = NV_DATA_S(x);
+  sunrealtype* zd = NV_DATA_S(z);
+  for (sunindextype j = 0; j < n; ++j) zd[j] = c * xd[j];  // c = 1 and -1 are exact too
+}
+
+sunrealtype weighted_rms_norm(N_Vector x, N_Vector w) {
+  const sunindextype n = NV_LENGTH_S(x);
+  const sunrealtype* xd = NV_DATA_S(x);
+  const sunrealtype* wd = NV_DATA_S(w);
+  sunrealtype sum = 0.0;
+  for (sunindextype j = 0; j < n; ++j) {
+    const sunrealtype p = xd[j] * wd[j];
+    sum += p * p;
+  }
+  const sunrealtype mean = sum / static_cast<sunrealtype>(n);
+  return mean <= 0.0 ? 0.0 : std::sqrt(mean);
+}
+
 void use_project_vector_ops(N_Vector v) {
   v->ops->nvlinearcombination = linear_combination;
+  v->ops->nvscale = scale;
+  v->ops->nvwrmsnorm = weighted_rms_norm;
 }
 
 }  // namespace sympathy::detail

@@ -1,4 +1,4 @@
-// The project's serial linear combination (core/vector_ops.hpp) against SUNDIALS's own, to the
+// The project's serial vector operations (core/vector_ops.hpp) against SUNDIALS's own, to the
 // bit: every number of vectors the integrators use (1 to 8, ARKODE's seven-stage pairs and CVODE's
 // Nordsieck arrays), every aliasing SUNDIALS allows (z = X[0] with c[0] = 1 and otherwise; z = X[1]
 // with two vectors), short and long vectors. The same sums in the same order give the same
@@ -66,6 +66,33 @@ TEST(VectorOps, LinearCombinationIsSundialsToTheBit) {
   SUNContext_Free(&ctx);
 }
 
+// Scale (in place and not, c = 1, -1 and others) and the weighted RMS norm, to the bit.
+TEST(VectorOps, ScaleAndNormAreSundialsToTheBit) {
+  SUNContext ctx;
+  ASSERT_EQ(SUNContext_Create(nullptr, &ctx), 0);
+  std::mt19937 rng(11);
+  for (int length : {1, 18, 48, 133}) {
+    for (double c : {1.0, -1.0, 0.37, -2.5e3}) {
+      for (bool in_place : {false, true}) {
+        SCOPED_TRACE(::testing::Message()
+                     << "length " << length << ", c " << c << (in_place ? ", in place" : ""));
+        std::mt19937 same(length + static_cast<int>(in_place));
+        Vectors ours(ctx, length, 2, same);
+        same.seed(length + static_cast<int>(in_place));
+        Vectors theirs(ctx, length, 2, same);
+        detail::scale(c, ours.v[0], ours.v[in_place ? 0 : 1]);
+        N_VScale_Serial(c, theirs.v[0], theirs.v[in_place ? 0 : 1]);
+        EXPECT_EQ(data(ours.v[in_place ? 0 : 1]), data(theirs.v[in_place ? 0 : 1]));
+      }
+    }
+    Vectors xw(ctx, length, 2, rng);
+    EXPECT_EQ(detail::weighted_rms_norm(xw.v[0], xw.v[1]), N_VWrmsNorm_Serial(xw.v[0], xw.v[1]));
+    N_VConst(0.0, xw.v[0]);
+    EXPECT_EQ(detail::weighted_rms_norm(xw.v[0], xw.v[1]), 0.0);
+  }
+  SUNContext_Free(&ctx);
+}
+
 // A vector given the project's operations passes them on to its clones (the integrators' own
 // vectors are clones of the one they are given).
 TEST(VectorOps, ClonesInheritTheOperation) {
@@ -76,6 +103,8 @@ TEST(VectorOps, ClonesInheritTheOperation) {
   detail::use_project_vector_ops(y);
   N_Vector clone = N_VClone(y);
   EXPECT_EQ(clone->ops->nvlinearcombination, &detail::linear_combination);
+  EXPECT_EQ(clone->ops->nvscale, &detail::scale);
+  EXPECT_EQ(clone->ops->nvwrmsnorm, &detail::weighted_rms_norm);
   N_VDestroy(clone);
   N_VDestroy(y);
   SUNContext_Free(&ctx);
