@@ -34,9 +34,9 @@
 //   - the unknowns are within 1e-10 (relative) of the remembered ones (the residual and the
 //     Jacobian are then the remembered ones updated to first order in the difference);
 //   - f keeps the reflection (equivariance_defect below 1e-12);
-//   - the restricted field's derivative in the parameter is exactly zero at every one of the
-//     orbit's 801 samples, and the restricted field and its Jacobian on V are bit for bit the
-//     remembered ones at every 20th sample;
+//   - at every 20th of the orbit's 801 samples, the restricted field's derivative in the
+//     parameter is exactly zero, and the restricted field and its Jacobian on V are bit for bit
+//     the remembered ones;
 //   - the orbit integrated with W's block closes on itself as the remembered one did (within
 //     1e-7 of its scale).
 // Symmetric orbits that the parameter moves (the in-phase orbit: th2 = th1, the platform moving
