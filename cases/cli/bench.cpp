@@ -152,10 +152,7 @@ Result locate_branch_point(const MetronomeModel& model, const PeriodicOrbit& at4
 }
 
 std::string format(double v, const char* f = "%.2e") {
-  if (!std::isfinite(v)) return "-";
-  char b[32];
-  std::snprintf(b, sizeof b, f, v);
-  return b;
+  return table_number(v, f);
 }
 
 // Median wall time of `repeats` runs of `work`.

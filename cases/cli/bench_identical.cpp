@@ -11,6 +11,7 @@
 #include <cstdio>
 #include <vector>
 
+#include "cases/cli/common.hpp"
 #include "sympathy/cases/case_file.hpp"
 #include "sympathy/cases/metronome_model.hpp"
 #include "sympathy/continuation/periodic_orbit.hpp"
@@ -63,9 +64,7 @@ double multiplier_distance(const FloquetAnalysis& a, const FloquetAnalysis& b) {
 }
 
 std::string number(double v, const char* f = "%.3g") {
-  char buffer[64];
-  std::snprintf(buffer, sizeof buffer, f, v);
-  return buffer;
+  return table_number(v, f);
 }
 
 }  // namespace

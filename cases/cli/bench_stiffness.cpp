@@ -65,12 +65,6 @@ Timed timed_orbit(const CaseFile& file, const Platform& platform, Run run, int r
   return t;
 }
 
-std::string number(double v, const char* f) {
-  char buffer[64];
-  std::snprintf(buffer, sizeof buffer, f, v);
-  return buffer;
-}
-
 }  // namespace
 
 void bench_stiffness(const std::string& root, const std::string& out, bool quick,
@@ -87,7 +81,7 @@ void bench_stiffness(const std::string& root, const std::string& out, bool quick
      << repeats
      << ": as the preset runs it (the stiffness indicator measured: Adams' steps over BDF's on "
         "one plain period; BDF above "
-     << number(kStiffIndicator, "%g")
+     << table_number(kStiffIndicator, "%g")
      << "), with Adams forced and with BDF (forward sensitivities) forced.\n\n"
         "| k (N/m) | c (N s/m) | indicator | chosen | chosen (s) | Adams (s) | BDF (s) | trivial "
         "error | |\n|---|---|---|---|---|---|---|---|---|\n";
@@ -101,15 +95,17 @@ void bench_stiffness(const std::string& root, const std::string& out, bool quick
     const Timed bdf = timed_orbit(file, p, Run::Bdf, repeats);
     const double indicator = chosen.orbit.stiffness ? chosen.orbit.stiffness->indicator : NAN;
     const std::string method = to_string(chosen.orbit.method);
-    const std::string adams_seconds = adams ? number(adams->seconds, "%.3f") : "-";
+    const std::string adams_seconds = adams ? table_number(adams->seconds, "%.3f") : "-";
     table.row(std::vector<std::string>{
-        number(p.k, "%g"), number(p.c, "%g"), number(indicator, "%.3g"), method,
-        number(chosen.seconds, "%.3f"), adams ? adams_seconds : "", number(bdf.seconds, "%.3f"),
-        number(chosen.orbit.floquet.trivial_error, "%.1e")});
-    md << "| " << number(p.k, "%g") << " | " << number(p.c, "%g") << " | "
-       << number(indicator, "%.3g") << " | " << method << " | " << number(chosen.seconds, "%.3f")
-       << " | " << adams_seconds << " | " << number(bdf.seconds, "%.3f") << " | "
-       << number(chosen.orbit.floquet.trivial_error, "%.1e") << " | " << p.note << " |\n";
+        table_number(p.k, "%g"), table_number(p.c, "%g"), table_number(indicator, "%.3g"), method,
+        table_number(chosen.seconds, "%.3f"), adams ? adams_seconds : "",
+        table_number(bdf.seconds, "%.3f"),
+        table_number(chosen.orbit.floquet.trivial_error, "%.1e")});
+    md << "| " << table_number(p.k, "%g") << " | " << table_number(p.c, "%g") << " | "
+       << table_number(indicator, "%.3g") << " | " << method << " | "
+       << table_number(chosen.seconds, "%.3f") << " | " << adams_seconds << " | "
+       << table_number(bdf.seconds, "%.3f") << " | "
+       << table_number(chosen.orbit.floquet.trivial_error, "%.1e") << " | " << p.note << " |\n";
     std::printf("(j) k = %g, c = %g: indicator %.3g, %s %.3f s; Adams %s s, BDF %.3f s\n", p.k, p.c,
                 indicator, method.c_str(), chosen.seconds, adams_seconds.c_str(), bdf.seconds);
     std::fflush(stdout);

@@ -3,7 +3,9 @@
 #include "sympathy/core/csv.hpp"
 
 #include <algorithm>
+#include <cmath>
 #include <csignal>
+#include <cstdio>
 #include <filesystem>
 #include <utility>
 
@@ -196,6 +198,13 @@ FlowOptions flow_options(const Arguments& args, FlowOptions o) {
   else
     throw InputError("--linear-solver " + solver + ": expected dense, klu or structured");
   return o;
+}
+
+std::string table_number(double v, const char* format) {
+  if (!std::isfinite(v)) return "-";
+  char buffer[64];
+  std::snprintf(buffer, sizeof buffer, format, v);
+  return buffer;
 }
 
 void shooting_flow_options(const Arguments& args, OrbitOptions& o) {

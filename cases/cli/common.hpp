@@ -58,6 +58,9 @@ LoadedCase load_case(const std::string& path, const std::string& params,
 // orbit and continue: the accuracy preset's); without --linear-solver, defaults.linear_solver (by
 // default Automatic: the flow chooses, see LinearSolver).
 FlowOptions flow_options(const Arguments& args, FlowOptions defaults);
+// A number for a table by a printf format with one double ("%.3f"); "-" where it is not finite
+// (a value that was not measured).
+std::string table_number(double v, const char* format);
 // The same for an orbit's shooting flow (orbit, continue, curve): a --method given turns off the
 // presets' switch to BDF where the start is stiff (OrbitOptions::switch_when_stiff), and the
 // transient takes the shooting's linear solver.
