@@ -8,6 +8,7 @@
 #include <optional>
 #include <stdexcept>
 
+#include "stiffness_choice.hpp"
 #include "sympathy/continuation/detection.hpp"
 #include "sympathy/continuation/hopf.hpp"
 #include "sympathy/continuation/location.hpp"
@@ -194,13 +195,10 @@ void Continuation::choose_integrator(const PeriodicOrbit& start) {
   options_.orbit.switch_when_stiff = false;  // measured once, for every run of this object
   // The start's own measurement where it carries one (an orbit found with the switch on: the
   // same period, two plain runs saved), else measured here.
-  try {
-    stiffness_ = start.stiffness ? *start.stiffness
-                                 : measure_stiffness(system_, flow, start.state0, start.parameters,
-                                                     0.0, start.period);
-  } catch (const IntegrationError&) {
-    return;  // the start's own integration will say why
-  }
+  stiffness_ = start.stiffness ? start.stiffness
+                               : stiffness_of_guess(system_, flow, start.state0, start.parameters,
+                                                    start.period);
+  if (!stiffness_) return;
   const FlowOptions chosen = after_stiffness(flow, *stiffness_);
   if (chosen.method == flow.method) return;
   flow = chosen;

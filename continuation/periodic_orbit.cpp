@@ -3,6 +3,7 @@
 #include <cmath>
 #include <sstream>
 
+#include "stiffness_choice.hpp"
 #include "sympathy/continuation/symmetry_reduction.hpp"
 #include "sympathy/core/linear_solve.hpp"
 #include "sympathy/core/text.hpp"
@@ -154,11 +155,8 @@ PeriodicOrbit solve_periodic_orbit(const OdeSystem& system, const ParameterValue
   ShootingOptions shooting = options.shooting;
   std::optional<StiffnessEstimate> stiffness;
   if (options.switch_when_stiff && shooting.flow.method != Method::BDF) {
-    try {
-      stiffness = measure_stiffness(system, shooting.flow, subspace.project(z0), p, 0.0, period);
-      shooting.flow = after_stiffness(shooting.flow, *stiffness);
-    } catch (const IntegrationError&) {
-    }
+    stiffness = stiffness_of_guess(system, shooting.flow, subspace.project(z0), p, period);
+    if (stiffness) shooting.flow = after_stiffness(shooting.flow, *stiffness);
   }
   ShootingProblem problem(system, shooting, period);
   problem.record_samples(true);  // for the orbit's describers and a branch's first scales
@@ -374,11 +372,8 @@ PeriodicOrbit find_periodic_orbit(const OdeSystem& system, const ParameterValues
   auto choose_method = [&](const Eigen::VectorXd& at, double period) {
     if (chosen) return;
     chosen = true;
-    try {
-      stiffness = measure_stiffness(system, options.shooting.flow, at, p, 0.0, period);
-    } catch (const IntegrationError&) {
-      return;  // the method as set; Newton's own integrations will say what fails
-    }
+    stiffness = stiffness_of_guess(system, options.shooting.flow, at, p, period);
+    if (!stiffness) return;
     for (OrbitOptions* o : {&early, &polish, &last}) {
       o->shooting.flow = after_stiffness(o->shooting.flow, *stiffness);
       o->switch_when_stiff = false;
