@@ -149,7 +149,7 @@ int last_line(const toml::table& table) {
   return last;
 }
 
-std::string quoted(const std::string& s) {
+std::string toml_quoted(const std::string& s) {
   return "\"" + s + "\"";
 }
 
@@ -265,10 +265,10 @@ std::vector<std::string> write_case_with_values(const CaseFile& file, const std:
   if (!new_default.empty() && new_default != file.default_parameter_set()) {
     if (const auto* node = root.get("default_params")) {
       const std::string old = editor.old_text(*node);
-      editor.replace(*node, quoted(new_default),
+      editor.replace(*node, toml_quoted(new_default),
                      "the parameter set the fit used (was " + old + ")");
       edits.push_back("default_params (" + where(*node) + "): " + old + " -> " +
-                      quoted(new_default));
+                      toml_quoted(new_default));
     } else {
       // A top-level key goes before the first table header.
       int first_table = editor.line_count() + 1;
@@ -280,9 +280,9 @@ std::vector<std::string> write_case_with_values(const CaseFile& file, const std:
           break;
         }
       }
-      editor.insert_after(first_table - 1, "default_params = " + quoted(new_default) +
+      editor.insert_after(first_table - 1, "default_params = " + toml_quoted(new_default) +
                                                "  # the parameter set written by sympathy fit");
-      edits.push_back("default_params (added): " + quoted(new_default));
+      edits.push_back("default_params (added): " + toml_quoted(new_default));
     }
   }
   write_file_atomically(out_path, editor.text());

@@ -28,9 +28,9 @@ Eigen::VectorXcd eigenvector_near(const Eigen::MatrixXd& a, Complex target, Comp
 // third derivatives are not in the OdeSystem interface). D(w) = sum_j w_j d(f_x)/dx_j and
 // E(u, w) = sum_jk u_j w_k d2(f_x)/dx_j dx_k, for real directions, at steps h_b and h_c: their
 // truncation errors are O(h^2) and their rounding errors O(eps / h) and O(eps / h^2).
-class Derivatives {
+class JacobianDerivatives {
  public:
-  Derivatives(const OdeSystem& system, const ParameterValues& p, const Eigen::VectorXd& x)
+  JacobianDerivatives(const OdeSystem& system, const ParameterValues& p, const Eigen::VectorXd& x)
       : system_(system), p_(p), x_(x) {
     const double size = std::max(1.0, x.lpNorm<Eigen::Infinity>());
     h_b_ = 1e-5 * size;
@@ -110,7 +110,7 @@ HopfPoint describe_hopf(const OdeSystem& system, const ParameterValues& p, const
   const Complex vq = v.transpose() * q;
   if (std::abs(vq) == 0.0) return h;
   const Eigen::VectorXcd pa = v.conjugate() * std::conj(1.0 / vq);
-  const Derivatives d(system, p, x);
+  const JacobianDerivatives d(system, p, x);
   const Eigen::VectorXcd qbar = q.conjugate();
   const Eigen::MatrixXcd A = a.cast<Complex>();
   const Eigen::MatrixXcd shifted =

@@ -83,10 +83,6 @@ class AugmentedCvode final : public FlowStepper {
   std::vector<double*> columns_out;
 };
 
-void error_handler(int /*code*/, const char* module, const char* function, char* msg, void* user) {
-  static_cast<FlowCall*>(user)->last_error = std::string(module) + "/" + function + ": " + msg;
-}
-
 AugmentedCvode::AugmentedCvode(FlowCall& flow_call, const FlowOptions& options, int c)
     : call(flow_call), columns(c) {
   // A constructor that throws runs no destructor: free what was made so far.
@@ -111,7 +107,7 @@ void AugmentedCvode::create(const FlowOptions& options) {
   require(out != nullptr, "N_VClone failed");
   mem = CVodeCreate(options.method == Method::BDF ? CV_BDF : CV_ADAMS, ctx);
   require(mem != nullptr, "CVodeCreate failed");
-  check(CVodeSetErrHandlerFn(mem, error_handler, &call), "CVodeSetErrHandlerFn");
+  check(CVodeSetErrHandlerFn(mem, record_sundials_error, &call), "CVodeSetErrHandlerFn");
   check(CVodeInit(mem, rhs, 0.0, y), "CVodeInit");
   check(CVodeSetUserData(mem, this), "CVodeSetUserData");
   check(CVodeSStolerances(mem, options.rtol, options.atol), "CVodeSStolerances");

@@ -168,10 +168,6 @@ struct CvodesCallbacks {
   static int structured_solve(SUNLinearSolver s, SUNMatrix, N_Vector x, N_Vector b, sunrealtype);
 };
 
-void error_handler(int /*code*/, const char* module, const char* function, char* msg, void* user) {
-  static_cast<FlowCall*>(user)->last_error = std::string(module) + "/" + function + ": " + msg;
-}
-
 // Every SUNDIALS object of one integrator, freed in reverse order of creation.
 class CvodesStepper final : public FlowStepper {
  public:
@@ -387,7 +383,7 @@ void CvodesStepper::create() {
   require(out != nullptr, "N_VClone failed");
   mem = CVodeCreate(options.method == Method::BDF ? CV_BDF : CV_ADAMS, ctx);
   require(mem != nullptr, "CVodeCreate failed");
-  SYMPATHY_CHECK(CVodeSetErrHandlerFn(mem, error_handler, &call));
+  SYMPATHY_CHECK(CVodeSetErrHandlerFn(mem, record_sundials_error, &call));
   SYMPATHY_CHECK(CVodeInit(mem, CvodesCallbacks::rhs, 0.0, y));
   SYMPATHY_CHECK(CVodeSetUserData(mem, this));
   SYMPATHY_CHECK(CVodeSStolerances(mem, options.rtol, options.atol));

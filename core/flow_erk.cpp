@@ -88,10 +88,6 @@ class ErkStepper final : public FlowStepper {
   std::vector<double*> columns_out;
 };
 
-void error_handler(int /*code*/, const char* module, const char* function, char* msg, void* user) {
-  static_cast<FlowCall*>(user)->last_error = std::string(module) + "/" + function + ": " + msg;
-}
-
 ARKODE_ERKTableID table_id(ExplicitTable table) {
   switch (table) {
     case ExplicitTable::DormandPrince:
@@ -125,7 +121,7 @@ void ErkStepper::create(const FlowOptions& options) {
   require(out != nullptr, "N_VClone failed");
   mem = ERKStepCreate(rhs, 0.0, y, ctx);
   require(mem != nullptr, "ERKStepCreate failed");
-  check(ERKStepSetErrHandlerFn(mem, error_handler, &call), "ERKStepSetErrHandlerFn");
+  check(ERKStepSetErrHandlerFn(mem, record_sundials_error, &call), "ERKStepSetErrHandlerFn");
   check(ERKStepSetUserData(mem, this), "ERKStepSetUserData");
   check(ERKStepSStolerances(mem, options.rtol, options.atol), "ERKStepSStolerances");
   check(ERKStepSetTableNum(mem, table_id(options.explicit_table)), "ERKStepSetTableNum");

@@ -97,6 +97,11 @@ void augmented_columns(const double* v, int n, int columns, Eigen::MatrixXd& S) 
   S = Eigen::Map<const Eigen::MatrixXd>(v + n, n, columns);
 }
 
+void record_sundials_error(int /*code*/, const char* module, const char* function, char* msg,
+                           void* user) {
+  static_cast<FlowCall*>(user)->last_error = std::string(module) + "/" + function + ": " + msg;
+}
+
 void rethrow_callback_error(FlowCall& call) {
   if (!call.callback_error) return;
   auto e = call.callback_error;

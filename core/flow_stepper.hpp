@@ -109,6 +109,11 @@ int switching_roots(FlowCall& call, double t, const double* z, double* g);
 void pack_augmented(double* v, const double* z0, const Eigen::MatrixXd& seeds, int n);
 void augmented_columns(const double* v, int n, int columns, Eigen::MatrixXd& S);
 
+// The error handler every integrator gives SUNDIALS (user: the FlowCall): keeps the message in
+// call.last_error, for the exception that the failed call's check throws.
+void record_sundials_error(int code, const char* module, const char* function, char* msg,
+                           void* user);
+
 // Throws the stored callback exception if there is one.
 void rethrow_callback_error(FlowCall& call);
 

@@ -84,7 +84,7 @@ LoadedCase load_case_of(const BasinsFile& f) {
 }
 
 // The options and the study, checked; no file touched. `ranks`: the MPI job's size (1 without).
-Basins prepare(const Arguments& args, int ranks) {
+Basins prepare_basins(const Arguments& args, int ranks) {
   // A basins study file sets the study; the command line then only says where and how to run it.
   const std::string input = args.positional(0);
   std::optional<BasinsFile> study_file;
@@ -219,7 +219,7 @@ int run_basins(const std::vector<std::string>& argv) {
   const bool distributed = mpi.size() > 1;
   std::optional<Basins> b;
   if (const auto exit = prepare_every_rank(mpi, [&] {
-        b.emplace(prepare(args, mpi.size()));
+        b.emplace(prepare_basins(args, mpi.size()));
         if (mpi.rank() == 0) open_outputs(*b, args.flag("--resume"));
       }))
     return *exit;

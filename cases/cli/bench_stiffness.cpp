@@ -31,12 +31,12 @@ struct Platform {
 
 enum class Run { Chosen, Adams, Bdf };
 
-struct Timed {
+struct TimedPlatform {
   PeriodicOrbit orbit;
   double seconds = 0.0;
 };
 
-Timed timed_orbit(const CaseFile& file, const Platform& platform, Run run, int repeats) {
+TimedPlatform timed_orbit(const CaseFile& file, const Platform& platform, Run run, int repeats) {
   const MetronomeModel model(
       file.spec("", {{"k", platform.k, "bench"}, {"c", platform.c, "bench"}}));
   const StartSpec& start = file.start("in-phase");
@@ -49,7 +49,7 @@ Timed timed_orbit(const CaseFile& file, const Platform& platform, Run run, int r
     o.shooting.flow.sensitivities = Sensitivities::ForwardModule;
   }
   std::vector<double> times;
-  Timed t;
+  TimedPlatform t;
   for (int r = 0; r < repeats; ++r) {
     const std::clock_t begin = std::clock();
     t.orbit = find_periodic_orbit(model, model.default_parameters(), file.initial_state(&start),
@@ -88,11 +88,12 @@ void bench_stiffness(const std::string& root, const std::string& out, bool quick
   CsvWriter table(out + "/stiffness.csv", {"k", "c", "indicator", "chosen", "chosen_seconds",
                                            "adams_seconds", "bdf_seconds", "trivial_error"});
   for (const Platform& p : platforms) {
-    const Timed chosen = timed_orbit(file, p, Run::Chosen, repeats);
+    const TimedPlatform chosen = timed_orbit(file, p, Run::Chosen, repeats);
     const bool slow = quick && p.c >= 5000.0;  // forced Adams takes seconds there
-    const std::optional<Timed> adams =
-        slow ? std::nullopt : std::optional<Timed>(timed_orbit(file, p, Run::Adams, repeats));
-    const Timed bdf = timed_orbit(file, p, Run::Bdf, repeats);
+    const std::optional<TimedPlatform> adams =
+        slow ? std::nullopt
+             : std::optional<TimedPlatform>(timed_orbit(file, p, Run::Adams, repeats));
+    const TimedPlatform bdf = timed_orbit(file, p, Run::Bdf, repeats);
     const double indicator = chosen.orbit.stiffness ? chosen.orbit.stiffness->indicator : NAN;
     const std::string method = to_string(chosen.orbit.method);
     const std::string adams_seconds = adams ? table_number(adams->seconds, "%.3f") : "-";

@@ -69,7 +69,7 @@ std::vector<std::vector<std::string>> split_events(const std::string& field) {
   return events;
 }
 
-Sweep prepare(const Arguments& args, int ranks) {
+Sweep prepare_sweep(const Arguments& args, int ranks) {
   Sweep w;
   w.c = std::make_unique<LoadedSystem>(args);
   w.c->require_orbits();
@@ -315,7 +315,7 @@ int run_sweep(const std::vector<std::string>& argv) {
   const MpiSession mpi;
   std::optional<Sweep> w;
   if (const auto exit = prepare_every_rank(mpi, [&] {
-        w.emplace(prepare(args, mpi.size()));
+        w.emplace(prepare_sweep(args, mpi.size()));
         if (mpi.rank() == 0) open_outputs(*w, args.flag("--resume"));
       }))
     return *exit;

@@ -8,6 +8,7 @@
 
 #include <gtest/gtest.h>
 
+#include "tests/support/cases.hpp"
 #include "tests/support/errors.hpp"
 
 namespace sympathy {
@@ -16,9 +17,7 @@ namespace {
 using testing::input_error_of;
 using testing::write_test_file;
 
-std::string example(const std::string& name) {
-  return std::string(SYMPATHY_SOURCE_DIR) + "/cases/examples/" + name + ".toml";
-}
+using testing::example_path;
 
 // A small valid file; tests replace one piece of it.
 const std::string kValid = R"(kind = "equations"
@@ -79,7 +78,7 @@ TEST(EquationCase, SteepZones) {
 // plugin = "FILE.cpp": a C++ source beside the case file instead of equations; a file that also
 // has equations, or names no .cpp file that exists, is refused where the key stands.
 TEST(EquationCase, PluginInsteadOfEquations) {
-  const auto c = EquationCase::load(example("vdp_plugin"));
+  const auto c = EquationCase::load(example_path("vdp_plugin"));
   EXPECT_EQ(c.plugin(), std::string(SYMPATHY_SOURCE_DIR) + "/cases/examples/vdp_plugin.cpp");
   EXPECT_TRUE(c.system().derivatives.empty());
   const std::string states = "kind = \"equations\"\nplugin = \"PLUGIN\"\n[states]\nx = 1.0\n";
@@ -95,12 +94,12 @@ TEST(EquationCase, PluginInsteadOfEquations) {
 
 TEST(EquationCase, ExamplesLoad) {
   for (const char* name : {"hopf", "lrz", "abc", "lcbp", "ffn", "row2_equations"}) {
-    const auto c = EquationCase::load(example(name));
+    const auto c = EquationCase::load(example_path(name));
     EXPECT_EQ(c.name(), name);
     EXPECT_EQ(c.system().derivatives.size(), c.system().states.size());
-    EXPECT_EQ(case_file_kind(example(name)), "equations");
+    EXPECT_EQ(case_file_kind(example_path(name)), "equations");
   }
-  const auto hopf = EquationCase::load(example("hopf"));
+  const auto hopf = EquationCase::load(example_path("hopf"));
   EXPECT_EQ(hopf.state_names(), (std::vector<std::string>{"x", "y"}));
   EXPECT_EQ(hopf.parameter_names(), (std::vector<std::string>{"mu", "w"}));
   EXPECT_EQ(hopf.system().parameters[1].unit, "rad/s");

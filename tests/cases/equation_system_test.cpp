@@ -20,6 +20,7 @@
 #include "sympathy/cases/metronome_model.hpp"
 #include "sympathy/continuation/periodic_orbit.hpp"
 #include "sympathy/core/autodiff_system.hpp"
+#include "tests/support/cases.hpp"
 #include "tests/support/errors.hpp"
 
 namespace sympathy {
@@ -27,9 +28,7 @@ namespace {
 
 namespace fs = std::filesystem;
 
-std::string example(const std::string& name) {
-  return std::string(SYMPATHY_SOURCE_DIR) + "/cases/examples/" + name + ".toml";
-}
+using testing::example_path;
 
 // A fresh cache directory per test, removed after it; named by the process too, so that two test
 // runs at once (two build trees on one machine) do not remove each other's entries.
@@ -67,7 +66,7 @@ class HandHopf final : public AutoDiffSystem<HandHopf> {
 // (the generated code parenthesizes as the file does), so equal to rounding: 1e-12 absolute on
 // values of order 1.
 TEST_F(EquationSystemTest, HopfMatchesTheHandWrittenSystem) {
-  const auto c = EquationCase::load(example("hopf"));
+  const auto c = EquationCase::load(example_path("hopf"));
   const auto b = build(c);
   const OdeSystem& generated = *b.system;
   const HandHopf hand(0.25, 1.0);
@@ -98,7 +97,7 @@ TEST_F(EquationSystemTest, HopfMatchesTheHandWrittenSystem) {
 // Tolerances: the orbit is computed at the default shooting accuracy (rtol 1e-10 or so), so the
 // period to 1e-8 relative, the radius and the multiplier to 1e-7.
 TEST_F(EquationSystemTest, HopfOrbitHasItsExactPeriodRadiusAndMultiplier) {
-  const auto c = EquationCase::load(example("hopf"));
+  const auto c = EquationCase::load(example_path("hopf"));
   const auto b = build(c);
   OrbitOptions o;
   const PeriodicOrbit orbit = find_periodic_orbit(*b.system, b.system->default_parameters(),
@@ -158,7 +157,7 @@ v = "-c*v - k*x + A*cos(w*t)"
 }
 
 TEST_F(EquationSystemTest, CacheIsReusedAndSharedBetweenEqualSystems) {
-  const auto c = EquationCase::load(example("hopf"));
+  const auto c = EquationCase::load(example_path("hopf"));
   const auto first = build(c);
   EXPECT_TRUE(first.compiled);
   EXPECT_TRUE(fs::exists(cache_ / (first.key + ".so")));
@@ -193,7 +192,7 @@ v = "w*u + mu*v - v*r2"
 }
 
 TEST_F(EquationSystemTest, CorruptOrForeignEntryIsRebuiltNotLoaded) {
-  const auto c = EquationCase::load(example("lcbp"));
+  const auto c = EquationCase::load(example_path("lcbp"));
   std::string key, library;
   {
     const auto b = build(c);
@@ -213,7 +212,7 @@ TEST_F(EquationSystemTest, CorruptOrForeignEntryIsRebuiltNotLoaded) {
     EXPECT_EQ(b.system->dimension(), 2);
   }
   // Another entry's library under this key (with its own, consistent manifest renamed too).
-  const auto hopf = EquationCase::load(example("hopf"));
+  const auto hopf = EquationCase::load(example_path("hopf"));
   std::string other;
   {
     const auto h = build(hopf);
@@ -267,7 +266,7 @@ TEST_F(EquationSystemTest, LongSumsAndProductsCompile) {
 // Generated code names nothing after the file: only s0.., p0.., w0.., numbers and the grammar's
 // functions, whatever the names are.
 TEST_F(EquationSystemTest, GeneratedSourceCarriesNoTextOfTheFile) {
-  const auto c = EquationCase::load(example("lcbp"));
+  const auto c = EquationCase::load(example_path("lcbp"));
   const std::string source = generate_equation_source(c.system());
   for (const char* text : {"lcbp", "Circles", "sqrt(x", "r^2", "\"x\"", "\"p1\""})
     EXPECT_EQ(source.find(text), std::string::npos) << text;
@@ -288,7 +287,7 @@ namespace {
 // where the built-in reduces it); and the anti-phase orbit's k-branch finds Table II's branch
 // point at the built-in's value within the two uncertainties.
 TEST_F(EquationSystemTest, MetronomesAsEquationsAreTheBuiltInModel) {
-  const EquationCase file = EquationCase::load(example("row2_equations"));
+  const EquationCase file = EquationCase::load(example_path("row2_equations"));
   const CaseFile row2 = CaseFile::load(std::string(SYMPATHY_SOURCE_DIR) + "/cases/row2.toml");
   for (const std::string params : {"table2", "table3"}) {
     const MetronomeModel model(row2.spec(params));
@@ -342,7 +341,7 @@ namespace {
 // to O(mu^4) (Lindstedt-Poincare; the mu^4 term is 2 pi 0.0016 mu^4 = 1e-6 here), the second
 // build comes from the cache.
 TEST_F(EquationSystemTest, PluginIsCompiledAndLoaded) {
-  const EquationCase file = EquationCase::load(example("vdp_plugin"));
+  const EquationCase file = EquationCase::load(example_path("vdp_plugin"));
   const EquationBuild first = build(file);
   EXPECT_TRUE(first.compiled);
   EXPECT_EQ(first.plugin, file.plugin());

@@ -7,11 +7,12 @@
 #include "sympathy/cases/case_file.hpp"
 #include "sympathy/core/flow.hpp"
 #include "sympathy/core/oscillation.hpp"
+#include "tests/support/math.hpp"
 
 namespace sympathy {
 namespace {
 
-constexpr double kPi = std::numbers::pi;
+using testing::kPi;
 
 struct SimulationRun {
   OscillationSummary end;  // over the last 10 s

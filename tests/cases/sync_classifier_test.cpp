@@ -1,6 +1,7 @@
 // The basin classifier on constructed signals whose phase differences are known exactly:
 // A_i sin(2 pi f t + phi_i(t)) sampled every 0.01 s, as the basins command samples a simulation.
 #include "sympathy/cases/sync_classifier.hpp"
+#include "tests/support/math.hpp"
 
 #include <gtest/gtest.h>
 
@@ -11,7 +12,7 @@
 namespace sympathy {
 namespace {
 
-constexpr double kPi = std::numbers::pi;
+using testing::kPi;
 constexpr double kF = 1.733;  // Hz, the metronomes' 208 bpm
 
 // Feeds `n` pendula x(t) = amplitude[i] * sin(2 pi f_i t + phase(i, t)) for t in [0, t_end].

@@ -16,6 +16,7 @@
 
 #include "sympathy/continuation/continuation.hpp"
 #include "sympathy/continuation/curve_test_function.hpp"
+#include "tests/support/math.hpp"
 #include "tests/support/test_systems.hpp"
 
 namespace sympathy {
@@ -23,7 +24,7 @@ namespace {
 
 using testing::NormalForm;
 using Kind = NormalForm::Kind;
-constexpr double kPi = std::numbers::pi;
+using testing::kPi;
 
 // The exterior square's eigenvalues are the products of pairs: for a triangular B with diagonal
 // 2, 3, 5, 7 they are 6, 10, 14, 15, 21, 35 exactly (to rounding).

@@ -24,6 +24,7 @@
 #include "sympathy/continuation/branch.hpp"
 #include "sympathy/continuation/branch_output.hpp"
 #include "tests/support/errors.hpp"
+#include "tests/support/math.hpp"
 #include "tests/support/test_systems.hpp"
 
 namespace sympathy {
@@ -32,7 +33,7 @@ namespace {
 using testing::expect_mentions;
 using testing::NormalForm;
 using Kind = NormalForm::Kind;
-constexpr double kPi = std::numbers::pi;
+using testing::kPi;
 
 // ---------------------------------------------------------------------------------------------
 // join_branches and order_events on hand-made branches: exact answers.

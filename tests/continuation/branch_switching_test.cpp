@@ -10,6 +10,7 @@
 #include <cmath>
 #include <numbers>
 
+#include "tests/support/math.hpp"
 #include "tests/support/test_systems.hpp"
 
 namespace sympathy {
@@ -17,7 +18,7 @@ namespace {
 
 using testing::NormalForm;
 using Kind = NormalForm::Kind;
-constexpr double kPi = std::numbers::pi;
+using testing::kPi;
 
 ContinuationOptions window(double lower, double upper) {
   ContinuationOptions o;

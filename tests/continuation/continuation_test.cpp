@@ -7,6 +7,7 @@
 
 #include "sympathy/continuation/predictor.hpp"
 
+#include "tests/support/math.hpp"
 #include "tests/support/test_systems.hpp"
 
 namespace sympathy {
@@ -14,7 +15,7 @@ namespace {
 
 using testing::NormalForm;
 using Kind = NormalForm::Kind;
-constexpr double kPi = std::numbers::pi;
+using testing::kPi;
 
 ContinuationOptions options(double lower, double upper) {
   ContinuationOptions o;

@@ -9,6 +9,7 @@
 #include "cases/cli/hand_written_systems.hpp"
 #include "sympathy/continuation/continuation.hpp"
 #include "sympathy/continuation/hopf.hpp"
+#include "tests/support/math.hpp"
 #include "tests/support/test_systems.hpp"
 
 namespace sympathy {
@@ -22,7 +23,7 @@ using testing::NormalForm;
 // beta (sigma + rho) (the characteristic polynomial with l = i omega).
 using Abc = cli::HandAbc;
 using Lorenz = cli::HandLorenz;
-constexpr double kPi = std::numbers::pi;
+using testing::kPi;
 
 EquilibriumProblem problem_of(const OdeSystem& system, double from, double to,
                               Eigen::VectorXd start) {

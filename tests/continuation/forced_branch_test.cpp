@@ -8,11 +8,12 @@
 
 #include "sympathy/continuation/branch_run.hpp"
 #include "sympathy/core/autodiff_system.hpp"
+#include "tests/support/math.hpp"
 
 namespace sympathy {
 namespace {
 
-constexpr double kPi = std::numbers::pi;
+using testing::kPi;
 
 // x'' + c x' + k x = A cos(w t), states x and v = x'. Its periodic response (the only one: the
 // system is linear and damped) is x = X cos(w t - phi) with X = A / sqrt((k - w^2)^2 + (c w)^2)

@@ -6,6 +6,7 @@
 #include <cmath>
 #include <numbers>
 
+#include "tests/support/math.hpp"
 #include "tests/support/test_systems.hpp"
 
 namespace sympathy {
@@ -15,7 +16,7 @@ using testing::ForcedFloquet;
 using testing::HopfCycle;
 using testing::TwoHopf;
 
-constexpr double kPi = std::numbers::pi;
+using testing::kPi;
 
 OrbitOptions tight(int segments = 1) {
   OrbitOptions o;

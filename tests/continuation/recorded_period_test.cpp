@@ -10,6 +10,7 @@
 
 #include "sympathy/core/csv.hpp"
 #include "tests/support/errors.hpp"
+#include "tests/support/math.hpp"
 #include "tests/support/test_systems.hpp"
 
 namespace sympathy {
@@ -17,7 +18,7 @@ namespace {
 
 using testing::expect_mentions;
 
-constexpr double kTwoPi = 2 * std::numbers::pi;
+using testing::kTwoPi;
 
 // `periods` periods of the orbit through z0, `per_period` rows each (plus the last), written as
 // `sympathy simulate --out` writes them: t, then the states by name, shortest round-trip numbers.

@@ -12,11 +12,12 @@
 #include "sympathy/core/autodiff_system.hpp"
 #include "sympathy/core/csv.hpp"
 #include "sympathy/core/errors.hpp"
+#include "tests/support/math.hpp"
 
 namespace sympathy {
 namespace {
 
-constexpr double kTwoPi = 2 * std::numbers::pi;
+using testing::kTwoPi;
 
 // theta'' + gamma theta' + sin(theta) = tau, states theta (an angle, if `declared`) and omega.
 // With tau > 1 there is no equilibrium and every motion ends on the rotation. Over its period:

@@ -20,6 +20,7 @@
 #include "sympathy/core/flow.hpp"
 #include "sympathy/core/reduced_system.hpp"
 #include "tests/support/cases.hpp"
+#include "tests/support/math.hpp"
 #include "tests/support/test_systems.hpp"
 
 namespace sympathy {
@@ -27,7 +28,7 @@ namespace {
 
 using testing::SymmetricPair;
 
-constexpr double kPi = std::numbers::pi;
+using testing::kPi;
 
 // SymmetricPair's anti-phase fixed space: x = 0, a2 = -a1, b2 = -b1.
 InvariantSubspace pair_subspace() {

@@ -8,12 +8,13 @@
 
 #include "sympathy/continuation/branch_run.hpp"
 #include "sympathy/core/autodiff_system.hpp"
+#include "tests/support/math.hpp"
 #include "tests/support/test_systems.hpp"
 
 namespace sympathy {
 namespace {
 
-constexpr double kTwoPi = 2 * std::numbers::pi;
+using testing::kTwoPi;
 
 // The Hopf normal form x' = mu x - w y - x r^2, y' = w x + mu y - y r^2 (cases/examples/hopf.toml
 // written by hand): for mu > 0 the circle r = sqrt(mu), period 2 pi / w, nontrivial multiplier

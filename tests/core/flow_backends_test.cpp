@@ -52,12 +52,7 @@ std::vector<Backend> backends(double rtol) {
   };
 }
 
-// A damped oscillator coupled to a decaying mode: distinct, complex eigenvalues.
-Eigen::MatrixXd oscillator_matrix() {
-  Eigen::MatrixXd a(3, 3);
-  a << 0.0, 1.0, 0.0, -4.0, -0.3, 0.5, 0.2, 0.0, -1.5;
-  return a;
-}
+using testing::oscillator_matrix;
 
 // Exact for z' = scale A z at scale = 1: z(t) = expm(A t) z0, dz/dz0 = expm(A t),
 // dz/dscale = A t expm(A t) z0, each backend within its Backend::error.

@@ -14,12 +14,7 @@ using testing::Decay;
 using testing::LinearSystem;
 using testing::Pulse;
 
-// A damped oscillator coupled to a decaying mode: distinct, complex eigenvalues.
-Eigen::MatrixXd oscillator_matrix() {
-  Eigen::MatrixXd a(3, 3);
-  a << 0.0, 1.0, 0.0, -4.0, -0.3, 0.5, 0.2, 0.0, -1.5;
-  return a;
-}
+using testing::oscillator_matrix;
 
 // Exact: z(t) = expm(A t) z0.
 TEST(Flow, LinearSystemMatchesMatrixExponential) {

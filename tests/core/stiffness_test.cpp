@@ -7,6 +7,7 @@
 #include <numbers>
 
 #include "sympathy/core/stiffness.hpp"
+#include "tests/support/math.hpp"
 #include "tests/support/test_systems.hpp"
 
 namespace sympathy {
@@ -14,7 +15,7 @@ namespace {
 
 using testing::LinearSystem;
 
-constexpr double kTwoPi = 2.0 * std::numbers::pi;
+using testing::kTwoPi;
 
 // z1, z2 a harmonic oscillator of period 1 (eigenvalues +-2 pi i), and z3' = -Lambda (z3 - z1): a
 // mode that relaxes at the rate Lambda onto the oscillator and follows it (the matrix is block

@@ -10,6 +10,7 @@
 #include "sympathy/continuation/symmetry_reduction.hpp"
 #include "sympathy/floquet/floquet.hpp"
 #include "tests/support/cases.hpp"
+#include "tests/support/math.hpp"
 #include "tests/support/test_systems.hpp"
 
 namespace sympathy {
@@ -17,7 +18,7 @@ namespace {
 
 using testing::NormalForm;
 using Kind = NormalForm::Kind;
-constexpr double kPi = std::numbers::pi;
+using testing::kPi;
 
 int count(const FloquetAnalysis& a, SymmetryKind kind) {
   int k = 0;

@@ -17,6 +17,11 @@ inline std::string case_path(const std::string& name) {
   return std::string(SYMPATHY_SOURCE_DIR) + "/cases/" + name + ".toml";
 }
 
+// cases/examples/NAME.toml: the examples of equation case files.
+inline std::string example_path(const std::string& name) {
+  return case_path("examples/" + name);
+}
+
 // A case's parameter set ("" for the file's default) with the given escapement.
 inline ModelSpec load_spec(const std::string& name, const std::string& params = "",
                            Escapement escapement = Escapement::Half) {

@@ -10,6 +10,13 @@
 
 namespace sympathy::testing {
 
+// A damped oscillator coupled to a decaying mode: distinct, complex eigenvalues (for LinearSystem).
+inline Eigen::MatrixXd oscillator_matrix() {
+  Eigen::MatrixXd a(3, 3);
+  a << 0.0, 1.0, 0.0, -4.0, -0.3, 0.5, 0.2, 0.0, -1.5;
+  return a;
+}
+
 // z' = A z with a constant matrix; solution expm(A t) z0.
 class LinearSystem final : public AutoDiffSystem<LinearSystem> {
  public:
