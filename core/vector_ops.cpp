@@ -6,13 +6,13 @@ namespace sympathy::detail {
 
 int linear_combination(int nvec, sunrealtype* c, N_Vector* X, N_Vector z) {
   if (nvec < 1) return -1;
-  // One or two vectors: SUNDIALS's own scale and linear sum, which also allow z to be X[1].
+  // One or two vectors: scale and linear sum (below), as SUNDIALS's, which allow z to be X[1].
   if (nvec == 1) {
-    N_VScale_Serial(c[0], X[0], z);
+    scale(c[0], X[0], z);
     return 0;
   }
   if (nvec == 2) {
-    N_VLinearSum_Serial(c[0], X[0], c[1], X[1], z);
+    linear_sum(c[0], X[0], c[1], X[1], z);
     return 0;
   }
   const sunindextype n = NV_LENGTH_S(z);
@@ -31,6 +31,46 @@ int linear_combination(int nvec, sunrealtype* c, N_Vector* X, N_Vector z) {
     for (sunindextype j = 0; j < n; ++j) zd[j] += ci * xi[j];
   }
   return 0;
+}
+
+void linear_sum(sunrealtype a, N_Vector x, sunrealtype b, N_Vector y, N_Vector z) {
+  const sunindextype n = NV_LENGTH_S(z);
+  const sunrealtype* xd = NV_DATA_S(x);
+  const sunrealtype* yd = NV_DATA_S(y);
+  sunrealtype* zd = NV_DATA_S(z);
+  // SUNDIALS's cases, by the rounding they give: with a or b = +-1, a x + b y (the product by +-1
+  // is exact, whichever of its special loops runs); otherwise a (x + y) where a = b (0 included),
+  // a (x - y) where a = -b, else a x + b y. Each entry is read before it is written, so z may be
+  // x or y.
+  const bool unit = a == 1.0 || a == -1.0 || b == 1.0 || b == -1.0;
+  if (!unit && a == b) {
+    for (sunindextype j = 0; j < n; ++j) zd[j] = a * (xd[j] + yd[j]);
+  } else if (!unit && a == -b) {
+    for (sunindextype j = 0; j < n; ++j) zd[j] = a * (xd[j] - yd[j]);
+  } else {
+    for (sunindextype j = 0; j < n; ++j) zd[j] = a * xd[j] + b * yd[j];
+  }
+}
+
+void absolute(N_Vector x, N_Vector z) {
+  const sunindextype n = NV_LENGTH_S(z);
+  const sunrealtype* xd = NV_DATA_S(x);
+  sunrealtype* zd = NV_DATA_S(z);
+  for (sunindextype j = 0; j < n; ++j) zd[j] = std::fabs(xd[j]);
+}
+
+void inverse(N_Vector x, N_Vector z) {
+  const sunindextype n = NV_LENGTH_S(z);
+  const sunrealtype* xd = NV_DATA_S(x);
+  sunrealtype* zd = NV_DATA_S(z);
+  for (sunindextype j = 0; j < n; ++j) zd[j] = 1.0 / xd[j];
+}
+
+void add_constant(N_Vector x, sunrealtype b, N_Vector z) {
+  const sunindextype n = NV_LENGTH_S(z);
+  const sunrealtype* xd = NV_DATA_S(x);
+  sunrealtype* zd = NV_DATA_S(z);
+  for (sunindextype j = 0; j < n; ++j) zd[j] = xd[j] + b;
 }
 
 void scale(sunrealtype c, N_Vector x, N_Vector z) {
@@ -57,6 +97,10 @@ void use_project_vector_ops(N_Vector v) {
   v->ops->nvlinearcombination = linear_combination;
   v->ops->nvscale = scale;
   v->ops->nvwrmsnorm = weighted_rms_norm;
+  v->ops->nvlinearsum = linear_sum;
+  v->ops->nvabs = absolute;
+  v->ops->nvinv = inverse;
+  v->ops->nvaddconst = add_constant;
 }
 
 }  // namespace sympathy::detail

@@ -93,6 +93,46 @@ TEST(VectorOps, ScaleAndNormAreSundialsToTheBit) {
   SUNContext_Free(&ctx);
 }
 
+// The linear sum for every case SUNDIALS's treats apart (a or b = 1 or -1, a = b, a = -b, zero,
+// others) and every aliasing (z = x, z = y, neither), and |x|, 1 / x, x + b: to the bit.
+TEST(VectorOps, LinearSumAbsInverseAndAddConstAreSundialsToTheBit) {
+  SUNContext ctx;
+  ASSERT_EQ(SUNContext_Create(nullptr, &ctx), 0);
+  const double coefficients[] = {1.0, -1.0, 0.0, 0.37, -0.37, 2.5, -1e-3};
+  for (int length : {1, 18, 48, 133}) {
+    for (double a : coefficients) {
+      for (double b : coefficients) {
+        for (int alias = 0; alias < 3; ++alias) {  // z: a third vector, x, y
+          SCOPED_TRACE(::testing::Message() << "length " << length << ", a " << a << ", b " << b
+                                            << ", aliasing " << alias);
+          std::mt19937 same(length * 10 + alias);
+          Vectors ours(ctx, length, 3, same);
+          same.seed(length * 10 + alias);
+          Vectors theirs(ctx, length, 3, same);
+          const int z = alias == 0 ? 2 : alias - 1;
+          detail::linear_sum(a, ours.v[0], b, ours.v[1], ours.v[z]);
+          N_VLinearSum_Serial(a, theirs.v[0], b, theirs.v[1], theirs.v[z]);
+          EXPECT_EQ(data(ours.v[z]), data(theirs.v[z]));
+        }
+      }
+    }
+    std::mt19937 same(length);
+    Vectors ours(ctx, length, 2, same);
+    same.seed(length);
+    Vectors theirs(ctx, length, 2, same);
+    detail::absolute(ours.v[0], ours.v[1]);
+    N_VAbs_Serial(theirs.v[0], theirs.v[1]);
+    EXPECT_EQ(data(ours.v[1]), data(theirs.v[1]));
+    detail::inverse(ours.v[0], ours.v[1]);
+    N_VInv_Serial(theirs.v[0], theirs.v[1]);
+    EXPECT_EQ(data(ours.v[1]), data(theirs.v[1]));
+    detail::add_constant(ours.v[0], 0.3, ours.v[1]);
+    N_VAddConst_Serial(theirs.v[0], 0.3, theirs.v[1]);
+    EXPECT_EQ(data(ours.v[1]), data(theirs.v[1]));
+  }
+  SUNContext_Free(&ctx);
+}
+
 // A vector given the project's operations passes them on to its clones (the integrators' own
 // vectors are clones of the one they are given).
 TEST(VectorOps, ClonesInheritTheOperation) {
@@ -105,6 +145,10 @@ TEST(VectorOps, ClonesInheritTheOperation) {
   EXPECT_EQ(clone->ops->nvlinearcombination, &detail::linear_combination);
   EXPECT_EQ(clone->ops->nvscale, &detail::scale);
   EXPECT_EQ(clone->ops->nvwrmsnorm, &detail::weighted_rms_norm);
+  EXPECT_EQ(clone->ops->nvlinearsum, &detail::linear_sum);
+  EXPECT_EQ(clone->ops->nvabs, &detail::absolute);
+  EXPECT_EQ(clone->ops->nvinv, &detail::inverse);
+  EXPECT_EQ(clone->ops->nvaddconst, &detail::add_constant);
   N_VDestroy(clone);
   N_VDestroy(y);
   SUNContext_Free(&ctx);

@@ -91,6 +91,13 @@ class AcrossVariations final : public SystemOver {
   ReducedSystem reduced_;  // y's equations, zones and names
   const InvariantSubspace::Coordinates& coordinates_;
   Eigen::MatrixXd breaking_;
+  // C's nonzero entries (C(state, column) = value), the only terms of C U and C^T (J C U): one or
+  // two per column (6 of 24 for the row setup's anti-phase orbit).
+  struct Entry {
+    int state, column;
+    double value;
+  };
+  std::vector<Entry> breaking_entries_;
   bool inside_block_;
   int parameter_;
 };

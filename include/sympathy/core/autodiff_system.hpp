@@ -130,7 +130,7 @@ class AutoDiffSystem : public OdeSystem {
         // Kept per thread between calls (one system serves several threads): no allocation a
         // step on the augmented flows' hot path.
         thread_local std::vector<D> zd, dzd;
-        zd.assign(n, D{});
+        zd.resize(n);  // every entry set below
         dzd.assign(n, D{});
         for (int i = 0; i < n; ++i) {
           zd[i] = D(z[i]);
