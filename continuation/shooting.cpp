@@ -220,7 +220,7 @@ std::optional<ShootingProblem::Evaluation> ShootingProblem::split_evaluation(
     return std::nullopt;
   const double T = period(x);
   if (!(T > 0.0)) throw IntegrationError("shooting: the period is not positive", 0.0);
-  if (!s.split || s.split->parameter() != parameter) {
+  if (!s.split || s.split->column_parameter() != parameter) {
     s.split_flow.reset();
     s.split = std::make_unique<AcrossVariations>(system_, s.subspace, true, parameter);
     s.split_flow = std::make_unique<Flow>(*s.split, options_.flow);

@@ -49,7 +49,7 @@ class AcrossVariations final : public SystemOver {
 
   int inside() const { return coordinates_.size(); }                 // r: V's coordinates
   int across() const { return static_cast<int>(breaking_.cols()); }  // a: W's dimension
-  int parameter() const { return parameter_; }                       // of the column s; -1: none
+  int column_parameter() const { return parameter_; }                // of the column s; -1: none
   const InvariantSubspace::Coordinates& coordinates() const { return coordinates_; }
   const Eigen::MatrixXd& breaking_basis() const { return breaking_; }  // C, n x a
   // The state (y0, I, 0, I) for an orbit through z0 (in V), and the blocks read from a state:
