@@ -198,14 +198,17 @@ Branch continue_branch(const OdeSystem& system, const BranchProblem& problem,
   }
   if (describer)
     for (auto& e : branch.events) {
-      // The located orbit, for the describer: one plain integration of its period.
+      // The located orbit, for the describer: its samples from location (or, where they are not
+      // of this state and period, one plain integration of the period).
       PeriodicOrbit located;
       located.state0 = e.state0;
       located.period = e.period;
       located.parameters = system.with_parameter(problem.values, problem.parameter, e.parameter);
       located.subspace = orbit.subspace;
+      located.samples = std::move(e.samples);
       e.description = describer->describe(located);
     }
+  for (auto& e : branch.events) e.samples = PeriodSamples{};
   if (!problem.start_orbit) branch.flow += orbit.flow;  // the start's transient and Newton
   branch.seconds = clock.seconds();
   return branch;

@@ -146,6 +146,7 @@ Bifurcation locate(const ContinuationPoint& a, const ContinuationPoint& b, Bifur
   e.state0 = best.orbit.state0;
   e.unknowns = best.unknowns;
   e.tangent = best.tangent;
+  e.samples = std::move(best.orbit.samples);
   if (e.location == LocationOutcome::NotNarrowed) e.note = "location did not reach the tolerance";
   return e;
 }

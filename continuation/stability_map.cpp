@@ -79,16 +79,14 @@ std::vector<BifurcationCurve> event_curves(const OdeSystem& system, const Branch
     for (const CurveEvent& meeting : std::vector<CurveEvent>(curves[c].events)) {
       // At a 1:1 resonance an NS curve's pair meets at +1 and one multiplier goes on through
       // it: a BP curve (breaking block) or an LP curve starts there; at 1:2, a PD curve.
-      std::string other;
-      SymmetryKind symmetry = meeting.crossing_symmetry;
-      if (meeting.type == "R1" || meeting.type == "R2") {
-        symmetry = curves[c].symmetry;
-        other = meeting.type == "R2" ? "PD" : symmetry == SymmetryKind::Breaking ? "BP" : "LP";
-      } else {
-        const auto dash = meeting.type.find('-');
-        if (dash == std::string::npos || meeting.type.rfind("turn", 0) == 0) continue;
-        other = meeting.type.substr(dash + 1);
-      }
+      const bool resonance = meeting.type == "R1" || meeting.type == "R2";
+      const SymmetryKind symmetry = resonance ? curves[c].symmetry : meeting.crossing_symmetry;
+      const auto dash = meeting.type.find('-');
+      if (!resonance && (dash == std::string::npos || meeting.type.rfind("turn", 0) == 0)) continue;
+      const std::string other = !resonance                           ? meeting.type.substr(dash + 1)
+                                : meeting.type == "R2"               ? std::string("PD")
+                                : symmetry == SymmetryKind::Breaking ? std::string("BP")
+                                                                     : std::string("LP");
       // An unlocated meeting is tried too, from where its probes got (the curve's start is
       // corrected onto it at that value of the second parameter): the NS curve's test function
       // is itself singular where another multiplier reaches +1 (the trivial one times it is 1

@@ -4,6 +4,30 @@
 
 namespace sympathy::detail {
 
+namespace {
+
+// z = sum_i c[i] x[i] entry by entry, for K vectors known at compile time: the loop over the
+// vectors unrolled, the one over the entries free to vectorize. Each entry's terms are added in
+// SUNDIALS's order (c[0] x[0], then + c[1] x[1], ...), so the sums round alike; z[j] is written
+// after every x[i][j] is read, so z may be any x[i]. With c[0] = 1 the first product is x[0][j]
+// itself, as SUNDIALS's in-place case leaves it.
+template <int K>
+void combine(const sunrealtype* c, const sunrealtype* const* x, sunrealtype* z, sunindextype n) {
+  sunrealtype ci[K];
+  const sunrealtype* xi[K];
+  for (int i = 0; i < K; ++i) {
+    ci[i] = c[i];
+    xi[i] = x[i];
+  }
+  for (sunindextype j = 0; j < n; ++j) {
+    sunrealtype sum = ci[0] * xi[0][j];
+    for (int i = 1; i < K; ++i) sum += ci[i] * xi[i][j];
+    z[j] = sum;
+  }
+}
+
+}  // namespace
+
 int linear_combination(int nvec, sunrealtype* c, N_Vector* X, N_Vector z) {
   if (nvec < 1) return -1;
   // One or two vectors: scale and linear sum (below), as SUNDIALS's, which allow z to be X[1].
@@ -17,6 +41,33 @@ int linear_combination(int nvec, sunrealtype* c, N_Vector* X, N_Vector z) {
   }
   const sunindextype n = NV_LENGTH_S(z);
   sunrealtype* zd = NV_DATA_S(z);
+  // ARKODE's explicit stages combine 3 to 8 vectors (Dormand-Prince: up to 7): unrolled, as one
+  // pass over the entries instead of one per vector (10.7% of the fast preset's instructions on
+  // the anti-phase branch, at 470 a call).
+  if (nvec <= 8) {
+    const sunrealtype* x[8];
+    for (int i = 0; i < nvec; ++i) x[i] = NV_DATA_S(X[i]);
+    switch (nvec) {
+      case 3:
+        combine<3>(c, x, zd, n);
+        return 0;
+      case 4:
+        combine<4>(c, x, zd, n);
+        return 0;
+      case 5:
+        combine<5>(c, x, zd, n);
+        return 0;
+      case 6:
+        combine<6>(c, x, zd, n);
+        return 0;
+      case 7:
+        combine<7>(c, x, zd, n);
+        return 0;
+      default:
+        combine<8>(c, x, zd, n);
+        return 0;
+    }
+  }
   const sunrealtype* x0 = NV_DATA_S(X[0]);
   // z = c[0] X[0] first (in place where z is X[0]; nothing to do for c[0] = 1), then each term
   // added in turn: SUNDIALS's order of operations, so the sums round alike.

@@ -3,7 +3,8 @@
 // The derived class writes
 //   template <class T, class P>
 //   void evaluate(double t, const T* z, const P* raw, T* dz) const;
-// where `raw` are the parameter values of the call (ParameterValues, the model's raw layout).
+// where `raw` are the parameter values of the call (ParameterValues, the model's raw layout), and
+// which sets every entry of dz (it is handed the integrator's own vector, not a zeroed one).
 // T is double or a dual number; P is double, or the same dual as T when a parameter derivative
 // is wanted. Named parameters are directions in raw parameter space: a name maps to the raw
 // entries it sets together (e.g. a damping shared by several metronomes), so df/dp for a name is
@@ -130,8 +131,8 @@ class AutoDiffSystem : public OdeSystem {
         // Kept per thread between calls (one system serves several threads): no allocation a
         // step on the augmented flows' hot path.
         thread_local std::vector<D> zd, dzd;
-        zd.resize(n);  // every entry set below
-        dzd.assign(n, D{});
+        zd.resize(n);   // every entry set below
+        dzd.resize(n);  // every entry set by evaluate, as rhs has it (zeroing: 1.6% of fast)
         for (int i = 0; i < n; ++i) {
           zd[i] = D(z[i]);
           for (int k = 0; k < width; ++k) zd[i].d[k] = S[c0 + k][i];

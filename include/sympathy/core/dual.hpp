@@ -144,6 +144,18 @@ template <int K>
 Dual<K> cos(const Dual<K>& a) {
   return chain(a, std::cos(a.v), -std::sin(a.v));
 }
+// sin and cos of one argument together: a model that wants both pays one sin and one cos of the
+// value (the two calls above would each take both; as bit-exact as they are).
+inline void sin_cos(double a, double& s, double& c) {
+  s = std::sin(a);
+  c = std::cos(a);
+}
+template <int K>
+void sin_cos(const Dual<K>& a, Dual<K>& s, Dual<K>& c) {
+  const double sv = std::sin(a.v), cv = std::cos(a.v);
+  s = chain(a, sv, cv);
+  c = chain(a, cv, -sv);
+}
 template <int K>
 Dual<K> tanh(const Dual<K>& a) {
   const double t = std::tanh(a.v);
