@@ -325,7 +325,7 @@ Branch Continuation::run_from(const PeriodicOrbit& start, int direction,
     if (previous && previous->section == a.section && a.step > 0.0 &&
         jacobian_before_.rows() == chord.rows() && jacobian_before_.cols() == chord.cols())
       chord = chord_jacobian_ + (ds / a.step) * (chord_jacobian_ - jacobian_before_);
-    const Correction c = correct_step(
+    Correction c = correct_step(
         ya, a.tangent, ds,
         predict(space, previous, a, ds, options_.curved_predictor, options_.min_tangent_cosine),
         &chord, guess_residual_);
@@ -338,6 +338,8 @@ Branch Continuation::run_from(const PeriodicOrbit& start, int direction,
         return finish(StopReason::MinimumStep, "step size below the minimum: " + c.reason);
       continue;
     }
+    // A branch in its symmetric subspace stays there exactly, its tangents too.
+    const bool in_subspace = problem_->keep_in_subspace(c.y, space.values_at(c.y[N]));
     // The section stays while the flow crosses it well (the angle in the scaled norm): kept, the
     // points lie on one smooth curve, which the predictor and the extrapolated Jacobian follow.
     const int n = problem_->dimension();
@@ -348,7 +350,8 @@ Branch Continuation::run_from(const PeriodicOrbit& start, int direction,
     const double crossing = flow_ref.normalized().dot(flow_b.normalized());
     if (crossing < 0.9) problem_->set_phase_section(zb, space.section_normal(zb, c.y[N]));
     auto jacobian_b = problem_->jacobian(c.evaluation, true);
-    const Eigen::VectorXd tau_b = space.tangent(jacobian_b, c.y, a.tangent);
+    Eigen::VectorXd tau_b = space.tangent(jacobian_b, c.y, a.tangent);
+    if (in_subspace) problem_->project_on_subspace(tau_b);
     if (space.orbit_cosine(tau_b, a.tangent, c.y) < options_.min_tangent_cosine &&
         ds > 4 * options_.min_step) {
       ++branch.rejected.turn;

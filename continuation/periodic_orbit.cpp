@@ -6,6 +6,7 @@
 #include "stiffness_choice.hpp"
 #include "sympathy/continuation/symmetry_reduction.hpp"
 #include "sympathy/core/linear_solve.hpp"
+#include "sympathy/core/reduced_system.hpp"
 #include "sympathy/core/text.hpp"
 
 namespace sympathy {
@@ -342,6 +343,18 @@ PeriodicOrbit find_periodic_orbit(const OdeSystem& system, const ParameterValues
       orbit.seconds = started.seconds();
       return orbit;
     }
+  // Early Newton's rough iterations run in the orbit's subspace in its own coordinates (the
+  // restricted system: for the row setup's anti-phase orbit a 2 x 2 monodromy instead of 6 x 6,
+  // without the block across that only the multipliers need), where the system has no angles to
+  // wrap; the polish, in the whole state, gives all the multipliers. The transient stays in the
+  // whole state: restricted, its error norm has no zero components to dilute it, and the
+  // anti-phase transient took more steps (87 against 84 million instructions).
+  std::unique_ptr<OdeSystem> restricted;
+  InvariantSubspace::Coordinates coordinates;
+  if (options.use_symmetry && !subspace.is_whole_space() && system.angle_states().empty()) {
+    restricted = restrict_system(system, subspace);
+    coordinates = subspace.coordinates(system.dimension());
+  }
   Flow flow(system, options.transient_flow);
   Eigen::VectorXd z = subspace.project(start);
   PeriodicOrbit failed;
@@ -406,11 +419,20 @@ PeriodicOrbit find_periodic_orbit(const OdeSystem& system, const ParameterValues
           }
           if (moved <= options.early_newton_below * size) {
             choose_method(z, period);
-            const PeriodicOrbit rough = solve_periodic_orbit(system, p, z, period, subspace, early);
+            // In V the linear solver is chosen for the restricted system (a structured one
+            // asked of the whole may have no structure there).
+            OrbitOptions early_in_v = early;
+            early_in_v.shooting.flow.linear_solver = LinearSolver::Automatic;
+            const PeriodicOrbit rough =
+                restricted ? solve_periodic_orbit(*restricted, p, coordinates.restrict(z), period,
+                                                  InvariantSubspace(), early_in_v)
+                           : solve_periodic_orbit(system, p, z, period, subspace, early);
             tried += rough.flow;
             if (rough.converged()) {
+              const Eigen::VectorXd guess =
+                  restricted ? coordinates.embed(rough.state0) : rough.state0;
               PeriodicOrbit orbit =
-                  solve_periodic_orbit(system, p, rough.state0, rough.period, subspace, polish);
+                  solve_periodic_orbit(system, p, guess, rough.period, subspace, polish);
               if (approached(system, orbit, z, options.floquet)) {
                 orbit.flow += flow.statistics();
                 orbit.flow += tried;

@@ -201,6 +201,20 @@ std::optional<Eigen::VectorXd> ShootingProblem::symmetric_part(const Eigen::Vect
   return zV;
 }
 
+bool ShootingProblem::keep_in_subspace(Eigen::VectorXd& unknowns, const ParameterValues& p) const {
+  if (!symmetric_ || options_.segments != 1 || !autonomous_) return false;
+  const auto zV = symmetric_part(unknowns.head(n_), p);
+  if (!zV) return false;
+  unknowns.head(n_) = *zV;
+  return true;
+}
+
+void ShootingProblem::project_on_subspace(Eigen::VectorXd& direction) const {
+  if (!symmetric_) return;
+  const auto& k = symmetric_->across.coordinates();
+  direction.head(n_) = k.embed(k.restrict(symmetric_->subspace.project(direction.head(n_))));
+}
+
 std::optional<ShootingProblem::Evaluation> ShootingProblem::split_evaluation(
     const Eigen::VectorXd& x, const ParameterValues& p, int parameter) {
   SymmetricOrbit& s = *symmetric_;

@@ -191,7 +191,7 @@ InvariantSubspace::Coordinates InvariantSubspace::coordinates(int dimension) con
 
 Eigen::VectorXd InvariantSubspace::Coordinates::embed(const Eigen::VectorXd& y) const {
   Eigen::VectorXd z(static_cast<int>(coordinate.size()));
-  for (int i = 0; i < z.size(); ++i) z[i] = coordinate[i] < 0 ? 0.0 : sign[i] * y[coordinate[i]];
+  embed_into(y.data(), z.data());
   return z;
 }
 

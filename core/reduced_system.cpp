@@ -2,6 +2,8 @@
 
 #include <vector>
 
+#include "nested_scratch.hpp"
+
 namespace sympathy {
 
 ReducedSystem::ReducedSystem(const OdeSystem& system, const InvariantSubspace& subspace)
@@ -18,11 +20,28 @@ Eigen::VectorXd ReducedSystem::embed(const double* y) const {
   return coordinates_.embed(Eigen::Map<const Eigen::VectorXd>(y, dimension()));
 }
 
+namespace {
+
+// The whole state's temporaries of a call, kept per thread (NestedScratch: a restriction of a
+// restriction re-enters): the transient and plain runs in a subspace call rhs at every stage,
+// the rough Newton in it the variational equations.
+struct ReducedScratch {
+  Eigen::VectorXd z, dz;
+  Eigen::MatrixXd in, result;
+  std::vector<const double*> in_columns;
+  std::vector<double*> out_columns;
+};
+
+}  // namespace
+
 void ReducedSystem::rhs(double t, const double* y, const double* p, double* dy) const {
-  const Eigen::VectorXd z = embed(y);
-  Eigen::VectorXd dz(z.size());
-  system_.rhs(t, z.data(), p, dz.data());
-  for (int k = 0; k < dimension(); ++k) dy[k] = dz[coordinates_.representative[k]];
+  const detail::NestedScratch<ReducedScratch> s;
+  const int n = static_cast<int>(coordinates_.coordinate.size());
+  s->z.resize(n);
+  s->dz.resize(n);
+  coordinates_.embed_into(y, s->z.data());
+  system_.rhs(t, s->z.data(), p, s->dz.data());
+  for (int k = 0; k < dimension(); ++k) dy[k] = s->dz[coordinates_.representative[k]];
 }
 
 void ReducedSystem::jacobian(double t, const double* y, const double* p,
@@ -45,20 +64,45 @@ void ReducedSystem::jacobian(double t, const double* y, const double* p,
 void ReducedSystem::variational_rhs(double t, const double* y, const double* p, int columns,
                                     const double* const* S, double* const* out,
                                     std::span<const int> parameters) const {
-  const Eigen::VectorXd z = embed(y);
-  const int n = static_cast<int>(z.size()), d = dimension();
-  Eigen::MatrixXd in(n, columns), result(n, columns);
-  std::vector<const double*> in_columns(columns);
-  std::vector<double*> out_columns(columns);
+  variational(t, y, p, columns, S, out, parameters, nullptr);
+}
+
+void ReducedSystem::rhs_and_variational(double t, const double* y, const double* p, double* dy,
+                                        int columns, const double* const* S, double* const* out,
+                                        std::span<const int> parameters) const {
+  variational(t, y, p, columns, S, out, parameters, dy);
+}
+
+// P S's columns through the whole system's variational equations (with f, in the one call that
+// gives both where `dy` is asked for: a dual-number model evaluates once), read off at the
+// representatives.
+void ReducedSystem::variational(double t, const double* y, const double* p, int columns,
+                                const double* const* S, double* const* out,
+                                std::span<const int> parameters, double* dy) const {
+  const detail::NestedScratch<ReducedScratch> s;
+  const int n = static_cast<int>(coordinates_.coordinate.size()), d = dimension();
+  s->z.resize(n);
+  s->dz.resize(n);
+  coordinates_.embed_into(y, s->z.data());
+  s->in.resize(n, columns);
+  s->result.resize(n, columns);
+  s->in_columns.resize(columns);
+  s->out_columns.resize(columns);
   for (int j = 0; j < columns; ++j) {
-    in.col(j) = coordinates_.embed(Eigen::Map<const Eigen::VectorXd>(S[j], d));
-    in_columns[j] = in.col(j).data();
-    out_columns[j] = result.col(j).data();
+    coordinates_.embed_into(S[j], s->in.col(j).data());
+    s->in_columns[j] = s->in.col(j).data();
+    s->out_columns[j] = s->result.col(j).data();
   }
-  system_.variational_rhs(t, z.data(), p, columns, in_columns.data(), out_columns.data(),
-                          parameters);
+  if (dy) {
+    system_.rhs_and_variational(t, s->z.data(), p, s->dz.data(), columns, s->in_columns.data(),
+                                s->out_columns.data(), parameters);
+    for (int k = 0; k < d; ++k) dy[k] = s->dz[coordinates_.representative[k]];
+  } else {
+    system_.variational_rhs(t, s->z.data(), p, columns, s->in_columns.data(), s->out_columns.data(),
+                            parameters);
+  }
   for (int j = 0; j < columns; ++j)
-    for (int k = 0; k < d; ++k) out[j][k] = result(coordinates_.representative[k], j);
+    for (int k = 0; k < d; ++k) out[j][k] = s->result(coordinates_.representative[k], j);
 }
 
 void ReducedSystem::parameter_derivative(double t, const double* y, const double* p, int parameter,

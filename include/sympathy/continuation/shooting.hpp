@@ -113,6 +113,17 @@ class ShootingProblem {
   // block by block (see the header comment), since the last reset_statistics().
   int split_evaluations() const;
 
+  // A branch in the symmetric subspace V (use_symmetry) kept there exactly: the unknowns' state
+  // (the head of `unknowns`) replaced by its part in V where it lies in V to 1e-13 of its size
+  // and f keeps the reflection at p (as the split and across evaluations ask); true if so
+  // (nothing changes otherwise), and then the point's tangent belongs in V too
+  // (project_on_subspace). Each step leaves a branch in V only to rounding, and steps whose
+  // prediction lands (no corrector iteration) never pull it back: the row setup's in-phase
+  // k-branch drifted past 1e-13 after 21 points and lost its split evaluations.
+  bool keep_in_subspace(Eigen::VectorXd& unknowns, const ParameterValues& p) const;
+  // The state part (the head) of a direction of the unknowns replaced by its part in V.
+  void project_on_subspace(Eigen::VectorXd& direction) const;
+
   int segments() const { return options_.segments; }
   int dimension() const { return n_; }
   int unknowns() const { return n_ * options_.segments + (autonomous_ ? 1 : 0); }

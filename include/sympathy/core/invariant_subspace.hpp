@@ -90,7 +90,12 @@ class InvariantSubspace {
     std::vector<int> coordinate;      // per component: its coordinate, or -1 (a zero component)
     std::vector<double> sign;         // per component
     int size() const { return static_cast<int>(representative.size()); }
-    Eigen::VectorXd embed(const Eigen::VectorXd& y) const;     // z from y
+    Eigen::VectorXd embed(const Eigen::VectorXd& y) const;  // z from y
+    // z from y into z's n entries, for right-hand sides (no allocation).
+    void embed_into(const double* y, double* z) const {
+      const int n = static_cast<int>(coordinate.size());
+      for (int c = 0; c < n; ++c) z[c] = coordinate[c] < 0 ? 0.0 : sign[c] * y[coordinate[c]];
+    }
     Eigen::VectorXd restrict(const Eigen::VectorXd& z) const;  // y: z's representatives
     // The same as matrices: P (n x r, z = P y) and R (r x n, y = R z).
     Eigen::MatrixXd embedding() const;

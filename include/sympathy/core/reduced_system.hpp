@@ -34,6 +34,9 @@ class ReducedSystem final : public SystemOver {
   void variational_rhs(double t, const double* y, const double* p, int columns,
                        const double* const* S, double* const* out,
                        std::span<const int> parameters) const override;
+  void rhs_and_variational(double t, const double* y, const double* p, double* dy, int columns,
+                           const double* const* S, double* const* out,
+                           std::span<const int> parameters) const override;
   void parameter_derivative(double t, const double* y, const double* p, int parameter,
                             double* dfdp) const override;
   // The whole system's zones on components that are coordinates here (a zero component has
@@ -43,6 +46,8 @@ class ReducedSystem final : public SystemOver {
 
  private:
   Eigen::VectorXd embed(const double* y) const;
+  void variational(double t, const double* y, const double* p, int columns, const double* const* S,
+                   double* const* out, std::span<const int> parameters, double* dy) const;
 
   InvariantSubspace::Coordinates coordinates_;
 };
