@@ -11,10 +11,6 @@ namespace {
 
 constexpr double kOnTheCircle = 1e-3;
 
-bool is_real(std::complex<double> mu) {
-  return std::abs(mu.imag()) <= 1e-6 * std::abs(mu);
-}
-
 }  // namespace
 
 std::string together_note(BifurcationType type, int multiplicity) {

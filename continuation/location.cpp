@@ -143,6 +143,21 @@ Bifurcation locate(const ContinuationPoint& a, const ContinuationPoint& b, Bifur
       }
   }
   if (e.crossing.imag() < 0.0) e.crossing = std::conj(e.crossing);
+  // A step may see a real multiplier on one side of the circle and, on the other, one of a
+  // complex pair it has joined since (the anti-phase k-branch's breaking multiplier crosses +1 at
+  // k = 47.066 and meets another real one at 47.1): what crosses is what the located point has.
+  if (e.location == LocationOutcome::Located && type != BifurcationType::Fold) {
+    const bool real = is_real(e.crossing);
+    const BifurcationType crossed = !real                     ? BifurcationType::NeimarkSacker
+                                    : e.crossing.real() > 0.0 ? BifurcationType::BranchPoint
+                                                              : BifurcationType::PeriodDoubling;
+    if (crossed != type) {
+      e.note = std::string("the multiplier followed is ") + (real ? "real" : "complex") +
+               " where it crosses, " + (real ? "complex" : "real") +
+               " at an end of the step that found it";
+      e.type = crossed;
+    }
+  }
   e.state0 = best.orbit.state0;
   e.unknowns = best.unknowns;
   e.tangent = best.tangent;

@@ -6,6 +6,7 @@
 // where two real multipliers meet and split into a complex pair, are not ambiguities).
 #pragma once
 
+#include <complex>
 #include <utility>
 #include <vector>
 
@@ -17,6 +18,12 @@ namespace sympathy {
 // orbits forces to 1 (the Floquet analysis keeps the two kinds apart, even where one of these
 // crosses 1 among them).
 std::vector<Multiplier> nontrivial(const FloquetAnalysis& f);
+
+// A real multiplier, to a millionth of its modulus: what crosses +1 (LP, BP) or -1 (PD) rather
+// than in a complex pair (NS).
+inline bool is_real(std::complex<double> mu) {
+  return std::abs(mu.imag()) <= 1e-6 * std::abs(mu);
+}
 
 struct TrackedMultipliers {
   std::vector<std::pair<Multiplier, Multiplier>> pairs;  // (at a, at b)
