@@ -1,9 +1,12 @@
 // The trust of a detected event: a crossing whose multiplier is not on the unit circle where it
 // was located is flagged (multipliers of 1e-17 paired across a step on a long-period orbit are
-// not a crossing), a located one on the circle is trusted.
+// not a crossing), a located one on the circle is trusted. And what it rests on: multipliers
+// followed across a step within their symmetry, and an event's kind from where it crosses.
 #include "sympathy/continuation/detection.hpp"
 
 #include <gtest/gtest.h>
+
+#include "sympathy/continuation/location.hpp"
 
 namespace sympathy {
 namespace {
@@ -53,6 +56,75 @@ TEST(Detection, CrossingOffTheCircleIsNotTrusted) {
   ASSERT_EQ(events.size(), 1u);
   EXPECT_EQ(events[0].trust, EventTrust::CrossingNotResolved);
   EXPECT_NE(events[0].note.find("not on the unit circle"), std::string::npos) << events[0].note;
+}
+
+// A point at parameter (and arclength) s with the given nontrivial multipliers.
+ContinuationPoint point_with(double s, std::vector<Multiplier> multipliers) {
+  ContinuationPoint p;
+  p.parameter = s;
+  p.step = s;
+  p.unknowns = Eigen::Vector2d(1.0, s);
+  p.tangent = Eigen::Vector3d(0.0, 0.0, 1.0);
+  p.orbit.floquet.multipliers = std::move(multipliers);
+  return p;
+}
+
+Multiplier labelled(std::complex<double> value, SymmetryKind symmetry) {
+  Multiplier m;
+  m.value = value;
+  m.symmetry = symmetry;
+  return m;
+}
+
+// A multiplier that keeps the subspace's symmetry (0.9228, still) and one that breaks it, rising
+// from 0.913 through it to 0.933 (the anti-phase k-branch near its BP): eigenvalues of different
+// blocks of the monodromy, which cannot exchange. By distance alone the least-cost pairing swaps
+// them (0.0002 against 0.0004, squared); by symmetry each is followed as itself, and no other
+// multiplier of its own symmetry is near enough to make the pairing doubtful.
+TEST(MultiplierTracking, MultipliersOfDifferentSymmetryPassWithoutExchanging) {
+  for (bool with_labels : {true, false}) {
+    const SymmetryKind keeps = with_labels ? SymmetryKind::Keeping : SymmetryKind::Unlabelled;
+    const SymmetryKind breaks = with_labels ? SymmetryKind::Breaking : SymmetryKind::Unlabelled;
+    const ContinuationPoint a = point_with(1.0, {labelled(0.9228, keeps), labelled(0.913, breaks)});
+    const ContinuationPoint b = point_with(2.0, {labelled(0.9228, keeps), labelled(0.933, breaks)});
+    const TrackedMultipliers t = track(nullptr, a, b);
+    ASSERT_EQ(t.pairs.size(), 2u);
+    int kept_as_itself = 0;
+    for (const auto& [x, y] : t.pairs) kept_as_itself += x.value == y.value ? 1 : 0;
+    if (with_labels) {
+      EXPECT_EQ(kept_as_itself, 1);
+      for (const auto& [x, y] : t.pairs) EXPECT_EQ(x.symmetry, y.symmetry);
+      EXPECT_LT(t.ambiguity, 0.5);
+    } else {
+      EXPECT_EQ(kept_as_itself, 0);  // swapped: what the labels prevent
+    }
+  }
+}
+
+// A real multiplier leaves through +1 and, later in the same step, joins another real one in a
+// complex pair: the step's ends see 1.01 (real) and 0.967 + 0.014i, which detection takes for a
+// pair crossing. Located, the multiplier that crosses is real (it moves as 1.01 - 0.04 s / s_b,
+// the crossing at s = 0.25 s_b): a branch point, at the crossing to the tolerance, with a note.
+TEST(Location, ACrossingIsOfTheKindItsMultiplierIsWhereItCrosses) {
+  const double sb = 1.0;
+  auto real_at = [](double s) { return 1.01 - 0.04 * s; };
+  const ContinuationPoint a = point_with(0.0, {labelled(real_at(0.0), SymmetryKind::Breaking)});
+  const ContinuationPoint b = point_with(sb, {labelled({0.967, 0.014}, SymmetryKind::Breaking),
+                                              labelled({0.967, -0.014}, SymmetryKind::Breaking)});
+  int probes = 0;
+  const PointAt probe = [&](double s, std::string&) -> std::optional<ContinuationPoint> {
+    ++probes;
+    return point_with(s, {labelled(real_at(s), SymmetryKind::Breaking)});
+  };
+  const Bifurcation e = locate(a, b, BifurcationType::NeimarkSacker, 1, real_at(0.0),
+                               std::complex<double>(0.967, 0.014), 1e-10, 0.01, probe);
+  ASSERT_TRUE(e.located());
+  EXPECT_EQ(e.type, BifurcationType::BranchPoint);
+  EXPECT_NEAR(e.parameter, 0.25, 1e-10);
+  EXPECT_NEAR(e.crossing.real(), 1.0, 1e-10);
+  EXPECT_EQ(e.crossing.imag(), 0.0);
+  EXPECT_NE(e.note.find("real where it crosses"), std::string::npos) << e.note;
+  EXPECT_GT(probes, 0);
 }
 
 }  // namespace
