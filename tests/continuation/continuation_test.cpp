@@ -233,7 +233,8 @@ TEST(Continuation, GuessInsideAStepIsFourthOrder) {
 
 // The last point lies on the bound, exactly, and no point beyond it (the reliability issue: a
 // branch used to end a full step past --to), both ways; the point on the bound is an orbit of
-// the normal form there (radius 1 whatever mu for the pitchfork family: residual below 1e-8).
+// the normal form there (radius 1 whatever mu for the pitchfork family: residual below 1e-8), and
+// costs one integration more than the branch stopped a point before it.
 TEST(Continuation, LastPointLiesOnTheBound) {
   NormalForm system(Kind::Pitchfork, -0.4);
   const auto start = circle(system);
@@ -247,6 +248,15 @@ TEST(Continuation, LastPointLiesOnTheBound) {
     }
     EXPECT_EQ(branch.points.back().parameter, direction > 0 ? 0.5 : -0.5);
     EXPECT_LT(branch.points.back().orbit.residual, 1e-8);
+    ContinuationOptions shorter = options(-0.5, 0.5);
+    shorter.max_points = static_cast<int>(branch.points.size()) - 1;
+    const Branch before = Continuation(system, 0, shorter).run(start, direction);
+    ASSERT_EQ(before.stop, StopReason::PointLimit);
+    // The last step's prediction passed the bound: the point on the bound came from it at once,
+    // one integration (its prediction lands: radius 1 at every mu), not the step's point beyond
+    // the bound and then the bound's (two).
+    EXPECT_EQ(branch.points.back().iterations, 0);
+    EXPECT_EQ(branch.flow.calls - before.flow.calls, 1);
   }
 }
 
