@@ -327,13 +327,16 @@ Branch Continuation::run_from(const PeriodicOrbit& start, int direction,
       chord = chord_jacobian_ + (ds / a.step) * (chord_jacobian_ - jacobian_before_);
     const Eigen::VectorXd predicted =
         predict(space, previous, a, ds, options_.curved_predictor, options_.min_tangent_cosine);
-    // A prediction past the bound: the point on the bound at once, not first the step's point
-    // beyond it and then the bound's (one correction instead of two: 1 of the fast preset's 89
-    // on the anti-phase k-branch). Its multipliers are watched as a step's; too far, the step is
-    // retried shorter as any other, until its prediction falls short of the bound.
+    // A prediction past the bound, where the last one landed: the point on the bound at once,
+    // not first the step's point beyond it and then the bound's (one correction instead of two:
+    // 1 of the fast preset's 89 on the anti-phase k-branch). Its multipliers are watched as a
+    // step's; too far, the step is retried shorter as any other, until its prediction falls
+    // short of the bound. Not where predictions miss: the branch may turn before the bound (the
+    // in-phase s-branch shrinks into its Hopf point at s = 2.4e-9, and a point at s = 0 was
+    // sought in vain: 5 integrations).
     std::optional<ContinuationPoint> at_bound;
     const double predicted_bound = std::clamp(predicted[N], options_.lower, options_.upper);
-    if (predicted_bound != predicted[N] && a.parameter > options_.lower &&
+    if (predictions_land_ && predicted_bound != predicted[N] && a.parameter > options_.lower &&
         a.parameter < options_.upper) {
       ContinuationPoint ahead;
       ahead.unknowns = predicted.head(N);
