@@ -201,7 +201,7 @@ void Flow::update_max_step(double t) {
 // Within the levels but outside the innermost band, a component moving away from its zone has
 // the band's outer level ahead of it, not the inner one: with a one-step method it is capped by
 // that level, steps three times as long (the fast preset's anti-phase k-branch: 26 803 -> 24 724
-// steps, 1.008e9 -> 0.953e9 instructions, the located points as close to the reference). Not
+// steps, 1.006e9 -> 0.953e9 instructions, the located points as close to the reference). Not
 // lifted altogether: error control alone on the way out took 23 039 steps, but the results
 // moved with the parameters by more noise, and the fast preset's BP curve in (k, c) from the
 // anti-phase BP lost its way at the second point. CVODE's multistep methods keep the inner
