@@ -190,8 +190,7 @@ std::optional<Eigen::VectorXd> ShootingProblem::symmetric_part(const Eigen::Vect
   // The corrector's steps leave a branch in V only to rounding (~1e-16 of the state): within
   // 1e-13 of the state's size, as remember() asks, the state is taken as its part in V.
   const SymmetricOrbit& s = *symmetric_;
-  const auto& k = s.across.coordinates();
-  Eigen::VectorXd zV = k.embed(k.restrict(s.subspace.project(z)));
+  Eigen::VectorXd zV = in_subspace(z);
   const double size = std::max(1.0, z.cwiseAbs().maxCoeff());
   if ((z - zV).cwiseAbs().maxCoeff() > 1e-13 * size) return std::nullopt;
   const Reflection& g = s.reflection;
@@ -210,9 +209,14 @@ bool ShootingProblem::keep_in_subspace(Eigen::VectorXd& unknowns, const Paramete
 }
 
 void ShootingProblem::project_on_subspace(Eigen::VectorXd& direction) const {
-  if (!symmetric_) return;
+  if (symmetric_) direction.head(n_) = in_subspace(direction.head(n_));
+}
+
+// The orthogonal projection onto V, then through V's coordinates: exactly in V (zeros exactly
+// zero, the components tied to another exactly its signed copy), not only to rounding.
+Eigen::VectorXd ShootingProblem::in_subspace(const Eigen::VectorXd& z) const {
   const auto& k = symmetric_->across.coordinates();
-  direction.head(n_) = k.embed(k.restrict(symmetric_->subspace.project(direction.head(n_))));
+  return k.embed(k.restrict(symmetric_->subspace.project(z)));
 }
 
 std::optional<ShootingProblem::Evaluation> ShootingProblem::split_evaluation(

@@ -32,16 +32,26 @@ struct ReducedScratch {
   std::vector<double*> out_columns;
 };
 
+// z = P y into the scratch, dz sized with it.
+void embed_state(const InvariantSubspace::Coordinates& k, const double* y, ReducedScratch& s) {
+  const int n = static_cast<int>(k.coordinate.size());
+  s.z.resize(n);
+  s.dz.resize(n);
+  k.embed_into(y, s.z.data());
+}
+
+// dy = R dz: the whole right-hand side read off at the representatives.
+void read_off(const InvariantSubspace::Coordinates& k, const Eigen::VectorXd& dz, double* dy) {
+  for (std::size_t i = 0; i < k.representative.size(); ++i) dy[i] = dz[k.representative[i]];
+}
+
 }  // namespace
 
 void ReducedSystem::rhs(double t, const double* y, const double* p, double* dy) const {
   const detail::NestedScratch<ReducedScratch> s;
-  const int n = static_cast<int>(coordinates_.coordinate.size());
-  s->z.resize(n);
-  s->dz.resize(n);
-  coordinates_.embed_into(y, s->z.data());
+  embed_state(coordinates_, y, *s);
   system_.rhs(t, s->z.data(), p, s->dz.data());
-  for (int k = 0; k < dimension(); ++k) dy[k] = s->dz[coordinates_.representative[k]];
+  read_off(coordinates_, s->dz, dy);
 }
 
 void ReducedSystem::jacobian(double t, const double* y, const double* p,
@@ -80,10 +90,8 @@ void ReducedSystem::variational(double t, const double* y, const double* p, int 
                                 const double* const* S, double* const* out,
                                 std::span<const int> parameters, double* dy) const {
   const detail::NestedScratch<ReducedScratch> s;
-  const int n = static_cast<int>(coordinates_.coordinate.size()), d = dimension();
-  s->z.resize(n);
-  s->dz.resize(n);
-  coordinates_.embed_into(y, s->z.data());
+  embed_state(coordinates_, y, *s);
+  const int n = static_cast<int>(s->z.size()), d = dimension();
   s->in.resize(n, columns);
   s->result.resize(n, columns);
   s->in_columns.resize(columns);
@@ -96,7 +104,7 @@ void ReducedSystem::variational(double t, const double* y, const double* p, int 
   if (dy) {
     system_.rhs_and_variational(t, s->z.data(), p, s->dz.data(), columns, s->in_columns.data(),
                                 s->out_columns.data(), parameters);
-    for (int k = 0; k < d; ++k) dy[k] = s->dz[coordinates_.representative[k]];
+    read_off(coordinates_, s->dz, dy);
   } else {
     system_.variational_rhs(t, s->z.data(), p, columns, s->in_columns.data(), s->out_columns.data(),
                             parameters);

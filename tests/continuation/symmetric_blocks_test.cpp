@@ -252,6 +252,57 @@ TEST(SymmetricBlocks, ShootingReusesTheOrbitOnlyWhereTheParameterLeavesIt) {
   EXPECT_GT(c.parameter_sensitivities.cwiseAbs().maxCoeff(), 0.1);
 }
 
+// A branch in V is kept there exactly (ShootingProblem::keep_in_subspace): the anti-phase orbit's
+// start (1, 0, -1, 0, 0) moved off V by rounding (1e-15) comes back into V exactly (its nearest
+// point there, within 2e-16 of the start), the period untouched; moved by 1e-9 (past the 1e-13 of
+// the state's size that counts as rounding) it is left as it is. A direction's part in V
+// (project_on_subspace) is the orthogonal projection onto x = 0, a2 = -a1, b2 = -b1, exactly: (a1 -
+// a2)/2, (b1 - b2)/2, their negatives, 0. Without a symmetry declared, both leave their vector
+// alone.
+TEST(SymmetricBlocks, BranchKeptInItsSubspaceExactly) {
+  const SymmetricPair system(0.2);
+  const ParameterValues p = system.default_parameters();
+  ShootingOptions options;
+  options.flow = tight();
+  const Eigen::VectorXd z0 = (Eigen::VectorXd(5) << 1.0, 0.0, -1.0, 0.0, 0.0).finished();
+  const InvariantSubspace subspace = pair_subspace();
+  auto symmetric = sampled_problem(system, options, z0, p, &subspace);
+  auto whole = sampled_problem(system, options, z0, p, nullptr);
+  const Eigen::VectorXd x = symmetric->unknowns_from(z0, p, 2.0 * kPi);
+  Eigen::VectorXd off = x;
+  off[2] += 2e-16;
+  off[4] = 1e-15;
+  ASSERT_TRUE(symmetric->keep_in_subspace(off, p));
+  EXPECT_LT((off.head(5) - z0).cwiseAbs().maxCoeff(), 2e-16);
+  EXPECT_EQ(off[2], -off[0]);  // exactly in V
+  EXPECT_EQ(off[3], -off[1]);
+  EXPECT_EQ(off[4], 0.0);
+  EXPECT_EQ(off.tail(off.size() - 5), x.tail(x.size() - 5));
+  Eigen::VectorXd far = x;
+  far[4] = 1e-9;
+  const Eigen::VectorXd far_before = far;
+  EXPECT_FALSE(symmetric->keep_in_subspace(far, p));
+  EXPECT_EQ(far, far_before);
+  Eigen::VectorXd unchanged = off;
+  unchanged[4] = 1e-15;
+  EXPECT_FALSE(whole->keep_in_subspace(unchanged, p));
+  EXPECT_EQ(unchanged[4], 1e-15);
+
+  Eigen::VectorXd direction(7);
+  direction << 0.3, 0.1, 0.5, -0.2, 0.7, 0.25, -0.5;  // the state's 5, then two more entries
+  Eigen::VectorXd projected = direction;
+  symmetric->project_on_subspace(projected);
+  const Eigen::VectorXd expected =
+      (Eigen::VectorXd(7) << -0.1, 0.15, 0.1, -0.15, 0.0, 0.25, -0.5).finished();
+  EXPECT_LT((projected - expected).cwiseAbs().maxCoeff(), 1e-16);
+  EXPECT_EQ(projected[2], -projected[0]);  // exactly in V
+  EXPECT_EQ(projected[3], -projected[1]);
+  EXPECT_EQ(projected[4], 0.0);
+  Eigen::VectorXd left = direction;
+  whole->project_on_subspace(left);
+  EXPECT_EQ(left, direction);
+}
+
 // Augmented Adams at rtol 1e-11, as the default preset integrates.
 FlowOptions augmented() {
   FlowOptions o = tight();

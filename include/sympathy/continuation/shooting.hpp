@@ -198,6 +198,7 @@ class ShootingProblem {
   // p (what split_evaluation and residual_in_subspace both need); nullopt otherwise.
   std::optional<Eigen::VectorXd> symmetric_part(const Eigen::VectorXd& z,
                                                 const ParameterValues& p) const;
+  Eigen::VectorXd in_subspace(const Eigen::VectorXd& z) const;  // z's part in V, exactly in V
   std::optional<Eigen::VectorXd> residual_in_subspace(const Eigen::VectorXd& x,
                                                       const ParameterValues& p, bool coarse);
   std::optional<Evaluation> split_evaluation(const Eigen::VectorXd& x, const ParameterValues& p,
