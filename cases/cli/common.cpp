@@ -128,7 +128,7 @@ void apply_accuracy(Accuracy accuracy, OrbitOptions& o) {
       // the polish at the shooting's rtol takes one iteration from there either way): at rtol
       // 1e-6 instead of 1e-8 the anti-phase start takes 4 799 steps instead of 6 671, the
       // anti-phase k-branch 22 025 instead of 24 415 (its located points as close to the
-      // reference), the in-phase one 48 817 instead of 51 666.
+      // reference), the in-phase one 49 975 instead of 52 832.
       o.transient_flow.rtol = 1e-6;
       o.transient_flow.atol = 1e-8;
       // Dormand-Prince's steps here are the turning-point caps' (above): each a larger share of
