@@ -2,10 +2,12 @@
 
 #include <algorithm>
 #include <cmath>
+#include <exception>
 #include <functional>
 #include <numbers>
 #include <random>
 #include <stdexcept>
+#include <thread>
 #include <utility>
 
 #include "sympathy/core/across_variations.hpp"
@@ -332,10 +334,23 @@ Eigen::VectorXd ShootingProblem::unknowns_from(const Eigen::VectorXd& z0, const 
   return x;
 }
 
+std::vector<Flow*> ShootingProblem::team(Flow& flow) {
+  const int size = std::min(options_.threads, options_.segments);
+  std::vector<Flow*> flows{&flow};
+  if (size < 2) return flows;
+  auto& helpers = helpers_[&flow];
+  while (static_cast<int>(helpers.size()) < size - 1)
+    helpers.push_back(std::make_unique<Flow>(flow.system(), flow.options()));
+  for (int w = 0; w < size - 1; ++w) flows.push_back(helpers[w].get());
+  return flows;
+}
+
 FlowStatistics ShootingProblem::statistics() const {
   FlowStatistics s = flow_.statistics();
   for (const auto& f : plain_flows_)
     if (f) s += f->statistics();
+  for (const auto& [flow, helpers] : helpers_)
+    for (const auto& f : helpers) s += f->statistics();
   if (symmetric_) {
     s += symmetric_->flow.statistics();
     if (symmetric_->split_flow) s += symmetric_->split_flow->statistics();
@@ -349,6 +364,8 @@ void ShootingProblem::reset_statistics() {
   flow_.reset_statistics();
   for (auto& f : plain_flows_)
     if (f) f->reset_statistics();
+  for (auto& [flow, helpers] : helpers_)
+    for (auto& f : helpers) f->reset_statistics();
   if (symmetric_) {
     symmetric_->flow.reset_statistics();
     if (symmetric_->split_flow) symmetric_->split_flow->reset_statistics();
@@ -437,7 +454,13 @@ ShootingProblem::Evaluation ShootingProblem::evaluate(const Eigen::VectorXd& x,
     e.samples.period = T;
     e.samples.states.resize(n_, intervals + 1);
   }
-  for (int j = 0; j < m; ++j) {
+  // Each segment writes only its own slots (its transition, end rate, parameter column, residual
+  // block and samples), so the segments may run on several threads in any order.
+  if (derivatives) {
+    e.transitions.resize(m);
+    e.end_rates.resize(m);
+  }
+  const auto segment = [&](int j, Flow& f) {
     const Eigen::VectorXd zj = x.segment(j * n_, n_);
     // Autonomous segments all start at t = 0; forced ones at their place in the period.
     const double t0 = autonomous_ ? 0.0 : j * T / m;
@@ -455,18 +478,42 @@ ShootingProblem::Evaluation ShootingProblem::evaluate(const Eigen::VectorXd& x,
     Eigen::VectorXd end;
     if (derivatives) {
       int k = first;
-      auto d = flow.advance_with_sensitivities(
+      auto d = f.advance_with_sensitivities(
           zj, p, t0, t1, true, parameters, times,
           [&](double, const Eigen::VectorXd& z) { e.samples.states.col(k++) = z; });
       end = std::move(d.state);
-      e.transitions.push_back(std::move(d.transition));
+      e.transitions[j] = std::move(d.transition);
       if (parameter >= 0) e.parameter_sensitivities.col(j) = d.parameter_sensitivities.col(0);
-      e.end_rates.push_back(system_.rhs(t1, end, p));
+      e.end_rates[j] = system_.rhs(t1, end, p);
     } else {
-      end = flow.advance(zj, p, t0, t1);
+      end = f.advance(zj, p, t0, t1);
     }
     e.residual.segment(j * n_, n_) = end - x.segment(((j + 1) % m) * n_, n_);
     if (j + 1 == m) e.residual.segment(j * n_, n_) -= winding_;
+  };
+  const std::vector<Flow*> flows = team(flow);
+  if (flows.size() == 1) {
+    for (int j = 0; j < m; ++j) segment(j, flow);
+  } else {
+    // Thread w integrates segments w, w + threads, ...: the same share each call. A failure is
+    // rethrown after all have stopped, the first segment's that failed (as one thread would).
+    std::vector<std::exception_ptr> failures(m);
+    const auto share = [&](int w) {
+      for (int j = w; j < m; j += static_cast<int>(flows.size())) {
+        try {
+          segment(j, *flows[w]);
+        } catch (...) {
+          failures[j] = std::current_exception();
+          return;
+        }
+      }
+    };
+    std::vector<std::thread> threads;
+    for (int w = 1; w < static_cast<int>(flows.size()); ++w) threads.emplace_back(share, w);
+    share(0);
+    for (auto& t : threads) t.join();
+    for (const auto& failure : failures)
+      if (failure) std::rethrow_exception(failure);
   }
   if (autonomous_) e.residual[n_ * m] = f_ref_.dot(x.head(n_) - z_ref_);
   return e;

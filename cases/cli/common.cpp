@@ -7,6 +7,8 @@
 #include <csignal>
 #include <cstdio>
 #include <filesystem>
+#include <string>
+#include <thread>
 #include <utility>
 
 namespace sympathy::cli {
@@ -215,6 +217,21 @@ std::string table_number(double v, const char* format) {
   return buffer;
 }
 
+OptionSpec segment_threads_option() {
+  return {"--threads", "N", false,
+          "threads integrating the shooting segments side by side (default: one per core; the "
+          "result is the same for any number)"};
+}
+
+int segment_threads(const Arguments& args) {
+  if (!args.has("--threads"))
+    return std::clamp(static_cast<int>(std::thread::hardware_concurrency()), 1, 256);
+  const int n = args.integer("--threads", 1);
+  if (n < 1 || n > 256)
+    throw InputError("--threads " + std::to_string(n) + ": expected a whole number from 1 to 256");
+  return n;
+}
+
 void shooting_flow_options(const Arguments& args, OrbitOptions& o) {
   o.shooting.flow = flow_options(args, o.shooting.flow);
   o.transient_flow.linear_solver = o.shooting.flow.linear_solver;
@@ -285,6 +302,8 @@ void check_options(const OptionCheck& problem, const std::string& where) {
       {"transient", "transient"},
       {"orbit.shooting.segments", "segments"},
       {"shooting.segments", "segments"},
+      {"orbit.shooting.threads", "threads"},
+      {"shooting.threads", "threads"},
       {"rtol", "rtol"},
       {"atol", "atol"},
       {"sensitivities", "sensitivities"},

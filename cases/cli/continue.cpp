@@ -72,6 +72,7 @@ std::vector<OptionSpec> continue_options() {
        {"--verbose", "", false, "multipliers on each progress line; the full report at the end"}});
   const auto steps = branch_step_options();
   options.insert(options.end(), steps.begin(), steps.end());
+  options.push_back(segment_threads_option());
   const auto integrator = integrator_options();
   options.insert(options.end(), integrator.begin(), integrator.end());
   options.push_back(accuracy_option());
@@ -110,6 +111,7 @@ BranchRequest continue_request(const Arguments& args, const LoadedSystem& c) {
   request.verbose = args.flag("--verbose");
   auto& o = request.continuation;
   o = branch_continuation(args, c.system());
+  o.orbit.shooting.threads = segment_threads(args);
   o.user_points = args.numbers("--user-points");
   for (double v : o.user_points)
     if (v < std::min(request.from, request.to) || v > std::max(request.from, request.to))

@@ -25,6 +25,7 @@ std::vector<OptionSpec> orbit_options() {
       {{"--start", "NAME", false, "named start of the case (required for a metronome case file)"},
        {"--initial", "VAR=VALUE", true, "initial state value (on top of --start)"},
        {"--segments", "M", false, "shooting segments (default 1: single shooting)"},
+       segment_threads_option(),
        {"--transient", "SECONDS", false,
         "integration before Newton (default 60; 0 for a forced system)"},
        {"--json", "FILE", false, "write the orbit as JSON"},
@@ -41,6 +42,7 @@ std::vector<OptionSpec> orbit_options() {
 OrbitOptions orbit_request(const Arguments& args, bool forced) {
   OrbitOptions o;
   o.shooting.segments = args.integer("--segments", 1);
+  o.shooting.threads = segment_threads(args);
   // A forced system's orbit: Newton from the start at once unless a transient is asked for (its
   // period is known; a transient would leave an unstable response for whatever attracts).
   o.transient = args.number("--transient", forced ? 0.0 : o.transient);

@@ -28,6 +28,14 @@ check "CSV header" grep -q '^index,k,period,frequency,stability' "$work/anti.csv
 check "the last point lies on the bound, k = 52 exactly" \
   test "$(json "$work/anti.json" "j['points'][-1]['value'] == 52.0 and max(p['value'] for p in j['points']) <= 52.0")" = True
 
+# Segments side by side (--threads): the same branch, to the bit, on one thread and on two.
+for t in 1 2; do
+  "$bin" continue "$src/cases/row2.toml" --start in-phase --param k --from 14 --to 16 --segments 2 \
+    --threads $t --max-points 4 --quiet --csv "$work/seg$t.csv" > /dev/null 2>&1
+  check "--segments 2 --threads $t exits 0" test $? -eq 0
+done
+check "the same branch on one thread and on two" cmp -s "$work/seg1.csv" "$work/seg2.csv"
+
 # Ctrl-C: the run stops after the point in progress, keeping the CSV and writing the JSON.
 # (Stale files from an earlier run would send the signal before the handler is in place.)
 rm -f "$work/int.csv" "$work/int.json"

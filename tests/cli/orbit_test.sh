@@ -56,6 +56,21 @@ check "missing --start lists the starts" grep -q "expected one of: in-phase, ant
 "$bin" orbit "$src/cases/row2.toml" --start in-phase --segments 0 2> "$work/bad.err"
 check "--segments 0 exits 2" test $? -eq 2
 
+# Segments side by side: each is integrated by a flow of its own thread, restarted at each call,
+# so the orbit is the same to the bit on any number of threads (only the run time differs).
+"$bin" orbit "$src/cases/row2.toml" --start in-phase --segments 3 --threads 1 --json "$work/seg1.json" > /dev/null
+check "--segments 3 --threads 1 exits 0" test $? -eq 0
+"$bin" orbit "$src/cases/row2.toml" --start in-phase --segments 3 --threads 2 --json "$work/seg2.json" > /dev/null
+check "--segments 3 --threads 2 exits 0" test $? -eq 0
+check "the same orbit on one thread and on two" /usr/bin/python3 -c "
+import json, sys
+a, b = (json.load(open(f)) for f in sys.argv[1:])
+a.pop('seconds'); b.pop('seconds')
+sys.exit(0 if a == b and a['segments'] == 3 else 1)" "$work/seg1.json" "$work/seg2.json"
+"$bin" orbit "$src/cases/row2.toml" --start in-phase --segments 3 --threads 0 2> "$work/bad.err"
+check "--threads 0 exits 2" test $? -eq 2
+check "and says what is expected" grep -q -- '--threads 0: expected a whole number from 1 to 256' "$work/bad.err"
+
 "$bin" orbit "$src/cases/cross4.toml" --start in-anti --transient 5 > "$work/quasi.out"
 check "a start on no periodic orbit exits 4" test $? -eq 4
 check "and says Newton failed" grep -q 'newton       FAILED' "$work/quasi.out"

@@ -86,6 +86,8 @@ const Spoilers<ShootingOptions>& shooting_spoilers() {
   static const Spoilers<ShootingOptions> s{
       {"segments", [](ShootingOptions& o) { o.segments = 0; }},
       {"segments", [](ShootingOptions& o) { o.segments = 1001; }},
+      {"threads", [](ShootingOptions& o) { o.threads = 0; }},
+      {"threads", [](ShootingOptions& o) { o.threads = 257; }},
   };
   return s;
 }

@@ -57,6 +57,7 @@
 // without symmetry.
 #pragma once
 
+#include <map>
 #include <memory>
 #include <optional>
 #include <vector>
@@ -72,11 +73,16 @@ namespace sympathy {
 
 struct ShootingOptions {
   int segments = 1;  // 1 to 1000
+  // Threads that integrate the segments side by side (1 to 256; more than `segments` are not
+  // used). Each segment is integrated from its own start by a flow of its own thread, restarted
+  // at each call, so the result is the same to the bit for any number of threads.
+  int threads = 1;
   FlowOptions flow;
 
   OptionCheck validate() const {
     if (segments < 1 || segments > 1000)
       return OptionProblem{"segments", "an integer from 1 to 1000"};
+    if (threads < 1 || threads > 256) return OptionProblem{"threads", "an integer from 1 to 256"};
     return nested("flow.", flow.validate());
   }
 };
@@ -189,6 +195,10 @@ class ShootingProblem {
 
   Evaluation evaluate(const Eigen::VectorXd& x, const ParameterValues& p, bool derivatives,
                       int parameter, Flow& flow);
+  // The flows that integrate segments beside `flow` on the other threads (options_.threads):
+  // made on first use with `flow`'s system and options, kept per flow.
+  std::map<const Flow*, std::vector<std::unique_ptr<Flow>>> helpers_;
+  std::vector<Flow*> team(Flow& flow);
   struct SymmetricOrbit;  // shooting.cpp
   std::unique_ptr<SymmetricOrbit> symmetric_;
   std::optional<Evaluation> across_evaluation(const Eigen::VectorXd& x, const ParameterValues& p,
