@@ -1,6 +1,7 @@
 #include "vector_ops.hpp"
 
 #include <cmath>
+#include <vector>
 
 namespace sympathy::detail {
 
@@ -130,6 +131,100 @@ sunrealtype weighted_rms_norm(N_Vector x, N_Vector w) {
   return mean <= 0.0 ? 0.0 : std::sqrt(mean);
 }
 
+void set_constant(sunrealtype c, N_Vector z) {
+  const sunindextype n = NV_LENGTH_S(z);
+  sunrealtype* zd = NV_DATA_S(z);
+  for (sunindextype j = 0; j < n; ++j) zd[j] = c;
+}
+
+namespace {
+// z = a x + y, as every case of SUNDIALS's linear sum with b = 1 gives it (a x + y, x + y, y - x:
+// the product by 1 or -1 is exact); z may be y.
+void add_scaled(sunrealtype a, const sunrealtype* x, const sunrealtype* y, sunrealtype* z,
+                sunindextype n) {
+  for (sunindextype j = 0; j < n; ++j) z[j] = a * x[j] + y[j];
+}
+}  // namespace
+
+int scale_add_multi(int nvec, sunrealtype* a, N_Vector x, N_Vector* Y, N_Vector* Z) {
+  if (nvec < 1) return -1;
+  if (nvec == 1) {  // SUNDIALS's goes to its linear sum
+    linear_sum(a[0], x, 1.0, Y[0], Z[0]);
+    return 0;
+  }
+  const sunindextype n = NV_LENGTH_S(x);
+  for (int i = 0; i < nvec; ++i)
+    add_scaled(a[i], NV_DATA_S(x), NV_DATA_S(Y[i]), NV_DATA_S(Z[i]), n);
+  return 0;
+}
+
+int linear_sum_vector_array(int nvec, sunrealtype a, N_Vector* X, sunrealtype b, N_Vector* Y,
+                            N_Vector* Z) {
+  if (nvec < 1) return -1;
+  // SUNDIALS's picks its case from a and b alone, the same for every vector: linear_sum's.
+  for (int i = 0; i < nvec; ++i) linear_sum(a, X[i], b, Y[i], Z[i]);
+  return 0;
+}
+
+int scale_vector_array(int nvec, sunrealtype* c, N_Vector* X, N_Vector* Z) {
+  if (nvec < 1) return -1;
+  for (int i = 0; i < nvec; ++i) scale(c[i], X[i], Z[i]);
+  return 0;
+}
+
+int constant_vector_array(int nvec, sunrealtype c, N_Vector* Z) {
+  if (nvec < 1) return -1;
+  for (int i = 0; i < nvec; ++i) set_constant(c, Z[i]);
+  return 0;
+}
+
+int weighted_rms_norm_vector_array(int nvec, N_Vector* X, N_Vector* W, sunrealtype* nrm) {
+  if (nvec < 1) return -1;
+  for (int i = 0; i < nvec; ++i) nrm[i] = weighted_rms_norm(X[i], W[i]);
+  return 0;
+}
+
+int scale_add_multi_vector_array(int nvec, int nsum, sunrealtype* a, N_Vector* X, N_Vector** Y,
+                                 N_Vector** Z) {
+  if (nvec < 1 || nsum < 1) return -1;
+  if (nvec == 1) {
+    if (nsum == 1) {
+      linear_sum(a[0], X[0], 1.0, Y[0][0], Z[0][0]);
+      return 0;
+    }
+    const sunindextype n = NV_LENGTH_S(X[0]);
+    for (int j = 0; j < nsum; ++j)
+      add_scaled(a[j], NV_DATA_S(X[0]), NV_DATA_S(Y[j][0]), NV_DATA_S(Z[j][0]), n);
+    return 0;
+  }
+  if (nsum == 1) return linear_sum_vector_array(nvec, a[0], X, 1.0, Y[0], Z[0]);
+  const sunindextype n = NV_LENGTH_S(X[0]);
+  for (int i = 0; i < nvec; ++i)
+    for (int j = 0; j < nsum; ++j)
+      add_scaled(a[j], NV_DATA_S(X[i]), NV_DATA_S(Y[j][i]), NV_DATA_S(Z[j][i]), n);
+  return 0;
+}
+
+int linear_combination_vector_array(int nvec, int nsum, sunrealtype* c, N_Vector** X, N_Vector* Z) {
+  if (nvec < 1 || nsum < 1) return -1;
+  // Per vector j, the linear combination of X[0][j] .. X[nsum-1][j]: SUNDIALS's cases (one sum:
+  // a scale; two: a linear sum; more: c[0] X[0][j] first, then each term added in turn, in place
+  // where Z is X[0]) are linear_combination's.
+  constexpr int kOnStack = 16;
+  N_Vector on_stack[kOnStack];
+  std::vector<N_Vector> on_heap;
+  N_Vector* column = on_stack;
+  if (nsum > kOnStack) {
+    on_heap.resize(nsum);
+    column = on_heap.data();
+  }
+  for (int j = 0; j < nvec; ++j) {
+    for (int i = 0; i < nsum; ++i) column[i] = X[i][j];
+    linear_combination(nsum, c, column, Z[j]);
+  }
+  return 0;
+}
+
 void use_project_vector_ops(N_Vector v) {
   v->ops->nvlinearcombination = linear_combination;
   v->ops->nvscale = scale;
@@ -138,6 +233,14 @@ void use_project_vector_ops(N_Vector v) {
   v->ops->nvabs = absolute;
   v->ops->nvinv = inverse;
   v->ops->nvaddconst = add_constant;
+  v->ops->nvconst = set_constant;
+  v->ops->nvscaleaddmulti = scale_add_multi;
+  v->ops->nvlinearsumvectorarray = linear_sum_vector_array;
+  v->ops->nvscalevectorarray = scale_vector_array;
+  v->ops->nvconstvectorarray = constant_vector_array;
+  v->ops->nvwrmsnormvectorarray = weighted_rms_norm_vector_array;
+  v->ops->nvscaleaddmultivectorarray = scale_add_multi_vector_array;
+  v->ops->nvlinearcombinationvectorarray = linear_combination_vector_array;
 }
 
 }  // namespace sympathy::detail

@@ -5,6 +5,7 @@
 // rounding, so a flow is the same to the bit with either.
 #include <gtest/gtest.h>
 
+#include <deque>
 #include <random>
 #include <vector>
 
@@ -133,6 +134,139 @@ TEST(VectorOps, LinearSumAbsInverseAndAddConstAreSundialsToTheBit) {
   SUNContext_Free(&ctx);
 }
 
+// Vector arrays, as CVODES's forward-sensitivity module uses them: `count` arrays of `nvec`
+// vectors each, with the same random entries for ours and SUNDIALS's.
+struct Arrays {
+  Arrays(SUNContext ctx, int length, int count, int nvec, unsigned seed) {
+    std::mt19937 rng(seed);
+    for (int k = 0; k < count; ++k) {
+      vectors.emplace_back(ctx, length, nvec, rng);
+      arrays.push_back(vectors.back().v.data());
+    }
+  }
+  std::deque<Vectors> vectors;
+  std::vector<N_Vector*> arrays;
+  std::vector<std::vector<double>> contents() const {
+    std::vector<std::vector<double>> all;
+    for (const Vectors& v : vectors)
+      for (N_Vector x : v.v) all.push_back(data(x));
+    return all;
+  }
+};
+
+// The vector-array operations of the sensitivity module, every case SUNDIALS's treats apart (one
+// vector, one or two sums, coefficients 1, -1, equal and opposite, in place and not), to the bit.
+TEST(VectorOps, VectorArrayOperationsAreSundialsToTheBit) {
+  SUNContext ctx;
+  ASSERT_EQ(SUNContext_Create(nullptr, &ctx), 0);
+  const double coefficients[] = {1.0, -1.0, 0.0, 0.37, -0.37, 2.5};
+  unsigned seed = 1;
+  for (int length : {1, 6, 130}) {
+    for (int nvec : {1, 2, 3, 7}) {
+      SCOPED_TRACE(::testing::Message() << "length " << length << ", " << nvec << " vectors");
+      // Linear sums, Z a third array, X or Y.
+      for (double a : coefficients)
+        for (double b : coefficients)
+          for (int alias = 0; alias < 3; ++alias) {
+            ++seed;
+            Arrays ours(ctx, length, 3, nvec, seed), theirs(ctx, length, 3, nvec, seed);
+            const int z = alias == 0 ? 2 : alias - 1;
+            ASSERT_EQ(detail::linear_sum_vector_array(nvec, a, ours.arrays[0], b, ours.arrays[1],
+                                                      ours.arrays[z]),
+                      0);
+            ASSERT_EQ(N_VLinearSumVectorArray_Serial(nvec, a, theirs.arrays[0], b, theirs.arrays[1],
+                                                     theirs.arrays[z]),
+                      0);
+            EXPECT_EQ(ours.contents(), theirs.contents()) << "a " << a << ", b " << b;
+          }
+      // Scales (in place and not), constants, weighted norms.
+      for (bool in_place : {false, true}) {
+        ++seed;
+        Arrays ours(ctx, length, 2, nvec, seed), theirs(ctx, length, 2, nvec, seed);
+        std::vector<double> c(nvec);
+        for (int i = 0; i < nvec; ++i) c[i] = coefficients[i % 6];
+        ASSERT_EQ(detail::scale_vector_array(nvec, c.data(), ours.arrays[0],
+                                             ours.arrays[in_place ? 0 : 1]),
+                  0);
+        ASSERT_EQ(N_VScaleVectorArray_Serial(nvec, c.data(), theirs.arrays[0],
+                                             theirs.arrays[in_place ? 0 : 1]),
+                  0);
+        EXPECT_EQ(ours.contents(), theirs.contents());
+      }
+      {
+        ++seed;
+        Arrays ours(ctx, length, 2, nvec, seed), theirs(ctx, length, 2, nvec, seed);
+        std::vector<double> mine(nvec), sundials(nvec);
+        ASSERT_EQ(detail::weighted_rms_norm_vector_array(nvec, ours.arrays[0], ours.arrays[1],
+                                                         mine.data()),
+                  0);
+        ASSERT_EQ(N_VWrmsNormVectorArray_Serial(nvec, theirs.arrays[0], theirs.arrays[1],
+                                                sundials.data()),
+                  0);
+        EXPECT_EQ(mine, sundials);
+        ASSERT_EQ(detail::constant_vector_array(nvec, 0.25, ours.arrays[0]), 0);
+        ASSERT_EQ(N_VConstVectorArray_Serial(nvec, 0.25, theirs.arrays[0]), 0);
+        detail::set_constant(-3.0, ours.arrays[1][0]);
+        N_VConst_Serial(-3.0, theirs.arrays[1][0]);
+        EXPECT_EQ(ours.contents(), theirs.contents());
+      }
+      for (int nsum : {1, 2, 3, 5, 9, 17}) {
+        SCOPED_TRACE(::testing::Message() << nsum << " sums");
+        std::vector<double> a(nsum);
+        for (int j = 0; j < nsum; ++j) a[j] = coefficients[(j + nvec) % 6];
+        // Scaled additions: X, then nsum arrays Y and nsum arrays Z (or Z = Y).
+        for (bool in_place : {false, true}) {
+          ++seed;
+          Arrays ours(ctx, length, 1 + 2 * nsum, nvec, seed);
+          Arrays theirs(ctx, length, 1 + 2 * nsum, nvec, seed);
+          auto y = [&](Arrays& s) { return s.arrays.data() + 1; };
+          auto z = [&](Arrays& s) { return in_place ? y(s) : s.arrays.data() + 1 + nsum; };
+          ASSERT_EQ(detail::scale_add_multi_vector_array(nvec, nsum, a.data(), ours.arrays[0],
+                                                         y(ours), z(ours)),
+                    0);
+          ASSERT_EQ(N_VScaleAddMultiVectorArray_Serial(nvec, nsum, a.data(), theirs.arrays[0],
+                                                       y(theirs), z(theirs)),
+                    0);
+          EXPECT_EQ(ours.contents(), theirs.contents()) << (in_place ? "in place" : "");
+          if (nvec == 1) {  // the single-vector form: x into the nsum vectors Y (or Z)
+            std::vector<N_Vector> my(nsum), mz(nsum), ty(nsum), tz(nsum);
+            for (int j = 0; j < nsum; ++j) {
+              my[j] = y(ours)[j][0];
+              mz[j] = z(ours)[j][0];
+              ty[j] = y(theirs)[j][0];
+              tz[j] = z(theirs)[j][0];
+            }
+            ASSERT_EQ(
+                detail::scale_add_multi(nsum, a.data(), ours.arrays[0][0], my.data(), mz.data()),
+                0);
+            ASSERT_EQ(
+                N_VScaleAddMulti_Serial(nsum, a.data(), theirs.arrays[0][0], ty.data(), tz.data()),
+                0);
+            EXPECT_EQ(ours.contents(), theirs.contents());
+          }
+        }
+        // Linear combinations: nsum arrays X and Z (a further array, or X[0] with c[0] = 1 or not).
+        for (int alias = 0; alias < 3; ++alias) {
+          ++seed;
+          Arrays ours(ctx, length, nsum + 1, nvec, seed), theirs(ctx, length, nsum + 1, nvec, seed);
+          std::vector<double> c = a;
+          if (alias == 1) c[0] = 1.0;
+          if (alias == 2 && c[0] == 1.0) c[0] = 0.5;
+          const int z = alias == 0 ? nsum : 0;
+          ASSERT_EQ(detail::linear_combination_vector_array(nvec, nsum, c.data(),
+                                                            ours.arrays.data(), ours.arrays[z]),
+                    0);
+          ASSERT_EQ(N_VLinearCombinationVectorArray_Serial(nvec, nsum, c.data(),
+                                                           theirs.arrays.data(), theirs.arrays[z]),
+                    0);
+          EXPECT_EQ(ours.contents(), theirs.contents()) << "aliasing " << alias;
+        }
+      }
+    }
+  }
+  SUNContext_Free(&ctx);
+}
+
 // A vector given the project's operations passes them on to its clones (the integrators' own
 // vectors are clones of the one they are given).
 TEST(VectorOps, ClonesInheritTheOperation) {
@@ -149,6 +283,14 @@ TEST(VectorOps, ClonesInheritTheOperation) {
   EXPECT_EQ(clone->ops->nvabs, &detail::absolute);
   EXPECT_EQ(clone->ops->nvinv, &detail::inverse);
   EXPECT_EQ(clone->ops->nvaddconst, &detail::add_constant);
+  EXPECT_EQ(clone->ops->nvconst, &detail::set_constant);
+  EXPECT_EQ(clone->ops->nvscaleaddmulti, &detail::scale_add_multi);
+  EXPECT_EQ(clone->ops->nvlinearsumvectorarray, &detail::linear_sum_vector_array);
+  EXPECT_EQ(clone->ops->nvscalevectorarray, &detail::scale_vector_array);
+  EXPECT_EQ(clone->ops->nvconstvectorarray, &detail::constant_vector_array);
+  EXPECT_EQ(clone->ops->nvwrmsnormvectorarray, &detail::weighted_rms_norm_vector_array);
+  EXPECT_EQ(clone->ops->nvscaleaddmultivectorarray, &detail::scale_add_multi_vector_array);
+  EXPECT_EQ(clone->ops->nvlinearcombinationvectorarray, &detail::linear_combination_vector_array);
   N_VDestroy(clone);
   N_VDestroy(y);
   SUNContext_Free(&ctx);
