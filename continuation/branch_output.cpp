@@ -42,6 +42,18 @@ nlohmann::json parameters_json(const OdeSystem& system, const ParameterValues& p
   return j;
 }
 
+nlohmann::json stiffness_json(const StiffnessEstimate& e) {
+  return {{"indicator", e.indicator},
+          {"threshold", kStiffIndicator},
+          {"stiff", e.indicator > kStiffIndicator},
+          {"capped", e.capped},
+          {"steps", e.steps},
+          {"bdf_steps", e.bdf_steps},
+          {"spectral_radius", e.rate},
+          {"largest_h_rate", e.largest_h_rate},
+          {"seconds", e.seconds}};
+}
+
 nlohmann::json orbit_json(const OdeSystem& system, const PeriodicOrbit& orbit,
                           const OrbitDescriber* describer) {
   const auto& f = orbit.floquet;
@@ -86,6 +98,7 @@ nlohmann::json orbit_json(const OdeSystem& system, const PeriodicOrbit& orbit,
                  {"reason", orbit.newton.reason},
                  {"iterations", orbit.newton.iterations},
                  {"residual_norms", orbit.newton.residual_norms}};
+  if (orbit.stiffness) j["stiffness"] = stiffness_json(*orbit.stiffness);
   return j;
 }
 
@@ -180,6 +193,7 @@ nlohmann::json branch_json(const Branch& branch, const OrbitDescriber* describer
                {"steps", branch.flow.steps},
                {"rhs_evaluations", branch.flow.rhs_evaluations},
                {"sensitivity_rhs_evaluations", branch.flow.variational_evaluations}};
+  if (branch.stiffness) j["stiffness"] = stiffness_json(*branch.stiffness);
   return j;
 }
 

@@ -4,6 +4,7 @@
 #include <cmath>
 #include <complex>
 #include <limits>
+#include <optional>
 #include <utility>
 
 #include <pybind11/complex.h>
@@ -16,6 +17,23 @@ namespace {
 
 py::object with_fields(const py::dict& fields) {
   return py::module_::import("types").attr("SimpleNamespace")(**fields);
+}
+
+// The stiffness measured at a start (continuation/branch_output.hpp's stiffness_json, the same
+// names), or None where none was measured (a method given, or BDF asked for).
+py::object stiffness_result(const std::optional<StiffnessEstimate>& e) {
+  if (!e) return py::none();
+  py::dict fields;
+  fields["indicator"] = e->indicator;
+  fields["threshold"] = kStiffIndicator;
+  fields["stiff"] = e->indicator > kStiffIndicator;
+  fields["capped"] = e->capped;
+  fields["steps"] = e->steps;
+  fields["bdf_steps"] = e->bdf_steps;
+  fields["spectral_radius"] = e->rate;
+  fields["largest_h_rate"] = e->largest_h_rate;
+  fields["seconds"] = e->seconds;
+  return with_fields(fields);
 }
 
 // The describer's groups (amplitudes, phase_differences, ...) of one orbit: a dict by label each.
@@ -127,6 +145,7 @@ py::object orbit_result(const OdeSystem& system, const PeriodicOrbit& orbit,
   fields["family_dimension"] = orbit.family_dimension;
   fields["newton"] = with_fields(newton);
   fields["segments"] = orbit.segments;
+  fields["stiffness"] = stiffness_result(orbit.stiffness);
   fields["reduction"] = orbit.reduction;
   fields["parameters"] = parameters;
   fields["seconds"] = orbit.seconds;
@@ -251,6 +270,7 @@ py::object branch_result(const Branch& branch, const OrbitDescriber& describer) 
   fields["seconds"] = branch.seconds;
   fields["state_names"] = branch.state_names;
   fields["rejected"] = rejected;
+  fields["stiffness"] = stiffness_result(branch.stiffness);
   return with_fields(fields);
 }
 

@@ -25,6 +25,8 @@ check "every point within 1e-8 of a trivial multiplier of 1" \
   test "$(json "$work/anti.json" "max(p['trivial_multiplier_error'] for p in j['points']) < 1e-8")" = True
 check "CSV has a row per point" test "$(($(wc -l < "$work/anti.csv") - 1))" -eq "$(json "$work/anti.json" "len(j['points'])")"
 check "CSV header" grep -q '^index,k,period,frequency,stability' "$work/anti.csv"
+check "JSON: the start's stiffness as the run time line printed it" \
+  test "$(json "$work/anti.json" "'%.2g' % j['stiffness']['indicator']")" = "$(grep -o 'stiffness indicator [0-9.]*' "$work/anti.out" | awk '{print $3}')"
 check "the last point lies on the bound, k = 52 exactly" \
   test "$(json "$work/anti.json" "j['points'][-1]['value'] == 52.0 and max(p['value'] for p in j['points']) <= 52.0")" = True
 

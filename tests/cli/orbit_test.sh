@@ -24,6 +24,12 @@ check "JSON: unstable" test "$(json_value "$work/anti.json" "j['stable']")" = Fa
 check "JSON: trivial multiplier within 1e-8 of 1" test "$(json_value "$work/anti.json" "j['trivial_multiplier_error'] < 1e-8")" = True
 check "JSON: state names" test "$(json_value "$work/anti.json" "','.join(j['state_names'])")" = "x,th1,th2,vx,vth1,vth2"
 check "JSON: parameters of the case" test "$(json_value "$work/anti.json" "j['params']['k']")" = 14.7467
+# The stiffness measured before Newton (the default preset's Adams): the report's indicator, to its
+# printed digits; not stiff at Table II (0.57 in README's table, threshold 1.4).
+printed=$(grep -o 'stiffness indicator [0-9.]*' "$work/anti.out" | awk '{print $3}')
+check "JSON: the stiffness the report printed, not stiff" test "$(json_value "$work/anti.json" "'%.2g' % j['stiffness']['indicator'] == '$printed' and j['stiffness']['threshold'] == 1.4 and not j['stiffness']['stiff'] and j['stiffness']['bdf_steps'] > 0")" = True
+"$bin" orbit "$src/cases/row2.toml" --start anti-phase --method bdf --json "$work/bdf.json" > /dev/null
+check "JSON: no stiffness where the method was given (nothing measured)" test "$(json_value "$work/bdf.json" "'stiffness' in j")" = False
 
 "$bin" orbit "$src/cases/cross4.toml" --start in-in --segments 4 --method bdf --verbose > "$work/cross.out"
 check "cross in-in with 4 segments exits 0" test $? -eq 0
@@ -57,7 +63,7 @@ check "missing --start lists the starts" grep -q "expected one of: in-phase, ant
 check "--segments 0 exits 2" test $? -eq 2
 
 # Segments side by side: each is integrated by a flow of its own thread, restarted at each call,
-# so the orbit is the same to the bit on any number of threads (only the run time differs).
+# so the orbit is the same to the bit on any number of threads (only the run times differ).
 "$bin" orbit "$src/cases/row2.toml" --start in-phase --segments 3 --threads 1 --json "$work/seg1.json" > /dev/null
 check "--segments 3 --threads 1 exits 0" test $? -eq 0
 "$bin" orbit "$src/cases/row2.toml" --start in-phase --segments 3 --threads 2 --json "$work/seg2.json" > /dev/null
@@ -65,7 +71,8 @@ check "--segments 3 --threads 2 exits 0" test $? -eq 0
 check "the same orbit on one thread and on two" /usr/bin/python3 -c "
 import json, sys
 a, b = (json.load(open(f)) for f in sys.argv[1:])
-a.pop('seconds'); b.pop('seconds')
+for o in (a, b):
+    o.pop('seconds'); o['stiffness'].pop('seconds')  # run times, the measurement's too
 sys.exit(0 if a == b and a['segments'] == 3 else 1)" "$work/seg1.json" "$work/seg2.json"
 "$bin" orbit "$src/cases/row2.toml" --start in-phase --segments 3 --threads 0 2> "$work/bad.err"
 check "--threads 0 exits 2" test $? -eq 2

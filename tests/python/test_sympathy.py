@@ -83,6 +83,9 @@ def test_orbit_equals_the_program():
     printed = re.findall(r"^\s+(\d\.\d{12})\s+[+-]", stdout, re.M)
     assert ["%.12f" % m for m in orbit.moduli] == printed
     assert orbit.trivial_multiplier_error < 1e-8 and orbit.residual < 1e-9
+    # The stiffness measured before Newton, as the program prints it ("stiffness indicator 0.57").
+    indicator = re.search(r"stiffness indicator (\S+)", stdout).group(1)
+    assert "%.2g" % orbit.stiffness.indicator == indicator and not orbit.stiffness.stiff
 
 
 def test_events_over_a_second_parameter_without_files():

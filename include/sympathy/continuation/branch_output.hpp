@@ -27,13 +27,20 @@ nlohmann::json parameters_json(const OdeSystem& system, const ParameterValues& p
 // imaginary parts), first Lyapunov coefficient and criticality.
 nlohmann::json hopf_json(const HopfPoint& hopf);
 
+// The stiffness measured at an orbit's or branch's start (OrbitOptions::switch_when_stiff):
+// indicator, threshold, stiff (BDF took over), capped, both step counts, the spectral radius and
+// the largest h rho(J), and what the measurement cost.
+nlohmann::json stiffness_json(const StiffnessEstimate& estimate);
+
 // An orbit: period, multipliers (with moduli and kinds), stability, accuracy, state, parameter
-// values, Newton's summary, and the describer's groups as objects {label: value}.
+// values, Newton's summary, the stiffness where it was measured, and the describer's groups as
+// objects {label: value}.
 nlohmann::json orbit_json(const OdeSystem& system, const PeriodicOrbit& orbit,
                           const OrbitDescriber* describer = nullptr);
 
 // A branch: its parameter, stop reason, state names, points (with the describer's groups as
-// lists, from each point's description), located events, run time and integration work.
+// lists, from each point's description), located events, run time, integration work and the
+// stiffness measured at its start (where it was).
 nlohmann::json branch_json(const Branch& branch, const OrbitDescriber* describer = nullptr);
 
 // The JSON written to `path` whole and atomically; throws OutputError.
