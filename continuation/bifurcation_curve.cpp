@@ -585,6 +585,8 @@ BifurcationCurve continue_curve(const OdeSystem& system, const Branch& branch,
   // The event onto the augmented system at its own second parameter: only the first moves.
   auto e = s.evaluate(u);
   if (!e.ok) return finish(CurveStop::StartFailed, "the event cannot be integrated: " + e.failure);
+  s.measure_noise(u, e);
+  curve.noise = s.noise();
   auto j = s.jacobian(u, e);
   if (!j) return finish(CurveStop::StartFailed, "the event's Jacobian cannot be integrated");
   CurveSystem::Condition hold;

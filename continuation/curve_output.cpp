@@ -71,6 +71,7 @@ nlohmann::json curve_json(const BifurcationCurve& curve) {
   j["events"] = events;
   j["seconds"] = curve.seconds;
   j["monodromies"] = curve.evaluations;
+  j["noise"] = curve.noise;  // the integration's, measured at the start
   j["flow"] = {{"integrations", curve.flow.calls}, {"steps", curve.flow.steps}};
   return j;
 }

@@ -2,8 +2,10 @@
 
 #include <algorithm>
 #include <cmath>
+#include <cstdio>
 #include <limits>
 #include <stdexcept>
+#include <string>
 
 #include <Eigen/Eigenvalues>
 
@@ -23,6 +25,19 @@ constexpr double kNoiseStep = 1e-7;
 // How near the curve a corrected point lies in the scaled norm (after kStepTolerance): the floor
 // of every point's uncertainty.
 constexpr double kCorrectedPoint = 1e-9;
+// The monodromy noise up to which the four constants above hold (CurveSystem::measure_noise):
+// set for the default preset's 1e-9 to 2e-9, they still served the fast preset's 1.4e-8 (rtol
+// 1e-8) on the anti-phase BP curve and failed from 2e-8 on. Scaled below 1e-8 they would only
+// loosen the default's points (at 1.6e-9 the NS curve's end at c = 0 moved by 2.5e-7 N/m, away
+// from the one-parameter branch's NS there).
+constexpr double kTunedNoise = 1e-8;
+
+// "1.2e-07": a scaled step for a message.
+std::string scientific(double v) {
+  char buffer[32];
+  std::snprintf(buffer, sizeof buffer, "%.2g", v);
+  return buffer;
+}
 
 ShootingOptions single_shooting(ShootingOptions o) {
   // The curve needs the monodromy of one period; multiple shooting would add nothing here.
@@ -81,6 +96,11 @@ void CurveSystem::set_scales(const Eigen::VectorXd& u) {
   weights_.resize(m_ + 3);
   const double size = std::max(u.head(m_).cwiseAbs().maxCoeff(), 1e-12);
   weights_.head(m_).setConstant(1.0 / size);
+  // As the branch's corrector: no integration's residual goes much below 20 rtol of the state's
+  // size (1e-9 at the default preset; 2e-7 at the fast one, whose curve otherwise never counted
+  // a stalled chord as converged at rtol 3e-8).
+  tolerance_ = attainable_tolerance(options_.tolerance, options_.orbit.newton.rtol_factor,
+                                    options_.orbit.shooting.flow, size);
   weights_[m_] = 1.0 / u[m_];
   weights_[m_ + 1] = 1.0 / (options_.first_upper - options_.first_lower);
   weights_[m_ + 2] = 1.0 / (options_.second_upper - options_.second_lower);
@@ -90,6 +110,18 @@ void CurveSystem::set_section(const Eigen::VectorXd& u) {
   y_section_ = u.head(m_);
   const Eigen::VectorXd f = v_.transpose() * system_.rhs(0.0, state(u), values(u));
   normal_ = f / std::max(f.norm(), 1e-300);
+}
+
+void CurveSystem::measure_noise(const Eigen::VectorXd& u, const Evaluation& e) {
+  const Eigen::VectorXd z0 = state(u);
+  const Eigen::VectorXd f0 = system_.rhs(0.0, z0, values(u));
+  const double size = f0.norm();
+  noise_ = size > 0.0 ? (e.monodromy * f0 - e.end_rate).norm() / size : 0.0;
+  if (!std::isfinite(noise_)) noise_ = 0.0;
+}
+
+double CurveSystem::noise_factor() const {
+  return std::max(1.0, noise_ / kTunedNoise);
 }
 
 Eigen::MatrixXd CurveSystem::block(const Evaluation& e) const {
@@ -163,7 +195,8 @@ std::optional<Eigen::MatrixXd> CurveSystem::jacobian(const Eigen::VectorXd& u,
   j.block(0, m_, m_, 1) = v_.transpose() * e.end_rate;
   j.block(m_, 0, 1, m_) = normal_.transpose();
   for (int c = 0; c < cols; ++c) {
-    const double h = kDifferenceStep / weights_[c];
+    // Forward differences lose the noise over the step: the step grows as its square root.
+    const double h = kDifferenceStep * std::sqrt(noise_factor()) / weights_[c];
     Eigen::VectorXd shifted = u;
     shifted[c] += h;
     const Evaluation d = evaluate(shifted);
@@ -208,6 +241,8 @@ CurveSystem::Correction CurveSystem::correct(Eigen::VectorXd guess, const Condit
   else
     full.row(size - 1) = condition.tangent.cwiseProduct(weights_.cwiseAbs2()).transpose();
   const Eigen::PartialPivLU<Eigen::MatrixXd> lu(full);
+  const double step_tolerance = kStepTolerance * noise_factor();
+  const double noise_step = kNoiseStep * noise_factor();
   double last_step = std::numeric_limits<double>::infinity();
   for (int it = 0; it <= options_.max_iterations; ++it) {
     out.evaluation = evaluate(out.u);
@@ -216,8 +251,8 @@ CurveSystem::Correction CurveSystem::correct(Eigen::VectorXd guess, const Condit
       out.reason = "integration failed: " + out.evaluation.failure;
       return out;
     }
-    const bool small = shooting_residual(out.evaluation) <= options_.tolerance;
-    if (it > 0 && small && last_step <= kStepTolerance) {
+    const bool small = shooting_residual(out.evaluation) <= tolerance_;
+    if (it > 0 && small && last_step <= step_tolerance) {
       out.converged = true;
       return out;
     }
@@ -233,13 +268,13 @@ CurveSystem::Correction CurveSystem::correct(Eigen::VectorXd guess, const Condit
       return out;
     }
     // Stalled at the integration's noise: the step no longer contracts but is tiny.
-    if (it > 0 && small && step <= kNoiseStep && step > 0.5 * last_step) {
+    if (it > 0 && small && step <= noise_step && step > 0.5 * last_step) {
       out.converged = true;
       return out;
     }
     if (it > 1 && step > last_step) {
-      out.reason = "the chord diverged (a step of " + std::to_string(step) + " after " +
-                   std::to_string(last_step) + ", scaled)";
+      out.reason = "the chord diverged (a step of " + scientific(step) + " after " +
+                   scientific(last_step) + ", scaled; noise floor " + scientific(noise_step) + ")";
       return out;
     }
     out.u += du;
@@ -324,7 +359,7 @@ CurvePoint CurveSystem::point(const Eigen::VectorXd& u, const Evaluation& e,
   // At least what the corrector leaves: about 1e-9 of the first parameter's window (see
   // kStepTolerance). On an LP curve the one-parameter branch turns at the point, t1's parameter
   // component vanishes and the quotient above with it (1e-22 on abc's fold curve).
-  p.uncertainty = std::max(p.uncertainty, kCorrectedPoint / weights_[m_ + 1]);
+  p.uncertainty = std::max(p.uncertainty, kCorrectedPoint * noise_factor() / weights_[m_ + 1]);
   p.unknowns = u;
   p.tangent = tangent;
   return p;

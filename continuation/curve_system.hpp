@@ -85,6 +85,17 @@ class CurveSystem {
   void set_scales(const Eigen::VectorXd& u);
   // The phase section through the orbit at u; the borders to the null vectors at e.
   void set_section(const Eigen::VectorXd& u);
+  // The integration's noise, measured on the start's evaluation e (u its unknowns): how far the
+  // monodromy misses mapping the flow's direction at z0 onto the one at the period's end, which
+  // it does exactly for the true solution, |M f(z0) - f(z(T))| / |f(z0)|. The corrector's
+  // difference step, its tolerances and every point's uncertainty floor were set for a
+  // monodromy error of about 1e-9 (the default preset's) and hold up to 1e-8; above that they
+  // grow with this noise (its ratio to 1e-8; the difference step as its square root). Fixed, at
+  // the fast preset's looser tolerances (noise 2e-8 to 4e-6 at rtol 2e-8 to 3e-7) they asked the
+  // chord to contract below its noise, and its stalled steps were reported as divergence: the
+  // anti-phase BP curve in (k, c) ended early at rtol 3e-8 and did not start at 5e-8.
+  void measure_noise(const Eigen::VectorXd& u, const Evaluation& e);
+  double noise() const { return noise_; }
   void update_borders(const Evaluation& e);
   // The borders as they are, and back to saved ones (a second half of a curve starts from the
   // borders its start was corrected with, not those the first half ended with).
@@ -123,6 +134,10 @@ class CurveSystem {
   Eigen::VectorXd normal_;
   std::optional<BorderedSingularity> borders_;
   int evaluations_ = 0;
+  double noise_ = 0.0;      // measure_noise; 0 until measured (the constants as set)
+  double tolerance_ = 0.0;  // of the shooting residual: the attainable one (set_scales)
+  // The constants' factor for the noise: max(1, noise_ / 1e-8).
+  double noise_factor() const;
 };
 
 }  // namespace sympathy::detail

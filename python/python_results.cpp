@@ -334,6 +334,7 @@ py::object curve_result(const BifurcationCurve& curve) {
   fields["subspace"] = curve.subspace;
   fields["seconds"] = curve.seconds;
   fields["evaluations"] = curve.evaluations;
+  fields["noise"] = curve.noise;
   fields["state_names"] = curve.state_names;
   return with_fields(fields);
 }

@@ -213,8 +213,8 @@ int run_curve(const std::vector<std::string>& argv) {
   std::printf("  %zu points; stopped: %s\n", curve.points.size(), curve.stop_reason.c_str());
   std::printf("codimension-two points and turns:\n");
   print_curve_events(stdout, curve);
-  std::printf("  run time %.3f s (the curve %.3f s: %d monodromies, %ld steps)\n", clock.seconds(),
-              curve.seconds, curve.evaluations, curve.flow.steps);
+  std::printf("  run time %.3f s (the curve %.3f s: %d monodromies, %ld steps; noise %.1e)\n",
+              clock.seconds(), curve.seconds, curve.evaluations, curve.flow.steps, curve.noise);
   if (json_path) {
     nlohmann::json j = curve_json(curve);
     j["case"] = c.path();

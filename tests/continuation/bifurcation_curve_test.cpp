@@ -14,6 +14,7 @@
 #include <numbers>
 #include <random>
 
+#include "continuation/curve_system.hpp"
 #include "sympathy/continuation/continuation.hpp"
 #include "sympathy/continuation/curve_test_function.hpp"
 #include "tests/support/math.hpp"
@@ -100,6 +101,44 @@ CurveOptions window(double mu_lower, double mu_upper, double a_lower, double a_u
 
 // BP of the transverse pitchfork, in (mu, a): mu = a^2 on every point, period 2 pi, the
 // breaking multiplier 1; both halves out to the window's edges, the last points on them.
+// The curve's measure of the integration's noise: the monodromy must map f(z0) onto f(z(T)).
+// On the Hopf cycle with a transverse mode (HopfCycle) at z0 = (1, 0, 0), T = 2 pi, the exact
+// monodromy is diag(exp(-4 pi), 1, exp(-2 pi a)) (radial, along the flow, transverse) and
+// f(z0) = f(z(T)) = (0, 1, 0): no noise; a monodromy off by d in the column that f(z0) picks
+// misses by exactly d. The integrated one misses by its integration error (below 1e-8 at rtol
+// 1e-10 here), and the corrector's constants then stay those set for the default preset.
+TEST(CurveSystem, NoiseIsTheMonodromysMissOnTheFlowDirection) {
+  const testing::HopfCycle system(true, 0.5, 0.7);
+  CurveOptions o;
+  o.first_lower = 0.0;
+  o.first_upper = 1.0;
+  o.second_lower = 0.0;
+  o.second_upper = 1.0;
+  o.orbit.shooting.flow.rtol = 1e-10;
+  o.orbit.shooting.flow.atol = 1e-12;
+  detail::CurveSystem s(system, BifurcationType::BranchPoint, InvariantSubspace(),
+                        detail::CriticalBlock::Shooting, 0, 1, system.default_parameters(), o);
+  const double T = 2.0 * std::numbers::pi;
+  const Eigen::VectorXd u = s.unknowns_of(Eigen::Vector3d(1.0, 0.0, 0.0), T, 0.5, 0.7);
+  s.set_scales(u);
+  s.set_section(u);
+  detail::CurveSystem::Evaluation exact;
+  exact.monodromy =
+      Eigen::Vector3d(std::exp(-4.0 * std::numbers::pi), 1.0, std::exp(-T * 0.5)).asDiagonal();
+  exact.end_rate = Eigen::Vector3d(0.0, 1.0, 0.0);
+  s.measure_noise(u, exact);
+  EXPECT_EQ(s.noise(), 0.0);
+  detail::CurveSystem::Evaluation off = exact;
+  off.monodromy(2, 1) = 3e-7;  // f(z0) = (0, 1, 0) picks column 1
+  s.measure_noise(u, off);
+  EXPECT_NEAR(s.noise(), 3e-7, 1e-22);
+  const auto integrated = s.evaluate(u);
+  ASSERT_TRUE(integrated.ok) << integrated.failure;
+  s.measure_noise(u, integrated);
+  EXPECT_GT(s.noise(), 0.0);
+  EXPECT_LT(s.noise(), 1e-8);
+}
+
 TEST(BifurcationCurve, BranchPointCurveIsTheParabola) {
   const NormalForm system(Kind::Pitchfork, -0.3);
   const InvariantSubspace subspace(3, {{2, -1, 1.0}}, "w1 = 0");

@@ -136,6 +136,9 @@ struct BifurcationCurve {
   double seconds = 0.0;
   FlowStatistics flow;
   int evaluations = 0;  // monodromies computed
+  // The integration's noise measured at the start: |M f(z0) - f(z(T))| / |f(z0)|; above 1e-8 the
+  // corrector's difference step and tolerances grow with it (continuation/curve_system.hpp).
+  double noise = 0.0;
   CurveOptions options;
   ParameterValues start_values;
   bool started() const { return stop != CurveStop::StartFailed; }
