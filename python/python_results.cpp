@@ -11,6 +11,8 @@
 #include <pybind11/numpy.h>
 #include <pybind11/stl.h>
 
+#include "sympathy/continuation/branch_output.hpp"
+
 namespace sympathy::python {
 
 namespace {
@@ -19,20 +21,12 @@ py::object with_fields(const py::dict& fields) {
   return py::module_::import("types").attr("SimpleNamespace")(**fields);
 }
 
-// The stiffness measured at a start (continuation/branch_output.hpp's stiffness_json, the same
-// names), or None where none was measured (a method given, or BDF asked for).
+// The stiffness measured at a start, with the JSON's fields (continuation/branch_output.hpp's
+// stiffness_json: one list of names for both), or None where none was measured (a method
+// given, or BDF asked for).
 py::object stiffness_result(const std::optional<StiffnessEstimate>& e) {
   if (!e) return py::none();
-  py::dict fields;
-  fields["indicator"] = e->indicator;
-  fields["threshold"] = kStiffIndicator;
-  fields["stiff"] = e->indicator > kStiffIndicator;
-  fields["capped"] = e->capped;
-  fields["steps"] = e->steps;
-  fields["bdf_steps"] = e->bdf_steps;
-  fields["spectral_radius"] = e->rate;
-  fields["largest_h_rate"] = e->largest_h_rate;
-  fields["seconds"] = e->seconds;
+  const py::dict fields = py::module_::import("json").attr("loads")(stiffness_json(*e).dump());
   return with_fields(fields);
 }
 
