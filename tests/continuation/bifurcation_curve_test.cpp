@@ -198,6 +198,36 @@ TEST(BifurcationCurve, AnotherCrossingOnTheCurveIsLocated) {
   EXPECT_EQ(found, 1);
 }
 
+// An NS curve whose pair shares its block with the trivial multiplier (no subspace declared):
+// RotationAndGrowth's NS curve mu = a^2, along which the s-multiplier exp(2 pi (a - 1/2)) crosses
+// +1 at (1/4, 1/2). The block's exterior square holds trivial x s = 1 there, a second zero of
+// the matrix whose bordered value is the test function; the curve still passes it and locates
+// the meeting from the NS side (an earlier note suspected that singularity of the in-phase
+// (k, c) map's NS-LP point, where the orbit itself folds: this shows a crossing that is not a
+// fold is not affected).
+TEST(BifurcationCurve, NeimarkSackerCurveBesideTheTrivialMultiplierMeetsAnotherCrossing) {
+  const NormalForm system(Kind::RotationAndGrowth, -0.3, 1, 0.0, 0.3);
+  const Start s =
+      branch_to(system, -0.3, -0.5, 0.5, 1.0, BifurcationType::NeimarkSacker, InvariantSubspace());
+  ASSERT_NE(s.event, nullptr);
+  const BifurcationCurve curve =
+      continue_curve(system, s.branch, *s.event, 1, window(-0.5, 0.5, 0.0, 0.8));
+  ASSERT_TRUE(curve.started()) << curve.stop_reason;
+  ASSERT_GE(curve.points.size(), 5u);
+  for (const auto& p : curve.points) EXPECT_NEAR(p.first, p.second * p.second, 1e-8);
+  EXPECT_EQ(curve.stop, CurveStop::WindowEdge) << curve.stop_reason;
+  int found = 0;
+  for (const auto& e : curve.events) {
+    if (e.type.rfind("turn", 0) == 0 || e.type[0] == 'R') continue;
+    EXPECT_EQ(e.type, "NS-LP");
+    EXPECT_TRUE(e.located) << e.note;
+    EXPECT_NEAR(e.second, 0.5, 1e-7);
+    EXPECT_NEAR(e.first, 0.25, 1e-7);
+    ++found;
+  }
+  EXPECT_EQ(found, 1);
+}
+
 // NS of the rotation form in (mu, omega): the curve is mu = 0 for every omega (a = 0), and the
 // rotation number is omega; the strong resonances 1:4 and 1:3 at omega = 1/4 and 1/3, located.
 TEST(BifurcationCurve, NeimarkSackerCurveAndItsResonances) {

@@ -215,6 +215,10 @@ class TwoHopf final : public AutoDiffSystem<TwoHopf> {
 //   PitchforkAndGrowth: the pitchfork's w1 beside s' = (a - 1/2) s - s^3, whose multiplier
 //               exp(2 pi (a - 1/2)) crosses +1 at a = 1/2: on the BP curve mu = a^2, at
 //               (mu, a) = (1/4, 1/2), another multiplier crosses the unit circle.
+//   RotationAndGrowth: Rotation beside s' = (a - 1/2) s - s^3 (mu - a^2 for mu, as every
+//               kind but Fold): the NS curve mu = a^2, along which the s-multiplier
+//               exp(2 pi (a - 1/2)) crosses +1 at (mu, a) = (1/4, 1/2). With no subspace declared
+//               the NS pair, the trivial multiplier and that one share a block.
 //   Resonance:  as Rotation with the transverse block [mu, 1; -omega, mu]: the pair
 //               exp(2 pi (mu +- sqrt(-omega))), complex for omega > 0 (NS on mu = 0, rotation
 //               number sqrt(omega)), meeting at +1 at (mu, omega) = (0, 0) (1:1 resonance) and
@@ -232,7 +236,8 @@ class NormalForm final : public AutoDiffSystem<NormalForm> {
     Moebius,
     PitchforkAndGrowth,
     ShearedFold,
-    Resonance
+    Resonance,
+    RotationAndGrowth
   };
   NormalForm(Kind kind, double mu, int copies = 1, double a = 0.0, double omega = 0.3)
       : kind_(kind), copies_(copies) {
@@ -252,6 +257,8 @@ class NormalForm final : public AutoDiffSystem<NormalForm> {
         return 3;
       case Kind::PitchforkAndGrowth:
         return 4;
+      case Kind::RotationAndGrowth:
+        return 5;
     }
     return 2;
   }
@@ -298,7 +305,8 @@ class NormalForm final : public AutoDiffSystem<NormalForm> {
       dz[2] = mu * z[2] - z[2] * z[2] * z[2];
       dz[3] = (p[1] - 0.5) * z[3] - z[3] * z[3] * z[3];
     }
-    if (kind_ == Kind::Rotation) {
+    if (kind_ == Kind::RotationAndGrowth) dz[4] = (p[1] - 0.5) * z[4] - z[4] * z[4] * z[4];
+    if (kind_ == Kind::Rotation || kind_ == Kind::RotationAndGrowth) {
       const T q = z[2] * z[2] + z[3] * z[3];
       dz[2] = mu * z[2] - omega * z[3] - z[2] * q;
       dz[3] = omega * z[2] + mu * z[3] - z[3] * q;
