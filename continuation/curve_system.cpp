@@ -73,6 +73,7 @@ CurveSystem::CurveSystem(const OdeSystem& system, BifurcationType kind,
   if (kind == BifurcationType::NeimarkSacker && size < 2)
     throw std::invalid_argument("NS curve: the critical block has fewer than two dimensions");
   if (size < 1) throw std::invalid_argument("curve: the critical block is empty");
+  tolerance_ = options.tolerance;  // until set_scales knows the state's size
   // ShootingProblem's own phase row is not used (the curve has its own, in y).
   problem_.set_phase_section(Eigen::VectorXd::Zero(n_), Eigen::VectorXd::Zero(n_));
 }

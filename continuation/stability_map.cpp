@@ -88,10 +88,11 @@ std::vector<BifurcationCurve> event_curves(const OdeSystem& system, const Branch
                                 : symmetry == SymmetryKind::Breaking ? std::string("BP")
                                                                      : std::string("LP");
       // An unlocated meeting is tried too, from where its probes got (the curve's start is
-      // corrected onto it at that value of the second parameter): the NS curve's test function
-      // is itself singular where another multiplier reaches +1 (the trivial one times it is 1
-      // in the exterior square), so probes of an NS-LP point fail near it (the in-phase (k, c)
-      // map's at k = 56.07).
+      // corrected onto it at that value of the second parameter): probes of an NS-LP point can
+      // fail near it (the in-phase (k, c) map's at k = 56.07). Not, it seems, because the NS
+      // test function's exterior square holds the trivial multiplier times the one at +1: where
+      // that crossing is no fold of the orbit the NS curve locates it (bifurcation_curve_test,
+      // RotationAndGrowth); at an LP the orbit itself folds, its shooting Jacobian singular.
       if (!meeting.located &&
           meeting.uncertainty > 0.01 * (options.first_upper - options.first_lower))
         continue;
