@@ -224,12 +224,9 @@ OptionSpec segment_threads_option() {
 }
 
 int segment_threads(const Arguments& args) {
-  if (!args.has("--threads"))
-    return std::clamp(static_cast<int>(std::thread::hardware_concurrency()), 1, 256);
-  const int n = args.integer("--threads", 1);
-  if (n < 1 || n > 256)
-    throw InputError("--threads " + std::to_string(n) + ": expected a whole number from 1 to 256");
-  return n;
+  // Checked with the rest by ShootingOptions::validate (check_options names it --threads).
+  if (args.has("--threads")) return args.integer("--threads", 1);
+  return std::clamp(static_cast<int>(std::thread::hardware_concurrency()), 1, 256);
 }
 
 void shooting_flow_options(const Arguments& args, OrbitOptions& o) {

@@ -36,8 +36,8 @@ enum class Accuracy { Fast, Default, High };
 OptionSpec accuracy_option();
 // --threads of orbit and continue: the shooting segments integrated side by side.
 OptionSpec segment_threads_option();
-// --threads N (InputError unless a whole number from 1 to 256), by default one per core; the
-// shooting uses at most as many as it has segments, and its result does not depend on them.
+// --threads N as given (ShootingOptions::validate checks it: 1 to 256), by default one per core;
+// the shooting uses at most as many as it has segments, and its result does not depend on them.
 int segment_threads(const Arguments& args);
 // Throws InputError "WHERE TEXT: expected fast, default or high" unless TEXT names a preset.
 Accuracy parse_accuracy(const std::string& text, const std::string& where);

@@ -76,7 +76,7 @@ for o in (a, b):
 sys.exit(0 if a == b and a['segments'] == 3 else 1)" "$work/seg1.json" "$work/seg2.json"
 "$bin" orbit "$src/cases/row2.toml" --start in-phase --segments 3 --threads 0 2> "$work/bad.err"
 check "--threads 0 exits 2" test $? -eq 2
-check "and says what is expected" grep -q -- '--threads 0: expected a whole number from 1 to 256' "$work/bad.err"
+check "and says what is expected" grep -q -- '--threads: expected an integer from 1 to 256' "$work/bad.err"
 
 "$bin" orbit "$src/cases/cross4.toml" --start in-anti --transient 5 > "$work/quasi.out"
 check "a start on no periodic orbit exits 4" test $? -eq 4
