@@ -187,16 +187,8 @@ int weighted_rms_norm_vector_array(int nvec, N_Vector* X, N_Vector* W, sunrealty
 int scale_add_multi_vector_array(int nvec, int nsum, sunrealtype* a, N_Vector* X, N_Vector** Y,
                                  N_Vector** Z) {
   if (nvec < 1 || nsum < 1) return -1;
-  if (nvec == 1) {
-    if (nsum == 1) {
-      linear_sum(a[0], X[0], 1.0, Y[0][0], Z[0][0]);
-      return 0;
-    }
-    const sunindextype n = NV_LENGTH_S(X[0]);
-    for (int j = 0; j < nsum; ++j)
-      add_scaled(a[j], NV_DATA_S(X[0]), NV_DATA_S(Y[j][0]), NV_DATA_S(Z[j][0]), n);
-    return 0;
-  }
+  // One sum: SUNDIALS's goes to its linear sum (of arrays); otherwise, one vector or many, each
+  // Z[j][i] = a[j] X[i] + Y[j][i].
   if (nsum == 1) return linear_sum_vector_array(nvec, a[0], X, 1.0, Y[0], Z[0]);
   const sunindextype n = NV_LENGTH_S(X[0]);
   for (int i = 0; i < nvec; ++i)
