@@ -2,6 +2,7 @@
 
 #include <algorithm>
 #include <array>
+#include <cctype>
 #include <cmath>
 #include <filesystem>
 #include <fstream>
@@ -376,6 +377,16 @@ EquationCase EquationCase::load(const std::string& path) {
         in.fail(*root.get(table), table,
                 "no [" + std::string(table) + "] in a case file with a plug-in (its equations " +
                     "and steep zones are the plug-in's C++, " + name + ")");
+    // A plain file name: letters, digits and _ . / - only (a newline or a quote in it has no
+    // business in a path, and the name is shown in messages and reports).
+    const auto plain = [](char ch) {
+      return std::isalnum(static_cast<unsigned char>(ch)) || ch == '_' || ch == '.' || ch == '/' ||
+             ch == '-';
+    };
+    if (!std::all_of(name.begin(), name.end(), plain))
+      in.fail(*n, "plugin",
+              "a file name of letters, digits and _ . / - only (no spaces, quotes or control "
+              "characters)");
     const std::filesystem::path source =
         std::filesystem::path(path).parent_path() / std::filesystem::path(name);
     std::error_code ec;

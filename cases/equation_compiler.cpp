@@ -3,24 +3,28 @@
 #include <dlfcn.h>
 #include <fcntl.h>
 #include <spawn.h>
+#include <sys/stat.h>
 #include <sys/wait.h>
 #include <unistd.h>
 
+#include <cerrno>
 #include <chrono>
 #include <cstdlib>
+#include <cstring>
 #include <filesystem>
 #include <fstream>
+#include <map>
 #include <mutex>
 #include <optional>
 #include <sstream>
 #include <stdexcept>
+#include <utility>
 #include <vector>
 
 #include "sympathy/cases/equation_codegen.hpp"
 #include "sympathy/cases/equation_toolchain.hpp"
 #include "sympathy/cases/sha256.hpp"
 #include "sympathy/core/binary_interface.hpp"
-#include "sympathy/core/output_file.hpp"
 
 extern char** environ;
 
@@ -45,6 +49,117 @@ std::optional<std::string> read_file(const fs::path& path) {
   std::ostringstream s;
   s << in.rdbuf();
   return s.str();
+}
+
+// The cache is a security boundary: a library found there runs in this process. It is trusted
+// only as far as its owner and its directories: an entry is loaded only if the cache directory,
+// every directory above it (unless root owns it and it is sticky, as /tmp) and the entry's files
+// belong to this user or root and are writable by nobody else; and the checks are made on the
+// descriptor that is then loaded, so nothing can be swapped between check and dlopen.
+bool trusted_owner(uid_t uid) {
+  return uid == ::geteuid() || uid == 0;
+}
+
+std::string mode_text(mode_t mode) {
+  char text[8];
+  std::snprintf(text, sizeof text, "%04o", static_cast<unsigned>(mode & 07777));
+  return text;
+}
+
+// Why the cache directory `dir` cannot be trusted, or "".
+std::string directory_problem(const fs::path& dir) {
+  std::error_code ec;
+  const fs::path canonical = fs::canonical(dir, ec);
+  if (ec) return "cannot resolve it: " + ec.message();
+  for (fs::path p = canonical;; p = p.parent_path()) {
+    struct stat st {};
+    if (::lstat(p.c_str(), &st) != 0) return "cannot examine " + p.string();
+    const bool writable_by_others = (st.st_mode & (S_IWGRP | S_IWOTH)) != 0;
+    const bool shared_sticky = p != canonical && st.st_uid == 0 && (st.st_mode & S_ISVTX) != 0;
+    if (!trusted_owner(st.st_uid))
+      return (p == canonical ? "it" : p.string()) + " belongs to another user (uid " +
+             std::to_string(st.st_uid) + ")";
+    if (writable_by_others && !shared_sticky)
+      return (p == canonical ? "it" : p.string()) + " is writable by group or others (mode " +
+             mode_text(st.st_mode) + ")";
+    if (p == p.parent_path()) break;
+  }
+  return "";
+}
+
+// A file of an entry opened for checking and loading: never through a symbolic link, a regular
+// file of this user's or root's that nobody else can write; its bytes read from the descriptor.
+struct OpenedFile {
+  int fd = -1;
+  dev_t device = 0;
+  ino_t inode = 0;
+  std::string bytes;
+  OpenedFile() = default;
+  OpenedFile(const OpenedFile&) = delete;
+  OpenedFile& operator=(const OpenedFile&) = delete;
+  ~OpenedFile() {
+    if (fd >= 0) ::close(fd);
+  }
+  int release() { return std::exchange(fd, -1); }
+};
+
+// Opens `path` into `file`; returns "" or why it is not to be trusted ("absent" if it is not
+// there).
+std::string open_protected(const fs::path& path, const std::string& what, OpenedFile& file) {
+  file.fd = ::open(path.c_str(), O_RDONLY | O_NOFOLLOW | O_CLOEXEC | O_NOCTTY | O_NONBLOCK);
+  if (file.fd < 0) {
+    if (errno == ENOENT) return "absent";
+    if (errno == ELOOP) return "its " + what + " is a symbolic link";
+    return "its " + what + " cannot be opened: " + std::strerror(errno);
+  }
+  struct stat st {};
+  if (::fstat(file.fd, &st) != 0) return "its " + what + " cannot be examined";
+  if (!S_ISREG(st.st_mode)) return "its " + what + " is not a regular file";
+  if (!trusted_owner(st.st_uid))
+    return "its " + what + " belongs to another user (uid " + std::to_string(st.st_uid) + ")";
+  if ((st.st_mode & (S_IWGRP | S_IWOTH)) != 0)
+    return "its " + what + " is writable by group or others (mode " + mode_text(st.st_mode) + ")";
+  file.device = st.st_dev;
+  file.inode = st.st_ino;
+  char buffer[1 << 16];
+  for (;;) {
+    const ssize_t n = ::read(file.fd, buffer, sizeof buffer);
+    if (n == 0) break;
+    if (n < 0) {
+      if (errno == EINTR) continue;
+      return "its " + what + " cannot be read: " + std::strerror(errno);
+    }
+    file.bytes.append(buffer, static_cast<std::size_t>(n));
+  }
+  return "";
+}
+
+// Writes `content` to `path` atomically (a temporary beside it, then rename) with mode 0644 from
+// its creation, so that no other account can open it for writing at any moment.
+void write_entry_file(const fs::path& path, const std::string& content) {
+  const fs::path temporary = path.string() + ".tmp" + std::to_string(::getpid());
+  ::unlink(temporary.c_str());  // a temporary left by a killed run of the same process id
+  const int fd =
+      ::open(temporary.c_str(), O_WRONLY | O_CREAT | O_EXCL | O_CLOEXEC | O_NOFOLLOW, 0644);
+  if (fd < 0)
+    throw std::runtime_error("cannot write " + temporary.string() + ": " + std::strerror(errno));
+  std::size_t done = 0;
+  while (done < content.size()) {
+    const ssize_t n = ::write(fd, content.data() + done, content.size() - done);
+    if (n < 0 && errno == EINTR) continue;
+    if (n <= 0) {
+      const int e = errno;
+      ::close(fd);
+      ::unlink(temporary.c_str());
+      throw std::runtime_error("cannot write " + temporary.string() + ": " + std::strerror(e));
+    }
+    done += static_cast<std::size_t>(n);
+  }
+  if (::close(fd) != 0 || ::rename(temporary.c_str(), path.c_str()) != 0) {
+    const int e = errno;
+    ::unlink(temporary.c_str());
+    throw std::runtime_error("cannot write " + path.string() + ": " + std::strerror(e));
+  }
 }
 
 // The include directory whose engine headers are those this build was compiled with:
@@ -126,10 +241,23 @@ int run(const std::vector<std::string>& argv, const fs::path& log) {
 // engine headers in `include`.
 void compile(const fs::path& dir, const std::string& key, const std::string& source,
              const std::string& include, const std::string& what) {
-  write_file_atomically((dir / (key + ".cpp")).string(), source);
-  const std::string unique = key + "." + std::to_string(::getpid());
-  const fs::path library = dir / (unique + ".so.tmp");
-  const fs::path log = dir / (unique + ".log.tmp");
+  write_entry_file(dir / (key + ".cpp"), source);
+  // The compiler's output in a directory of its own with mode 0700 (mkdtemp), made 0644 there
+  // before it is moved into place: no other account can open the library for writing between its
+  // creation and its manifest.
+  std::string private_dir = (dir / (key + ".build.XXXXXX")).string();
+  if (::mkdtemp(private_dir.data()) == nullptr)
+    throw std::runtime_error("cannot make a build directory in " + dir.string() + ": " +
+                             std::strerror(errno));
+  struct RemoveDir {
+    fs::path path;
+    ~RemoveDir() {
+      std::error_code ec;
+      fs::remove_all(path, ec);
+    }
+  } cleanup{private_dir};
+  const fs::path library = fs::path(private_dir) / (key + ".so");
+  const fs::path log = fs::path(private_dir) / (key + ".log");
   std::vector<std::string> argv{toolchain::kCompiler};
   const auto flags = compile_flags();
   argv.insert(argv.end(), flags.begin(), flags.end());
@@ -148,25 +276,43 @@ void compile(const fs::path& dir, const std::string& key, const std::string& sou
         (status < 0 ? "could not run " : "exit status " + std::to_string(status) + " of ") +
         toolchain::kCompiler + "); output in " + (dir / (key + ".log")).string() + ":\n" + output);
   }
-  std::error_code ec;
-  fs::remove(log, ec);
-  const auto bytes = read_file(library);
-  if (!bytes) throw std::runtime_error("cannot read the compiled library " + library.string());
+  if (::chmod(library.c_str(), 0644) != 0)
+    throw std::runtime_error("cannot set the mode of the compiled library " + library.string());
+  OpenedFile built;
+  if (const auto problem = open_protected(library, "library", built); !problem.empty())
+    throw std::runtime_error("cannot read the compiled library " + library.string() + ": " +
+                             problem);
   fs::rename(library, dir / (key + ".so"));  // atomic within the directory
-  write_file_atomically((dir / (key + ".manifest")).string(),
-                        manifest_text(key, sha256_hex(*bytes)));
+  write_entry_file(dir / (key + ".manifest"), manifest_text(key, sha256_hex(built.bytes)));
 }
 
-// Why the entry `key` cannot be loaded, or "" if its manifest vouches for its library.
-std::string entry_problem(const fs::path& dir, const std::string& key) {
-  const auto manifest = read_file(dir / (key + ".manifest"));
-  const auto library = read_file(dir / (key + ".so"));
-  if (!manifest && !library) return "absent";
-  if (!manifest) return "its manifest is missing";
-  if (!library) return "its library is missing";
-  if (*manifest != manifest_text(key, sha256_hex(*library)))
+// Why the entry `key` cannot be loaded, or "" if its manifest vouches for its library, which is
+// then open in `library` (the descriptor that is loaded).
+std::string entry_problem(const fs::path& dir, const std::string& key, OpenedFile& library) {
+  OpenedFile manifest;
+  const auto manifest_problem = open_protected(dir / (key + ".manifest"), "manifest", manifest);
+  const auto library_problem = open_protected(dir / (key + ".so"), "library", library);
+  if (manifest_problem == "absent" && library_problem == "absent") return "absent";
+  if (manifest_problem == "absent") return "its manifest is missing";
+  if (library_problem == "absent") return "its library is missing";
+  if (!manifest_problem.empty()) return manifest_problem;
+  if (!library_problem.empty()) return library_problem;
+  if (manifest.bytes != manifest_text(key, sha256_hex(library.bytes)))
     return "its library does not match its manifest (corrupt or foreign)";
   return "";
+}
+
+// The name under which dlopen loads the checked descriptor of `library`: /proc/self/fd/N. The
+// descriptor stays open for the life of the process (one per library file loaded), so that no
+// other library is ever opened under the same name: glibc matches a dlopen's name against the
+// libraries already loaded, and dlclose need not unload a C++ library (unique symbols).
+std::string loadable_name(OpenedFile& library) {
+  static std::mutex mutex;
+  static std::map<std::pair<dev_t, ino_t>, int> kept;
+  std::lock_guard lock(mutex);
+  const auto [it, inserted] = kept.emplace(std::pair{library.device, library.inode}, library.fd);
+  if (inserted) library.release();  // the same file (device and inode) reuses its descriptor
+  return "/proc/self/fd/" + std::to_string(it->second);
 }
 
 struct Library {
@@ -178,10 +324,10 @@ struct Library {
 };
 
 // dlopen and the C interface's checks; nullopt (closed again) when the tag or ABI differ.
-std::optional<Library> open_library(const fs::path& path, const std::string& key,
+std::optional<Library> open_library(OpenedFile& library, const std::string& key,
                                     std::string& problem) {
   Library lib;
-  lib.handle = dlopen(path.c_str(), RTLD_NOW | RTLD_LOCAL);
+  lib.handle = dlopen(loadable_name(library).c_str(), RTLD_NOW | RTLD_LOCAL);
   if (lib.handle == nullptr) {
     problem = std::string("dlopen failed: ") + dlerror();
     return std::nullopt;
@@ -231,19 +377,33 @@ EquationBuild build_equation_system(const EquationCase& equations, const Eigen::
                                 std::to_string(system.parameters.size()) + " parameters");
   const fs::path dir = cache_dir.empty() ? default_equation_cache_dir() : cache_dir;
   std::error_code ec;
-  fs::create_directories(dir, ec);
-  if (!fs::is_directory(dir))
-    throw std::runtime_error("cannot create the equation cache directory " + dir.string() +
-                             (ec ? ": " + ec.message() : ""));
+  if (!fs::exists(dir, ec)) {
+    fs::create_directories(dir.parent_path().empty() ? fs::path(".") : dir.parent_path(), ec);
+    if (::mkdir(dir.c_str(), 0700) != 0 && errno != EEXIST)
+      throw std::runtime_error("cannot create the equation cache directory " + dir.string() + ": " +
+                               std::strerror(errno));
+  }
+  if (!fs::is_directory(dir, ec))
+    throw std::runtime_error("the equation cache directory " + dir.string() +
+                             " is not a directory");
+  if (const auto problem = directory_problem(dir); !problem.empty())
+    throw std::runtime_error(
+        "the equation cache directory " + dir.string() +
+        " is not safe to load code from: " + problem +
+        ". Another account could plant a library there that this program would run. Use a "
+        "directory of your own, writable by you alone (the default, ~/.cache/sympathy, is made "
+        "with mode 0700); to share compiled systems, use a directory that root owns and fills, "
+        "read-only to everyone else");
 
   // A plug-in's source as its author wrote it (it is code, and compiled as such); a file of
   // equations' generated from its trees.
   std::string source;
   if (!equations.plugin().empty()) {
+    // The plug-in's text alone: nothing of the case file (not even the plug-in's name, which a
+    // newline could turn into source lines) reaches the compiler.
     const auto text = read_file(equations.plugin());
     if (!text) throw std::runtime_error("cannot read the plug-in " + equations.plugin());
-    source =
-        "// sympathy plug-in " + fs::path(equations.plugin()).filename().string() + "\n" + *text;
+    source = *text;
   } else {
     source = generate_equation_source(system);
   }
@@ -255,8 +415,12 @@ EquationBuild build_equation_system(const EquationCase& equations, const Eigen::
   std::optional<Library> lib;
   {
     std::lock_guard lock(build_mutex);
-    std::string problem = entry_problem(dir, build.key);
-    if (problem.empty()) lib = open_library(build.library, build.key, problem);
+    std::string problem;
+    {
+      OpenedFile library;
+      problem = entry_problem(dir, build.key, library);
+      if (problem.empty()) lib = open_library(library, build.key, problem);
+    }
     if (!lib) {
       if (problem != "absent") build.rebuilt_because = problem;
       build.include_dir = engine_include_dir();
@@ -264,8 +428,9 @@ EquationBuild build_equation_system(const EquationCase& equations, const Eigen::
               build.plugin.empty() ? "compiling an equation case file's system"
                                    : "compiling the plug-in " + build.plugin);
       build.compiled = true;
-      problem = entry_problem(dir, build.key);
-      if (problem.empty()) lib = open_library(build.library, build.key, problem);
+      OpenedFile library;
+      problem = entry_problem(dir, build.key, library);
+      if (problem.empty()) lib = open_library(library, build.key, problem);
       if (!lib)
         throw std::runtime_error("the equation system just compiled cannot be loaded from " +
                                  build.library + ": " + problem);
@@ -281,8 +446,10 @@ EquationBuild build_equation_system(const EquationCase& equations, const Eigen::
                           values.data(), static_cast<int>(parameters.size()));
   if (raw == nullptr) {
     dlclose(lib->handle);
-    throw std::runtime_error("the equation system library " + build.library +
-                             " refused to create the system (sizes differ)");
+    throw std::runtime_error(
+        "the equation system library " + build.library +
+        " refused to create the system (its sizes differ from the case file's, or its "
+        "constructor threw)");
   }
   // The system owns a reference to its library: closed after the last copy is gone.
   std::shared_ptr<void> handle(lib->handle, [](void* h) { dlclose(h); });

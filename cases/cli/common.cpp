@@ -2,6 +2,8 @@
 
 #include "sympathy/core/csv.hpp"
 
+#include <sys/stat.h>
+
 #include <algorithm>
 #include <cmath>
 #include <csignal>
@@ -243,12 +245,33 @@ extern "C" void on_interrupt(int) {
   if (g_interrupted.exchange(true)) std::_Exit(130);
 }
 
-// The same file whatever the spelling (a relative or absolute path, a symbolic link; a file
-// that does not exist yet by its normalized absolute path).
-std::string identity(const std::string& path) {
+// A file's identity: its device and inode where it exists, so that every spelling of it (a
+// relative or absolute path, a symbolic link, a hard link) is the same file; a file that does
+// not exist yet by its normalized absolute path (it cannot be a link to anything yet).
+struct FileIdentity {
+  bool exists = false;
+  dev_t device = 0;
+  ino_t inode = 0;
+  std::string path;
+  bool operator==(const FileIdentity& o) const {
+    if (exists != o.exists) return false;
+    return exists ? device == o.device && inode == o.inode : path == o.path;
+  }
+};
+
+FileIdentity identity(const std::string& path) {
+  FileIdentity id;
+  struct stat st {};
+  if (::stat(path.c_str(), &st) == 0) {
+    id.exists = true;
+    id.device = st.st_dev;
+    id.inode = st.st_ino;
+    return id;
+  }
   std::error_code ec;
   const auto canonical = std::filesystem::weakly_canonical(path, ec);
-  return ec ? std::filesystem::absolute(path).lexically_normal().string() : canonical.string();
+  id.path = ec ? std::filesystem::absolute(path).lexically_normal().string() : canonical.string();
+  return id;
 }
 
 }  // namespace
@@ -272,6 +295,13 @@ void check_distinct_outputs(const std::vector<std::pair<std::string, std::string
         throw InputError(option + " " + path + ": the same file as " + outputs[j].first +
                          "; expected a different file for each output");
   }
+}
+
+std::vector<std::pair<std::string, std::string>> with(
+    std::vector<std::pair<std::string, std::string>> files,
+    std::pair<std::string, std::string> more) {
+  files.push_back(std::move(more));
+  return files;
 }
 
 void check_parameter_range(const ModelSpec& spec, const std::string& parameter,

@@ -91,8 +91,14 @@ void check_parameter_range(const ModelSpec& spec, const std::string& parameter,
 
 // Throws InputError when two of `paths` (option, path) name the same file, or one of them names
 // an input (option, path) such as the case file: an output must never replace an input or
-// another output of the same run. Empty paths are ignored.
+// another output of the same run. Files are compared by device and inode, so a hard or symbolic
+// link to an input is that input. Empty paths are ignored.
 void check_distinct_outputs(const std::vector<std::pair<std::string, std::string>>& outputs,
                             const std::vector<std::pair<std::string, std::string>>& inputs);
+
+// `files` with `more` appended (for check_distinct_outputs' lists of inputs).
+std::vector<std::pair<std::string, std::string>> with(
+    std::vector<std::pair<std::string, std::string>> files,
+    std::pair<std::string, std::string> more);
 
 }  // namespace sympathy::cli

@@ -128,12 +128,13 @@ BranchRequest continue_request(const Arguments& args, const LoadedSystem& c) {
   request.events_path = args.text("--events", "");
   if (!request.csv_path.empty()) check_writable(request.csv_path, "--csv");
   if (!request.events_path.empty()) check_writable(request.events_path, "--events");
+  auto inputs = c.inputs();
+  inputs.emplace_back("--parent", request.parent_path);
+  inputs.emplace_back("--start-data", args.text("--start-data", ""));
   check_distinct_outputs({{"--csv", request.csv_path},
                           {"--events", request.events_path},
                           {"--json", json_path.value_or("")}},
-                         {{"case file", c.path()},
-                          {"--parent", request.parent_path},
-                          {"--start-data", args.text("--start-data", "")}});
+                         inputs);
 
   return request;
 }

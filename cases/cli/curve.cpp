@@ -159,7 +159,7 @@ int run_curve(const std::vector<std::string>& argv) {
   if (json_path) check_writable(*json_path, "--json");
   if (!csv_path.empty()) check_writable(csv_path, "--csv");
   check_distinct_outputs({{"--csv", csv_path}, {"--json", json_path.value_or("")}},
-                         {{"case file", c.path()}, {"--parent", request.parent_path}});
+                         with(c.inputs(), {"--parent", request.parent_path}));
 
   std::printf(
       "sympathy curve %s  params %s  start %s  %s of the %s-branch (%g to %g) in %s "

@@ -102,6 +102,7 @@ int run_orbit_equations(const Arguments& args) {
   if (auto path = args.value("--json")) {
     check_writable(*path, "--json");
     check_distinct_outputs({{"--json", *path}}, {{"case file", e.file.path()},
+                                                 {"plug-in source", e.file.plugin()},
                                                  {"--start-data", args.text("--start-data", "")}});
   }
 

@@ -108,8 +108,7 @@ EquilibriaRequest equilibria_request(const Arguments& args, const LoadedSystem& 
   const auto json_path = args.value("--json");
   if (!csv_path.empty()) check_writable(csv_path, "--csv");
   if (json_path) check_writable(*json_path, "--json");
-  check_distinct_outputs({{"--csv", csv_path}, {"--json", json_path.value_or("")}},
-                         {{"case file", c.path()}});
+  check_distinct_outputs({{"--csv", csv_path}, {"--json", json_path.value_or("")}}, c.inputs());
 
   return r;
 }

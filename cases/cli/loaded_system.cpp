@@ -39,6 +39,14 @@ const std::string& LoadedSystem::path() const {
   return equations_ ? equations_->file.path() : metronomes_->file.path();
 }
 
+std::vector<std::pair<std::string, std::string>> LoadedSystem::inputs() const {
+  std::vector<std::pair<std::string, std::string>> files{{"case file", path()}};
+  if (equations_ && !equations_->file.plugin().empty())
+    files.emplace_back("plug-in source", equations_->file.plugin());
+  if (recorded_) files.emplace_back("--start-data", recorded_->path);
+  return files;
+}
+
 const std::string& LoadedSystem::params() const {
   return equations_ ? equations_->params : metronomes_->params;
 }

@@ -41,6 +41,9 @@ class LoadedSystem {
 
   bool equations() const { return equations_.has_value(); }
   const std::string& path() const;
+  // The files this run reads, as (what, path) for check_distinct_outputs: the case file, a
+  // plug-in's source, --start-data's recording.
+  std::vector<std::pair<std::string, std::string>> inputs() const;
   const std::string& params() const;
   const OdeSystem& system() const;
   const OrbitDescriber& describer() const { return *describer_; }

@@ -95,8 +95,7 @@ int run_map(const std::vector<std::string>& argv) {
   std::filesystem::create_directories(out);
   const std::string json_path = out + "/" + map.name + ".json";
   check_writable(json_path, map.path + ": the map's JSON");
-  check_distinct_outputs({{"the map's JSON", json_path}},
-                         {{"map file", map.path}, {"case file", c.path()}});
+  check_distinct_outputs({{"the map's JSON", json_path}}, with(c.inputs(), {"map file", map.path}));
 
   std::printf("sympathy map %s: %s\n  case %s  params %s  %s %g to %g, %s %g to %g\n",
               map.path.c_str(), map.title.c_str(), c.path().c_str(), c.params().c_str(),

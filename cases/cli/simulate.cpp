@@ -68,7 +68,7 @@ int run_simulate(const std::vector<std::string>& argv) {
   ParameterValues parameters;
   std::vector<int> angles, watched;
   Eigen::VectorXd z0;
-  std::string case_path, params_name, start_name = "(--initial)", model_note;
+  std::string case_path, params_name, start_name = "(--initial)", model_note, plugin_path;
   int directions = 0;  // leading states in metres (the platform's); the metronomes' in rad
   if (case_file_kind(args.positional(0)) == "equations") {
     if (locked) throw InputError("--locked-pendula: only for a metronome case file");
@@ -84,6 +84,7 @@ int run_simulate(const std::vector<std::string>& argv) {
     angles = {0};
     for (int i = 0; i < system->dimension(); ++i) watched.push_back(i);
     case_path = e.file.path();
+    plugin_path = e.file.plugin();
     params_name = e.params;
     model_note = describe_build(e.build);
     directions = -1;  // no units
@@ -130,7 +131,8 @@ int run_simulate(const std::vector<std::string>& argv) {
   const auto names = system->state_names();
   std::unique_ptr<CsvWriter> csv;
   if (auto out = args.value("--out")) {
-    check_distinct_outputs({{"--out", *out}}, {{"case file", case_path}});
+    check_distinct_outputs({{"--out", *out}},
+                           {{"case file", case_path}, {"plug-in source", plugin_path}});
     std::vector<std::string> header{"t"};
     header.insert(header.end(), names.begin(), names.end());
     csv = std::make_unique<CsvWriter>(*out, header);

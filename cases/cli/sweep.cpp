@@ -152,7 +152,8 @@ Sweep prepare_sweep(const Arguments& args, int ranks) {
   w.json_path = w.out + "/sweep.json";
   check_distinct_outputs(
       {{"journal", w.journal_path}, {"table", w.table_path}, {"json", w.json_path}},
-      {{"case file", w.c->path()}});
+      w.job == Sweep::Job::Fits ? with(w.c->inputs(), {"recording (--data)", w.fit.data})
+                                : w.c->inputs());
   return w;
 }
 

@@ -87,6 +87,12 @@ TEST(EquationCase, PluginInsteadOfEquations) {
                   "case file or relative to it, got 'missing.cpp' (no such file)");
   expect_contains(error_of_file(replaced(states, "PLUGIN", "/etc/passwd")),
                   "key 'plugin': expected the name of a C++ source file (.cpp)");
+  // A name that would be source lines if it reached the compiler (the attack of issue 32: a
+  // newline, a statement, a #define) is refused where the key stands, before any file is read.
+  expect_contains(
+      error_of_file(replaced(
+          states, "PLUGIN", R"(x\nstatic int s = __builtin_puts(\"SMUGGLED\");\n#define U a.cpp)")),
+      ":2: key 'plugin': expected a file name of letters, digits and _ . / - only");
   const std::string source = write_test_file("sympathy_equation_case_test", ".cpp", "// empty\n");
   expect_contains(error_of_file(replaced(states, "PLUGIN", source) + "[equations]\nx = \"-x\"\n"),
                   "key 'equations': expected no [equations] in a case file with a plug-in");

@@ -18,6 +18,7 @@
 #include "sympathy/cases/case_file.hpp"
 #include "sympathy/cases/equation_codegen.hpp"
 #include "sympathy/cases/metronome_model.hpp"
+#include "sympathy/cases/sha256.hpp"
 #include "sympathy/continuation/periodic_orbit.hpp"
 #include "sympathy/core/autodiff_system.hpp"
 #include "tests/support/cases.hpp"
@@ -354,6 +355,176 @@ TEST_F(EquationSystemTest, PluginIsCompiledAndLoaded) {
   const double mu = 0.1;
   EXPECT_NEAR(orbit.period, 2 * std::numbers::pi * (1 + mu * mu / 16), 2e-6);
   EXPECT_FALSE(build(file).compiled);
+}
+
+// The cache as a security boundary (issue 32): a library planted in the cache by another account,
+// with a manifest recomputed to match it, never runs. The planted library is a plug-in whose
+// constructor writes a marker file once armed (SYMPATHY_TEST_PLANTED names the marker); it is
+// built in a cache of its own while unarmed, then copied over the victim's entry with a
+// matching manifest. Each way the entry or its directory can be foreign is tried: a directory
+// writable by others (refused outright, naming it), a library writable by group or others, a
+// library that is a symbolic link, and (when the test runs as root) a library and manifest
+// owned by another user. In every case the marker must not appear; an own entry is rebuilt.
+class PlantedLibraryTest : public EquationSystemTest {
+ protected:
+  void SetUp() override {
+    EquationSystemTest::SetUp();
+    marker_ = cache_.string() + ".marker";
+    fs::remove(marker_);
+    const std::string plugin = R"(#include <cstdio>
+#include <cstdlib>
+#include <sympathy/core/plugin.hpp>
+__attribute__((constructor)) static void planted() {
+  if (const char* marker = std::getenv("SYMPATHY_TEST_PLANTED")) {
+    if (std::FILE* f = std::fopen(marker, "w")) std::fclose(f);
+  }
+}
+class Planted final : public sympathy::PluginSystem<Planted> {
+ public:
+  using PluginSystem::PluginSystem;
+  template <class T, class P>
+  void evaluate(double, const T* z, const P* p, T* dz) const { dz[0] = -p[0] * z[0]; }
+};
+SYMPATHY_PLUGIN(Planted)
+)";
+    const auto source = testing::write_test_file("sympathy_planted", ".cpp", plugin);
+    const auto file = testing::write_test_file(
+        "sympathy_planted", ".toml",
+        "kind = \"equations\"\nplugin = \"" + fs::path(source).filename().string() +
+            "\"\n[states]\nx = 1.0\n[parameters]\na = 1.0\n");
+    const auto planted_case = EquationCase::load(file);
+    const fs::path planted_cache = cache_.string() + ".planted";
+    fs::remove_all(planted_cache);
+    planted_ =
+        build_equation_system(planted_case, planted_case.parameter_values(), planted_cache.string())
+            .library;
+    planted_copy_ = cache_.string() + ".planted.so";
+    fs::copy_file(planted_, planted_copy_, fs::copy_options::overwrite_existing);
+    fs::remove_all(planted_cache);
+    ::setenv("SYMPATHY_TEST_PLANTED", marker_.c_str(), 1);
+  }
+  void TearDown() override {
+    ::unsetenv("SYMPATHY_TEST_PLANTED");
+    fs::remove(marker_);
+    fs::remove(planted_copy_);
+    std::error_code ec;
+    fs::permissions(cache_, fs::perms::owner_all, ec);
+    EquationSystemTest::TearDown();
+  }
+  // The victim's entry for `c` replaced by the planted library, its manifest recomputed.
+  std::string plant(const EquationCase& c) {
+    std::string key;
+    { key = build(c).key; }
+    const fs::path library = cache_ / (key + ".so");
+    fs::remove(library);
+    fs::copy_file(planted_copy_, library);
+    std::ifstream in(library, std::ios::binary);
+    const std::string bytes((std::istreambuf_iterator<char>(in)), std::istreambuf_iterator<char>());
+    const fs::path manifest = cache_ / (key + ".manifest");
+    fs::remove(manifest);
+    std::ofstream(manifest) << "sympathy-equations-cache 1\nkey " + key + "\nlibrary-sha256 " +
+                                   sha256_hex(bytes) + "\n";
+    return key;
+  }
+  bool planted_ran() const { return fs::exists(marker_); }
+  std::string marker_, planted_, planted_copy_;
+};
+
+TEST_F(PlantedLibraryTest, DirectoryWritableByOthersIsRefusedBeforeAnythingLoads) {
+  const auto c = EquationCase::load(example_path("hopf"));
+  plant(c);
+  fs::permissions(cache_, fs::perms::all | fs::perms::sticky_bit);  // mode 1777, as a team's
+  try {
+    build(c);
+    ADD_FAILURE() << "a cache directory of mode 1777 was used";
+  } catch (const std::runtime_error& e) {
+    const std::string what = e.what();
+    EXPECT_NE(what.find("is not safe to load code from: it is writable by group or others "
+                        "(mode 1777)"),
+              std::string::npos)
+        << what;
+    EXPECT_NE(what.find("a directory that root owns and fills, read-only to everyone else"),
+              std::string::npos)
+        << what;
+  }
+  EXPECT_FALSE(planted_ran());
+}
+
+TEST_F(PlantedLibraryTest, ForeignEntryIsRebuiltNeverLoaded) {
+  const auto c = EquationCase::load(example_path("hopf"));
+  // Writable by group or others.
+  std::string key = plant(c);
+  fs::permissions(cache_ / (key + ".so"), fs::perms::others_write, fs::perm_options::add);
+  {
+    const auto b = build(c);
+    EXPECT_TRUE(b.compiled);
+    EXPECT_EQ(b.rebuilt_because, "its library is writable by group or others (mode 0646)");
+    EXPECT_EQ(b.system->dimension(), 2);
+  }
+  EXPECT_FALSE(planted_ran());
+  // A symbolic link to a library elsewhere (the planted one, with a manifest that matches it).
+  key = plant(c);
+  fs::rename(cache_ / (key + ".so"), cache_.string() + ".elsewhere.so");
+  fs::create_symlink(cache_.string() + ".elsewhere.so", cache_ / (key + ".so"));
+  {
+    const auto b = build(c);
+    EXPECT_TRUE(b.compiled);
+    EXPECT_EQ(b.rebuilt_because, "its library is a symbolic link");
+  }
+  fs::remove(cache_.string() + ".elsewhere.so");
+  EXPECT_FALSE(planted_ran());
+  // Another user's library and manifest (as the attack was run: nobody's, uid 65534).
+  if (::geteuid() == 0) {
+    key = plant(c);
+    for (const char* ext : {".so", ".manifest"})
+      ASSERT_EQ(::chown((cache_ / (key + ext)).c_str(), 65534, 65534), 0);
+    const auto b = build(c);
+    EXPECT_TRUE(b.compiled);
+    EXPECT_EQ(b.rebuilt_because, "its manifest belongs to another user (uid 65534)");
+    EXPECT_FALSE(planted_ran());
+  }
+  // The planted library with its mode and owner right is loaded (the test's own control: the
+  // marker does appear, so its absence above means something).
+  plant(c);
+  const auto b = build(c);  // loaded, then refused (its tag is not the key) and rebuilt
+  EXPECT_TRUE(b.compiled);
+  EXPECT_EQ(b.rebuilt_because, "its library is not the one of this key (tag or ABI differ)");
+  EXPECT_TRUE(planted_ran());
+}
+
+// The default cache directory and a new SYMPATHY_CACHE_DIR are made with mode 0700.
+TEST_F(EquationSystemTest, NewCacheDirectoryIsPrivate) {
+  const auto c = EquationCase::load(example_path("hopf"));
+  build(c);
+  EXPECT_EQ(fs::status(cache_).permissions() & fs::perms::all, fs::perms::owner_all);
+}
+
+// A plug-in whose constructor throws something that is not a std::exception: refused with a
+// message, the process goes on (issue 32: it aborted).
+TEST_F(EquationSystemTest, PluginThrowingAnythingIsRefused) {
+  const auto source = testing::write_test_file("sympathy_throwing_plugin", ".cpp", R"(
+#include <sympathy/core/plugin.hpp>
+class Throws final : public sympathy::PluginSystem<Throws> {
+ public:
+  Throws(std::vector<std::string> s, std::vector<sympathy::NamedParameter> n, std::vector<double> v)
+      : PluginSystem(std::move(s), std::move(n), std::move(v)) { throw 42; }
+  template <class T, class P>
+  void evaluate(double, const T* z, const P*, T* dz) const { dz[0] = -z[0]; }
+};
+SYMPATHY_PLUGIN(Throws)
+)");
+  const auto file = testing::write_test_file("sympathy_throwing_plugin", ".toml",
+                                             "kind = \"equations\"\nplugin = \"" +
+                                                 fs::path(source).filename().string() +
+                                                 "\"\n[states]\nx = 1.0\n");
+  const auto c = EquationCase::load(file);
+  try {
+    build(c);
+    ADD_FAILURE() << "no error";
+  } catch (const std::runtime_error& e) {
+    EXPECT_NE(std::string(e.what()).find("refused to create the system"), std::string::npos)
+        << e.what();
+  }
 }
 
 }  // namespace

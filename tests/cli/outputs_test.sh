@@ -9,6 +9,7 @@ mkdir -p "$work"
 . "$(dirname "$0")/check.sh"
 json() { /usr/bin/python3 -c "import json,sys; j=json.load(open(sys.argv[1])); print($2)" "$1"; }
 row2="$src/cases/row2.toml"
+export SYMPATHY_CACHE_DIR="$work/cache"  # never the user's cache
 
 # A full disk: /dev/full refuses every write with ENOSPC (exit 5, the path and the reason named).
 if [ -e /dev/full ]; then
@@ -28,6 +29,22 @@ cp "$row2" "$work/case.toml"
 check "simulate --out CASE exits 2" test $? -eq 2
 check "... and says it is the case file" grep -q "is the case file" "$work/err"
 check "... and the case file is intact" cmp -s "$row2" "$work/case.toml"
+# A hard link to the case file is the case file (issue 32: the check compared resolved paths,
+# and the link's name is a path of its own).
+rm -f "$work/hard.csv"
+ln "$work/case.toml" "$work/hard.csv"
+"$bin" simulate "$work/case.toml" --start anti-phase --t-end 1 --out "$work/hard.csv" 2> "$work/err"
+check "simulate --out HARD-LINK-TO-CASE exits 2" test $? -eq 2
+check "... and says it is the case file" grep -q "hard.csv: is the case file" "$work/err"
+check "... and the case file is intact" cmp -s "$row2" "$work/case.toml"
+# A recording read by a sweep's fits is an input: a sweep writing its table over it is refused.
+mkdir -p "$work/sweep"
+"$bin" simulate "$src/cases/examples/hopf.toml" --t-end 10 --dt 0.1 --out "$work/sweep/sweep_fits.csv" 2> /dev/null
+cp "$work/sweep/sweep_fits.csv" "$work/recording.csv"
+"$bin" sweep "$src/cases/examples/hopf.toml" --data "$work/sweep/sweep_fits.csv" --free w --over mu=0.2:0.3:2 --out "$work/sweep" > /dev/null 2> "$work/err"
+check "sweep --data D --out DIR (the table would be D) exits 2" test $? -eq 2
+check "... naming the recording" grep -q "is the recording (--data)" "$work/err"
+check "... and the recording is intact" cmp -s "$work/recording.csv" "$work/sweep/sweep_fits.csv"
 "$bin" continue "$row2" --start anti-phase --param k --from 10 --to 11 --csv "$work/same" --json "$work/same" 2> "$work/err"
 check "continue --csv F --json F exits 2" test $? -eq 2
 check "... naming both options" grep -q -- "--json $work/same: the same file as --csv" "$work/err"

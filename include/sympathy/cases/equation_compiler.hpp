@@ -15,6 +15,15 @@
 // entry that fails a check before dlopen is rebuilt, never loaded (a library that fails after
 // it, which its manifest vouched for, is closed and rebuilt).
 //
+// The cache is a security boundary (a library found there runs in this process): an entry is
+// loaded only if the cache directory and every directory above it (but a root-owned sticky one,
+// as /tmp) belong to this user or root and are writable by nobody else, and its library and
+// manifest are regular files of this user's or root's that nobody else can write. The library is
+// opened without following links, checked and hashed through that descriptor, and that
+// descriptor is what dlopen loads (/proc/self/fd/N). A cache directory writable by others is
+// refused, naming it; a new one is made with mode 0700; the compiler's output is made in a
+// private (0700) directory and is mode 0644 before it is moved into place.
+//
 // The compiler runs without a shell (fork and exec, its arguments a list), on a source written
 // by sympathy from expression trees; its output is kept in KEY.log on failure.
 #pragma once

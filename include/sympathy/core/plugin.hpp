@@ -92,7 +92,7 @@ class PluginSystem : public AutoDiffSystem<Derived> {
       for (int i = 0; i < m; ++i) named.push_back({parameters[i], {i}, 1.0});                      \
       return static_cast<sympathy::OdeSystem*>(                                                    \
           new Class(std::move(names), std::move(named), std::vector<double>(values, values + m))); \
-    } catch (const std::exception&) {                                                              \
+    } catch (...) { /* whatever the class throws: nothing crosses the C interface */               \
       return nullptr;                                                                              \
     }                                                                                              \
   }                                                                                                \
