@@ -43,6 +43,8 @@ class Arguments {
   std::vector<Assignment> assignments(const std::string& option) const;
 
   std::string usage() const;
+  // Every option as given, in order (a flag with an empty value).
+  const std::vector<std::pair<std::string, std::string>>& given() const { return given_; }
 
  private:
   const OptionSpec& spec(const std::string& option) const;

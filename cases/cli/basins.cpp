@@ -142,6 +142,9 @@ Basins prepare_basins(const Arguments& args, int ranks) {
                           {"shares", b.shares_path},
                           {"json", b.json_path}},
                          {{"case file", b.c.file.path()}, {"basins study file", b.study_path}});
+  b.record =
+      study_record(args, {{"case file", b.c.file.path()}, {"basins study file", b.study_path}},
+                   {"--threads", "--out", "--resume"});
   return b;
 }
 
@@ -193,6 +196,8 @@ void open_outputs(Basins& b, bool resume) {
   std::filesystem::create_directories(b.out);
   for (const auto& p : {b.journal_path, b.runs_path, b.shares_path, b.json_path})
     check_writable(p, "--out");
+  check_or_write_study_record(b.journal_path, b.record,
+                              resume && std::filesystem::exists(b.journal_path));
   const BasinStudy& study = *b.study;
   b.journal =
       std::make_unique<TaskJournal>(b.journal_path, journal_header(study), study.tasks(), resume);

@@ -8,6 +8,7 @@
 #include <vector>
 
 #include "cases/cli/common.hpp"
+#include "cases/cli/study_record.hpp"
 #include "sympathy/cases/basin_study.hpp"
 #include "sympathy/continuation/task_journal.hpp"
 #include "sympathy/continuation/task_runner.hpp"
@@ -24,6 +25,7 @@ struct Basins {
   std::unique_ptr<BasinStudy> study;
   std::string study_path, title;  // a basins study file's, if the study came from one
   std::string out, journal_path, runs_path, shares_path, json_path;
+  StudyRecord record;  // what a resumed journal must have been started with
   std::unique_ptr<TaskJournal> journal;
   std::size_t identity_fields = 0;
 };

@@ -17,6 +17,7 @@
 #include "cases/cli/commands.hpp"
 #include "cases/cli/loaded_system.hpp"
 #include "cases/cli/requests.hpp"
+#include "cases/cli/study_record.hpp"
 #include "cases/cli/task_run.hpp"
 #include "sympathy/continuation/branch_output.hpp"
 #include "sympathy/continuation/periodic_orbit.hpp"
@@ -44,6 +45,7 @@ struct Sweep {
   TaskRunOptions run;
   std::string out, journal_path, table_path, json_path;
   std::unique_ptr<TaskJournal> journal;
+  StudyRecord record;  // what a resumed journal must have been started with
 };
 
 // A located event in a journal field: TYPE:VALUE:UNCERTAINTY:TRUSTED, events joined by ';'.
@@ -154,6 +156,11 @@ Sweep prepare_sweep(const Arguments& args, int ranks) {
       {{"journal", w.journal_path}, {"table", w.table_path}, {"json", w.json_path}},
       w.job == Sweep::Job::Fits ? with(w.c->inputs(), {"recording (--data)", w.fit.data})
                                 : w.c->inputs());
+  w.record = study_record(args,
+                          w.job == Sweep::Job::Fits
+                              ? with(w.c->inputs(), {"recording (--data)", w.fit.data})
+                              : w.c->inputs(),
+                          {"--threads", "--out", "--resume"});
   return w;
 }
 
@@ -182,6 +189,8 @@ void open_outputs(Sweep& w, bool resume) {
                      "another --out (or remove the file)");
   std::filesystem::create_directories(w.out);
   for (const auto& p : {w.journal_path, w.table_path, w.json_path}) check_writable(p, "--out");
+  check_or_write_study_record(w.journal_path, w.record,
+                              resume && std::filesystem::exists(w.journal_path));
   w.journal = std::make_unique<TaskJournal>(w.journal_path, header(w), w.values.size(), resume);
   for (const auto& [index, row] : w.journal->rows())
     if (row[0] != format_double(w.values[index]))

@@ -51,6 +51,7 @@ fi
 # only the others are computed, and the final files equal the uninterrupted run's.
 mkdir -p "$work/resumed"
 head -3 "$work/one/basins_journal.csv" > "$work/resumed/basins_journal.csv"
+cp "$work/one/basins_journal.csv.study" "$work/resumed/"  # the study's record, beside it
 printf '4,1,20,1,0.1' >> "$work/resumed/basins_journal.csv"  # a row cut short by a kill
 "${run[@]}" --threads 2 --out "$work/resumed" --resume 2> "$work/resumed.err"
 check "resumed run exits 0" test $? -eq 0
@@ -134,7 +135,19 @@ bad "zero starts" "--starts: expected at least one start" --grid k=40 --starts 0
 bad "zero threads" "--threads: expected a positive number" --grid k=40 --threads 0
 bad "run shorter than the window" "--t-end: expected a time longer than the classifier's window" --grid k=40 --t-end 5
 bad "journal of an earlier run without --resume" "is the journal of an earlier run" --grid k=14.7467:20:2 --out "$work/one"
-bad "journal of another study" "expected a journal of the same case" --grid k=14.7467:20:2 --starts 3 --seed 2 --out "$work/one" --resume
+bad "journal of another study" "a journal of another study: option --t-end was 30 when the journal was started, now not given; option --seed was not given when the journal was started, now 2" --grid k=14.7467:20:2 --starts 3 --seed 2 --out "$work/one" --resume
+# Issue 32: a journal resumed with other parameters kept its rows and computed the rest under the
+# new ones. Every option that changes a result is in the study's record; the threads are not.
+bad "journal resumed with another --set" "a journal of another study: option --set was not given when the journal was started, now c=0.1" \
+  --grid k=14.7467:20:2 --starts 3 --t-end 30 --set c=0.1 --out "$work/one" --resume
+bad "journal resumed with another --t-end" "option --t-end was 30 when the journal was started, now 31" \
+  --grid k=14.7467:20:2 --starts 3 --t-end 31 --out "$work/one" --resume
+cp "$src/cases/row2.toml" "$work/changed.toml"
+"$bin" basins "$work/changed.toml" --grid k=14.7467:20:2 --starts 3 --t-end 30 --out "$work/changed" 2> /dev/null
+printf '\n# an edit\n' >> "$work/changed.toml"
+"$bin" basins "$work/changed.toml" --grid k=14.7467:20:2 --starts 3 --t-end 30 --out "$work/changed" --resume 2> "$work/changed.err"
+check "a journal resumed after its case file changed: exit 2" test $? -eq 2
+check "... naming the case file" grep -q "file case file has changed since the journal was started" "$work/changed.err"
 bad "a journal without the orbit columns resumed with --confirm" "the journal's header is" \
   --grid k=14.7467:20:2 --starts 3 --t-end 30 --confirm --out "$work/one" --resume
 test ! -e "$work/bad/basins_journal.csv"

@@ -45,6 +45,7 @@ fi
 # computes the other two and writes the files of an uninterrupted run.
 mkdir -p "$work/resumed"
 head -2 "$work/one/sweep_journal.csv" > "$work/resumed/sweep_journal.csv"
+cp "$work/one/sweep_journal.csv.study" "$work/resumed/"  # the study's record, beside it
 "${run[@]}" --out "$work/resumed" --resume > /dev/null 2> "$work/resumed.err"
 check "resume exits 0" test $? -eq 0
 check "resume computes only the missing branches" grep -q '1 in the journal, 2 to compute' "$work/resumed.err"
@@ -102,6 +103,12 @@ bad unknown "--over q: not a parameter of $lcbp" --param p1 --from 1 --to 3 --ov
 bad malformed "--over p2=1:2: expected NAME=FROM:TO:COUNT" --param p1 --from 1 --to 3 --over p2=1:2 --out "$work/bad"
 bad journal_exists "is the journal of an earlier run; expected --resume" \
   --param p1 --from 1 --to 3 --over p2=1.5:2.5:3 --out "$work/one"
+bad journal_other_range "a journal of another study: option --to was 3 when the journal was started, now 2.8" \
+  --param p1 --from 1 --to 2.8 --over p2=1.5:2.5:3 --out "$work/one" --resume
+mkdir -p "$work/norecord"
+head -2 "$work/one/sweep_journal.csv" > "$work/norecord/sweep_journal.csv"
+bad journal_without_record "no record of the study it belongs to" \
+  --param p1 --from 1 --to 3 --over p2=1.5:2.5:3 --out "$work/norecord" --resume
 bad fit_with_param "--data: a fit at each value, given with --param" \
   --param p1 --from 1 --to 3 --over p2=1:2:3 --data "$work/oscillator.csv" --out "$work/bad"
 bad branch_option_without_param "--from: a branch's option, given without --param" \
