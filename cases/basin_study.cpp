@@ -53,6 +53,10 @@ OptionCheck BasinOptions::validate() const {
     return OptionProblem{"t_end", "a time longer than the classifier's window (" +
                                       format_number(classifier.window) + " s)"};
   if (dt > 0.05) return OptionProblem{"dt", "at most 0.05 s (a tenth of a period)"};
+  // A bound chosen, not hit (issue 32): each run keeps its sample times.
+  if (t_end / dt > 1e7)
+    return OptionProblem{
+        "dt", "at most 1e7 samples a run (t_end / dt = " + format_number(t_end / dt) + ")"};
   if (auto p = nested("classifier.", classifier.validate())) return p;
   if (confirm)
     if (auto p = nested("orbit.", orbit.validate())) return p;

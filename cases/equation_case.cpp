@@ -232,14 +232,7 @@ std::string case_file_kind(const std::string& path) {
 
 EquationCase EquationCase::load(const std::string& path) {
   std::string text = read_ascii(path);
-  toml::table root;
-  try {
-    root = toml::parse(text, path);
-  } catch (const toml::parse_error& e) {
-    throw InputError(path + ":" + std::to_string(e.source().begin.line) + ":" +
-                     std::to_string(e.source().begin.column) +
-                     ": not valid TOML: " + std::string(e.description()));
-  }
+  const toml::table root = parse_toml(text, path);
   Loader loader(path, std::move(text));
   const TomlReader& in = loader.in();
   EquationCase c;

@@ -268,9 +268,10 @@ void Flow::integrate_to(double t_end, const std::function<bool(double, double)>&
 }
 
 void Flow::step_to(double t_end, const std::function<bool(double, double)>& after_step) {
-  // One step per call of the integrator, so its own step limit never triggers: count here.
-  for (long steps = 0; t_ < t_end; ++steps) {
-    if (steps >= options_.max_steps) {
+  // One step per call of the integrator, so its own step limit never triggers: count here, from
+  // the start of the call or the last sample given (the samplers reset the count).
+  for (steps_since_output_ = 0; t_ < t_end; ++steps_since_output_) {
+    if (steps_since_output_ >= options_.max_steps) {
       std::ostringstream msg;
       msg << stepper_->name() << ": more than " << options_.max_steps
           << " steps before t = " << t_end << ", at t = " << t_;
@@ -370,6 +371,7 @@ FlowDerivatives Flow::advance_with_sensitivities(
       for (; next < times.size() && times[next] <= t_new; ++next) {
         stepper_->interpolate_state(times[next], z);
         observer(times[next], z);
+        steps_since_output_ = 0;
       }
       return false;
     });
@@ -418,6 +420,7 @@ bool Flow::sample_run(
     while (!stopped && next < times.size() && times[next] <= t_new) {
       stepper_->interpolate(times[next], z, S);
       stopped = observer(times[next++], z, S);
+      steps_since_output_ = 0;
     }
     return stopped;
   });

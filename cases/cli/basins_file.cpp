@@ -28,7 +28,7 @@ std::string key_of(const std::string& field) {
 
 bool is_basins_file(const std::string& path) {
   try {
-    return toml::parse_file(path).contains("case");
+    return read_toml(path, "study file").contains("case");
   } catch (const std::exception&) {
     return false;
   }

@@ -33,6 +33,16 @@ check "bad --t-end says what was expected" grep -q -- "--t-end soon: expected a 
 check "unknown option exits 2" test $? -eq 2
 check "unknown option is named" grep -q "unknown option '--colour'" "$work/bad.err"
 
+# Limits chosen, not hit (issue 32): a sample count past 1e7 is refused before any work; a
+# simulation longer than the integrator's step limit (1e6 steps: about 1050 s of the row setup at
+# its 950 steps a second) runs to its end, the limit being per output interval.
+"$bin" simulate "$src/cases/row2.toml" --start in-phase --t-end 60 --dt 1e-300 2> "$work/bad.err"
+check "--dt 1e-300 exits 2" test $? -eq 2
+check "... saying how many samples that is" grep -q -- "--dt 1e-300: 6e+301 samples over --t-end 60; expected at most 1e7 samples" "$work/bad.err"
+"$bin" simulate "$src/cases/row2.toml" --start anti-phase --initial th2=-0.25 --t-end 1200 --dt 1 --out "$work/long.csv" 2> "$work/long.err"
+check "a simulation of 1200 s (over 1e6 steps) exits 0" test $? -eq 0
+check "... and reaches t = 1200" test "$(tail -1 "$work/long.csv" | cut -d, -f1)" = "1200"
+
 "$bin" simulate --help > "$work/help.out"
 check "--help exits 0" test $? -eq 0
 check "--help lists --set" grep -q -- "--set KEY=VALUE" "$work/help.out"

@@ -168,6 +168,30 @@ TEST(Flow, BlowUpIsReportedWithItsTime) {
   EXPECT_NEAR(flow.advance(z0, p, 0.0, 1.0)[0], 0.1 / 0.9, 1e-9);
 }
 
+// The step limit is per output interval when a run samples its solution (issue 32: a simulation
+// of 2000 s stopped at t = 1017 with the limit per run): with 300 steps allowed, sampling every
+// 1 s to t = 200 (thousands of steps in all) runs to the end, exact to 1e-7 (expm), while one
+// call to t = 200 without samples stops at the limit.
+TEST(Flow, StepLimitIsPerOutputInterval) {
+  const Eigen::MatrixXd a = oscillator_matrix();
+  LinearSystem system(a);
+  const Eigen::VectorXd z0 = Eigen::VectorXd::Constant(3, 0.3);
+  FlowOptions o;
+  o.max_steps = 300;
+  Flow flow(system, o);
+  std::vector<double> times;
+  for (int i = 0; i <= 200; ++i) times.push_back(i);
+  Eigen::VectorXd last;
+  flow.sample_until(z0, system.default_parameters(), 0.0, times, [&](double, const auto& z) {
+    last = z;
+    return false;
+  });
+  EXPECT_GT(flow.statistics().steps, 2 * o.max_steps);
+  const Eigen::VectorXd exact = (a * 200.0).exp() * z0;
+  EXPECT_LT((last - exact).norm(), 1e-7 * (1 + exact.norm()));
+  EXPECT_THROW(flow.advance(z0, system.default_parameters(), 0.0, 200.0), IntegrationError);
+}
+
 TEST(Flow, RejectsBadInput) {
   Decay system(1.0);
   Flow flow(system);

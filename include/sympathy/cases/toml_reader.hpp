@@ -13,6 +13,21 @@ namespace sympathy {
 // valid TOML. `what` says what the file is, e.g. "case file".
 toml::table read_toml(const std::string& path, const std::string& what);
 
+// The limits on a TOML text's shape that read_toml and parse_toml check before the parser sees
+// it: toml++ parses dotted keys and nested brackets by recursion, and a table header of 50,000
+// dotted parts overflowed the stack (issue 32). No case, study, map or basins file needs more
+// than a few of either.
+constexpr int kMaxTomlKeyParts = 64;
+constexpr int kMaxTomlNesting = 64;
+
+// Throws InputError "PATH:LINE: ..." when `text` has a dotted key of more than kMaxTomlKeyParts
+// parts or brackets and braces nested deeper than kMaxTomlNesting (outside strings and comments).
+void check_toml_shape(const std::string& text, const std::string& path);
+
+// `text` (the contents of `path`) as a table, after check_toml_shape; InputError naming the file,
+// line and column when it is not valid TOML.
+toml::table parse_toml(const std::string& text, const std::string& path);
+
 // Typed reads of one file's values; each failure an InputError "FILE:LINE: key 'KEY': expected
 // WHAT, got VALUE".
 class TomlReader {

@@ -107,8 +107,10 @@ struct FlowOptions {
   LinearSolver linear_solver = LinearSolver::Automatic;
   SensitivityCorrector corrector = SensitivityCorrector::Staggered;
   Derivatives derivatives = Derivatives::Model;
-  long max_steps = 1000000;  // per call
-  double max_step = 0.0;     // 0: no limit
+  // Per call, and per output interval where a call samples its solution (a simulation of
+  // 2000 s, about 1000 steps a second on the row setup, stopped at t = 1017 with a limit per run).
+  long max_steps = 1000000;
+  double max_step = 0.0;  // 0: no limit
   bool resolve_steep_zones = true;
   double steep_step_fraction =
       0.5;  // below 2/3, so that no step jumps a level (see update_max_step)
@@ -236,6 +238,7 @@ class Flow {
   FlowStatistics statistics_;
   std::unique_ptr<detail::FlowCall> call_;        // the call now being integrated
   std::unique_ptr<detail::FlowStepper> stepper_;  // the integrator
+  long steps_since_output_ = 0;  // steps since the call began or last gave a sample
 
   // Steep zones with their levels.
   std::vector<SteepZone> zones_;
