@@ -1,6 +1,7 @@
 #include "sympathy/continuation/periodic_orbit.hpp"
 
 #include <cmath>
+#include <limits>
 #include <sstream>
 
 #include "stiffness_choice.hpp"
@@ -56,6 +57,8 @@ std::string to_string(NewtonOutcome o) {
       return "iteration limit";
     case NewtonOutcome::NoDescent:
       return "no descent";
+    case NewtonOutcome::Vanishing:
+      return "vanishing amplitude";
     case NewtonOutcome::NonFiniteStep:
       return "non-finite step";
     case NewtonOutcome::GuessNotIntegrable:
@@ -192,9 +195,14 @@ PeriodicOrbit solve_periodic_orbit(const OdeSystem& system, const ParameterValue
   }
   double norm = inf_norm(e.residual);
   s.residual_norms.push_back(norm);
-  const double tolerance =
+  const double absolute_tolerance =
       attainable_tolerance(options.newton.residual_tolerance, options.newton.rtol_factor,
                            options.shooting.flow, inf_norm(x.head(n)));
+  // The absolute tolerance, and kOrbitClosure of the current iterate's amplitude.
+  const auto tolerance_at = [&](const ShootingProblem::Evaluation& at) {
+    return std::min(absolute_tolerance, kOrbitClosure * sampled_amplitude(at.samples));
+  };
+  double tolerance = tolerance_at(e);
   for (;;) {
     if (norm <= tolerance) {
       s.converged = true;
@@ -228,6 +236,7 @@ PeriodicOrbit solve_periodic_orbit(const OdeSystem& system, const ParameterValue
           x = trial;
           e = std::move(et);
           norm = trial_norm;
+          tolerance = tolerance_at(e);
           s.halvings += h;
           s.step_norms.push_back(alpha * inf_norm(step.x));
         }
@@ -241,6 +250,15 @@ PeriodicOrbit solve_periodic_orbit(const OdeSystem& system, const ParameterValue
         s.converged = true;
         s.outcome = NewtonOutcome::NoiseFloor;
         s.reason = "residual at the integration's noise floor (within 10 tolerances)";
+      } else if (norm <= 10 * absolute_tolerance) {
+        s.outcome = NewtonOutcome::Vanishing;
+        const double amplitude = sampled_amplitude(e.samples);
+        std::ostringstream why;
+        why.precision(2);
+        why << "no orbit: the motion decays to the equilibrium (the residual stalled at " << norm
+            << ", " << norm / amplitude << " of an amplitude shrunk to " << amplitude
+            << "; an orbit closes to " << kOrbitClosure << " of its amplitude)";
+        s.reason = why.str();
       } else {
         s.outcome = NewtonOutcome::NoDescent;
         s.reason = "no step reduced the residual below " + std::to_string(norm);
@@ -261,6 +279,13 @@ PeriodicOrbit solve_periodic_orbit(const OdeSystem& system, const ParameterValue
   orbit.flow = problem.statistics();
   orbit.seconds = started.seconds();
   return orbit;
+}
+
+double sampled_amplitude(const PeriodSamples& samples) {
+  if (samples.states.cols() == 0) return std::numeric_limits<double>::infinity();
+  const Eigen::VectorXd range =
+      samples.states.rowwise().maxCoeff() - samples.states.rowwise().minCoeff();
+  return 0.5 * range.maxCoeff();
 }
 
 double estimate_period(Flow& flow, const ParameterValues& p, const Eigen::VectorXd& z,

@@ -11,10 +11,34 @@
 
 namespace sympathy::cli {
 
+// print_orbit's two parts: what the orbit is (only for one that converged), and how the search
+// went.
+void print_orbit_result(std::FILE* out, const OdeSystem& model, const PeriodicOrbit& orbit,
+                        const std::vector<double>& amplitudes,
+                        const std::vector<double>& phase_differences, const OrbitOptions& options,
+                        const std::vector<double>& rms);
+void print_orbit_search(std::FILE* out, const OdeSystem& model, const PeriodicOrbit& orbit,
+                        const OrbitOptions& options);
+
 void print_orbit(std::FILE* out, const OdeSystem& model, const PeriodicOrbit& orbit,
                  const std::vector<double>& amplitudes,
                  const std::vector<double>& phase_differences, const OrbitOptions& options,
                  const std::vector<double>& rms) {
+  // A failure prints no result-like numbers (issue 32: "period 0 s, frequency inf Hz" and a
+  // stability verdict above the FAILED line): what failed, Newton's history and the work.
+  if (orbit.converged())
+    print_orbit_result(out, model, orbit, amplitudes, phase_differences, options, rms);
+  else
+    std::fprintf(out,
+                 "  no orbit     the search failed (%s): no period, multipliers or stability\n",
+                 to_string(orbit.newton.outcome).c_str());
+  print_orbit_search(out, model, orbit, options);
+}
+
+void print_orbit_result(std::FILE* out, const OdeSystem& model, const PeriodicOrbit& orbit,
+                        const std::vector<double>& amplitudes,
+                        const std::vector<double>& phase_differences, const OrbitOptions& options,
+                        const std::vector<double>& rms) {
   const auto names = model.state_names();
   const auto& f = orbit.floquet;
   std::fprintf(out, "  period       %.12g s    frequency %.9g Hz\n", orbit.period,
@@ -61,6 +85,10 @@ void print_orbit(std::FILE* out, const OdeSystem& model, const PeriodicOrbit& or
         "orbits, or a direction neutral to first order): %d structural multiplier%s at "
         "1, left out of the verdict\n",
         orbit.family_dimension, f.structural, f.structural > 1 ? "s" : "");
+}
+
+void print_orbit_search(std::FILE* out, const OdeSystem& model, const PeriodicOrbit& orbit,
+                        const OrbitOptions& options) {
   const auto& s = orbit.newton;
   std::fprintf(out, "  newton       %s after %d iteration%s (%s); residuals",
                s.converged ? "converged" : "FAILED", s.iterations, s.iterations == 1 ? "" : "s",

@@ -162,4 +162,11 @@ check "... saying why" grep -qF "ffn.toml: its equations use t (a periodically f
 "$bin" curve "$ffn" --param a --from 0 --to 1 --event NS1 --second amp --second-from 0 --second-to 1 > /dev/null 2> "$work/ffn_curve.err"
 check "ffn: curve on a forced system exits 2" test $? -eq 2
 check "... saying why" grep -qF "curve (two-parameter curves) is for autonomous systems" "$work/ffn_curve.err"
+# No orbit where there is none (issue 32): at the Hopf point (mu = 0) the motion decays as
+# r' = -r^3; it was reported a converged, stable orbit of amplitude 6.7e-4. Now exit 4, what
+# failed, and no period, multipliers or stability printed.
+"$bin" orbit "$src/cases/examples/hopf.toml" --set mu=0 > "$work/hopf0.out" 2>&1
+check "orbit at the Hopf point (mu = 0) exits 4" test $? -eq 4
+check "... saying there is no orbit" grep -q "no orbit: the motion decays to the equilibrium" "$work/hopf0.out"
+check "... and prints no period" test "$(grep -c '^  period\|^  stability\|^  multipliers' "$work/hopf0.out")" -eq 0
 exit "$failures"

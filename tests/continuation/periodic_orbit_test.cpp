@@ -14,6 +14,7 @@ namespace {
 
 using testing::ForcedFloquet;
 using testing::HopfCycle;
+using testing::HopfNormalForm;
 using testing::TwoHopf;
 
 using testing::kPi;
@@ -25,6 +26,38 @@ OrbitOptions tight(int segments = 1) {
   o.shooting.flow.atol = 1e-14;
   o.newton.residual_tolerance = 1e-11;
   return o;
+}
+
+// An orbit only where there is one (issue 32): at the Hopf point itself (mu = 0) Newton followed
+// the decaying motion to amplitude 6.7e-4 and reported a converged, stable orbit at the absolute
+// noise floor; it must say there is none. A genuine small orbit next to it (mu = 1e-4, radius
+// 0.01) still converges to its exact radius, period and multiplier.
+TEST(PeriodicOrbit, NoOrbitAtTheHopfPointButTheSmallOneNextToIt) {
+  {
+    HopfNormalForm system(0.0, 1.0);
+    const auto orbit =
+        find_periodic_orbit(system, system.default_parameters(), Eigen::Vector2d(0.3, 0.0), {}, {});
+    EXPECT_FALSE(orbit.converged()) << orbit.newton.reason;
+    EXPECT_EQ(orbit.newton.outcome, NewtonOutcome::Vanishing) << orbit.newton.reason;
+    EXPECT_NE(orbit.newton.reason.find("no orbit: the motion decays to the equilibrium"),
+              std::string::npos)
+        << orbit.newton.reason;
+  }
+  {
+    const double mu = 1e-4, w = 1.0;
+    HopfNormalForm system(mu, w);
+    const auto orbit = solve_periodic_orbit(system, system.default_parameters(),
+                                            Eigen::Vector2d(0.0102, 0.0), 2 * kPi * 1.001, {}, {});
+    ASSERT_TRUE(orbit.converged()) << orbit.newton.reason;
+    // The radius is fixed only to residual / (1 - exp(-4 pi mu)) = 800 x residual so near the
+    // Hopf point (the radial multiplier 0.9987): 1e-8 is 1e-6 of it (measured 6e-9).
+    EXPECT_NEAR(orbit.state0.norm(), std::sqrt(mu), 1e-8);
+    EXPECT_NEAR(orbit.period, 2 * kPi / w, 1e-8);
+    for (const auto& m : orbit.floquet.multipliers)
+      if (!m.trivial) {
+        EXPECT_NEAR(m.value.real(), std::exp(-2 * mu * 2 * kPi / w), 1e-7);
+      }
+  }
 }
 
 // Exact: the unit circle, period 2 pi, multipliers 1 and exp(-4 pi) (radial rate -2), and with

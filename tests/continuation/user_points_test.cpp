@@ -16,21 +16,7 @@ namespace {
 
 using testing::kTwoPi;
 
-// The Hopf normal form x' = mu x - w y - x r^2, y' = w x + mu y - y r^2 (cases/examples/hopf.toml
-// written by hand): for mu > 0 the circle r = sqrt(mu), period 2 pi / w, nontrivial multiplier
-// exp(-4 pi mu / w) (r' = r (mu - r^2) linearized at r = sqrt(mu): -2 mu).
-class HopfNormalForm final : public AutoDiffSystem<HopfNormalForm> {
- public:
-  HopfNormalForm() { set_parameter_layout({{"mu", {0}}, {"w", {1}}}, {0.25, 1.0}); }
-  int dimension() const override { return 2; }
-  std::vector<std::string> state_names() const override { return {"x", "y"}; }
-  template <class T, class P>
-  void evaluate(double, const T* z, const P* p, T* dz) const {
-    const T r2 = z[0] * z[0] + z[1] * z[1];
-    dz[0] = p[0] * z[0] - p[1] * z[1] - z[0] * r2;
-    dz[1] = p[1] * z[0] + p[0] * z[1] - z[1] * r2;
-  }
-};
+using testing::HopfNormalForm;
 
 BranchProblem problem(const OdeSystem& system, double from, double to, Eigen::Vector2d start,
                       std::optional<double> at = std::nullopt) {

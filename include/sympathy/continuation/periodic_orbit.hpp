@@ -54,7 +54,22 @@ enum class NewtonOutcome {
   GuessNotIntegrable,  // the integration failed at the initial guess
   TransientFailed,     // the transient integration before Newton failed
   NoPeriod,            // no return to the section after the transient
+  Vanishing,           // the residual stalled above kOrbitClosure of a shrinking amplitude:
+                       // no orbit, the motion decays to an equilibrium
 };
+
+// An orbit is one only where it closes to within this fraction of its amplitude about its mean
+// (max over states of half the range over the period), besides the absolute tolerance: on the
+// Hopf normal form at mu = 0 (no cycle, r' = -r^3) Newton shrank the "orbit" to amplitude 6.7e-4
+// and stalled at the absolute noise floor, 1.5e-9, which is its per-period decay r^3 T: 2.2e-6 of
+// its amplitude (issue 32: reported converged and stable). A genuine orbit converges
+// quadratically through this: at mu = 1e-4 (amplitude 0.01) it asks for 1e-9, the default
+// tolerance.
+constexpr double kOrbitClosure = 1e-7;
+
+// Half the largest range of a state over the sampled period (inf of the samples' amplitude about
+// their mean); infinity without samples.
+double sampled_amplitude(const PeriodSamples& samples);
 std::string to_string(NewtonOutcome o);
 
 struct NewtonSummary {
