@@ -1,6 +1,7 @@
 #include "sympathy/core/recording.hpp"
 
 #include <algorithm>
+#include <cmath>
 
 #include "sympathy/core/csv.hpp"
 #include "sympathy/core/errors.hpp"
@@ -43,7 +44,16 @@ Recording read_recording(const std::string& path, const std::vector<std::string>
                        format_double(row[0]) + " after " + format_double(r.times[i - 1]) +
                        " (line " + std::to_string(table.lines[i - 1]) +
                        "); expected strictly increasing times");
-    for (int k = 0; k < m; ++k) r.values(i, k) = row[k + 1];
+    for (int k = 0; k < m; ++k) {
+      // A value whose square overflows makes every residual sum infinite or NaN (issue 32: a
+      // sample of 1e300 gave "RSS 0 -> 0", "RMS -nan" and "converged"): refused, named.
+      if (std::abs(row[k + 1]) > kMaxRecordedMagnitude)
+        throw InputError(path + ":" + std::to_string(table.lines[i]) + ": column '" + r.columns[k] +
+                         "': " + format_double(row[k + 1]) +
+                         "; expected a value of magnitude at most 1e150 (its square must not "
+                         "overflow in a least-squares fit)");
+      r.values(i, k) = row[k + 1];
+    }
   }
   return r;
 }

@@ -121,5 +121,16 @@ TEST_F(RecordingErrors, NonIncreasingTime) {
                   {path_ + ":4", "time 0.01 after 0.02"});
 }
 
+// A value whose square overflows (issue 32: one sample of 1e300 made a fit report "RSS 0 -> 0",
+// "RMS -nan" and "converged") is refused with its line and column; 1e150 itself is accepted.
+TEST_F(RecordingErrors, ValueWhoseSquareOverflowsIsRefused) {
+  const std::string error = error_of("t,x\n0,0.1\n0.01,1e300\n");
+  EXPECT_EQ(error, path_ +
+                       ":3: column 'x': 1e+300; expected a value of magnitude at most 1e150 (its "
+                       "square must not overflow in a least-squares fit)");
+  EXPECT_NE(error_of("t,th1\n0,-2e150\n").find(":2: column 'th1': -2e+150"), std::string::npos);
+  EXPECT_NO_THROW(read_recording(write("t,x\n0,1e150\n0.01,-1e150\n"), kStates));
+}
+
 }  // namespace
 }  // namespace sympathy

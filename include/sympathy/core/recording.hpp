@@ -20,10 +20,14 @@ struct Recording {
   int samples() const { return static_cast<int>(times.size()); }
 };
 
+// The largest magnitude of a recorded value: its square, summed over a recording, stays finite.
+constexpr double kMaxRecordedMagnitude = 1e150;
+
 // Reads a recording of a system with the given state names. Besides what read_csv rejects,
 // throws InputError naming the file, line and column for: a first column other than `t`, a
 // column that is not a state of the system (`system` describes it in the message), no state
-// column at all, and times that do not increase.
+// column at all, times that do not increase, and a value above kMaxRecordedMagnitude.
+
 Recording read_recording(const std::string& path, const std::vector<std::string>& state_names,
                          const std::string& system = "the model");
 
