@@ -194,8 +194,11 @@ class Parser {
     e.offset = start;
     const auto result = std::from_chars(text_.data() + start, text_.data() + pos_, e.number);
     if (result.ec != std::errc() || !std::isfinite(e.number)) {
+      // The number as typed (the token describer would show its first digit alone: "got '1'"
+      // for 1e999).
+      const std::string typed(text_.substr(start, pos_ - start));
       pos_ = start;
-      fail("a finite number");
+      throw ExpressionError{pos_, "a finite number", "'" + typed + "'"};
     }
     return e;
   }
