@@ -275,6 +275,8 @@ void Flow::step_to(double t_end, const std::function<bool(double, double)>& afte
       std::ostringstream msg;
       msg << stepper_->name() << ": more than " << options_.max_steps
           << " steps before t = " << t_end << ", at t = " << t_;
+      // Steps that shrink without end against a right-hand side that is not finite beyond them.
+      if (!call_->nonfinite.empty()) msg << "; " << call_->nonfinite;
       throw IntegrationError(msg.str(), t_);
     }
     const bool forced = forced_stop_ && *forced_stop_ < t_end;

@@ -177,8 +177,7 @@ void AugmentedCvode::fail(int flag, const char* function) {
   rethrow_callback_error(call);
   std::ostringstream msg;
   msg << function << " failed at t = " << t_now << ": " << CVodeGetReturnFlagName(flag);
-  if (!call.last_error.empty()) msg << " (" << call.last_error << ")";
-  call.last_error.clear();
+  append_failure_details(msg, call);
   throw IntegrationError(msg.str(), t_now);
 }
 
@@ -206,6 +205,7 @@ std::optional<PlannedStep> AugmentedCvode::planned_step() {
 }
 
 StepOutcome AugmentedCvode::step(double t_end, double& t) {
+  call.nonfinite.clear();
   const int flag = CVode(mem, t_end, y, &t, CV_ONE_STEP);
   t_now = t;
   if (flag < 0 || call.callback_error) fail(flag, "CVode");

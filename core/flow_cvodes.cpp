@@ -232,12 +232,9 @@ class CvodesStepper final : public FlowStepper {
 int CvodesCallbacks::rhs(sunrealtype t, N_Vector y, N_Vector ydot, void* user) {
   auto& call = static_cast<CvodesStepper*>(user)->call;
   try {
-    const int n = call.system.dimension();
     double* dz = N_VGetArrayPointer(ydot);
     call.system.rhs(t, N_VGetArrayPointer(y), call.values.data(), dz);
-    for (int i = 0; i < n; ++i)
-      if (!std::isfinite(dz[i])) return 1;  // recoverable: CVODES retries a smaller step
-    return 0;
+    return check_finite_rhs(call, t, N_VGetArrayPointer(y), dz);
   } catch (...) {
     call.callback_error = std::current_exception();
     return -1;
@@ -349,8 +346,7 @@ void CvodesStepper::fail(int flag, const char* function) {
   rethrow_callback_error(call);
   std::ostringstream msg;
   msg << function << " failed at t = " << t_now << ": " << CVodeGetReturnFlagName(flag);
-  if (!call.last_error.empty()) msg << " (" << call.last_error << ")";
-  call.last_error.clear();
+  append_failure_details(msg, call);
   throw IntegrationError(msg.str(), t_now);
 }
 
@@ -583,6 +579,7 @@ void CvodesStepper::set_stop_time(double t) {
 }
 
 StepOutcome CvodesStepper::step(double t_end, double& t) {
+  call.nonfinite.clear();
   const int flag = CVode(mem, t_end, y, &t, CV_ONE_STEP);
   t_now = t;
   if (flag < 0 || call.callback_error) fail(flag, "CVode");

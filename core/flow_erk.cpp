@@ -157,8 +157,7 @@ void ErkStepper::fail(int flag, const char* function) {
   std::ostringstream msg;
   msg << function << " failed at t = " << t_now << ": " << (flag_name ? flag_name : "?");
   std::free(flag_name);
-  if (!call.last_error.empty()) msg << " (" << call.last_error << ")";
-  call.last_error.clear();
+  append_failure_details(msg, call);
   throw IntegrationError(msg.str(), t_now);
 }
 
@@ -189,6 +188,7 @@ StepOutcome ErkStepper::step(double t_end, double& t) {
   t_before = t_now;
   z_before = Eigen::Map<const Eigen::VectorXd>(N_VGetArrayPointer(y), call.system.dimension());
   rates_at = std::numeric_limits<double>::quiet_NaN();
+  call.nonfinite.clear();
   const int flag = ERKStepEvolve(mem, t_end, y, &t, ARK_ONE_STEP);
   t_now = t;
   if (flag < 0 || call.callback_error) fail(flag, "ERKStepEvolve");

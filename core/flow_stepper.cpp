@@ -7,6 +7,37 @@
 
 namespace sympathy::detail {
 
+int check_finite_rhs(FlowCall& call, double t, const double* z, const double* dz) {
+  const int n = call.system.dimension();
+  int bad = -1;
+  for (int i = 0; i < n && bad < 0; ++i)
+    if (!std::isfinite(dz[i])) bad = i;
+  if (bad < 0) return 0;
+  if (call.nonfinite.empty()) {
+    const auto states = call.system.state_names();
+    const auto parameters = call.system.parameter_names();
+    std::ostringstream s;
+    s.precision(9);
+    s << "the right-hand side is not finite at t = " << t << ": d" << states[bad]
+      << "/dt = " << dz[bad] << " at state";
+    for (int i = 0; i < n; ++i) s << (i ? ", " : " ") << states[i] << " = " << z[i];
+    if (static_cast<Eigen::Index>(parameters.size()) == call.values.size() && !parameters.empty()) {
+      s << " and parameters";
+      for (std::size_t i = 0; i < parameters.size(); ++i)
+        s << (i ? ", " : " ") << parameters[i] << " = " << call.values[static_cast<int>(i)];
+    }
+    call.nonfinite = s.str();
+  }
+  return 1;  // recoverable: the integrator retries a smaller step
+}
+
+void append_failure_details(std::ostringstream& msg, FlowCall& call) {
+  if (!call.last_error.empty()) msg << " (" << call.last_error << ")";
+  if (!call.nonfinite.empty()) msg << "; " << call.nonfinite;
+  call.last_error.clear();
+  call.nonfinite.clear();
+}
+
 int augmented_rhs(FlowCall& call, double t, const double* y, double* ydot,
                   std::vector<const double*>& columns_in, std::vector<double*>& columns_out) {
   try {
@@ -21,9 +52,7 @@ int augmented_rhs(FlowCall& call, double t, const double* y, double* ydot,
     // f and the columns from one evaluation where the system can (OdeSystem::rhs_and_variational).
     call.system.rhs_and_variational(t, y, p, ydot, call.columns, columns_in.data(),
                                     columns_out.data(), call.parameters);
-    for (int i = 0; i < n; ++i)
-      if (!std::isfinite(ydot[i])) return 1;  // recoverable: the integrator retries a smaller step
-    return 0;
+    return check_finite_rhs(call, t, y, ydot);
   } catch (...) {
     call.callback_error = std::current_exception();
     return -1;

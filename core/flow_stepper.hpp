@@ -18,6 +18,7 @@
 #include <map>
 #include <memory>
 #include <optional>
+#include <sstream>
 #include <string>
 #include <vector>
 
@@ -42,6 +43,10 @@ struct FlowCall {
   // A C++ exception from a callback: stored, the C code told to stop, rethrown after it returns.
   std::exception_ptr callback_error;
   std::string last_error;  // SUNDIALS's last error message
+  // The first non-finite right-hand side of the step under way, described (t, the derivative,
+  // the state and parameters); cleared at each step. The integrator retries smaller steps; when
+  // it gives up, the failure says this rather than only a return code.
+  std::string nonfinite;
 };
 
 enum class StepOutcome { Step, StopTime, Root };
@@ -97,6 +102,12 @@ std::unique_ptr<FlowStepper> make_stepper_by_columns(
 // The augmented right-hand side: y = [z; S_0; ...], ydot = [f(t, z); J S_0 (+ df/dp); ...] with
 // one call of rhs and one of variational_rhs for all columns. Returns 0, 1 (recoverable: f not
 // finite) or -1 (an exception, stored in call.callback_error).
+// 0 if the n entries of `dz` are finite; else 1 (recoverable: the integrator retries a smaller
+// step), the first such evaluation of the step recorded in call.nonfinite.
+int check_finite_rhs(FlowCall& call, double t, const double* z, const double* dz);
+// Appends to a failure's message what SUNDIALS and check_finite_rhs recorded, and clears both.
+void append_failure_details(std::ostringstream& msg, FlowCall& call);
+
 int augmented_rhs(FlowCall& call, double t, const double* y, double* ydot,
                   std::vector<const double*>& columns_in, std::vector<double*>& columns_out);
 

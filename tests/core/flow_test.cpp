@@ -192,6 +192,46 @@ TEST(Flow, StepLimitIsPerOutputInterval) {
   EXPECT_THROW(flow.advance(z0, system.default_parameters(), 0.0, 200.0), IntegrationError);
 }
 
+// z' = sqrt(a - t): not finite past t = a. The integrator retries ever smaller steps and gives up
+// at t = a; the failure says the right-hand side is not finite, where and at what state and
+// parameters (issue 32: only a CVODES code), with every method.
+class RootOfTimeLeft final : public AutoDiffSystem<RootOfTimeLeft> {
+ public:
+  RootOfTimeLeft() { set_parameter_layout({{"a", {0}}}, {1.0}); }
+  int dimension() const override { return 1; }
+  std::vector<std::string> state_names() const override { return {"z"}; }
+  bool autonomous() const override { return false; }
+  template <class T, class P>
+  void evaluate(double t, const T*, const P* p, T* dz) const {
+    using std::sqrt;
+    dz[0] = T(sqrt(p[0] - t));
+  }
+};
+
+TEST(Flow, NonFiniteRightHandSideIsReportedAsSuch) {
+  RootOfTimeLeft system;
+  for (Method method : {Method::BDF, Method::Adams, Method::ERK}) {
+    FlowOptions o;
+    o.method = method;
+    o.nonlinear_solver =
+        method == Method::BDF ? NonlinearSolver::Newton : NonlinearSolver::FixedPoint;
+    if (method == Method::ERK) o.sensitivities = Sensitivities::Augmented;
+    o.max_steps = 20000;  // the steps shrink against t = 1 until a limit stops them
+    Flow flow(system, o);
+    try {
+      flow.advance(Eigen::VectorXd::Ones(1), system.default_parameters(), 0.0, 3.0);
+      ADD_FAILURE() << to_string(method) << ": no IntegrationError";
+    } catch (const IntegrationError& e) {
+      const std::string what = e.what();
+      EXPECT_NEAR(e.time(), 1.0, 1e-6) << what;
+      EXPECT_NE(what.find("the right-hand side is not finite at t = 1"), std::string::npos)
+          << to_string(method) << ": " << what;
+      EXPECT_NE(what.find("dz/dt = "), std::string::npos) << what;
+      EXPECT_NE(what.find("and parameters a = 1"), std::string::npos) << what;
+    }
+  }
+}
+
 TEST(Flow, RejectsBadInput) {
   Decay system(1.0);
   Flow flow(system);
