@@ -1,5 +1,6 @@
 #include "sympathy/core/output_file.hpp"
 
+#include <fcntl.h>
 #include <unistd.h>
 
 #include <cerrno>
@@ -19,32 +20,40 @@ namespace {
 }  // namespace
 
 StreamFile::StreamFile(const std::string& path, Mode mode) : path_(path) {
-  file_ = std::fopen(path.c_str(), mode == Mode::Append ? "a" : "w");
-  if (!file_) fail(path, "open for writing", errno);
+  fd_ = ::open(path.c_str(),
+               O_WRONLY | O_CREAT | O_CLOEXEC | (mode == Mode::Append ? O_APPEND : O_TRUNC), 0666);
+  if (fd_ < 0) fail(path, "open for writing", errno);
+  const off_t end = ::lseek(fd_, 0, SEEK_END);
+  whole_ = end < 0 ? 0 : end;  // a device or a pipe: no size to keep
 }
 
 StreamFile::~StreamFile() {
-  if (file_) std::fclose(file_);  // a failure here was not asked for; close() reports it
+  if (fd_ >= 0) ::close(fd_);  // a failure here was not asked for; close() reports it
 }
 
 void StreamFile::write_line(const std::string& line) {
-  if (!file_) throw OutputError(path_ + ": write after close");
-  errno = 0;
-  const std::size_t written = std::fwrite(line.data(), 1, line.size(), file_);
-  if (written != line.size() || std::fflush(file_) != 0) fail(path_, "write", errno ? errno : EIO);
+  if (fd_ < 0) throw OutputError(path_ + ": write after close");
+  std::size_t done = 0;
+  while (done < line.size()) {
+    const ssize_t n = ::write(fd_, line.data() + done, line.size() - done);
+    if (n < 0 && errno == EINTR) continue;
+    if (n <= 0) {
+      const int error = n < 0 ? errno : ENOSPC;
+      // Part of the line may be in the file: cut back to the last whole one (a CSV that filled
+      // the disk ended inside its last row). Fails harmlessly on a device or a pipe.
+      if (done > 0 && ::ftruncate(fd_, whole_) == 0) ::lseek(fd_, whole_, SEEK_SET);
+      fail(path_, "write", error);
+    }
+    done += static_cast<std::size_t>(n);
+  }
+  whole_ += static_cast<off_t>(line.size());
 }
 
 void StreamFile::close() {
-  if (!file_) return;
-  std::FILE* f = file_;
-  file_ = nullptr;
-  errno = 0;
-  if (std::fflush(f) != 0) {
-    const int error = errno ? errno : EIO;
-    std::fclose(f);
-    fail(path_, "write", error);
-  }
-  if (std::fclose(f) != 0) fail(path_, "close", errno ? errno : EIO);
+  if (fd_ < 0) return;
+  const int fd = fd_;
+  fd_ = -1;
+  if (::close(fd) != 0) fail(path_, "close", errno);
 }
 
 void write_file_atomically(const std::string& path, const std::string& content) {

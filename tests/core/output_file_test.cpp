@@ -187,6 +187,36 @@ TEST(AtomicWrite, FailedWriteKeepsEarlierFile) {
   EXPECT_EQ(dir.entries(), std::vector<std::string>{"report.json"});
 }
 
+// A disk that fills inside a line (here the file-size limit, as above, at 100 bytes with lines of
+// 30): the write fails with the path and the reason, and the file keeps the three whole lines
+// only (issue 32: a CSV that filled the disk ended inside its last row).
+TEST(StreamFile, FailedWriteLeavesWholeLines) {
+  const ScratchDirectory dir;
+  const std::string path = dir.file("rows.csv");
+  const std::string line = std::string(29, 'r') + "\n";
+  rlimit saved{};
+  ASSERT_EQ(::getrlimit(RLIMIT_FSIZE, &saved), 0);
+  rlimit limited = saved;
+  limited.rlim_cur = 100;
+  const auto previous_handler = std::signal(SIGXFSZ, SIG_IGN);
+  ASSERT_EQ(::setrlimit(RLIMIT_FSIZE, &limited), 0);
+  std::string message;
+  int written = 0;
+  {
+    StreamFile file(path);
+    try {
+      for (; written < 10; ++written) file.write_line(line);
+    } catch (const OutputError& e) {
+      message = e.what();
+    }
+  }
+  ::setrlimit(RLIMIT_FSIZE, &saved);
+  std::signal(SIGXFSZ, previous_handler);
+  EXPECT_EQ(written, 3);
+  expect_mentions(message, {path, "File too large"});
+  EXPECT_EQ(read_all(path), line + line + line);
+}
+
 // The temporary cannot be created (a directory without write permission, chmod 0555): OutputError
 // naming the path and strerror(EACCES), and the earlier file keeps its content. Root is not
 // stopped by permissions, so there the case cannot be made this way (FailedWriteKeepsEarlierFile

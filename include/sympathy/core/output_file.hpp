@@ -10,7 +10,9 @@
 // continuation/task_journal).
 #pragma once
 
+#include <sys/types.h>
 #include <cstdio>
+
 #include <string>
 
 namespace sympathy {
@@ -25,7 +27,9 @@ class StreamFile {
   StreamFile(const StreamFile&) = delete;
   StreamFile& operator=(const StreamFile&) = delete;
 
-  // Writes `line` (which should end in '\n') whole and flushes it; throws OutputError.
+  // Writes `line` (which should end in '\n') whole, straight to the file (no buffer); throws
+  // OutputError. A write that fails part way (a full disk) is cut back to the last whole line, so
+  // the file ends with whole rows (where the file can be truncated: not a device or a pipe).
   void write_line(const std::string& line);
   // Closes the file, checking that everything reached it; throws OutputError. Idempotent.
   void close();
@@ -33,7 +37,8 @@ class StreamFile {
 
  private:
   std::string path_;
-  std::FILE* file_ = nullptr;
+  int fd_ = -1;
+  off_t whole_ = 0;  // the file's size after the last whole line
 };
 
 // Writes `content` to `path` atomically (a temporary beside it, then rename); throws OutputError.
