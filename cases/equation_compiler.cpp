@@ -2,6 +2,7 @@
 
 #include <dlfcn.h>
 #include <fcntl.h>
+#include <signal.h>
 #include <spawn.h>
 #include <sys/stat.h>
 #include <sys/wait.h>
@@ -9,6 +10,7 @@
 
 #include <cerrno>
 #include <chrono>
+#include <csignal>
 #include <cstdlib>
 #include <cstring>
 #include <filesystem>
@@ -25,6 +27,7 @@
 #include "sympathy/cases/equation_toolchain.hpp"
 #include "sympathy/cases/sha256.hpp"
 #include "sympathy/core/binary_interface.hpp"
+#include "sympathy/core/errors.hpp"
 
 extern char** environ;
 
@@ -217,8 +220,48 @@ std::string manifest_text(const std::string& key, const std::string& library_sha
   return "sympathy-equations-cache 1\nkey " + key + "\nlibrary-sha256 " + library_sha256 + "\n";
 }
 
+// SIGINT, SIGTERM and SIGHUP while the compiler runs: recorded (their handlers set without
+// SA_RESTART, so that waitpid returns), the compiler stopped, its files removed, and Interrupted
+// thrown; the handlers before are restored afterwards. (The first Ctrl-C during a compile exited
+// 130 and left the compiler running and its temporaries in the cache.)
+volatile std::sig_atomic_t compile_signal = 0;
+extern "C" void on_compile_signal(int signal) {
+  compile_signal = signal;
+}
+
+class CompileSignals {
+ public:
+  CompileSignals() {
+    compile_signal = 0;
+    struct sigaction action {};
+    action.sa_handler = on_compile_signal;
+    sigemptyset(&action.sa_mask);
+    action.sa_flags = 0;  // no SA_RESTART
+    for (std::size_t i = 0; i < std::size(kSignals); ++i)
+      ::sigaction(kSignals[i], &action, &previous_[i]);
+  }
+  ~CompileSignals() {
+    for (std::size_t i = 0; i < std::size(kSignals); ++i) {
+      ::sigaction(kSignals[i], &previous_[i], nullptr);
+      // A handler of the command's own (for a clean stop) hears of the signal too; the default
+      // action would end the process before the compile's files are removed: Interrupted says it.
+      const auto handler = previous_[i].sa_handler;
+      if (compile_signal == kSignals[i] && handler != SIG_DFL && handler != SIG_IGN)
+        ::raise(compile_signal);
+    }
+  }
+  CompileSignals(const CompileSignals&) = delete;
+  CompileSignals& operator=(const CompileSignals&) = delete;
+
+ private:
+  static constexpr int kSignals[] = {SIGINT, SIGTERM, SIGHUP};
+  struct sigaction previous_[3]{};
+};
+
+constexpr int kInterruptedStatus = -2;
+
 // Runs `argv` (no shell), its output into `log`; returns its exit status (-1 if it could not
-// start).
+// start, kInterruptedStatus if a signal stopped it: the child is terminated and reaped).
 int run(const std::vector<std::string>& argv, const fs::path& log) {
   posix_spawn_file_actions_t actions;
   posix_spawn_file_actions_init(&actions);
@@ -232,8 +275,15 @@ int run(const std::vector<std::string>& argv, const fs::path& log) {
   posix_spawn_file_actions_destroy(&actions);
   if (started != 0) return -1;
   int status = 0;
-  while (waitpid(pid, &status, 0) < 0)
+  while (waitpid(pid, &status, 0) < 0) {
     if (errno != EINTR) return -1;
+    if (compile_signal != 0) {
+      ::kill(pid, SIGTERM);
+      while (waitpid(pid, &status, 0) < 0 && errno == EINTR) {
+      }
+      return kInterruptedStatus;
+    }
+  }
   return WIFEXITED(status) ? WEXITSTATUS(status) : -1;
 }
 
@@ -264,7 +314,13 @@ void compile(const fs::path& dir, const std::string& key, const std::string& sou
   argv.insert(argv.end(), {"-DSYMPATHY_EQUATIONS_TAG=\"" + key + "\"", "-I" + include,
                            "-I" + std::string(toolchain::kEigenInclude), "-o", library.string(),
                            (dir / (key + ".cpp")).string()});
-  const int status = run(argv, log);
+  int status = 0;
+  {
+    const CompileSignals signals;
+    status = run(argv, log);
+  }
+  if (status == kInterruptedStatus)
+    throw Interrupted(std::string(what) + " was stopped by a signal; nothing of it is kept");
   if (status != 0) {
     std::error_code ec;
     fs::rename(log, dir / (key + ".log"), ec);

@@ -64,6 +64,9 @@ int main(int argc, char** argv) {
   } catch (const sympathy::OutputError& e) {
     std::fprintf(stderr, "sympathy %s: output failed: %s\n", command.c_str(), e.what());
     return 5;
+  } catch (const sympathy::Interrupted& e) {
+    std::fprintf(stderr, "sympathy %s: interrupted: %s\n", command.c_str(), e.what());
+    return 6;
   } catch (const sympathy::IntegrationError& e) {  // NOLINT: reported, not a crash
     std::fprintf(stderr, "sympathy %s: integration failed: %s\n", command.c_str(), e.what());
     return 3;

@@ -169,4 +169,18 @@ check "... saying why" grep -qF "curve (two-parameter curves) is for autonomous 
 check "orbit at the Hopf point (mu = 0) exits 4" test $? -eq 4
 check "... saying there is no orbit" grep -q "no orbit: the motion decays to the equilibrium" "$work/hopf0.out"
 check "... and prints no period" test "$(grep -c '^  period\|^  stability\|^  multipliers' "$work/hopf0.out")" -eq 0
+# A signal during an equation system's compile (issue 32: the first Ctrl-C exited 130 and left
+# the compiler running and its temporaries in the cache): the compiler is stopped, nothing but the
+# generated source is left, exit 6. A system of its own (its key not in the cache), the signal
+# 1 s into its 2-3 s compile.
+sed 's/mu\*x - w\*y/mu*x - w*y + 0*y/' "$src/cases/examples/hopf.toml" > "$work/signal.toml"
+mkdir -p -m 700 "$work/signal_cache"
+SYMPATHY_CACHE_DIR="$work/signal_cache" "$bin" orbit "$work/signal.toml" > "$work/signal.out" 2>&1 &
+pid=$!
+sleep 1
+kill -INT $pid
+wait $pid
+check "SIGINT during a compile exits 6" test $? -eq 6
+check "... saying the compile was stopped" grep -q "was stopped by a signal; nothing of it is kept" "$work/signal.out"
+check "... leaving only the generated source in the cache" test "$(ls "$work/signal_cache" | grep -vc '\.cpp$')" -eq 0
 exit "$failures"

@@ -20,4 +20,11 @@ class OutputError : public std::runtime_error {
   using std::runtime_error::runtime_error;
 };
 
+// Work stopped by SIGINT, SIGTERM or SIGHUP where it cannot be resumed part way (an equation
+// system's compile): what it started is stopped and removed; the command exits 6.
+class Interrupted : public std::runtime_error {
+ public:
+  using std::runtime_error::runtime_error;
+};
+
 }  // namespace sympathy
