@@ -9,6 +9,7 @@
 #include <csignal>
 #include <cstdio>
 #include <filesystem>
+#include <map>
 #include <string>
 #include <thread>
 #include <utility>
@@ -253,9 +254,9 @@ struct FileIdentity {
   dev_t device = 0;
   ino_t inode = 0;
   std::string path;
-  bool operator==(const FileIdentity& o) const {
-    if (exists != o.exists) return false;
-    return exists ? device == o.device && inode == o.inode : path == o.path;
+  // Equal for the same file, whatever its spelling.
+  std::string key() const {
+    return exists ? "file " + std::to_string(device) + ":" + std::to_string(inode) : "path " + path;
   }
 };
 
@@ -283,17 +284,22 @@ const std::atomic<bool>* interrupt_flag() {
 
 void check_distinct_outputs(const std::vector<std::pair<std::string, std::string>>& outputs,
                             const std::vector<std::pair<std::string, std::string>>& inputs) {
-  for (std::size_t i = 0; i < outputs.size(); ++i) {
-    const auto& [option, path] = outputs[i];
+  // Each file's identity once, looked up in a map: a study of 1,600 branches (4,800 outputs)
+  // compared every pair, each comparison resolving both paths, and waited 108 s before its
+  // first file.
+  std::map<std::string, const std::string*> input_of;  // identity -> the input's name
+  for (const auto& [input_name, input] : inputs)
+    if (!input.empty()) input_of.emplace(identity(input).key(), &input_name);
+  std::map<std::string, const std::string*> output_of;  // identity -> the output's option
+  for (const auto& [option, path] : outputs) {
     if (path.empty()) continue;
-    for (const auto& [input_name, input] : inputs)
-      if (!input.empty() && identity(path) == identity(input))
-        throw InputError(option + " " + path + ": is the " + input_name +
-                         "; expected an output that does not replace an input");
-    for (std::size_t j = 0; j < i; ++j)
-      if (!outputs[j].second.empty() && identity(path) == identity(outputs[j].second))
-        throw InputError(option + " " + path + ": the same file as " + outputs[j].first +
-                         "; expected a different file for each output");
+    const std::string key = identity(path).key();
+    if (const auto it = input_of.find(key); it != input_of.end())
+      throw InputError(option + " " + path + ": is the " + *it->second +
+                       "; expected an output that does not replace an input");
+    if (const auto [it, added] = output_of.emplace(key, &option); !added)
+      throw InputError(option + " " + path + ": the same file as " + *it->second +
+                       "; expected a different file for each output");
   }
 }
 
