@@ -47,6 +47,37 @@ std::vector<Bifurcation> detect(const TrackedMultipliers& tracked, const Continu
       }
     }
   }
+  // What no collision off the circle can change (a complex pair contributes |mu + 1|^2 > 0):
+  // the sign of prod(mu + 1) over the followed multipliers changes exactly when an odd number of
+  // real multipliers pass -1. A pair that meets on the negative axis and sends one through -1
+  // within one step was bucketed as a complex crossing, or (paired the other way) as none, and the
+  // period doubling passed silently (issue 33: AUTO's pen near I = 0.17916, tor near
+  // nu = -0.61496). Then the multipliers nearest -1 at the two ends are the crossing, located as
+  // a period doubling; the complex crossing that was this one is dropped.
+  const auto sign_at_minus_one = [&](bool at_b) {
+    int sign = 1;
+    for (const auto& [mx, my] : tracked.pairs) {
+      const auto mu = (at_b ? my : mx).value;
+      if (is_real(mu) && mu.real() + 1.0 < 0.0) sign = -sign;
+    }
+    return sign;
+  };
+  if (minus.empty() && sign_at_minus_one(false) != sign_at_minus_one(true)) {
+    const auto nearest_minus_one = [&](bool at_b) {
+      std::complex<double> best = 0.0;
+      for (const auto& [mx, my] : tracked.pairs) {
+        const auto mu = (at_b ? my : mx).value;
+        if (std::abs(mu + 1.0) < std::abs(best + 1.0)) best = mu;
+      }
+      return best;
+    };
+    const auto mu_a = nearest_minus_one(false), mu_b = nearest_minus_one(true);
+    std::erase_if(complex, [&](const Crossing& c) {
+      return std::abs(c.a - mu_a) <= 1e-12 || std::abs(c.b - mu_b) <= 1e-12 ||
+             std::abs(c.a - std::conj(mu_a)) <= 1e-12 || std::abs(c.b - std::conj(mu_b)) <= 1e-12;
+    });
+    minus.push_back({mu_a, mu_b});
+  }
   // Crossings with equal multipliers happen together (symmetry): one event, its multiplicity.
   auto clusters = [](const std::vector<Crossing>& c) {
     std::vector<std::vector<Crossing>> groups;

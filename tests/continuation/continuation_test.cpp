@@ -350,6 +350,30 @@ TEST(Continuation, PeriodDoublingLocated) {
   EXPECT_TRUE(events_of(branch, BifurcationType::NeimarkSacker).empty());
 }
 
+// A complex pair that meets on the negative axis and sends one multiplier through -1 within one
+// step (issue 33: AUTO's pen and tor lost such period doublings, the pair bucketed as a complex
+// crossing or, paired the other way, as none). MoebiusPair at mu = -0.01: the pair
+// -exp(2 pi (mu +- sqrt(1/4 - omega^2))) meets at omega = 1/2 (modulus exp(-0.02 pi) = 0.94) and
+// one passes -1 at omega = sqrt(1/4 - 1e-4) = 0.49989999, 1e-4 later: one PD there, to 1e-8,
+// trusted, and no NS.
+TEST(Continuation, PeriodDoublingOfAPairMeetingOnTheNegativeAxis) {
+  NormalForm system(Kind::MoebiusPair, -0.01, 1, 0.0, 0.7);
+  const auto start = circle(system);
+  for (const auto& m : start.floquet.multipliers)
+    if (!m.trivial) {
+      EXPECT_NEAR(std::abs(m.value), std::exp(-0.02 * kPi), 1e-8);  // a pair
+    }
+  Continuation c(system, 2, options(0.3, 0.7));
+  const Branch branch = c.run(start, -1);
+  const auto pd = events_of(branch, BifurcationType::PeriodDoubling);
+  ASSERT_EQ(pd.size(), 1u) << branch.stop_reason;
+  EXPECT_NEAR(pd[0].parameter, std::sqrt(0.25 - 1e-4), 1e-8);
+  EXPECT_EQ(pd[0].trust, EventTrust::Trusted) << pd[0].note;
+  EXPECT_NEAR(pd[0].crossing.real(), -1.0, 1e-6);
+  EXPECT_TRUE(events_of(branch, BifurcationType::NeimarkSacker).empty());
+  EXPECT_LT(branch.points.back().parameter, 0.31);  // on to the end of the window
+}
+
 // Events near points whose trivial multiplier is off by more than the trust limit are flagged,
 // not reported as found: here with a limit no computation can meet.
 TEST(Continuation, UntrustedEventsAreFlagged) {

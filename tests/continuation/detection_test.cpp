@@ -58,6 +58,29 @@ TEST(Detection, CrossingOffTheCircleIsNotTrusted) {
   EXPECT_NE(events[0].note.find("not on the unit circle"), std::string::npos) << events[0].note;
 }
 
+// A complex pair inside the circle (-0.8313 +- 0.0197i, AUTO's pen at I = 0.17976) that meets on
+// the negative axis and leaves as two reals, -1.2510 and -0.5524, within one step (at 0.17692):
+// one multiplier passed -1, and sign prod(mu + 1) changed. Whichever half of the pair the tracking
+// paired with the real outside (issue 33: paired with the lower half, no event at all; with the
+// upper, a complex crossing), the step holds one period doubling.
+TEST(Detection, PairMeetingOnTheNegativeAxisIsAPeriodDoubling) {
+  const std::complex<double> upper(-0.8313, 0.0197), lower = std::conj(upper);
+  for (bool lower_goes_out : {true, false}) {
+    Step s(0.5, 0.6);  // a real multiplier that stays inside
+    Multiplier x1, y1, x2, y2;
+    x1.value = lower_goes_out ? lower : upper;
+    y1.value = -1.2510;
+    x2.value = lower_goes_out ? upper : lower;
+    y2.value = -0.5524;
+    s.tracked.pairs.push_back({x1, y1});
+    s.tracked.pairs.push_back({x2, y2});
+    const auto events = detect(s.tracked, s.a, s.b, 1e-6, locator_with(-1.0));
+    ASSERT_EQ(events.size(), 1u) << "lower half goes out: " << lower_goes_out;
+    EXPECT_EQ(events[0].type, BifurcationType::PeriodDoubling);
+    EXPECT_TRUE(events[0].trusted()) << events[0].note;
+  }
+}
+
 // A point at parameter (and arclength) s with the given nontrivial multipliers.
 ContinuationPoint point_with(double s, std::vector<Multiplier> multipliers) {
   ContinuationPoint p;

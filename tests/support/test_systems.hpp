@@ -246,6 +246,11 @@ class TwoHopf final : public AutoDiffSystem<TwoHopf> {
 //               period: in the frame turning with theta / 2, xi' = mu xi - xi^3 and eta' = -eta,
 //               so the multipliers are -exp(2 pi mu) and -exp(-2 pi): period doubling at
 //               mu = 0, the doubled orbit xi = +-sqrt(mu) of period 4 pi beyond it.
+//   MoebiusPair: the same turning plane with the linear w' = (mu I + omega J + c K) w in the
+//               turning frame (J the rotation generator, K = diag(1, -1), c = 1/2): multipliers
+//               -exp(2 pi (mu +- sqrt(c^2 - omega^2))) exactly, a complex pair for omega > c
+//               that meets on the negative axis at omega = c, after which one of them passes -1
+//               where mu + sqrt(c^2 - omega^2) = 0 (for mu < 0: omega = sqrt(c^2 - mu^2)).
 class NormalForm final : public AutoDiffSystem<NormalForm> {
  public:
   enum class Kind {
@@ -256,7 +261,8 @@ class NormalForm final : public AutoDiffSystem<NormalForm> {
     PitchforkAndGrowth,
     ShearedFold,
     Resonance,
-    RotationAndGrowth
+    RotationAndGrowth,
+    MoebiusPair
   };
   NormalForm(Kind kind, double mu, int copies = 1, double a = 0.0, double omega = 0.3)
       : kind_(kind), copies_(copies) {
@@ -273,6 +279,7 @@ class NormalForm final : public AutoDiffSystem<NormalForm> {
       case Kind::Resonance:
         return 4;
       case Kind::Moebius:
+      case Kind::MoebiusPair:
         return 3;
       case Kind::PitchforkAndGrowth:
         return 4;
@@ -294,6 +301,19 @@ class NormalForm final : public AutoDiffSystem<NormalForm> {
     const P mu = fold ? P(p[0]) : P(p[0] - p[1] * p[1]);
     const P& omega = p[2];
     const T r2 = z[0] * z[0] + z[1] * z[1];
+    if (kind_ == Kind::MoebiusPair) {
+      // [a; w]' = (J/2 + mu I + omega J + c S(theta)) [a; w], S(theta) = R(theta/2) K R(-theta/2)
+      // = [cos, sin; sin, -cos](theta): the turning frame's A conjugated into the fixed one.
+      const T r = sqrt(r2);
+      const T c = z[0] / r, s = z[1] / r, a = r - 1.0, w = z[2];
+      const double k = 0.5;
+      const T da = -0.5 * w + mu * a - omega * w + k * (c * a + s * w);
+      const T dw = 0.5 * a + mu * w + omega * a + k * (s * a - c * w);
+      dz[0] = -z[1] + c * da;
+      dz[1] = z[0] + s * da;
+      dz[2] = dw;
+      return;
+    }
     if (kind_ == Kind::Moebius) {
       const T r = sqrt(r2);
       const T c = z[0] / r, s = z[1] / r, a = r - 1.0, w = z[2];
