@@ -54,30 +54,40 @@ std::vector<Bifurcation> detect(const TrackedMultipliers& tracked, const Continu
   // period doubling passed silently (issue 33: AUTO's pen near I = 0.17916, tor near
   // nu = -0.61496). Then the multipliers nearest -1 at the two ends are the crossing, located as
   // a period doubling; the complex crossing that was this one is dropped.
-  const auto sign_at_minus_one = [&](bool at_b) {
+  // The same of prod(mu - 1) and +1: an odd number of real multipliers through +1 (a fold of
+  // cycles, or a branch point) changes its sign. A multiplier that reaches the real axis near +1
+  // as one of a pair and passes +1 within the step was no "real crossing", and the fold beside it
+  // looked like a turn without a multiplier at +1, which stops a branch (issue 33, class 2: tor,
+  // fhn).
+  const auto sign_at = [&](double one, bool at_b) {
     int sign = 1;
     for (const auto& [mx, my] : tracked.pairs) {
       const auto mu = (at_b ? my : mx).value;
-      if (is_real(mu) && mu.real() + 1.0 < 0.0) sign = -sign;
+      if (is_real(mu) && (mu.real() - one) * one > 0.0) sign = -sign;  // beyond `one`
     }
     return sign;
   };
-  if (minus.empty() && sign_at_minus_one(false) != sign_at_minus_one(true)) {
-    const auto nearest_minus_one = [&](bool at_b) {
-      std::complex<double> best = 0.0;
-      for (const auto& [mx, my] : tracked.pairs) {
-        const auto mu = (at_b ? my : mx).value;
-        if (std::abs(mu + 1.0) < std::abs(best + 1.0)) best = mu;
-      }
-      return best;
-    };
-    const auto mu_a = nearest_minus_one(false), mu_b = nearest_minus_one(true);
+  const auto nearest = [&](double one, bool at_b) {
+    std::complex<double> best = 0.0;
+    for (const auto& [mx, my] : tracked.pairs) {
+      const auto mu = (at_b ? my : mx).value;
+      if (std::abs(mu - one) < std::abs(best - one)) best = mu;
+    }
+    return best;
+  };
+  // The crossing through `one` made of the multipliers nearest it at the two ends, in place of
+  // the complex crossing that was it.
+  const auto real_crossing = [&](double one) {
+    const auto mu_a = nearest(one, false), mu_b = nearest(one, true);
     std::erase_if(complex, [&](const Crossing& c) {
       return std::abs(c.a - mu_a) <= 1e-12 || std::abs(c.b - mu_b) <= 1e-12 ||
              std::abs(c.a - std::conj(mu_a)) <= 1e-12 || std::abs(c.b - std::conj(mu_b)) <= 1e-12;
     });
-    minus.push_back({mu_a, mu_b});
-  }
+    return Crossing{mu_a, mu_b};
+  };
+  if (minus.empty() && sign_at(-1.0, false) != sign_at(-1.0, true))
+    minus.push_back(real_crossing(-1.0));
+  if (plus.empty() && sign_at(1.0, false) != sign_at(1.0, true)) plus.push_back(real_crossing(1.0));
   // Crossings with equal multipliers happen together (symmetry): one event, its multiplicity.
   auto clusters = [](const std::vector<Crossing>& c) {
     std::vector<std::vector<Crossing>> groups;

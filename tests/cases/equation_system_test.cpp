@@ -15,6 +15,7 @@
 
 #include <gtest/gtest.h>
 
+#include "cases/cli/hand_written_systems.hpp"
 #include "sympathy/cases/case_file.hpp"
 #include "sympathy/cases/equation_codegen.hpp"
 #include "sympathy/cases/metronome_model.hpp"
@@ -50,18 +51,7 @@ class EquationSystemTest : public ::testing::Test {
 };
 
 // cases/examples/hopf.toml written by hand.
-class HandHopf final : public AutoDiffSystem<HandHopf> {
- public:
-  HandHopf(double mu, double w) { set_parameter_layout({{"mu", {0}}, {"w", {1}}}, {mu, w}); }
-  int dimension() const override { return 2; }
-  std::vector<std::string> state_names() const override { return {"x", "y"}; }
-  template <class T, class P>
-  void evaluate(double, const T* z, const P* p, T* dz) const {
-    const T r2 = z[0] * z[0] + z[1] * z[1];
-    dz[0] = p[0] * z[0] - p[1] * z[1] - z[0] * r2;
-    dz[1] = p[1] * z[0] + p[0] * z[1] - z[1] * r2;
-  }
-};
+using cli::HandHopf;
 
 // Right-hand side, Jacobian and df/dp at random points: the same arithmetic in another order
 // (the generated code parenthesizes as the file does), so equal to rounding: 1e-12 absolute on
@@ -70,7 +60,7 @@ TEST_F(EquationSystemTest, HopfMatchesTheHandWrittenSystem) {
   const auto c = EquationCase::load(example_path("hopf"));
   const auto b = build(c);
   const OdeSystem& generated = *b.system;
-  const HandHopf hand(0.25, 1.0);
+  const HandHopf hand(Eigen::Vector2d(0.25, 1.0));
   EXPECT_EQ(generated.dimension(), 2);
   EXPECT_EQ(generated.state_names(), hand.state_names());
   EXPECT_EQ(generated.parameter_names(), hand.parameter_names());

@@ -81,6 +81,34 @@ TEST(Detection, PairMeetingOnTheNegativeAxisIsAPeriodDoubling) {
   }
 }
 
+// A fold where the multiplier through +1 reaches the real axis as one of a pair within the step
+// (0.98 +- 0.01i at a; 1.03 and 0.95 at b): sign prod(mu - 1) changed, so it is a fold of cycles,
+// located and trusted, not a turn "without a multiplier at +1" that stops the branch (issue 33,
+// class 2: tor at nu = -0.78759, -0.76041). Without the sign change (the pair still complex at b)
+// it remains such a turn.
+TEST(Detection, FoldWhoseMultiplierWasComplexIsTrusted) {
+  for (bool crosses : {true, false}) {
+    Step s(0.5, 0.6);
+    s.b.tangent = Eigen::Vector2d(0.0, -1.0);  // the parameter's component changes sign: a turn
+    const std::complex<double> upper(0.98, 0.01);
+    Multiplier x1, y1, x2, y2;
+    x1.value = upper;
+    x2.value = std::conj(upper);
+    y1.value = crosses ? std::complex<double>(1.03) : std::complex<double>(0.99, 0.005);
+    y2.value = crosses ? std::complex<double>(0.95) : std::complex<double>(0.99, -0.005);
+    s.tracked.pairs.push_back({x1, y1});
+    s.tracked.pairs.push_back({x2, y2});
+    const auto events = detect(s.tracked, s.a, s.b, 1e-6, locator_with(1.0));
+    ASSERT_EQ(events.size(), 1u) << "crosses: " << crosses;
+    EXPECT_EQ(events[0].type, BifurcationType::Fold);
+    if (crosses) {
+      EXPECT_TRUE(events[0].trusted()) << events[0].note;
+    } else {
+      EXPECT_EQ(events[0].trust, EventTrust::NoCrossingMultiplier);
+    }
+  }
+}
+
 // A point at parameter (and arclength) s with the given nontrivial multipliers.
 ContinuationPoint point_with(double s, std::vector<Multiplier> multipliers) {
   ContinuationPoint p;

@@ -6,15 +6,16 @@
 #include <cmath>
 #include <numbers>
 
+#include "cases/cli/hand_written_systems.hpp"
 #include "tests/support/math.hpp"
 #include "tests/support/test_systems.hpp"
 
 namespace sympathy {
 namespace {
 
+using cli::HandHopf;
 using testing::ForcedFloquet;
 using testing::HopfCycle;
-using testing::HopfNormalForm;
 using testing::TwoHopf;
 
 using testing::kPi;
@@ -34,7 +35,7 @@ OrbitOptions tight(int segments = 1) {
 // 0.01) still converges to its exact radius, period and multiplier.
 TEST(PeriodicOrbit, NoOrbitAtTheHopfPointButTheSmallOneNextToIt) {
   {
-    HopfNormalForm system(0.0, 1.0);
+    const HandHopf system(Eigen::Vector2d(0.0, 1.0));
     const auto orbit =
         find_periodic_orbit(system, system.default_parameters(), Eigen::Vector2d(0.3, 0.0), {}, {});
     EXPECT_FALSE(orbit.converged()) << orbit.newton.reason;
@@ -45,7 +46,7 @@ TEST(PeriodicOrbit, NoOrbitAtTheHopfPointButTheSmallOneNextToIt) {
   }
   {
     const double mu = 1e-4, w = 1.0;
-    HopfNormalForm system(mu, w);
+    const HandHopf system(Eigen::Vector2d(mu, w));
     const auto orbit = solve_periodic_orbit(system, system.default_parameters(),
                                             Eigen::Vector2d(0.0102, 0.0), 2 * kPi * 1.001, {}, {});
     ASSERT_TRUE(orbit.converged()) << orbit.newton.reason;

@@ -150,25 +150,6 @@ class HopfCycle final : public AutoDiffSystem<HopfCycle> {
   bool transverse_;
 };
 
-// The Hopf normal form x' = mu x - w y - x r^2, y' = w x + mu y - y r^2 (cases/examples/hopf.toml
-// written by hand), in polar form r' = r (mu - r^2), theta' = w: for mu > 0 the circle
-// r = sqrt(mu), period 2 pi / w, nontrivial multiplier exp(-4 pi mu / w) (r' linearized at
-// r = sqrt(mu): -2 mu); for mu = 0 no cycle, r' = -r^3 decays to the equilibrium.
-class HopfNormalForm final : public AutoDiffSystem<HopfNormalForm> {
- public:
-  explicit HopfNormalForm(double mu = 0.25, double w = 1.0) {
-    set_parameter_layout({{"mu", {0}}, {"w", {1}}}, {mu, w});
-  }
-  int dimension() const override { return 2; }
-  std::vector<std::string> state_names() const override { return {"x", "y"}; }
-  template <class T, class P>
-  void evaluate(double, const T* z, const P* p, T* dz) const {
-    const T r2 = z[0] * z[0] + z[1] * z[1];
-    dz[0] = p[0] * z[0] - p[1] * z[1] - z[0] * r2;
-    dz[1] = p[1] * z[0] + p[0] * z[1] - z[1] * r2;
-  }
-};
-
 // Two Hopf oscillators (a_i, b_i) of frequency w on a damped "platform" x: a_i' = -w b_i + a_i g_i
 // - kappa (a_1 + a_2) + eps x, b_i' = w a_i + b_i g_i - kappa (b_1 + b_2), g_i = 1 - a_i^2 - b_i^2,
 // x' = -gamma x + mu (a_1 + a_2). It keeps the reflection (a1, b1, a2, b2, x) -> (-a2, -b2, -a1,
