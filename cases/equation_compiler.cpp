@@ -222,7 +222,8 @@ std::string manifest_text(const std::string& key, const std::string& library_sha
 
 // SIGINT, SIGTERM and SIGHUP while the compiler runs: recorded (their handlers set without
 // SA_RESTART, so that waitpid returns), the compiler stopped, its files removed, and Interrupted
-// thrown; the handlers before are restored afterwards. (The first Ctrl-C during a compile exited
+// thrown; the handlers before are restored afterwards (and not called: the exception is the
+// command's news of the signal). (The first Ctrl-C during a compile exited
 // 130 and left the compiler running and its temporaries in the cache.)
 volatile std::sig_atomic_t compile_signal = 0;
 extern "C" void on_compile_signal(int signal) {
@@ -241,14 +242,10 @@ class CompileSignals {
       ::sigaction(kSignals[i], &action, &previous_[i]);
   }
   ~CompileSignals() {
-    for (std::size_t i = 0; i < std::size(kSignals); ++i) {
+    // The signal is not raised again (a handler that ends the process would leave the build
+    // directory behind): Interrupted, thrown after the compile's files are removed, says it.
+    for (std::size_t i = 0; i < std::size(kSignals); ++i)
       ::sigaction(kSignals[i], &previous_[i], nullptr);
-      // A handler of the command's own (for a clean stop) hears of the signal too; the default
-      // action would end the process before the compile's files are removed: Interrupted says it.
-      const auto handler = previous_[i].sa_handler;
-      if (compile_signal == kSignals[i] && handler != SIG_DFL && handler != SIG_IGN)
-        ::raise(compile_signal);
-    }
   }
   CompileSignals(const CompileSignals&) = delete;
   CompileSignals& operator=(const CompileSignals&) = delete;

@@ -4,6 +4,7 @@
 
 #include <charconv>
 #include <cmath>
+#include <filesystem>
 #include <fstream>
 #include <stdexcept>
 
@@ -73,6 +74,9 @@ std::vector<std::string> split_fields(const std::string& line) {
 }  // namespace
 
 CsvTable read_csv(const std::string& path) {
+  std::error_code ec;
+  if (std::filesystem::is_directory(path, ec))
+    throw InputError(path + ": cannot read the file (a directory; expected a CSV file)");
   std::ifstream in(path);
   if (!in) throw InputError(path + ": cannot read the file (no such file, or not readable)");
   CsvTable table;

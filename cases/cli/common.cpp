@@ -3,6 +3,7 @@
 #include "sympathy/core/csv.hpp"
 
 #include <sys/stat.h>
+#include <unistd.h>
 
 #include <algorithm>
 #include <cmath>
@@ -276,6 +277,18 @@ FileIdentity identity(const std::string& path) {
 }
 
 }  // namespace
+
+extern "C" void on_interrupt_exit(int) {
+  // Async-signal-safe: write(2) and _exit alone.
+  static const char message[] = "sympathy: interrupted: stopped, no file written (exit 6)\n";
+  const ssize_t ignored = ::write(2, message, sizeof message - 1);
+  static_cast<void>(ignored);
+  ::_exit(6);
+}
+
+void exit_on_interrupt() {
+  for (int signal : {SIGINT, SIGTERM, SIGHUP}) std::signal(signal, on_interrupt_exit);
+}
 
 const std::atomic<bool>* interrupt_flag() {
   for (int signal : {SIGINT, SIGTERM, SIGHUP}) std::signal(signal, on_interrupt);

@@ -82,6 +82,13 @@ void check_options(const OptionCheck& problem, const std::string& where);
 const std::atomic<bool>* interrupt_flag();
 constexpr int kInterrupted = 6;
 
+// For commands that write nothing before their end (orbit, fit: one Newton or one optimisation,
+// their JSON and CSV written whole at the end): SIGINT, SIGTERM and SIGHUP end the program at
+// once with exit code kInterrupted and a line saying so; nothing half-written is left (an equation
+// compile under way is stopped and removed first, equation_compiler.hpp). Not for the Python
+// module, whose interpreter owns its signals.
+void exit_on_interrupt();
+
 // Throws InputError (prefixed by `where`) unless the model is physically meaningful with
 // `parameter` at every one of `values` (ModelSpec::problems: masses and lengths positive,
 // damping and stiffness non-negative, ...), so that a range reaching out of the domain is refused

@@ -174,6 +174,7 @@ PreparedFit FitSetup::prepare() const {
 
 int run_fit(const std::vector<std::string>& argv) {
   Arguments args("fit", argv, fit_options(), {"CASE"});
+  exit_on_interrupt();
   Stopwatch clock;
   const FitSetup setup = fit_setup(args);
   const auto& equations = setup.equations;

@@ -55,6 +55,7 @@ OrbitOptions orbit_request(const Arguments& args, bool forced) {
 
 int run_orbit(const std::vector<std::string>& argv) {
   Arguments args("orbit", argv, orbit_options(), {"CASE"});
+  exit_on_interrupt();
 
   if (case_file_kind(args.positional(0)) == "equations") return run_orbit_equations(args);
   Stopwatch clock;

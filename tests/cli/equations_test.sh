@@ -175,11 +175,8 @@ check "... and prints no period" test "$(grep -c '^  period\|^  stability\|^  mu
 # 1 s into its 2-3 s compile.
 sed 's/mu\*x - w\*y/mu*x - w*y + 0*y/' "$src/cases/examples/hopf.toml" > "$work/signal.toml"
 mkdir -p -m 700 "$work/signal_cache"
-SYMPATHY_CACHE_DIR="$work/signal_cache" "$bin" orbit "$work/signal.toml" > "$work/signal.out" 2>&1 &
-pid=$!
-sleep 1
-kill -INT $pid
-wait $pid
+SYMPATHY_CACHE_DIR="$work/signal_cache" interrupted_after 1 "$bin" orbit "$work/signal.toml" \
+  > "$work/signal.out" 2>&1
 check "SIGINT during a compile exits 6" test $? -eq 6
 check "... saying the compile was stopped" grep -q "was stopped by a signal; nothing of it is kept" "$work/signal.out"
 check "... leaving only the generated source in the cache" test "$(ls "$work/signal_cache" | grep -vc '\.cpp$')" -eq 0

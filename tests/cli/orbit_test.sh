@@ -82,4 +82,12 @@ check "and says what is expected" grep -q -- '--threads: expected an integer fro
 check "a start on no periodic orbit exits 4" test $? -eq 4
 check "and says Newton failed" grep -q 'newton       FAILED' "$work/quasi.out"
 
+# A signal during an orbit (issue 32: orbit had no signal handling): exit 6 at once, saying so,
+# no JSON and no temporary left. The 64-metronome orbit in the whole state takes about 5 s; the
+# signal comes 1 s in.
+interrupted_after 1 "$bin" orbit "$src/cases/row/row64.toml" --start in-phase --whole-state \
+  --json "$work/signal.json" > /dev/null 2> "$work/signal.err"
+check "SIGINT during orbit exits 6" test $? -eq 6
+check "... saying it was interrupted" grep -q "interrupted: stopped, no file written" "$work/signal.err"
+check "... writing no JSON" test "$(ls "$work" | grep -c '^signal.json')" -eq 0
 exit $failures

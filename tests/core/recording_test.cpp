@@ -45,6 +45,15 @@ TEST_F(RecordingErrors, ValidRecordingReads) {
   EXPECT_EQ(r.lines, (std::vector<int>{2, 3, 4}));
 }
 
+// A directory is named as one (issue 32: read as an empty file, "the file is empty").
+TEST_F(RecordingErrors, DirectoryIsNamedAsSuch) {
+  const auto dir = std::filesystem::temp_directory_path() / "sympathy_recording_dir";
+  std::filesystem::create_directories(dir);
+  const std::string message =
+      testing::input_error_of([&] { read_recording(dir.string(), kStates); });
+  EXPECT_EQ(message, dir.string() + ": cannot read the file (a directory; expected a CSV file)");
+}
+
 TEST_F(RecordingErrors, MissingFile) {
   try {
     read_recording("/nonexistent/rec.csv", kStates);
