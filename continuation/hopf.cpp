@@ -61,16 +61,20 @@ std::optional<HopfPoint> hopf_point_near(const OdeSystem& system, int parameter,
   return std::nullopt;
 }
 
-PeriodicOrbit orbit_from_hopf(const OdeSystem& system, int parameter, const HopfPoint& hopf,
-                              const OrbitOptions& options, const HopfStartOptions& start) {
-  if (auto wrong = start.validate()) throw std::invalid_argument("Hopf start: " + wrong->message());
-  if (!(hopf.omega > 0.0) || hopf.eigenvector.size() != system.dimension())
-    throw std::invalid_argument("Hopf start: the Hopf point has no frequency or eigenvector");
+namespace {
+
+// The first orbit's amplitude along Re q (state units): the option's, else 2% of the state's size.
+double start_amplitude(const HopfPoint& hopf, const HopfStartOptions& start) {
+  return start.amplitude > 0.0 ? start.amplitude
+                               : 0.02 * std::max(1.0, hopf.state.lpNorm<Eigen::Infinity>());
+}
+
+// Newton on the orbit of amplitude `amplitude` along Re q (see orbit_from_hopf).
+PeriodicOrbit orbit_at_amplitude(const OdeSystem& system, int parameter, const HopfPoint& hopf,
+                                 const OrbitOptions& options, const HopfStartOptions& start,
+                                 double amplitude) {
   const Eigen::VectorXd qr = hopf.eigenvector.real(), qi = hopf.eigenvector.imag();
-  const double eps = start.amplitude > 0.0
-                         ? start.amplitude / qr.lpNorm<Eigen::Infinity>()
-                         : 0.02 * std::max(1.0, hopf.state.lpNorm<Eigen::Infinity>()) /
-                               qr.lpNorm<Eigen::Infinity>();
+  const double eps = amplitude / qr.lpNorm<Eigen::Infinity>();
   ShootingProblem problem(system, options.shooting);
   const int n = system.dimension();
   const int N = problem.unknowns();
@@ -118,13 +122,83 @@ PeriodicOrbit orbit_from_hopf(const OdeSystem& system, int parameter, const Hopf
   return orbit;
 }
 
+// orbit_from_hopf, with the amplitude of the orbit found in `used`.
+PeriodicOrbit first_orbit(const OdeSystem& system, int parameter, const HopfPoint& hopf,
+                          const OrbitOptions& options, const HopfStartOptions& start,
+                          double& used) {
+  if (auto wrong = start.validate()) throw std::invalid_argument("Hopf start: " + wrong->message());
+  if (!(hopf.omega > 0.0) || hopf.eigenvector.size() != system.dimension())
+    throw std::invalid_argument("Hopf start: the Hopf point has no frequency or eigenvector");
+  // Retried at a quarter and a sixteenth of the amplitude: 2% of the state's size is too large
+  // where the Hopf point is slow and strongly attracting (issue 33: AUTO's c2c, omega 0.09,
+  // l1 = -8.8, whose state's size 8.5 asked for an orbit of amplitude 0.17).
+  const double first = start_amplitude(hopf, start);
+  std::string failures;
+  for (double amplitude : {first, first / 4, first / 16}) {
+    PeriodicOrbit orbit;
+    try {
+      orbit = orbit_at_amplitude(system, parameter, hopf, options, start, amplitude);
+      used = amplitude;
+    } catch (const std::runtime_error& e) {
+      failures += (failures.empty() ? "" : "; ") + std::string(e.what());
+      continue;
+    }
+    // Where the family is nearly vertical (|l1| tiny), the small orbit's radial multiplier lies
+    // within the rank tolerance of 1 (1 - 1.3e-7 at AUTO's chu, l1 = -2.5e-4, amplitude 0.03),
+    // and a branch started there takes itself for a continuum of orbits: one multiplier set
+    // aside as structural at every point after, the others wrong (chu: a trusted PD at
+    // alpha = 7.566 that a simulation and AUTO (8.196) deny). An automatic amplitude grows (x4,
+    // x16: the multiplier's distance from 1 grows as its square) until the orbit is isolated.
+    for (double larger : {4 * amplitude, 16 * amplitude}) {
+      if (orbit.family_dimension == 0 || start.amplitude > 0.0) break;
+      try {
+        PeriodicOrbit wider = orbit_at_amplitude(system, parameter, hopf, options, start, larger);
+        orbit = std::move(wider);
+        used = larger;
+      } catch (const std::runtime_error&) {
+        break;  // the smaller one, as it is
+      }
+    }
+    return orbit;
+  }
+  throw std::runtime_error(failures);
+}
+
+}  // namespace
+
+PeriodicOrbit orbit_from_hopf(const OdeSystem& system, int parameter, const HopfPoint& hopf,
+                              const OrbitOptions& options, const HopfStartOptions& start) {
+  double used = 0.0;
+  return first_orbit(system, parameter, hopf, options, start, used);
+}
+
 Branch continue_from_hopf(const OdeSystem& system, int parameter, const HopfPoint& hopf,
                           const ContinuationOptions& options,
                           const ContinuationCallbacks& callbacks, const HopfStartOptions& start) {
-  const PeriodicOrbit orbit = orbit_from_hopf(system, parameter, hopf, options.orbit, start);
+  double amplitude = 0.0;
+  const PeriodicOrbit orbit = first_orbit(system, parameter, hopf, options.orbit, start, amplitude);
   const double p = system.parameter(orbit.parameters, parameter);
+  // The family goes the way its amplitude grows: the secant to the orbit of twice the first's
+  // amplitude orients the first tangent. By the sign of p - p_H alone, a family whose parameter
+  // barely moves (issue 33: AUTO's chu, l1 = -2.5e-4, the first orbit 2e-6 off the Hopf point)
+  // was sent back into the Hopf point and ended there after one point.
+  // (Both orbits start on the plane through the equilibrium normal to Im q, at eps Re q and
+  // 2 eps Re q: their difference is the family's direction at one phase.)
+  Eigen::VectorXd tangent;
+  try {
+    const PeriodicOrbit larger =
+        orbit_at_amplitude(system, parameter, hopf, options.orbit, start, 2 * amplitude);
+    ShootingProblem problem(system, options.orbit.shooting);
+    const Eigen::VectorXd x1 = problem.unknowns_from(orbit.state0, orbit.parameters, orbit.period);
+    const Eigen::VectorXd x2 =
+        problem.unknowns_from(larger.state0, larger.parameters, larger.period);
+    tangent.resize(x1.size() + 1);
+    tangent << x2 - x1, system.parameter(larger.parameters, parameter) - p;
+  } catch (const std::runtime_error&) {
+    // no second orbit: the side of the Hopf point the first one lies on
+  }
   Continuation continuation(system, parameter, options);
-  Branch branch = continuation.run(orbit, p >= hopf.parameter ? 1 : -1, callbacks);
+  Branch branch = continuation.run(orbit, p >= hopf.parameter ? 1 : -1, callbacks, tangent);
   branch.origin =
       "HB at " + system.parameter_names()[parameter] + " = " + format_double(hopf.parameter);
   return branch;

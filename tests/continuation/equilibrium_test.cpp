@@ -196,6 +196,56 @@ TEST(HopfStart, SmallOrbitOnTheExactFamily) {
   EXPECT_NEAR(family.points.back().parameter, 0.5, 1e-12);
 }
 
+// A Hopf point whose family is nearly vertical: x' = mu x - y - d x r^2, y' = x + mu y - d y r^2,
+// r' = r (mu - d r^2) with d = 1e-5 (AUTO's chu has l1 = -2.5e-4). The family r^2 = mu / d,
+// period 2 pi, radial multiplier exp(-4 pi mu) exactly: followed from the Hopf point the way its
+// amplitude grows, to the bound, isolated at every point (no multiplier set aside as structural),
+// on the exact family with its exact multiplier (issue 33, class 4). (This normal form passed
+// before the Hopf start's changes too; what they fixed shows on AUTO's chu in tests/auto, where
+// the first orbit's radial multiplier, 1 - 1.3e-7, made the whole branch a "continuum" with
+// wrong multipliers and a trusted PD at alpha = 7.566 that AUTO and a simulation deny.)
+constexpr double kD = 1e-5;
+class SlowHopf final : public AutoDiffSystem<SlowHopf> {
+ public:
+  SlowHopf() { set_parameter_layout({{"mu", {0}}}, {-0.01}); }
+  int dimension() const override { return 2; }
+  std::vector<std::string> state_names() const override { return {"x", "y"}; }
+  template <class T, class P>
+  void evaluate(double, const T* z, const P* p, T* dz) const {
+    const T r2 = z[0] * z[0] + z[1] * z[1];
+    dz[0] = p[0] * z[0] - z[1] - kD * z[0] * r2;
+    dz[1] = z[0] + p[0] * z[1] - kD * z[1] * r2;
+  }
+};
+
+TEST(HopfFamily, NearlyVerticalFamilyIsFollowedOutOfTheHopfPoint) {
+  const SlowHopf system;
+  const auto branch =
+      continue_equilibria(system, problem_of(system, -0.01, 0.01, Eigen::Vector2d(0.0, 0.0)), {});
+  const auto hopf = events_of(branch, EquilibriumEventType::Hopf);
+  ASSERT_EQ(hopf.size(), 1u);
+  EXPECT_NEAR(hopf[0].hopf->parameter, 0.0, 1e-10);
+  ContinuationOptions co;
+  co.lower = -0.01;
+  co.upper = kD;  // radius 1 at the bound
+  const Branch family = continue_from_hopf(system, 0, *hopf[0].hopf, co);
+  EXPECT_EQ(family.stop, StopReason::ParameterBound) << family.stop_reason;
+  EXPECT_NEAR(family.points.back().parameter, kD, 1e-12);
+  for (const auto& p : family.points) {
+    EXPECT_EQ(p.orbit.floquet.structural, 0) << p.index;
+    // On the family mu = d r^2, to the corrector's tolerance (1e-9 in the state) over the radial
+    // drift per period per unit of mu, 2 pi r >= 0.1 here: 1e-8 (measured up to 3e-9; r^2 itself
+    // is fixed only to 1e4 times that, the family is that steep).
+    EXPECT_NEAR(p.parameter, kD * p.orbit.state0.squaredNorm(), 1e-8) << p.index;
+    // The radial multiplier lies within 4 pi mu (from 5e-7) of the trivial one: two eigenvalues
+    // that close are found to about the monodromy's error over their gap (measured 6e-8).
+    for (const auto& m : p.orbit.floquet.multipliers)
+      if (!m.trivial) {
+        EXPECT_NEAR(m.value.real(), std::exp(-4 * kPi * p.parameter), 2e-7) << p.index;
+      }
+  }
+}
+
 EquilibriumEvent first_hopf(const OdeSystem& system, double from, double to,
                             const Eigen::VectorXd& start) {
   const auto branch = continue_equilibria(system, problem_of(system, from, to, start), {});

@@ -40,14 +40,16 @@ std::optional<HopfPoint> hopf_point_near(const OdeSystem& system, int parameter,
                                          double omega_guess, double step, std::string& why);
 
 // The small orbit of the family born at `hopf` (hopf.values, the continued `parameter`), as
-// above. Throws std::runtime_error naming what failed.
+// above; where Newton fails at the amplitude asked for, retried at a quarter and a sixteenth of
+// it. Throws std::runtime_error naming what failed at each.
 PeriodicOrbit orbit_from_hopf(const OdeSystem& system, int parameter, const HopfPoint& hopf,
                               const OrbitOptions& options, const HopfStartOptions& start = {});
 
 // The family of periodic orbits born at `hopf`: its small orbit (orbit_from_hopf), continued in
-// `parameter` within the options' bounds, away from the Hopf point (the side the small orbit lies
-// on); the branch's origin names the Hopf point. Throws std::runtime_error where no orbit near the
-// Hopf point converges.
+// `parameter` within the options' bounds, away from the Hopf point: the way its amplitude grows
+// (the secant to the orbit of twice the amplitude; where that one fails, the side of the Hopf
+// point the small orbit lies on); the branch's origin names the Hopf point. Throws
+// std::runtime_error where no orbit near the Hopf point converges.
 Branch continue_from_hopf(const OdeSystem& system, int parameter, const HopfPoint& hopf,
                           const ContinuationOptions& options,
                           const ContinuationCallbacks& callbacks = {},
