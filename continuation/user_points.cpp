@@ -39,14 +39,17 @@ std::vector<Bifurcation> Continuation::user_points_between(const ContinuationPoi
       // rare case; a bifurcation in it gets shorter retries, a user point does not need them).
       const double t = (value - a.parameter) / (b.parameter - a.parameter);
       e.location = LocationOutcome::CorrectorFailed;
+      // Nothing interpolated is trusted (issue 33: AUTO's pp2 had such a point trusted, its period
+      // 8e-4 off).
+      e.trust = EventTrust::NotCorrected;
       e.period = a.orbit.period + t * (b.orbit.period - a.orbit.period);
       e.state0 = a.orbit.state0 + t * (b.orbit.state0 - a.orbit.state0);
       e.unknowns = a.unknowns + t * (b.unknowns - a.unknowns);
       e.tangent = a.tangent;
       e.arclength = t * b.step;
       e.note =
-          "the orbit at this value could not be corrected; state and period interpolated "
-          "between the points around it";
+          "not trusted: the orbit at this value could not be corrected; state and period "
+          "interpolated between the points around it";
     }
     found.push_back(std::move(e));
   }

@@ -61,6 +61,8 @@ enum class EventTrust {
   CrossingNotResolved,   // the multiplier followed across is not on the unit circle where the
                          // event was located (multipliers of 1e-17 "crossing" on long-period
                          // orbits): the computation does not resolve it
+  NotCorrected,          // no orbit was corrected there: state and period interpolated between
+                         // the points around it (a user point whose correction failed)
 };
 
 struct Bifurcation {
