@@ -176,8 +176,31 @@ Branch continue_from_hopf(const OdeSystem& system, int parameter, const HopfPoin
                           const ContinuationOptions& options,
                           const ContinuationCallbacks& callbacks, const HopfStartOptions& start) {
   double amplitude = 0.0;
-  const PeriodicOrbit orbit = first_orbit(system, parameter, hopf, options.orbit, start, amplitude);
-  const double p = system.parameter(orbit.parameters, parameter);
+  PeriodicOrbit orbit = first_orbit(system, parameter, hopf, options.orbit, start, amplitude);
+  double p = system.parameter(orbit.parameters, parameter);
+  // A user point between the Hopf point and the first orbit would never be passed (issue 33:
+  // AUTO's lrz asks for rho = 24.7263, 0.01 from its Hopf point, where the first orbit lay 0.1
+  // off): the first orbit is taken closer, at the amplitude (p - p_H growing as its square) that
+  // puts it halfway between the Hopf point and the nearest such value, where it is still
+  // isolated.
+  double nearest = 1.0;  // of |u - p_H| / |p - p_H|
+  for (double u : options.user_points)
+    if ((u - hopf.parameter) * (p - u) > 0.0)
+      nearest = std::min(nearest, std::abs(u - hopf.parameter) / std::abs(p - hopf.parameter));
+  if (nearest < 1.0) {
+    const double closer = amplitude * std::sqrt(0.5 * nearest);
+    try {
+      PeriodicOrbit inner =
+          orbit_at_amplitude(system, parameter, hopf, options.orbit, start, closer);
+      if (inner.family_dimension == 0) {
+        orbit = std::move(inner);
+        amplitude = closer;
+        p = system.parameter(orbit.parameters, parameter);
+      }
+    } catch (const std::runtime_error&) {
+      // the first orbit as it was
+    }
+  }
   // The family goes the way its amplitude grows: the secant to the orbit of twice the first's
   // amplitude orients the first tangent. By the sign of p - p_H alone, a family whose parameter
   // barely moves (issue 33: AUTO's chu, l1 = -2.5e-4, the first orbit 2e-6 off the Hopf point)

@@ -246,6 +246,31 @@ TEST(HopfFamily, NearlyVerticalFamilyIsFollowedOutOfTheHopfPoint) {
   }
 }
 
+// A user point between the Hopf point and the family's first orbit (issue 33: AUTO's lrz, rho =
+// 24.7263, 0.01 from its Hopf point) is reported: on the Hopf normal form (r' = r (mu - r^2),
+// Hopf point mu = 0) the first orbit at the default amplitude 0.02 lies at mu = 4e-4; asked for
+// mu = 1e-5, the family reports it, on its exact circle r = sqrt(mu), period 2 pi.
+TEST(HopfFamily, UserPointNearTheHopfPointIsReported) {
+  const cli::HandHopf system(Eigen::Vector2d(-0.01, 1.0));
+  const auto branch =
+      continue_equilibria(system, problem_of(system, -0.01, 0.01, Eigen::Vector2d(0.0, 0.0)), {});
+  const auto hopf = events_of(branch, EquilibriumEventType::Hopf);
+  ASSERT_EQ(hopf.size(), 1u);
+  ContinuationOptions co;
+  co.lower = -0.01;
+  co.upper = 0.01;
+  co.user_points = {1e-5};
+  const Branch family = continue_from_hopf(system, 0, *hopf[0].hopf, co);
+  std::vector<Bifurcation> uz;
+  for (const auto& e : family.events)
+    if (e.type == BifurcationType::UserPoint) uz.push_back(e);
+  ASSERT_EQ(uz.size(), 1u) << family.stop_reason;
+  EXPECT_TRUE(uz[0].trusted()) << uz[0].note;
+  EXPECT_EQ(uz[0].parameter, 1e-5);
+  EXPECT_NEAR(uz[0].state0.norm(), std::sqrt(1e-5), 1e-6);  // r fixed to 1e-9 / (4 pi mu) here
+  EXPECT_NEAR(uz[0].period, 2 * kPi, 1e-8);
+}
+
 EquilibriumEvent first_hopf(const OdeSystem& system, double from, double to,
                             const Eigen::VectorXd& start) {
   const auto branch = continue_equilibria(system, problem_of(system, from, to, start), {});
