@@ -154,6 +154,31 @@ TEST(AtomicWrite, MissingDirectoryThrowsAndLeavesNothing) {
   EXPECT_TRUE(dir.entries().empty());
 }
 
+// The file-size limit (RLIMIT_FSIZE) at `bytes` while it lives, SIGXFSZ ignored so that writes
+// past it fail with EFBIG; both restored after.
+class FileSizeLimit {
+ public:
+  explicit FileSizeLimit(rlim_t bytes) {
+    ok_ = ::getrlimit(RLIMIT_FSIZE, &saved_) == 0;
+    rlimit limited = saved_;
+    limited.rlim_cur = bytes;
+    previous_ = std::signal(SIGXFSZ, SIG_IGN);
+    ok_ = ok_ && ::setrlimit(RLIMIT_FSIZE, &limited) == 0;
+  }
+  ~FileSizeLimit() {
+    ::setrlimit(RLIMIT_FSIZE, &saved_);
+    std::signal(SIGXFSZ, previous_);
+  }
+  FileSizeLimit(const FileSizeLimit&) = delete;
+  FileSizeLimit& operator=(const FileSizeLimit&) = delete;
+  bool ok() const { return ok_; }
+
+ private:
+  rlimit saved_{};
+  void (*previous_)(int) = SIG_DFL;
+  bool ok_ = false;
+};
+
 // The write itself fails (the file-size limit, RLIMIT_FSIZE, applies to root as well: writes past
 // it fail with EFBIG once SIGXFSZ is ignored): OutputError naming the path and strerror(EFBIG),
 // the earlier file keeps its content and its temporary is removed. Nothing is printed while the
@@ -164,22 +189,18 @@ TEST(AtomicWrite, FailedWriteKeepsEarlierFile) {
   write_file_atomically(path, "earlier\n");
   const std::string content(1 << 16, 'x');  // past any stdio buffer, so the write reaches the OS
 
-  rlimit saved{};
-  ASSERT_EQ(::getrlimit(RLIMIT_FSIZE, &saved), 0);
-  rlimit limited = saved;
-  limited.rlim_cur = 16;
-  const auto previous_handler = std::signal(SIGXFSZ, SIG_IGN);
-  ASSERT_EQ(::setrlimit(RLIMIT_FSIZE, &limited), 0);
   std::string message;
   bool thrown = false;
-  try {
-    write_file_atomically(path, content);
-  } catch (const OutputError& e) {
-    thrown = true;
-    message = e.what();
+  {
+    const FileSizeLimit limit(16);
+    ASSERT_TRUE(limit.ok());
+    try {
+      write_file_atomically(path, content);
+    } catch (const OutputError& e) {
+      thrown = true;
+      message = e.what();
+    }
   }
-  ::setrlimit(RLIMIT_FSIZE, &saved);
-  std::signal(SIGXFSZ, previous_handler);
 
   ASSERT_TRUE(thrown) << "no OutputError when the write failed";
   expect_mentions(message, {path, "File too large"});
@@ -194,15 +215,11 @@ TEST(StreamFile, FailedWriteLeavesWholeLines) {
   const ScratchDirectory dir;
   const std::string path = dir.file("rows.csv");
   const std::string line = std::string(29, 'r') + "\n";
-  rlimit saved{};
-  ASSERT_EQ(::getrlimit(RLIMIT_FSIZE, &saved), 0);
-  rlimit limited = saved;
-  limited.rlim_cur = 100;
-  const auto previous_handler = std::signal(SIGXFSZ, SIG_IGN);
-  ASSERT_EQ(::setrlimit(RLIMIT_FSIZE, &limited), 0);
   std::string message;
   int written = 0;
   {
+    const FileSizeLimit limit(100);
+    ASSERT_TRUE(limit.ok());
     StreamFile file(path);
     try {
       for (; written < 10; ++written) file.write_line(line);
@@ -210,8 +227,6 @@ TEST(StreamFile, FailedWriteLeavesWholeLines) {
       message = e.what();
     }
   }
-  ::setrlimit(RLIMIT_FSIZE, &saved);
-  std::signal(SIGXFSZ, previous_handler);
   EXPECT_EQ(written, 3);
   expect_mentions(message, {path, "File too large"});
   EXPECT_EQ(read_all(path), line + line + line);
