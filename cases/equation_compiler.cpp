@@ -28,6 +28,7 @@
 #include "sympathy/cases/sha256.hpp"
 #include "sympathy/core/binary_interface.hpp"
 #include "sympathy/core/errors.hpp"
+#include "sympathy/core/output_file.hpp"
 
 extern char** environ;
 
@@ -135,34 +136,6 @@ std::string open_protected(const fs::path& path, const std::string& what, Opened
     file.bytes.append(buffer, static_cast<std::size_t>(n));
   }
   return "";
-}
-
-// Writes `content` to `path` atomically (a temporary beside it, then rename) with mode 0644 from
-// its creation, so that no other account can open it for writing at any moment.
-void write_entry_file(const fs::path& path, const std::string& content) {
-  const fs::path temporary = path.string() + ".tmp" + std::to_string(::getpid());
-  ::unlink(temporary.c_str());  // a temporary left by a killed run of the same process id
-  const int fd =
-      ::open(temporary.c_str(), O_WRONLY | O_CREAT | O_EXCL | O_CLOEXEC | O_NOFOLLOW, 0644);
-  if (fd < 0)
-    throw std::runtime_error("cannot write " + temporary.string() + ": " + std::strerror(errno));
-  std::size_t done = 0;
-  while (done < content.size()) {
-    const ssize_t n = ::write(fd, content.data() + done, content.size() - done);
-    if (n < 0 && errno == EINTR) continue;
-    if (n <= 0) {
-      const int e = errno;
-      ::close(fd);
-      ::unlink(temporary.c_str());
-      throw std::runtime_error("cannot write " + temporary.string() + ": " + std::strerror(e));
-    }
-    done += static_cast<std::size_t>(n);
-  }
-  if (::close(fd) != 0 || ::rename(temporary.c_str(), path.c_str()) != 0) {
-    const int e = errno;
-    ::unlink(temporary.c_str());
-    throw std::runtime_error("cannot write " + path.string() + ": " + std::strerror(e));
-  }
 }
 
 // The include directory whose engine headers are those this build was compiled with:
@@ -288,7 +261,7 @@ int run(const std::vector<std::string>& argv, const fs::path& log) {
 // engine headers in `include`.
 void compile(const fs::path& dir, const std::string& key, const std::string& source,
              const std::string& include, const std::string& what) {
-  write_entry_file(dir / (key + ".cpp"), source);
+  write_file_atomically((dir / (key + ".cpp")).string(), source, 0644);
   // The compiler's output in a directory of its own with mode 0700 (mkdtemp), made 0644 there
   // before it is moved into place: no other account can open the library for writing between its
   // creation and its manifest.
@@ -336,7 +309,8 @@ void compile(const fs::path& dir, const std::string& key, const std::string& sou
     throw std::runtime_error("cannot read the compiled library " + library.string() + ": " +
                              problem);
   fs::rename(library, dir / (key + ".so"));  // atomic within the directory
-  write_entry_file(dir / (key + ".manifest"), manifest_text(key, sha256_hex(built.bytes)));
+  write_file_atomically((dir / (key + ".manifest")).string(),
+                        manifest_text(key, sha256_hex(built.bytes)), 0644);
 }
 
 // Why the entry `key` cannot be loaded, or "" if its manifest vouches for its library, which is

@@ -56,7 +56,7 @@ void StreamFile::close() {
   if (::close(fd) != 0) fail(path_, "close", errno);
 }
 
-void write_file_atomically(const std::string& path, const std::string& content) {
+void write_file_atomically(const std::string& path, const std::string& content, mode_t mode) {
   // A device or a pipe (/dev/null, /dev/full, a FIFO) cannot be replaced by a rename, and must
   // not be: it is written in place, every write checked.
   std::error_code ec;
@@ -68,18 +68,28 @@ void write_file_atomically(const std::string& path, const std::string& content) 
     return;
   }
   // Beside the target (same directory, hence same file system, so that rename is atomic), named
-  // per process so that two runs writing the same name do not share a temporary.
+  // per process so that two runs writing the same name do not share a temporary; created afresh
+  // (a temporary a killed run of the same process id left is removed first).
   const std::string temporary = path + ".tmp" + std::to_string(::getpid());
-  std::FILE* f = std::fopen(temporary.c_str(), "w");
-  if (!f) fail(path, "open a temporary file beside it for writing", errno);
-  errno = 0;
-  const bool written = std::fwrite(content.data(), 1, content.size(), f) == content.size() &&
-                       std::fflush(f) == 0 && ::fsync(::fileno(f)) == 0;
-  const int error = errno ? errno : EIO;
-  const bool closed = std::fclose(f) == 0;
-  if (!written || !closed) {
-    std::remove(temporary.c_str());
-    fail(path, "write", written ? (errno ? errno : EIO) : error);
+  ::unlink(temporary.c_str());
+  const int fd =
+      ::open(temporary.c_str(), O_WRONLY | O_CREAT | O_EXCL | O_NOFOLLOW | O_CLOEXEC, mode);
+  if (fd < 0) fail(path, "open a temporary file beside it for writing", errno);
+  std::size_t done = 0;
+  int error = 0;
+  while (done < content.size() && error == 0) {
+    const ssize_t n = ::write(fd, content.data() + done, content.size() - done);
+    if (n < 0 && errno == EINTR) continue;
+    if (n <= 0)
+      error = n < 0 ? errno : ENOSPC;
+    else
+      done += static_cast<std::size_t>(n);
+  }
+  if (error == 0 && ::fsync(fd) != 0) error = errno;
+  if (::close(fd) != 0 && error == 0) error = errno;
+  if (error != 0) {
+    ::unlink(temporary.c_str());
+    fail(path, "write", error);
   }
   if (std::rename(temporary.c_str(), path.c_str()) != 0) {
     const int e = errno;

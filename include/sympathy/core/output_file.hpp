@@ -42,8 +42,10 @@ class StreamFile {
 };
 
 // Writes `content` to `path` atomically (a temporary beside it, then rename); throws OutputError.
-// A path that names a device or a pipe (/dev/null, /dev/full) is written in place instead.
-void write_file_atomically(const std::string& path, const std::string& content);
+// A path that names a device or a pipe (/dev/null, /dev/full) is written in place instead. The
+// temporary is created afresh (never through a link) with `mode` (less the umask) from the start,
+// so no other account can open it for writing at any moment where `mode` does not allow it.
+void write_file_atomically(const std::string& path, const std::string& content, mode_t mode = 0666);
 
 // Checks, before any work, that `path` can be written: its directory exists and is writable, and
 // it is not a directory. Throws OutputError naming `option` (e.g. "--json") and the path.
