@@ -69,10 +69,12 @@ double start_amplitude(const HopfPoint& hopf, const HopfStartOptions& start) {
                                : 0.02 * std::max(1.0, hopf.state.lpNorm<Eigen::Infinity>());
 }
 
-// Newton on the orbit of amplitude `amplitude` along Re q (see orbit_from_hopf).
+// Newton on the orbit of amplitude `amplitude` along Re q (see orbit_from_hopf). With `growth`,
+// also the family's direction there (shooting unknowns and parameter) in which the amplitude
+// grows: d(x, p)/d eps from the same bordered system, its last row's right-hand side |Re q|^2.
 PeriodicOrbit orbit_at_amplitude(const OdeSystem& system, int parameter, const HopfPoint& hopf,
                                  const OrbitOptions& options, const HopfStartOptions& start,
-                                 double amplitude) {
+                                 double amplitude, Eigen::VectorXd* growth = nullptr) {
   const Eigen::VectorXd qr = hopf.eigenvector.real(), qi = hopf.eigenvector.imag();
   const double eps = amplitude / qr.lpNorm<Eigen::Infinity>();
   ShootingProblem problem(system, options.shooting);
@@ -88,6 +90,12 @@ PeriodicOrbit orbit_at_amplitude(const OdeSystem& system, int parameter, const H
                            options.shooting.flow, hopf.state.lpNorm<Eigen::Infinity>());
   double residual = 0.0;
   bool converged = false;
+  const auto bordered = [&](const ShootingProblem::Evaluation& e) {
+    Eigen::MatrixXd m = Eigen::MatrixXd::Zero(N + 1, N + 1);
+    m.topRows(N) = Eigen::MatrixXd(problem.jacobian(e, true));
+    m.row(N).head(n) = qr.transpose();
+    return m;
+  };
   for (int it = 0; it < start.max_iterations; ++it) {
     values = system.with_parameter(hopf.values, parameter, p);
     const auto e = problem.evaluate(x, values, true, parameter);
@@ -98,12 +106,14 @@ PeriodicOrbit orbit_at_amplitude(const OdeSystem& system, int parameter, const H
     if (!g.allFinite()) break;
     if (residual <= tolerance) {
       converged = true;
+      if (growth) {
+        Eigen::VectorXd along = Eigen::VectorXd::Zero(N + 1);
+        along[N] = qr.squaredNorm();
+        *growth = bordered(e).fullPivLu().solve(along);
+      }
       break;
     }
-    Eigen::MatrixXd m = Eigen::MatrixXd::Zero(N + 1, N + 1);
-    m.topRows(N) = Eigen::MatrixXd(problem.jacobian(e, true));
-    m.row(N).head(n) = qr.transpose();
-    const Eigen::VectorXd dy = m.fullPivLu().solve(-g);
+    const Eigen::VectorXd dy = bordered(e).fullPivLu().solve(-g);
     x += dy.head(N);
     p += dy[N];
   }
@@ -124,8 +134,8 @@ PeriodicOrbit orbit_at_amplitude(const OdeSystem& system, int parameter, const H
 
 // orbit_from_hopf, with the amplitude of the orbit found in `used`.
 PeriodicOrbit first_orbit(const OdeSystem& system, int parameter, const HopfPoint& hopf,
-                          const OrbitOptions& options, const HopfStartOptions& start,
-                          double& used) {
+                          const OrbitOptions& options, const HopfStartOptions& start, double& used,
+                          Eigen::VectorXd* growth = nullptr) {
   if (auto wrong = start.validate()) throw std::invalid_argument("Hopf start: " + wrong->message());
   if (!(hopf.omega > 0.0) || hopf.eigenvector.size() != system.dimension())
     throw std::invalid_argument("Hopf start: the Hopf point has no frequency or eigenvector");
@@ -137,7 +147,7 @@ PeriodicOrbit first_orbit(const OdeSystem& system, int parameter, const HopfPoin
   for (double amplitude : {first, first / 4, first / 16}) {
     PeriodicOrbit orbit;
     try {
-      orbit = orbit_at_amplitude(system, parameter, hopf, options, start, amplitude);
+      orbit = orbit_at_amplitude(system, parameter, hopf, options, start, amplitude, growth);
       used = amplitude;
     } catch (const std::runtime_error& e) {
       failures += (failures.empty() ? "" : "; ") + std::string(e.what());
@@ -152,9 +162,12 @@ PeriodicOrbit first_orbit(const OdeSystem& system, int parameter, const HopfPoin
     for (double larger : {4 * amplitude, 16 * amplitude}) {
       if (orbit.family_dimension == 0 || start.amplitude > 0.0) break;
       try {
-        PeriodicOrbit wider = orbit_at_amplitude(system, parameter, hopf, options, start, larger);
+        Eigen::VectorXd wider_growth;
+        PeriodicOrbit wider =
+            orbit_at_amplitude(system, parameter, hopf, options, start, larger, &wider_growth);
         orbit = std::move(wider);
         used = larger;
+        if (growth) *growth = std::move(wider_growth);
       } catch (const std::runtime_error&) {
         break;  // the smaller one, as it is
       }
@@ -175,8 +188,14 @@ PeriodicOrbit orbit_from_hopf(const OdeSystem& system, int parameter, const Hopf
 Branch continue_from_hopf(const OdeSystem& system, int parameter, const HopfPoint& hopf,
                           const ContinuationOptions& options,
                           const ContinuationCallbacks& callbacks, const HopfStartOptions& start) {
+  // The family goes the way its amplitude grows: d(x, p)/d eps at the first orbit orients the
+  // first tangent. By the sign of p - p_H alone, a family whose parameter barely moves (issue 33:
+  // AUTO's chu, l1 = -2.5e-4, the first orbit 2e-6 off the Hopf point) was sent back into the
+  // Hopf point and ended there after one point.
   double amplitude = 0.0;
-  PeriodicOrbit orbit = first_orbit(system, parameter, hopf, options.orbit, start, amplitude);
+  Eigen::VectorXd growth;
+  PeriodicOrbit orbit =
+      first_orbit(system, parameter, hopf, options.orbit, start, amplitude, &growth);
   double p = system.parameter(orbit.parameters, parameter);
   // A user point between the Hopf point and the first orbit would never be passed (issue 33:
   // AUTO's lrz asks for rho = 24.7263, 0.01 from its Hopf point, where the first orbit lay 0.1
@@ -190,38 +209,21 @@ Branch continue_from_hopf(const OdeSystem& system, int parameter, const HopfPoin
   if (nearest < 1.0) {
     const double closer = amplitude * std::sqrt(0.5 * nearest);
     try {
+      Eigen::VectorXd inner_growth;
       PeriodicOrbit inner =
-          orbit_at_amplitude(system, parameter, hopf, options.orbit, start, closer);
+          orbit_at_amplitude(system, parameter, hopf, options.orbit, start, closer, &inner_growth);
       if (inner.family_dimension == 0) {
         orbit = std::move(inner);
-        amplitude = closer;
+        growth = std::move(inner_growth);
         p = system.parameter(orbit.parameters, parameter);
       }
     } catch (const std::runtime_error&) {
       // the first orbit as it was
     }
   }
-  // The family goes the way its amplitude grows: the secant to the orbit of twice the first's
-  // amplitude orients the first tangent. By the sign of p - p_H alone, a family whose parameter
-  // barely moves (issue 33: AUTO's chu, l1 = -2.5e-4, the first orbit 2e-6 off the Hopf point)
-  // was sent back into the Hopf point and ended there after one point.
-  // (Both orbits start on the plane through the equilibrium normal to Im q, at eps Re q and
-  // 2 eps Re q: their difference is the family's direction at one phase.)
-  Eigen::VectorXd tangent;
-  try {
-    const PeriodicOrbit larger =
-        orbit_at_amplitude(system, parameter, hopf, options.orbit, start, 2 * amplitude);
-    ShootingProblem problem(system, options.orbit.shooting);
-    const Eigen::VectorXd x1 = problem.unknowns_from(orbit.state0, orbit.parameters, orbit.period);
-    const Eigen::VectorXd x2 =
-        problem.unknowns_from(larger.state0, larger.parameters, larger.period);
-    tangent.resize(x1.size() + 1);
-    tangent << x2 - x1, system.parameter(larger.parameters, parameter) - p;
-  } catch (const std::runtime_error&) {
-    // no second orbit: the side of the Hopf point the first one lies on
-  }
+  if (!growth.allFinite()) growth.resize(0);  // then the side of the Hopf point the orbit is on
   Continuation continuation(system, parameter, options);
-  Branch branch = continuation.run(orbit, p >= hopf.parameter ? 1 : -1, callbacks, tangent);
+  Branch branch = continuation.run(orbit, p >= hopf.parameter ? 1 : -1, callbacks, growth);
   branch.origin =
       "HB at " + system.parameter_names()[parameter] + " = " + format_double(hopf.parameter);
   return branch;
