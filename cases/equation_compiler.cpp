@@ -258,9 +258,10 @@ int run(const std::vector<std::string>& argv, const fs::path& log) {
 }
 
 // Compiles `source` into the cache entry `key` (KEY.cpp, KEY.so, KEY.manifest) against the
-// engine headers in `include`.
+// engine headers in `include`; `built` is the new library, opened and checked as an entry's is,
+// to be loaded through that descriptor (not read and hashed again from the cache).
 void compile(const fs::path& dir, const std::string& key, const std::string& source,
-             const std::string& include, const std::string& what) {
+             const std::string& include, const std::string& what, OpenedFile& built) {
   write_file_atomically((dir / (key + ".cpp")).string(), source, 0644);
   // The compiler's output in a directory of its own with mode 0700 (mkdtemp), made 0644 there
   // before it is moved into place: no other account can open the library for writing between its
@@ -304,7 +305,6 @@ void compile(const fs::path& dir, const std::string& key, const std::string& sou
   }
   if (::chmod(library.c_str(), 0644) != 0)
     throw std::runtime_error("cannot set the mode of the compiled library " + library.string());
-  OpenedFile built;
   if (const auto problem = open_protected(library, "library", built); !problem.empty())
     throw std::runtime_error("cannot read the compiled library " + library.string() + ": " +
                              problem);
@@ -451,13 +451,13 @@ EquationBuild build_equation_system(const EquationCase& equations, const Eigen::
     if (!lib) {
       if (problem != "absent") build.rebuilt_because = problem;
       build.include_dir = engine_include_dir();
+      OpenedFile library;
       compile(dir, build.key, source, build.include_dir,
               build.plugin.empty() ? "compiling an equation case file's system"
-                                   : "compiling the plug-in " + build.plugin);
+                                   : "compiling the plug-in " + build.plugin,
+              library);
       build.compiled = true;
-      OpenedFile library;
-      problem = entry_problem(dir, build.key, library);
-      if (problem.empty()) lib = open_library(library, build.key, problem);
+      lib = open_library(library, build.key, problem);
       if (!lib)
         throw std::runtime_error("the equation system just compiled cannot be loaded from " +
                                  build.library + ": " + problem);
