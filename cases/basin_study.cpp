@@ -53,8 +53,7 @@ OptionCheck BasinOptions::validate() const {
     return OptionProblem{"t_end", "a time longer than the classifier's window (" +
                                       format_number(classifier.window) + " s)"};
   if (dt > 0.05) return OptionProblem{"dt", "at most 0.05 s (a tenth of a period)"};
-  // A bound chosen, not hit (issue 32): each run keeps its sample times.
-  if (t_end / dt > 1e7)
+  if (t_end / dt > kMaxSamples)
     return OptionProblem{
         "dt", "at most 1e7 samples a run (t_end / dt = " + format_number(t_end / dt) + ")"};
   if (auto p = nested("classifier.", classifier.validate())) return p;
@@ -142,11 +141,7 @@ std::optional<BasinRun> BasinStudy::run(const BasinTask& task,
   // A flow of its own per task: nothing carried from one task to the next, whatever thread.
   Flow flow(model, options_.flow);
   SyncClassifier classifier(groups_, options_.classifier);
-  const long count = static_cast<long>(std::floor(options_.t_end / options_.dt + 1e-9));
-  std::vector<double> times;
-  times.reserve(count + 2);
-  for (long i = 0; i <= count; ++i) times.push_back(i * options_.dt);
-  if (options_.t_end - times.back() > 1e-12) times.push_back(options_.t_end);
+  const std::vector<double> times = sample_times(options_.t_end, options_.dt);
   std::vector<double> angles(pendula());
   BasinRun run;
   bool stopped = false;

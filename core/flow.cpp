@@ -430,4 +430,13 @@ bool Flow::sample_run(
   return stopped;
 }
 
+std::vector<double> sample_times(double t_end, double dt) {
+  const long count = static_cast<long>(std::floor(t_end / dt + 1e-9));
+  std::vector<double> times;
+  times.reserve(count + 2);
+  for (long i = 0; i <= count; ++i) times.push_back(i * dt);
+  if (t_end - times.back() > 1e-12) times.push_back(t_end);
+  return times;
+}
+
 }  // namespace sympathy

@@ -7,12 +7,8 @@
 
 namespace sympathy::detail {
 
-int check_finite_rhs(FlowCall& call, double t, const double* z, const double* dz) {
+void record_nonfinite_rhs(FlowCall& call, double t, const double* z, const double* dz, int bad) {
   const int n = call.system.dimension();
-  int bad = -1;
-  for (int i = 0; i < n && bad < 0; ++i)
-    if (!std::isfinite(dz[i])) bad = i;
-  if (bad < 0) return 0;
   if (call.nonfinite.empty()) {
     const auto states = call.system.state_names();
     const auto parameters = call.system.parameter_names();
@@ -28,7 +24,6 @@ int check_finite_rhs(FlowCall& call, double t, const double* z, const double* dz
     }
     call.nonfinite = s.str();
   }
-  return 1;  // recoverable: the integrator retries a smaller step
 }
 
 void append_failure_details(std::ostringstream& msg, FlowCall& call) {

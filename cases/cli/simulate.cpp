@@ -37,19 +37,11 @@ std::vector<double> simulation_times(const Arguments& args) {
   const double dt = args.number("--dt", 0.01);
   if (!(t_end > 0.0)) throw InputError("--t-end: expected a positive number of seconds");
   if (!(dt > 0.0 && dt <= t_end)) throw InputError("--dt: expected a positive interval <= --t-end");
-  // A bound chosen, not hit: 1e7 samples are 80 MB of times and a CSV of about a gigabyte (issue
-  // 32: --dt 1e-300 ended in "vector::reserve", --dt 1e-8 --t-end 60 in bad_alloc).
-  constexpr double kMaxSamples = 1e7;
   if (t_end / dt > kMaxSamples)
     throw InputError("--dt " + args.text("--dt", "") + ": " + format_double(t_end / dt) +
                      " samples over --t-end " + format_double(t_end) +
                      "; expected at most 1e7 samples (a larger --dt or a shorter --t-end)");
-  const long count = static_cast<long>(std::floor(t_end / dt + 1e-9));
-  std::vector<double> times;
-  times.reserve(count + 2);
-  for (long i = 0; i <= count; ++i) times.push_back(i * dt);
-  if (t_end - times.back() > 1e-12) times.push_back(t_end);
-  return times;
+  return sample_times(t_end, dt);
 }
 
 FlowOptions simulation_flow_options(const Arguments& args) {

@@ -232,6 +232,17 @@ TEST(Flow, NonFiniteRightHandSideIsReportedAsSuch) {
   }
 }
 
+// Sample times: multiples of dt up to t_end, and t_end itself where dt does not divide it (exact
+// in binary for 0.25; 0.3 k rounds, so to 1e-15).
+TEST(Flow, SampleTimesEndAtTheEnd) {
+  EXPECT_EQ(sample_times(1.0, 0.25), (std::vector<double>{0.0, 0.25, 0.5, 0.75, 1.0}));
+  const auto t = sample_times(1.0, 0.3);
+  ASSERT_EQ(t.size(), 5u);
+  for (int k = 0; k < 4; ++k) EXPECT_NEAR(t[k], 0.3 * k, 1e-15);
+  EXPECT_EQ(t.back(), 1.0);
+  EXPECT_EQ(sample_times(0.5, 0.5), (std::vector<double>{0.0, 0.5}));
+}
+
 TEST(Flow, RejectsBadInput) {
   Decay system(1.0);
   Flow flow(system);

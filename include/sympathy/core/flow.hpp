@@ -253,4 +253,14 @@ class Flow {
   double t_ = 0.0;
 };
 
+// The most output samples a run takes (Flow::sample's `times`): a bound chosen, not hit. 1e7
+// samples are 80 MB of times and a CSV of about a gigabyte (issue 32: --dt 1e-300 ended in
+// "vector::reserve", --dt 1e-8 --t-end 60 in bad_alloc).
+constexpr double kMaxSamples = 1e7;
+
+// 0, dt, 2 dt, ... up to t_end, and t_end itself where dt does not divide it (to 1e-12): the
+// sample times of a run. Expects 0 < dt <= t_end and t_end / dt <= kMaxSamples (the callers check
+// and name their options).
+std::vector<double> sample_times(double t_end, double dt);
+
 }  // namespace sympathy
