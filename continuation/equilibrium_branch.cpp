@@ -2,8 +2,11 @@
 
 #include <algorithm>
 #include <cmath>
+#include <limits>
 #include <stdexcept>
 
+#include "sympathy/continuation/crossing_locator.hpp"
+#include "sympathy/continuation/driver.hpp"
 #include "sympathy/core/assignment.hpp"
 #include "sympathy/core/csv.hpp"
 #include "sympathy/core/text.hpp"
@@ -76,10 +79,15 @@ namespace {
 
 using Complex = std::complex<double>;
 
-// One way along a branch of equilibria (the pieces of the header's comment).
-class Run {
+// One way along a branch of equilibria, as the driver's problem (the pieces of the header's
+// comment).
+class EquilibriumContinuation {
  public:
-  Run(const OdeSystem& system, int parameter, ParameterValues base, const EquilibriumOptions& o)
+  using Point = EquilibriumPoint;
+  using Event = EquilibriumEvent;
+
+  EquilibriumContinuation(const OdeSystem& system, int parameter, ParameterValues base,
+                          const EquilibriumOptions& o)
       : system_(system),
         parameter_(parameter),
         base_(std::move(base)),
@@ -129,29 +137,39 @@ class Run {
     return t;
   }
 
-  // Newton on f = 0 and <t, y - from> = s, from `guess`; nullopt if it fails.
+  // Newton on f = 0 and <t, y - from> = s, from `guess`; nullopt with the reason if it fails.
   std::optional<EquilibriumPoint> correct(const Eigen::VectorXd& from, const Eigen::VectorXd& t,
-                                          double s, Eigen::VectorXd y) const {
+                                          double s, Eigen::VectorXd y, std::string& why) const {
     const Eigen::VectorXd row = weights_.cwiseProduct(weights_).cwiseProduct(t);
     for (int it = 1; it <= o_.max_iterations; ++it) {
       Eigen::VectorXd g(n_ + 1);
       g.head(n_) = f(y);
       g[n_] = row.dot(y - from) - s;
-      if (!g.allFinite()) return std::nullopt;
+      if (!g.allFinite()) {
+        why = "the right-hand side is not finite at a Newton iterate";
+        return std::nullopt;
+      }
       Eigen::MatrixXd m(n_ + 1, n_ + 1);
       m.topRows(n_) = jacobian(y);
       m.row(n_) = row.transpose();
       Eigen::FullPivLU<Eigen::MatrixXd> lu(m);
-      if (!lu.isInvertible()) return std::nullopt;
+      if (!lu.isInvertible()) {
+        why = "the bordered Jacobian is singular";
+        return std::nullopt;
+      }
       const Eigen::VectorXd dy = lu.solve(-g);
       y += dy;
-      if (!y.allFinite()) return std::nullopt;
+      if (!y.allFinite()) {
+        why = "a Newton iterate is not finite";
+        return std::nullopt;
+      }
       const double x_size = std::max(1.0, y.head(n_).lpNorm<Eigen::Infinity>());
       const double p_size = std::max(1.0, std::abs(y[n_]));
       if (dy.head(n_).lpNorm<Eigen::Infinity>() <= o_.tolerance * x_size &&
           std::abs(dy[n_]) <= o_.tolerance * p_size)
         return make_point(y, t, it);
     }
+    why = "Newton did not converge in " + std::to_string(o_.max_iterations) + " iterations";
     return std::nullopt;
   }
 
@@ -175,13 +193,81 @@ class Run {
     return y;
   }
 
+  // The start's point and the scales, in `direction` of the parameter.
+  EquilibriumPoint start(const Equilibrium& start, int direction) {
+    const double p0 = system_.parameter(start.parameters, parameter_);
+    // The states' scale: what they are, or how far they move across the window if more (at
+    // |dx/dp| from the start's tangent), so that a branch starting at x = 0 does not creep out of
+    // it in steps of the floor.
+    widen_scale(start.state);
+    Eigen::VectorXd y0(n_ + 1);
+    y0 << start.state, p0;
+    Eigen::VectorXd along_p = Eigen::VectorXd::Zero(n_ + 1);
+    along_p[n_] = 1.0;
+    const Eigen::VectorXd t = tangent(jacobian(y0), along_p);
+    if (std::abs(t[n_]) > 0) widen_scale(t.head(n_) / std::abs(t[n_]) * (o_.upper - o_.lower));
+    Eigen::VectorXd along = Eigen::VectorXd::Zero(n_ + 1);
+    along[n_] = direction / weights_[n_];
+    return make_point(y0, along, 0);
+  }
+
+  // The driver's problem (driver.hpp).
+  driver::Attempt<Point> step(const Point*, const Point& a, double ds) const {
+    const Eigen::VectorXd ya = y_of(a);
+    driver::Attempt<Point> r;
+    r.point = correct(ya, a.tangent, ds, ya + ds * a.tangent, r.why);
+    if (r.point) r.point->step = ds;
+    return r;
+  }
+  double turn_cosine(const Point& a, const Point& b) const { return dot(b.tangent, a.tangent); }
+  bool outside(const Point& b) const { return b.parameter <= o_.lower || b.parameter >= o_.upper; }
+  std::string edge_message(const Point&) const { return "reached the parameter bound"; }
+  double parameter(const Point& p) const { return p.parameter; }
+  // The last point lies on the bound: f = 0 with the parameter fixed there.
+  std::optional<Point> onto_edge(const Point& a, const Point& b) const {
+    const double bound = std::clamp(b.parameter, o_.lower, o_.upper);
+    const double w = (bound - a.parameter) / (b.parameter - a.parameter);
+    const Equilibrium at =
+        solve_equilibrium(system_, values_at(bound), (1 - w) * a.state + w * b.state);
+    if (!at.converged) return std::nullopt;
+    Eigen::VectorXd y(n_ + 1);
+    y << at.state, bound;
+    Point p = make_point(y, a.tangent, at.iterations);
+    const Eigen::VectorXd ya = y_of(a);
+    p.step = std::sqrt(dot(y - ya, y - ya));
+    return p;
+  }
+  driver::Found<Event> detect(const Point& a, const Point& b) const {
+    driver::Found<Event> found;
+    if (!o_.detect_bifurcations) return found;
+    found.events = events_between(a, b, b.step);
+    for (const auto& e : found.events) found.unlocated |= !e.located;
+    return found;
+  }
+  std::optional<driver::Ending> ends(const Point&, const Point&, std::vector<Event>&) const {
+    return std::nullopt;
+  }
+  void accept(Point& b) {
+    widen_scale(b.state);
+    b.tangent = unit(b.tangent);
+  }
+
+ private:
   // Events between a and b (b at arclength ds from a along a's tangent).
-  std::vector<EquilibriumEvent> detect(const EquilibriumPoint& a, const EquilibriumPoint& b,
-                                       double ds) const {
+  std::vector<EquilibriumEvent> events_between(const EquilibriumPoint& a, const EquilibriumPoint& b,
+                                               double ds) const {
     std::vector<EquilibriumEvent> events;
-    if (a.tangent[n_] * b.tangent[n_] < 0)
-      events.push_back(locate(a, ds, EquilibriumEventType::Fold,
-                              [&](const EquilibriumPoint& pt) { return pt.tangent[n_]; }));
+    using Tag = Complex;  // the eigenvalue followed (HB); unused by the other tests
+    using Ends = driver::End<Tag>;
+    const auto plain = [](auto g) {
+      return [g](const EquilibriumPoint& pt, double, const Ends&, const Ends&) {
+        return driver::Sample<Tag>{g(pt), Tag{}};
+      };
+    };
+    const auto fold = [&](const EquilibriumPoint& pt) { return pt.tangent[n_]; };
+    if (fold(a) * fold(b) < 0)
+      events.push_back(
+          locate(a, b, ds, EquilibriumEventType::Fold, {fold(a), {}}, {fold(b), {}}, plain(fold)));
     // The bordered determinant with a's tangent as the border row throughout: its sign follows
     // the generalized cross product of [f_x f_p]'s rows, which vanishes and changes sign at a
     // branch point only (a point's own tangent there is ill-defined: the bordered system that
@@ -189,8 +275,10 @@ class Run {
     const auto determinant = [&](const EquilibriumPoint& pt) {
       return bordered(jacobian(y_of(pt)), a.tangent).fullPivLu().determinant();
     };
-    if (determinant(a) * determinant(b) < 0)
-      events.push_back(locate(a, ds, EquilibriumEventType::BranchPoint, determinant));
+    const double det_a = determinant(a), det_b = determinant(b);
+    if (det_a * det_b < 0)
+      events.push_back(locate(a, b, ds, EquilibriumEventType::BranchPoint, {det_a, {}}, {det_b, {}},
+                              plain(determinant)));
     // Complex pairs (upper halves) paired from a to b by least total distance.
     const int n = n_;
     Eigen::MatrixXd cost(n, n);
@@ -202,13 +290,19 @@ class Run {
       const Complex la = a.eigenvalues[i], lb = b.eigenvalues[to_b[i]];
       if (la.imag() <= 1e-9 * size || lb.imag() <= 1e-9 * size) continue;
       if ((la.real() > 0) == (lb.real() > 0)) continue;
-      Complex followed = la;
-      EquilibriumEvent e =
-          locate(a, ds, EquilibriumEventType::Hopf, [&](const EquilibriumPoint& pt) {
-            followed = nearest_eigenvalue(pt.eigenvalues, followed);
-            return followed.real();
-          });
-      e.hopf = describe_hopf(system_, values_at(e.parameter), e.state, followed.imag());
+      // The pair followed by continuity: the eigenvalue nearest to the value interpolated
+      // between those followed at the bracket's ends.
+      const auto followed = [](const EquilibriumPoint& pt, double s, const Ends& lo,
+                               const Ends& hi) {
+        const Complex expected =
+            lo.sample.tag + (s - lo.s) / (hi.s - lo.s) * (hi.sample.tag - lo.sample.tag);
+        const Complex mu = nearest_eigenvalue(pt.eigenvalues, expected);
+        return driver::Sample<Tag>{mu.real(), mu};
+      };
+      Complex crossing;
+      EquilibriumEvent e = locate(a, b, ds, EquilibriumEventType::Hopf, {la.real(), la},
+                                  {lb.real(), lb}, followed, &crossing);
+      e.hopf = describe_hopf(system_, values_at(e.parameter), e.state, crossing.imag());
       e.hopf->parameter = e.parameter;
       e.hopf->uncertainty = e.uncertainty;
       events.push_back(std::move(e));
@@ -218,169 +312,44 @@ class Run {
     return events;
   }
 
-  // Illinois regula falsi on g(s), s the arclength from a along a's tangent, in [0, ds].
-  template <class G>
-  EquilibriumEvent locate(const EquilibriumPoint& a, double ds, EquilibriumEventType type,
-                          G g) const {
+  // The one locator (crossing_locator.hpp) in the arclength from a along a's tangent, in [0, ds].
+  template <class Test>
+  EquilibriumEvent locate(const EquilibriumPoint& a, const EquilibriumPoint& b, double ds,
+                          EquilibriumEventType type, driver::Sample<Complex> at_a,
+                          driver::Sample<Complex> at_b, const Test& test,
+                          Complex* crossing = nullptr) const {
     EquilibriumEvent e;
     e.type = type;
     e.after_point = a.index;
     const Eigen::VectorXd ya = y_of(a);
-    auto probe = [&](double s) { return correct(ya, a.tangent, s, ya + s * a.tangent); };
-    double s_lo = 0.0, s_hi = ds;
-    std::optional<EquilibriumPoint> lo = a, hi = probe(ds);
-    if (!hi) {
-      e.note = "the bracket's end could not be corrected";
-      return e;
-    }
-    double g_lo = g(*lo), g_hi = g(*hi);
-    const bool lo_best = std::abs(g_lo) < std::abs(g_hi);
-    std::optional<EquilibriumPoint> best = lo_best ? lo : hi;
-    double best_s = lo_best ? s_lo : s_hi, best_g = std::abs(lo_best ? g_lo : g_hi);
-    const double floor = 0.01 * (o_.upper - o_.lower);
-    int last = 0;  // which end the last probe replaced (+1 lo, -1 hi): Illinois halves the other
-    for (int k = 0; k < 60; ++k) {
-      const double width = std::abs(hi->parameter - lo->parameter);
-      if (width <= o_.location_tolerance * std::max(std::abs(best->parameter), floor) ||
-          best_g == 0.0) {
-        e.located = true;
-        e.uncertainty = width;
-        break;
-      }
-      double s =
-          (g_hi - g_lo) != 0 ? s_lo - g_lo * (s_hi - s_lo) / (g_hi - g_lo) : 0.5 * (s_lo + s_hi);
-      if (!(s > s_lo && s < s_hi)) s = 0.5 * (s_lo + s_hi);
-      auto mid = probe(s);
-      // Regula falsi can land on the event itself (exactly, where g is linear), where the
-      // bordered system of a branch point is singular: a probe beside it serves as well.
-      for (const double nudge : {1e-3, -1e-3})
-        if (!mid) {
-          const double moved = s + nudge * (s_hi - s_lo);
-          mid = probe(moved);
-          if (mid) s = moved;
-        }
-      if (!mid) {
-        e.note = "a probe of the bracket could not be corrected";
-        break;
-      }
-      const double g_mid = g(*mid);
-      if (std::abs(g_mid) <= best_g) {
-        best = mid;
-        best_s = s;
-        best_g = std::abs(g_mid);
-      }
-      if ((g_mid > 0) == (g_lo > 0)) {
-        s_lo = s;
-        lo = std::move(mid);
-        g_lo = g_mid;
-        if (last == 1) g_hi *= 0.5;
-        last = 1;
-      } else {
-        s_hi = s;
-        hi = std::move(mid);
-        g_hi = g_mid;
-        if (last == -1) g_lo *= 0.5;
-        last = -1;
-      }
-    }
-    if (!e.located) e.uncertainty = std::abs(hi->parameter - lo->parameter);
-    e.parameter = best->parameter;
-    e.state = best->state;
-    e.eigenvalues = best->eigenvalues;
-    e.residual = best->residual;
-    e.tangent = best->tangent;
-    e.arclength = best_s;
+    const auto probe = [&](double s, std::string& why) {
+      return correct(ya, a.tangent, s, ya + s * a.tangent, why);
+    };
+    driver::LocatorOptions lo;
+    lo.tolerance = o_.location_tolerance;
+    lo.floor = 0.01 * (o_.upper - o_.lower);
+    lo.fold = type == EquilibriumEventType::Fold;
+    lo.max_probes = 60;
+    lo.probe_beside = true;
+    auto c = driver::locate_crossing(
+        a, at_a, b, at_b, ds, test, probe, [](const EquilibriumPoint& p) { return p.parameter; },
+        lo);
+    e.located = c.located();
+    e.uncertainty = c.bracket;
+    if (c.outcome == driver::LocatorOutcome::ProbeFailed)
+      e.note = "a probe of the bracket could not be corrected: " + c.why;
+    else if (!e.located)
+      e.note = "not narrowed to the location tolerance";
+    if (crossing) *crossing = c.sample.tag;
+    e.parameter = c.point.parameter;
+    e.state = std::move(c.point.state);
+    e.eigenvalues = std::move(c.point.eigenvalues);
+    e.residual = c.point.residual;
+    e.tangent = std::move(c.point.tangent);
+    e.arclength = c.s;
     return e;
   }
 
-  EquilibriumBranch run(const Equilibrium& start, int direction,
-                        const EquilibriumCallbacks& callbacks) {
-    EquilibriumBranch branch;
-    const double p0 = system_.parameter(start.parameters, parameter_);
-    // The states' scale: what they are, or how far they move across the window if more (at
-    // |dx/dp| from the start's tangent), so that a branch starting at x = 0 does not creep out of
-    // it in steps of the floor.
-    widen_scale(start.state);
-    {
-      Eigen::VectorXd y(n_ + 1);
-      y << start.state, p0;
-      Eigen::VectorXd along_p = Eigen::VectorXd::Zero(n_ + 1);
-      along_p[n_] = 1.0;
-      const Eigen::VectorXd t = tangent(jacobian(y), along_p);
-      if (std::abs(t[n_]) > 0) widen_scale(t.head(n_) / std::abs(t[n_]) * (o_.upper - o_.lower));
-    }
-    Eigen::VectorXd along = Eigen::VectorXd::Zero(n_ + 1);
-    along[n_] = direction / weights_[n_];
-    Eigen::VectorXd y0(n_ + 1);
-    y0 << start.state, p0;
-    branch.points.push_back(make_point(y0, along, 0));
-    if (callbacks.on_point) callbacks.on_point(branch.points.back());
-    double ds = o_.initial_step;
-    for (;;) {
-      if (callbacks.stop_requested && callbacks.stop_requested()) {
-        branch.stop = EquilibriumStop::Interrupted;
-        branch.stop_reason = "interrupted";
-        return branch;
-      }
-      if (static_cast<int>(branch.points.size()) >= o_.max_points) {
-        branch.stop = EquilibriumStop::PointLimit;
-        branch.stop_reason = "point limit (" + std::to_string(o_.max_points) + ") reached";
-        return branch;
-      }
-      const EquilibriumPoint& a = branch.points.back();
-      const Eigen::VectorXd ya = y_of(a);
-      auto b = correct(ya, a.tangent, ds, ya + ds * a.tangent);
-      if (b && dot(b->tangent, a.tangent) < o_.min_tangent_cosine && ds > 4 * o_.min_step)
-        b.reset();
-      if (!b) {
-        ds *= 0.5;
-        if (ds < o_.min_step) {
-          branch.stop = EquilibriumStop::MinimumStep;
-          branch.stop_reason = "step size below the minimum: the corrector kept failing";
-          return branch;
-        }
-        continue;
-      }
-      b->index = a.index + 1;
-      b->step = ds;
-      // The last point lies on the bound: f = 0 with the parameter fixed there.
-      bool on_bound = false;
-      const double bound = std::clamp(b->parameter, o_.lower, o_.upper);
-      if (bound != b->parameter) {
-        const double w = (bound - a.parameter) / (b->parameter - a.parameter);
-        const Equilibrium at =
-            solve_equilibrium(system_, values_at(bound), (1 - w) * a.state + w * b->state);
-        if (at.converged) {
-          Eigen::VectorXd y(n_ + 1);
-          y << at.state, bound;
-          const int index = b->index;
-          b = make_point(y, a.tangent, at.iterations);
-          b->index = index;
-          b->step = std::sqrt(dot(y - ya, y - ya));
-          on_bound = true;
-        }
-      }
-      std::vector<EquilibriumEvent> events;
-      if (o_.detect_bifurcations) events = detect(a, *b, b->step);
-      branch.points.push_back(std::move(*b));
-      const EquilibriumPoint& added = branch.points.back();
-      if (callbacks.on_point) callbacks.on_point(added);
-      for (auto& e : events) {
-        branch.events.push_back(std::move(e));
-        if (callbacks.on_event) callbacks.on_event(branch.events.back());
-      }
-      if (on_bound || added.parameter <= o_.lower || added.parameter >= o_.upper) {
-        branch.stop = EquilibriumStop::ParameterBound;
-        branch.stop_reason = "reached the parameter bound";
-        return branch;
-      }
-      widen_scale(added.state);
-      branch.points.back().tangent = unit(added.tangent);
-      ds = added.iterations <= 3 ? std::min(2.0 * ds, o_.max_step) : ds;
-    }
-  }
-
- private:
   const OdeSystem& system_;
   int parameter_;
   ParameterValues base_;
@@ -389,6 +358,33 @@ class Run {
   double scale_ = 0.0;
   Eigen::VectorXd weights_;
 };
+
+driver::Options driver_options(const EquilibriumOptions& o) {
+  driver::Options d;
+  d.initial_step = o.initial_step;
+  d.min_step = o.min_step;
+  d.max_step = o.max_step;
+  d.max_points = o.max_points;
+  d.min_tangent_cosine = o.min_tangent_cosine;
+  // Newton with exact derivatives: a step that took at most 3 iterations is doubled.
+  d.rule = {3, 2.0, 2.0, std::numeric_limits<int>::max(), 1.0};
+  return d;
+}
+
+EquilibriumStop stop_of(driver::Stop s) {
+  switch (s) {
+    case driver::Stop::PointLimit:
+      return EquilibriumStop::PointLimit;
+    case driver::Stop::MinimumStep:
+      return EquilibriumStop::MinimumStep;
+    case driver::Stop::Interrupted:
+      return EquilibriumStop::Interrupted;
+    case driver::Stop::StartFailed:
+      return EquilibriumStop::StartFailed;
+    default:
+      return EquilibriumStop::ParameterBound;
+  }
+}
 
 }  // namespace
 
@@ -418,19 +414,19 @@ EquilibriumBranch continue_equilibria(const OdeSystem& system, const Equilibrium
     branch.seconds = started.seconds();
     return branch;
   }
-  auto one_way = [&](double to, const EquilibriumCallbacks& cb) {
-    Run run(system, problem.parameter, branch.start_values, options);
-    return run.run(start, to > first ? 1 : -1, cb);
+  using Driver = driver::Callbacks<EquilibriumPoint, EquilibriumEvent>;
+  auto one_way = [&](double to, const Driver& cb) {
+    EquilibriumContinuation run(system, problem.parameter, branch.start_values, options);
+    EquilibriumPoint first_point = run.start(start, to > first ? 1 : -1);
+    return driver::continuation(run, std::move(first_point), driver_options(options), cb);
   };
+  Driver forward_callbacks{callbacks.on_point, callbacks.on_event, {}, callbacks.stop_requested};
+  driver::Result<EquilibriumPoint, EquilibriumEvent> result;
   if (!problem.at) {
-    EquilibriumBranch forward = one_way(problem.to, callbacks);
-    branch.points = std::move(forward.points);
-    branch.events = std::move(forward.events);
-    branch.stop = forward.stop;
-    branch.stop_reason = forward.stop_reason;
+    result = one_way(problem.to, forward_callbacks);
   } else {
     // Backward first, reported as it comes with negative indices, then forward.
-    EquilibriumCallbacks back = callbacks;
+    Driver back = forward_callbacks;
     if (callbacks.on_point)
       back.on_point = [&](const EquilibriumPoint& pt) {
         if (pt.index == 0) return;  // the start is reported once, by the forward run
@@ -438,26 +434,13 @@ EquilibriumBranch continue_equilibria(const OdeSystem& system, const Equilibrium
         q.index = -pt.index;
         callbacks.on_point(q);
       };
-    EquilibriumBranch backward = one_way(problem.from, back);
-    EquilibriumBranch forward = one_way(problem.to, callbacks);
-    for (auto it = backward.points.rbegin(); it != backward.points.rend(); ++it) {
-      if (it->index == 0) continue;
-      EquilibriumPoint q = *it;
-      q.index = -q.index;
-      q.tangent = -q.tangent;
-      branch.points.push_back(std::move(q));
-    }
-    for (auto& pt : forward.points) branch.points.push_back(std::move(pt));
-    for (auto it = backward.events.rbegin(); it != backward.events.rend(); ++it) {
-      EquilibriumEvent e = *it;
-      e.after_point = -e.after_point - 1;
-      branch.events.push_back(std::move(e));
-    }
-    for (auto& e : forward.events) branch.events.push_back(std::move(e));
-    branch.stop = forward.stop;
-    branch.stop_reason = "backward: " + backward.stop_reason + "; forward: " + forward.stop_reason;
-    if (backward.stop == EquilibriumStop::Interrupted) branch.stop = backward.stop;
+    auto backward = one_way(problem.from, back);
+    result = driver::join(std::move(backward), one_way(problem.to, forward_callbacks));
   }
+  branch.points = std::move(result.points);
+  branch.events = std::move(result.events);
+  branch.stop = stop_of(result.stop);
+  branch.stop_reason = std::move(result.message);
   branch.seconds = started.seconds();
   return branch;
 }

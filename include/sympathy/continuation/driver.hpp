@@ -1,148 +1,257 @@
-// The one pseudo-arclength continuation driver: its public surface, PROPOSED for review (issue 33,
-// item 2; to be agreed with the application layer's requests, issue 34, before any code moves).
-// Nothing in the engine uses this header yet: today orbits (Continuation::run_from), two-parameter
-// curves (CurveRun) and equilibria (equilibrium_branch.cpp's Run) each have their own step loop,
-// retry and step rules, Illinois locator, two-way join, stop enumeration (StopReason, CurveStop,
-// EquilibriumStop), callbacks and scaled norm. The move, one problem at a time (equilibria, then
-// curves, then orbits), replaces them with `continuation()` below; the goldens, the step-sequence
-// test and tests/auto hold at each move.
+// The one pseudo-arclength continuation driver (issue 33, item 2): the step loop every branch
+// runs, whatever it continues.
 //
 // The split is BifurcationKit's (a problem, continuation parameters and the result as separate
 // values; one `continuation` for every problem) and AUTO's (AUTOAE/AUTOBV: one driver, the
-// problem supplying its equations): the driver owns the step loop, prediction, the call to the
-// problem's corrector, retries by cause and the step rule, bounds and window edges, event
-// bracketing and the one locator, both ways and the join, the stop enumeration and the callbacks;
-// a problem owns what only it knows: its unknowns and their scaled norm, correction, tangent,
-// test functions and a point at an arclength for location. Values travel with the points (the
-// phase section with a periodic orbit's point, parameter values with every point): nothing is
-// written into a shared object, so one problem serves runs side by side.
+// problem supplying its equations). The driver owns the step loop, retries by cause and the step
+// rule, the window's edge, retries of a step whose event was not located, the stop enumeration,
+// the callbacks with progress and the two-way join; the one locator is crossing_locator.hpp's. A
+// problem owns what only it knows: its unknowns, prediction and correction, tangent and turn,
+// the point on the window's edge, its test functions (located with the one locator), and its own
+// ends. Values travel with the points (a curve's borders and chord Jacobian, an orbit's phase
+// section): a rejected step leaves the problem as it was.
 //
-// Detection keeps, beside each problem's test functions, what a stability verdict rests on and
-// no collision off the circle can change (for orbits: the number of multipliers outside the unit
-// circle, sign prod(mu - 1) and sign prod(mu + 1) over the nontrivial ones; for equilibria: the
-// eigenvalues in the right half plane and sign det J). A change the test functions do not explain
-// refines the step or becomes an Unresolved event between the two points: no crossing passes
-// silently. (The two sign rules already guard today's orbit detector, detection.cpp.)
+// Today equilibria (equilibrium_branch.cpp) and two-parameter curves (bifurcation_curve.cpp) run
+// on this driver; periodic orbits (Continuation::run_from) keep their own loop until they move
+// (their location is the one locator already).
+//
+// A problem P provides (checked where `continuation` is instantiated):
+//   using Point = ...;   // with members `int index`, `int iterations` (and `tangent` to join)
+//   using Event = ...;   // with member `int after_point`
+//   driver::Attempt<Point> step(const Point* before, const Point& a, double ds);
+//       // predicted from a (and the point before it, if any), corrected at arclength ds, its
+//       // tangent oriented along a's; the cause and reason when it fails
+//   double turn_cosine(const Point& a, const Point& b) const;  // of their tangents, scaled
+//   bool outside(const Point& b) const;                          // beyond the window
+//   std::string edge_message(const Point& b) const;  // the Bound stop's, naming where
+//   std::optional<Point> onto_edge(const Point& a, const Point& b);  // the branch on the edge
+//   driver::Found<Event> detect(const Point& a, const Point& b);  // events between, located
+//   std::optional<driver::Ending> ends(const Point& a, const Point& b, std::vector<Event>&);
+//       // the problem's own end between a and b (it may drop or add events); nullopt: go on
+//   void accept(Point& b);         // b joins the branch (scales widen, the tangent renormalised)
+//   double parameter(const Point& p) const;  // for progress
 #pragma once
 
+#include <algorithm>
 #include <functional>
+#include <limits>
 #include <optional>
 #include <string>
 #include <vector>
-
-#include <Eigen/Dense>
 
 #include "sympathy/core/option_check.hpp"
 
 namespace sympathy::driver {
 
-// Why a run ended: one enumeration for every problem (callers switch on it; `Result::message`
+// Why a run ended: one enumeration for every problem (callers switch on it; a result's `message`
 // says it for people, with numbers).
 enum class Stop {
-  Bound,        // the parameter left the window asked for (the normal end)
+  Bound,        // reached the window's edge (the normal end); the last point lies on it
   PointLimit,   // max_points reached
   MinimumStep,  // the step fell below min_step: the corrector kept failing (its reason kept)
   Interrupted,  // Callbacks::stop_requested said so
   StartFailed,  // no starting point
-  ProblemEnd,   // the problem says the branch ends here (an orbit family at its Hopf point,
-                // a curve at a degenerate point), with its reason
-  Retraced,     // the branch came back onto itself (checked on the points, not on a turn)
+  ProblemEnd,   // the problem says the branch ends here (an orbit family at its Hopf point)
+  Closed,       // the branch came back to its start (a closed curve)
 };
 std::string to_string(Stop s);
 
-// What is continued. Implemented by the periodic-orbit, equilibrium and two-parameter-curve
-// problems; the driver never looks inside a point but through these.
-template <class Point>
-class Problem {
- public:
-  virtual ~Problem() = default;
+// Why a step was tried again shorter.
+enum class Cause {
+  Corrector,    // the correction failed
+  Turn,         // the tangent turned more than min_tangent_cosine allows
+  Edge,         // the point on the window's edge could not be corrected
+  Location,     // an event between the points was not located
+  Multipliers,  // the problem's own check of the step (multipliers moved too far)
+};
+constexpr int kCauses = 5;
 
-  // The unknowns (the parameter last) of a point, and the scaled inner product in which
-  // arclength, tangents and step lengths are measured (a problem widens its scales as the
-  // branch meets larger amplitudes: `widen`).
-  virtual Eigen::VectorXd unknowns(const Point& p) const = 0;
-  virtual double dot(const Eigen::VectorXd& u, const Eigen::VectorXd& v) const = 0;
-  virtual void widen(const Point& p) = 0;
-
-  // The point on the branch through `prediction` on the hyperplane orthogonal to `tangent` at
-  // arclength `step` from `from`; nullopt with the reason in `why` when the correction fails.
-  // The problem's own corrector (Newton, chords, Broyden) and its convergence rule (for orbits,
-  // closure to kOrbitClosure of the amplitude as well) live here.
-  virtual std::optional<Point> correct(const Point& from, const Eigen::VectorXd& tangent,
-                                       double step, const Eigen::VectorXd& prediction,
-                                       std::string& why) = 0;
-  // The unit tangent at `p`, oriented along `along`.
-  virtual Eigen::VectorXd tangent(const Point& p, const Eigen::VectorXd& along) const = 0;
-
-  // The test functions at `p` (fold: the tangent's parameter component; each crossing's its own)
-  // and what the stability verdict rests on there.
-  struct Tests {
-    std::vector<double> values;         // in a fixed order per problem
-    int unstable = 0;                   // multipliers outside the circle / eigenvalues with Re > 0
-    int sign_plus = 1, sign_minus = 1;  // sign prod(mu - 1), sign prod(mu + 1) (equilibria:
-                                        // sign det J, and 1)
-    bool trusted = true;                // the point's own accuracy earns a verdict
-  };
-  virtual Tests tests(const Point& p) const = 0;
-  // The point at arclength `s` from `a` towards `b`, for the locator; nullopt with `why`.
-  virtual std::optional<Point> point_at(const Point& a, const Point& b, double s,
-                                        std::string& why) = 0;
-  // A problem's own end (ProblemEnd) between two accepted points, with its reason; nullopt: go on.
-  virtual std::optional<std::string> ends_between(const Point& a, const Point& b) = 0;
+// How the step grows after an accepted point: by `growth` when the corrector took at most
+// `fast_iterations`, by `growth_after_retry` if that step was itself a retry; shrunk by `shrink`
+// when it took `slow_iterations` or more; never above max_step nor above the problem's aim.
+struct StepRule {
+  int fast_iterations = 2;
+  double growth = 1.5;
+  double growth_after_retry = 1.2;
+  int slow_iterations = 5;
+  double shrink = 0.6;
 };
 
-// The driver's options (the problem's own, such as the shooting's, live with the problem).
-// Defaults set here alone; validate() names the field and what is expected.
 struct Options {
-  double lower = 0.0, upper = 0.0;                              // the parameter's window
   double initial_step = 0.02, min_step = 1e-6, max_step = 0.1;  // scaled arclength
-  int max_points = 400;
-  double min_tangent_cosine = 0.9;   // a step that turns the tangent more is halved
-  double location_tolerance = 1e-8;  // relative, in the parameter
-  int location_retries = 3;          // shorter tries of a step whose event was not located
-  std::vector<double> user_points;   // AUTO's UZ: the branch's point at each of these values
+  int max_points = 400;                                         // including the start
+  double min_tangent_cosine = 0.9;  // a step that turns the tangent more is halved
+  int location_retries = 0;         // shorter tries of a step whose event was not located
+  StepRule rule;
   OptionCheck validate() const;
 };
 
-// What a run reports as it goes: each accepted point and located event, and its position among
-// known totals, from which the command line and Python draw progress.
+// A step's outcome, from the problem.
+template <class Point>
+struct Attempt {
+  std::optional<Point> point;
+  Cause cause = Cause::Corrector;  // why not, when no point
+  std::string why;
+  // The longest step the problem would take next (a retry, or the step after this one):
+  // infinity when it has no view.
+  double aim = std::numeric_limits<double>::infinity();
+};
+
+template <class Event>
+struct Found {
+  std::vector<Event> events;  // in order along the step
+  bool unlocated = false;     // one of them could not be located: a shorter step may
+};
+
+struct Ending {
+  Stop stop = Stop::ProblemEnd;
+  std::string why;
+  bool keep_point = true;  // b joins the branch before it ends
+};
+
+// Where a run stands, from which the command line and Python draw progress.
+struct Progress {
+  int points = 0, max_points = 0;
+  double parameter = 0.0;
+};
+
 template <class Point, class Event>
 struct Callbacks {
   std::function<void(const Point&)> on_point;
   std::function<void(const Event&)> on_event;
-  struct Progress {
-    int points = 0;        // accepted so far
-    double parameter = 0;  // where the branch stands
-    double fraction = 0;   // of the window covered, by the parameter (0 .. 1; turns count once)
-  };
   std::function<void(const Progress&)> on_progress;
   std::function<bool()> stop_requested;  // polled between points
 };
 
-// A run's result: the points and events in order along the branch, why it ended (both parts of
-// a two-way run), and what made it. The library, not a front end, joins and reverses results.
 template <class Point, class Event>
 struct Result {
-  std::vector<Point> points;
+  std::vector<Point> points;  // in order along the branch
   std::vector<Event> events;
   Stop stop = Stop::Bound;
   std::string message;
-  std::optional<Stop> backward_stop;  // a two-way run's backward part
-  std::string backward_message;
-  Options options;
-  int start_index = 0;  // of the starting point among `points` (> 0 after a join)
+  std::optional<Stop> backward_stop;  // a joined two-way run's backward part
+  int rejected[kCauses] = {};         // steps tried again, by cause
 };
 
-// The one driver: from `start`, in the direction of `along` (unknowns and parameter), until a
-// Stop. Both ways: run it with `along` and with -along, then join.
-template <class Point, class Event>
-Result<Point, Event> continuation(Problem<Point>& problem, const Point& start,
-                                  const Eigen::VectorXd& along, const Options& options,
-                                  const Callbacks<Point, Event>& callbacks = {});
+// From `start` (corrected, its tangent set in the direction to go) until a Stop.
+template <class P, class Point = typename P::Point, class Event = typename P::Event>
+Result<Point, Event> continuation(P& problem, Point start, const Options& o,
+                                  const Callbacks<Point, Event>& callbacks = {}) {
+  Result<Point, Event> r;
+  auto finish = [&](Stop stop, std::string message) {
+    r.stop = stop;
+    r.message = std::move(message);
+    return std::move(r);
+  };
+  auto report = [&](const Point& p) {
+    if (callbacks.on_point) callbacks.on_point(p);
+    if (callbacks.on_progress)
+      callbacks.on_progress(
+          {static_cast<int>(r.points.size()), o.max_points, problem.parameter(p)});
+  };
+  r.points.push_back(std::move(start));
+  report(r.points.back());
+  double ds = o.initial_step;
+  double aim = std::numeric_limits<double>::infinity();
+  int location_retries = 0;
+  bool retried = false;  // the step being tried is a retry
+  std::string last_failure;
+  for (;;) {
+    if (callbacks.stop_requested && callbacks.stop_requested())
+      return finish(Stop::Interrupted, "interrupted");
+    if (static_cast<int>(r.points.size()) >= o.max_points)
+      return finish(Stop::PointLimit, "point limit (" + std::to_string(o.max_points) + ") reached");
+    if (ds < o.min_step)
+      return finish(Stop::MinimumStep, "step size below the minimum: " + last_failure);
+    const Point& a = r.points.back();
+    const Point* before = r.points.size() >= 2 ? &r.points[r.points.size() - 2] : nullptr;
+    const bool can_shorten = ds > 4 * o.min_step;
+    auto retry = [&](Cause cause, std::string why, double aimed) {
+      ++r.rejected[static_cast<int>(cause)];
+      last_failure = std::move(why);
+      ds = std::min(0.5 * ds, aimed);
+      // The multipliers' aim may ask for far less than half; never below what can be shortened.
+      if (cause == Cause::Multipliers) ds = std::max(ds, 4 * o.min_step);
+      retried = true;
+    };
+    Attempt<Point> attempt = problem.step(before, a, ds);
+    if (!attempt.point) {
+      retry(attempt.cause, attempt.why, attempt.aim);
+      continue;
+    }
+    Point b = std::move(*attempt.point);
+    if (can_shorten && problem.turn_cosine(a, b) < o.min_tangent_cosine) {
+      retry(Cause::Turn, "the tangent turned too far", attempt.aim);
+      continue;
+    }
+    bool on_edge = false;
+    if (problem.outside(b)) {
+      if (auto edge = problem.onto_edge(a, b)) {
+        b = std::move(*edge);
+        on_edge = true;
+      } else if (can_shorten) {
+        retry(Cause::Edge, "the point on the window's edge could not be corrected", attempt.aim);
+        continue;
+      }
+    }
+    b.index = a.index + 1;
+    Found<Event> found = problem.detect(a, b);
+    if (found.unlocated && location_retries < o.location_retries && can_shorten) {
+      ++location_retries;
+      retry(Cause::Location, "an event was not located", attempt.aim);
+      continue;
+    }
+    location_retries = 0;
+    std::optional<Ending> ending = problem.ends(a, b, found.events);
+    const int iterations = b.iterations;
+    if (!ending || ending->keep_point) {
+      r.points.push_back(std::move(b));
+      report(r.points.back());
+    }
+    for (auto& e : found.events) {
+      r.events.push_back(std::move(e));
+      if (callbacks.on_event) callbacks.on_event(r.events.back());
+    }
+    if (ending) return finish(ending->stop, ending->why);
+    if (on_edge || problem.outside(r.points.back()))
+      return finish(Stop::Bound, problem.edge_message(r.points.back()));
+    problem.accept(r.points.back());
+    aim = attempt.aim;
+    const StepRule& rule = o.rule;
+    if (iterations <= rule.fast_iterations)
+      ds = std::min((retried ? rule.growth_after_retry : rule.growth) * ds, o.max_step);
+    else if (iterations >= rule.slow_iterations)
+      ds *= rule.shrink;
+    ds = std::max(std::min(ds, aim), std::min(ds, 4 * o.min_step));
+    retried = false;
+  }
+}
 
-// The backward run reversed, then the forward run without its copy of the start: one branch in
-// order along it, each part's stop kept.
+// One branch from a two-way run: the backward part reversed (indices negated, each event placed
+// after the point before it in the new order), the start once, then the forward part. Points
+// need `index` and `tangent` (reversed), events `after_point`.
 template <class Point, class Event>
-Result<Point, Event> join(Result<Point, Event> backward, Result<Point, Event> forward);
+Result<Point, Event> join(Result<Point, Event> backward, Result<Point, Event> forward) {
+  Result<Point, Event> r;
+  for (auto it = backward.points.rbegin(); it != backward.points.rend(); ++it) {
+    if (it->index == 0) continue;  // the start, kept from the forward part
+    Point q = std::move(*it);
+    q.index = -q.index;
+    q.tangent = -q.tangent;
+    r.points.push_back(std::move(q));
+  }
+  for (auto& p : forward.points) r.points.push_back(std::move(p));
+  for (auto it = backward.events.rbegin(); it != backward.events.rend(); ++it) {
+    Event e = std::move(*it);
+    e.after_point = -e.after_point - 1;
+    r.events.push_back(std::move(e));
+  }
+  for (auto& e : forward.events) r.events.push_back(std::move(e));
+  r.stop = backward.stop == Stop::Interrupted ? backward.stop : forward.stop;
+  r.backward_stop = backward.stop;
+  r.message = "backward: " + backward.message + "; forward: " + forward.message;
+  for (int i = 0; i < kCauses; ++i) r.rejected[i] = backward.rejected[i] + forward.rejected[i];
+  return r;
+}
 
 }  // namespace sympathy::driver
