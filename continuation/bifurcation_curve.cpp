@@ -7,6 +7,8 @@
 #include <utility>
 
 #include "curve_system.hpp"
+#include "sympathy/continuation/crossing_locator.hpp"
+#include "sympathy/continuation/driver.hpp"
 #include "sympathy/core/text.hpp"
 
 namespace sympathy {
@@ -83,42 +85,142 @@ const char* kind_of_crossing(std::complex<double> mu, SymmetryKind symmetry) {
   return symmetry == SymmetryKind::Breaking ? "BP" : "LP";
 }
 
-class CurveRun {
- public:
-  // `origin`: the event's (first, second) parameters, where the curve was started.
-  CurveRun(CurveSystem& system, const BifurcationCurve& curve, const CurveOptions& options,
-           const CurveCallbacks& callbacks, std::pair<double, double> origin)
-      : system_(system), curve_(curve), options_(options), callbacks_(callbacks), origin_(origin) {}
+// A point of the curve as the driver follows it: the point with what the next step starts from
+// (its chord Jacobian and the borders under which it was assembled), so that a rejected step
+// leaves the system as it was.
+struct CurveNode : CurvePoint {
+  Eigen::MatrixXd jacobian;
+  std::optional<BorderedSingularity> borders;
+};
 
-  // From the corrected start (u, its Jacobian), in `direction` of the second parameter.
-  CurveStop run(const CurvePoint& start, const Eigen::MatrixXd& start_jacobian, int direction,
-                std::vector<CurvePoint>& points, std::vector<CurveEvent>& events,
-                std::string& reason);
+// One half of a curve, as the driver's problem (driver.hpp).
+class CurveContinuation {
+ public:
+  using Point = CurveNode;
+  using Event = CurveEvent;
+
+  // `origin`: the event's (first, second) parameters, where the curve was started; `start`: the
+  // curve's first point, which a closed curve comes back to.
+  CurveContinuation(CurveSystem& system, const BifurcationCurve& curve, const CurveOptions& options,
+                    std::pair<double, double> origin, const CurvePoint& start)
+      : system_(system), curve_(curve), options_(options), origin_(origin), start_(start) {}
+
+  driver::Attempt<Point> step(const Point*, const Point& a, double ds);
+  double turn_cosine(const Point& a, const Point& b) const {
+    return system_.dot(b.tangent, a.tangent);
+  }
+  bool outside(const Point& b) const { return !inside(b.unknowns); }
+  std::string edge_message(const Point& b) const {
+    return "reached the edge of the window at " + curve_.first_name + " = " +
+           format_number(b.first) + ", " + curve_.second_name + " = " + format_number(b.second);
+  }
+  std::optional<Point> onto_edge(const Point& a, const Point& b);
+  driver::Found<Event> detect(const Point& a, const Point& b);
+  std::optional<driver::Ending> ends(const Point& a, const Point& b, std::vector<Event>&);
+  void accept(Point&) {}
+  double parameter(const Point& p) const { return p.first; }
 
  private:
   bool inside(const Eigen::VectorXd& u) const;
+  // The node at a converged correction: the borders moved to its null vectors first, so that
+  // its Jacobian (the chord of the next step) has g's row under the borders that step will use.
+  std::optional<Point> complete(CurveSystem::Correction& r, const Point& a, std::string& why);
   std::vector<Watch> watches() const;
-  void detect(const CurvePoint& from, const Eigen::MatrixXd& jacobian, const CurvePoint& to,
-              double step, std::vector<CurveEvent>& events);
-  CurveEvent locate(const Watch& w, const CurvePoint& from, const Eigen::MatrixXd& jacobian,
-                    const CurvePoint& to, double step, double f0, double f1);
-  CurveEvent locate_turn(int k, const CurvePoint& from, const Eigen::MatrixXd& jacobian,
-                         const CurvePoint& to, double step, double t0);
+  CurveEvent locate(const Watch& w, const Point& from, const Point& to, double f0, double f1);
+  CurveEvent locate_turn(int k, const Point& from, const Point& to, double t0);
 
   CurveSystem& system_;
   const BifurcationCurve& curve_;
   const CurveOptions& options_;
-  const CurveCallbacks& callbacks_;
   std::pair<double, double> origin_;
+  const CurvePoint& start_;
+  double farthest_ = 0.0;  // from the start, in the scaled norm
 };
 
-bool CurveRun::inside(const Eigen::VectorXd& u) const {
+bool CurveContinuation::inside(const Eigen::VectorXd& u) const {
   const double p1 = u[system_.first_index()], p2 = u[system_.second_index()];
   return p1 >= options_.first_lower && p1 <= options_.first_upper && p2 >= options_.second_lower &&
          p2 <= options_.second_upper;
 }
 
-std::vector<Watch> CurveRun::watches() const {
+std::optional<CurveNode> CurveContinuation::complete(CurveSystem::Correction& r, const Point& a,
+                                                     std::string& why) {
+  system_.set_borders(*a.borders);
+  system_.update_borders(r.evaluation);
+  system_.assemble(r.u, r.evaluation);
+  const auto jacobian = system_.jacobian(r.u, r.evaluation);
+  if (!jacobian) {
+    why = "a difference of the Jacobian could not be integrated";
+    return std::nullopt;
+  }
+  const Eigen::VectorXd t = system_.tangent(*jacobian, a.tangent);
+  CurveNode n;
+  static_cast<CurvePoint&>(n) = system_.point(r.u, r.evaluation, *jacobian, t);
+  n.iterations = r.iterations;
+  n.jacobian = *jacobian;
+  n.borders = system_.borders();
+  return n;
+}
+
+driver::Attempt<CurveNode> CurveContinuation::step(const Point*, const Point& a, double ds) {
+  system_.set_section(a.unknowns);
+  system_.set_borders(*a.borders);
+  CurveSystem::Condition c;
+  c.tangent = a.tangent;
+  c.from = a.unknowns;
+  c.step = ds;
+  driver::Attempt<Point> attempt;
+  auto r = system_.correct(a.unknowns + ds * a.tangent, c, a.jacobian);
+  if (!r.converged) {
+    attempt.why = r.reason;
+    return attempt;
+  }
+  attempt.point = complete(r, a, attempt.why);
+  if (attempt.point) attempt.point->step = ds;
+  return attempt;
+}
+
+std::optional<CurveNode> CurveContinuation::onto_edge(const Point& a, const Point& b) {
+  // The parameter that left the window, held at its bound.
+  const Eigen::VectorXd& u = b.unknowns;
+  const int i1 = system_.first_index(), i2 = system_.second_index();
+  CurveSystem::Condition e;
+  if (u[i1] < options_.first_lower || u[i1] > options_.first_upper) {
+    e.index = i1;
+    e.value = u[i1] < options_.first_lower ? options_.first_lower : options_.first_upper;
+  } else {
+    e.index = i2;
+    e.value = u[i2] < options_.second_lower ? options_.second_lower : options_.second_upper;
+  }
+  system_.set_section(a.unknowns);
+  system_.set_borders(*a.borders);
+  const double t = (e.value - a.unknowns[e.index]) / (u[e.index] - a.unknowns[e.index]);
+  auto r = system_.correct(a.unknowns + t * (u - a.unknowns), e, a.jacobian);
+  if (!r.converged) return std::nullopt;
+  std::string why;
+  auto n = complete(r, a, why);
+  if (n) n->step = system_.norm(n->unknowns - a.unknowns);
+  return n;
+}
+
+std::optional<driver::Ending> CurveContinuation::ends(const Point& a, const Point& b,
+                                                      std::vector<Event>&) {
+  // Back at the start: the curve went away from it and the last step passed through it
+  // (within a tenth of the step: a curve's chord misses it by about step^2 times its
+  // curvature). A point merely near the start in the scaled norm is not enough: two NS points
+  // 6 N/m apart on a 1-100 N/m window are 0.06 apart, about one step.
+  const double distance = system_.norm(b.unknowns - start_.unknowns);
+  farthest_ = std::max(farthest_, distance);
+  const Eigen::VectorXd chord = b.unknowns - a.unknowns;
+  const double along = std::clamp(
+      system_.dot(start_.unknowns - a.unknowns, chord) / system_.dot(chord, chord), 0.0, 1.0);
+  const double miss = system_.norm(a.unknowns + along * chord - start_.unknowns);
+  if (farthest_ > 4.0 * options_.max_step && miss < 0.1 * system_.norm(chord))
+    return driver::Ending{driver::Stop::Closed, "closed: back at the start", true};
+  return std::nullopt;
+}
+
+std::vector<Watch> CurveContinuation::watches() const {
   std::vector<Watch> w;
   if (curve_.kind == BifurcationType::NeimarkSacker) {
     // kappa = Re of the pair's mean: cos(theta) on the circle, (mu + 1/mu) / 2 on a neutral
@@ -141,68 +243,63 @@ std::vector<Watch> CurveRun::watches() const {
   return w;
 }
 
-CurveEvent CurveRun::locate(const Watch& w, const CurvePoint& from, const Eigen::MatrixXd& jacobian,
-                            const CurvePoint& to, double step, double f0, double f1) {
-  // Regula falsi (Illinois) in the arclength from `from` along its tangent: each probe a point
-  // corrected onto the curve under the arclength condition there.
-  double a = 0.0, b = step, fa = f0, fb = f1;
-  int side = 0;
+CurveEvent CurveContinuation::locate(const Watch& w, const Point& from, const Point& to, double f0,
+                                     double f1) {
+  // The one locator (crossing_locator.hpp) in the arclength from `from` along its tangent, each
+  // probe a point corrected onto the curve under the arclength condition there, narrowed in that
+  // arclength (scaled): a curve may run along either parameter.
   CurveEvent e;
   e.type = w.type;
   e.description = w.description;
-  CurvePoint best;
-  bool have = false;
-  for (int probe = 0; probe < 40 && std::abs(b - a) > options_.location_tolerance; ++probe) {
-    const double s = (a * fb - b * fa) / (fb - fa);
-    const double t = std::clamp(s, a + 0.01 * (b - a), b - 0.01 * (b - a));
+  using Probe = std::pair<double, CurvePoint>;  // its arclength, and the point
+  using Tag = int;
+  const auto probe = [&](double s, std::string& why) -> std::optional<Probe> {
     CurveSystem::Condition c;
     c.tangent = from.tangent;
     c.from = from.unknowns;
-    c.step = t;
-    auto r = system_.correct(from.unknowns + t * from.tangent, c, jacobian);
+    c.step = s;
+    auto r = system_.correct(from.unknowns + s * from.tangent, c, from.jacobian);
     if (!r.converged) {
-      e.note = "a probe failed: " + r.reason;
-      break;
+      why = r.reason;
+      return std::nullopt;
     }
-    best = system_.point(r.u, r.evaluation, jacobian, from.tangent);
-    have = true;
-    const double ft = w.value(best);
-    if (!std::isfinite(ft)) break;
-    if ((ft < 0.0) == (fa < 0.0)) {
-      a = t;
-      fa = ft;
-      if (side == -1) fb *= 0.5;
-      side = -1;
-    } else {
-      b = t;
-      fb = ft;
-      if (side == +1) fa *= 0.5;
-      side = +1;
-    }
-    if (ft == 0.0) {
-      a = b = t;
-    }
-  }
-  e.located = have && std::abs(b - a) <= options_.location_tolerance;
+    return Probe{s, system_.point(r.u, r.evaluation, from.jacobian, from.tangent)};
+  };
+  const auto test = [&](const Probe& p, double, const driver::End<Tag>&, const driver::End<Tag>&) {
+    return driver::Sample<Tag>{w.value(p.second), 0};
+  };
+  driver::LocatorOptions o;
+  o.tolerance = options_.location_tolerance;
+  o.floor = 1.0;  // an absolute tolerance in the arclength
+  o.max_probes = 40;
+  system_.set_section(from.unknowns);
+  system_.set_borders(*to.borders);
+  auto c = driver::locate_crossing(
+      Probe{0.0, from}, driver::Sample<Tag>{f0, 0}, Probe{to.step, to}, driver::Sample<Tag>{f1, 0},
+      to.step, test, probe, [](const Probe& p) { return p.first; }, o);
+  e.located = c.located();
+  // At least one probe converged (a failed one is the last).
+  const bool have = c.probes > (c.outcome == driver::LocatorOutcome::ProbeFailed ? 1 : 0);
+  if (c.outcome == driver::LocatorOutcome::ProbeFailed) e.note = "a probe failed: " + c.why;
+  const CurvePoint& best = c.point.second;
   if (!have) {
     // No probe converged: where the watched function's chord between the points is zero.
     const double t = f0 / (f0 - f1);
-    e.at = t < 0.5 ? from : to;
+    e.at = t < 0.5 ? static_cast<const CurvePoint&>(from) : to;
     e.first = from.first + t * (to.first - from.first);
     e.second = from.second + t * (to.second - from.second);
     e.uncertainty = std::abs(to.first - from.first);
-  }
-  if (have) {
+  } else {
     e.at = best;
     e.first = best.first;
     e.second = best.second;
     // The bracket's width in the first parameter, and the point's own uncertainty.
     const double speed = std::abs(from.tangent[system_.first_index()]);
-    e.uncertainty = std::abs(b - a) * speed + best.uncertainty;
+    e.uncertainty = c.bracket * speed + best.uncertainty;
   }
   if (w.type == "other") {
     // Name it by the crossing multiplier (at the point after it, where no probe converged).
-    const CurvePoint& named = have ? best : to;
+    const CurvePoint& named = have ? best : static_cast<const CurvePoint&>(to);
     const auto rest = system_.others(named);
     std::complex<double> nearest = rest.empty() ? 0.0 : rest.front();
     for (const auto& mu : rest)
@@ -246,8 +343,9 @@ CurveEvent CurveRun::locate(const Watch& w, const CurvePoint& from, const Eigen:
   return e;
 }
 
-CurveEvent CurveRun::locate_turn(int k, const CurvePoint& from, const Eigen::MatrixXd& jacobian,
-                                 const CurvePoint& to, double step, double t0) {
+CurveEvent CurveContinuation::locate_turn(int k, const Point& from, const Point& to, double t0) {
+  const double step = to.step;
+  const Eigen::MatrixXd& jacobian = from.jacobian;
   // Near a turn the curve's value of parameter k is a parabola in the arclength s from `from`
   // (along its tangent, each probe corrected onto the curve under the arclength condition), its
   // vertex the turn: parabolic interpolation through the three latest samples converges
@@ -259,6 +357,8 @@ CurveEvent CurveRun::locate_turn(int k, const CurvePoint& from, const Eigen::Mat
   e.description = "the curve turns back in " + name;
   e.after_point = from.index;
   std::vector<std::pair<double, CurvePoint>> samples{{0.0, from}, {step, to}};
+  system_.set_section(from.unknowns);
+  system_.set_borders(*to.borders);
   // The vertex in the arclength is fixed only to about the square root of the points' noise over
   // the curvature (1e-9 noise: some 3e-5), however many probes: narrowed to 1e-7 at most, and
   // the uncertainty says how far it got (the turned parameter's value is fixed far better).
@@ -309,16 +409,17 @@ CurveEvent CurveRun::locate_turn(int k, const CurvePoint& from, const Eigen::Mat
   return e;
 }
 
-void CurveRun::detect(const CurvePoint& from, const Eigen::MatrixXd& jacobian, const CurvePoint& to,
-                      double step, std::vector<CurveEvent>& events) {
+driver::Found<CurveEvent> CurveContinuation::detect(const Point& from, const Point& to) {
+  driver::Found<CurveEvent> found;
+  if (!options_.detect) return found;
+  std::vector<CurveEvent>& events = found.events;
   for (const auto& w : watches()) {
     const double f0 = w.value(from), f1 = w.value(to);
     if (!(std::isfinite(f0) && std::isfinite(f1)) || (f0 < 0.0) == (f1 < 0.0)) continue;
     if (f0 == 0.0) continue;  // found at the previous step
-    CurveEvent e = locate(w, from, jacobian, to, step, f0, f1);
+    CurveEvent e = locate(w, from, to, f0, f1);
     e.after_point = from.index;
     events.push_back(e);
-    if (callbacks_.on_event) callbacks_.on_event(events.back());
   }
   // Another multiplier through the unit circle: the number outside it changed. Each multiplier
   // of `to` is paired with the nearest of `from`'s; one whose modulus crossed 1 is followed, by
@@ -349,7 +450,7 @@ void CurveRun::detect(const CurvePoint& from, const Eigen::MatrixXd& jacobian, c
               },
               tracked};
       const double f0 = std::log(std::abs(m0)), f1 = std::log(std::abs(m1));
-      CurveEvent e = locate(w, from, jacobian, to, step, f0, f1);
+      CurveEvent e = locate(w, from, to, f0, f1);
       // A crossing at the curve's own start is the start's degeneracy, which its origin names:
       // a BP curve born at a 1:1 resonance has the pair's other multiplier at +1 there too, and
       // it leaves +1 in the first step (located 7e-9 N/m from the R1 point it was born at on the
@@ -361,7 +462,6 @@ void CurveRun::detect(const CurvePoint& from, const Eigen::MatrixXd& jacobian, c
       if (from.index == 0 && e.located && window_distance(system_, e.at, origin_) <= 1e-6) continue;
       e.after_point = from.index;
       events.push_back(e);
-      if (callbacks_.on_event) callbacks_.on_event(events.back());
     }
   }
   // The curve turning back in a parameter: where the tangent's component changes sign, located
@@ -373,7 +473,7 @@ void CurveRun::detect(const CurvePoint& from, const Eigen::MatrixXd& jacobian, c
     const double a = from.tangent[indices[k]] * system_.weight(indices[k]);
     const double b = to.tangent[indices[k]] * system_.weight(indices[k]);
     if ((a < 0.0) == (b < 0.0) || std::max(std::abs(a), std::abs(b)) < 1e-3) continue;
-    CurveEvent turn = locate_turn(k, from, jacobian, to, step, step * a / (a - b));
+    CurveEvent turn = locate_turn(k, from, to, to.step * a / (a - b));
     // A turn is an extremum of the parameter: its value beyond both points' (or at the curve's
     // start, where the component is below the gate: a start at a vertex). Else the tangents' signs
     // disagreed by noise: a BP curve in (k, c) that runs almost along c at the fast preset, its k
@@ -384,123 +484,25 @@ void CurveRun::detect(const CurvePoint& from, const Eigen::MatrixXd& jacobian, c
     const bool at_start = from.index == 0 && turn.located && std::abs(a) < 1e-3;
     if (!((v - v0) * (v - v1) > 0.0) && !at_start) continue;
     events.push_back(std::move(turn));
-    if (callbacks_.on_event) callbacks_.on_event(events.back());
   }
+  for (const auto& e : events) found.unlocated |= !e.located;
+  return found;
 }
 
-CurveStop CurveRun::run(const CurvePoint& start, const Eigen::MatrixXd& start_jacobian,
-                        int direction, std::vector<CurvePoint>& points,
-                        std::vector<CurveEvent>& events, std::string& reason) {
-  CurvePoint here = start;
-  Eigen::MatrixXd jacobian = start_jacobian;
-  here.tangent = system_.tangent(jacobian, Eigen::VectorXd(), direction);
-  double step = options_.initial_step;
-  double farthest = 0.0;
-  for (int count = 1;; ++count) {
-    if (callbacks_.stop_requested && callbacks_.stop_requested()) {
-      reason = "interrupted";
-      return CurveStop::Interrupted;
-    }
-    if (count > options_.max_points) {
-      reason = "reached the point limit (" + std::to_string(options_.max_points) + ")";
-      return CurveStop::PointLimit;
-    }
-    system_.set_section(here.unknowns);
-    CurveSystem::Correction r;
-    bool edge = false;
-    while (true) {
-      if (step < options_.min_step) {
-        reason = "the step fell below the minimum at " + curve_.first_name + " = " +
-                 format_number(here.first) + ", " + curve_.second_name + " = " +
-                 format_number(here.second) + (r.reason.empty() ? "" : " (" + r.reason + ")");
-        return CurveStop::MinimumStep;
-      }
-      CurveSystem::Condition c;
-      c.tangent = here.tangent;
-      c.from = here.unknowns;
-      c.step = step;
-      r = system_.correct(here.unknowns + step * here.tangent, c, jacobian);
-      if (r.converged && !inside(r.u)) {
-        // Onto the window's edge: the parameter that left it, held at its bound.
-        const Eigen::VectorXd& u = r.u;
-        const int i1 = system_.first_index(), i2 = system_.second_index();
-        CurveSystem::Condition e;
-        if (u[i1] < options_.first_lower || u[i1] > options_.first_upper) {
-          e.index = i1;
-          e.value = u[i1] < options_.first_lower ? options_.first_lower : options_.first_upper;
-        } else {
-          e.index = i2;
-          e.value = u[i2] < options_.second_lower ? options_.second_lower : options_.second_upper;
-        }
-        const double t = (e.value - here.unknowns[e.index]) / (u[e.index] - here.unknowns[e.index]);
-        r = system_.correct(here.unknowns + t * (u - here.unknowns), e, jacobian);
-        edge = r.converged;
-        if (!r.converged) {
-          step *= 0.5;
-          continue;
-        }
-      }
-      if (!r.converged) {
-        step *= 0.5;
-        continue;
-      }
-      break;
-    }
-    // The borders moved to the new point's null vectors first, so that its Jacobian (the chord
-    // of the next step) has g's row under the borders that step will use.
-    const BorderedSingularity previous_borders = system_.borders();
-    system_.update_borders(r.evaluation);
-    system_.assemble(r.u, r.evaluation);
-    const auto next_jacobian = system_.jacobian(r.u, r.evaluation);
-    if (!next_jacobian) {
-      system_.set_borders(previous_borders);
-      step *= 0.5;
-      if (step < options_.min_step) {
-        reason = "a difference of the Jacobian could not be integrated";
-        return CurveStop::MinimumStep;
-      }
-      continue;
-    }
-    const Eigen::VectorXd t = system_.tangent(*next_jacobian, here.tangent);
-    if (!edge && system_.dot(t, here.tangent) < options_.min_tangent_cosine &&
-        step > options_.min_step * 2) {
-      system_.set_borders(previous_borders);
-      step *= 0.5;
-      continue;
-    }
-    CurvePoint next = system_.point(r.u, r.evaluation, *next_jacobian, t);
-    next.index = direction * static_cast<int>(points.size() + 1);
-    next.step = edge ? system_.norm(r.u - here.unknowns) : step;
-    next.iterations = r.iterations;
-    if (options_.detect) detect(here, jacobian, next, next.step, events);
-    points.push_back(next);
-    if (callbacks_.on_point) callbacks_.on_point(points.back());
-    if (edge) {
-      reason = "reached the edge of the window at " + curve_.first_name + " = " +
-               format_number(next.first) + ", " + curve_.second_name + " = " +
-               format_number(next.second);
-      return CurveStop::WindowEdge;
-    }
-    // Back at the start: the curve went away from it and the last step passed through it
-    // (within a tenth of the step: a curve's chord misses it by about step^2 times its
-    // curvature). A point merely near the start in the scaled norm is not enough: two NS points
-    // 6 N/m apart on a 1-100 N/m window are 0.06 apart, about one step.
-    const double distance = system_.norm(next.unknowns - start.unknowns);
-    farthest = std::max(farthest, distance);
-    const Eigen::VectorXd chord = next.unknowns - here.unknowns;
-    const double along = std::clamp(
-        system_.dot(start.unknowns - here.unknowns, chord) / system_.dot(chord, chord), 0.0, 1.0);
-    const double miss = system_.norm(here.unknowns + along * chord - start.unknowns);
-    if (farthest > 4.0 * options_.max_step && miss < 0.1 * system_.norm(chord)) {
-      reason = "closed: back at the start";
+CurveStop curve_stop(driver::Stop s) {
+  switch (s) {
+    case driver::Stop::Closed:
       return CurveStop::Closed;
-    }
-    here = next;
-    jacobian = *next_jacobian;
-    // A chord from the previous point's Jacobian contracts more slowly the longer the step:
-    // four or five iterations are its normal pace at steps of a few hundredths.
-    if (r.iterations <= 4) step = std::min(step * 1.5, options_.max_step);
-    if (r.iterations >= 8) step *= 0.7;
+    case driver::Stop::PointLimit:
+      return CurveStop::PointLimit;
+    case driver::Stop::MinimumStep:
+      return CurveStop::MinimumStep;
+    case driver::Stop::Interrupted:
+      return CurveStop::Interrupted;
+    case driver::Stop::StartFailed:
+      return CurveStop::StartFailed;
+    default:
+      return CurveStop::WindowEdge;
   }
 }
 
@@ -600,50 +602,67 @@ BifurcationCurve continue_curve(const OdeSystem& system, const Branch& branch,
   s.assemble(r.u, r.evaluation);
   j = s.jacobian(r.u, r.evaluation);
   if (!j) return finish(CurveStop::StartFailed, "the start's Jacobian cannot be integrated");
-  const BorderedSingularity start_borders = s.borders();
   CurvePoint start = s.point(r.u, r.evaluation, *j, s.tangent(*j, Eigen::VectorXd(), +1));
   start.iterations = r.iterations;
 
-  CurveCallbacks quiet = callbacks;
-  CurveRun run(s, curve, options, quiet, {event.parameter, p2});
-  std::vector<CurvePoint> backward, forward;
-  std::vector<CurveEvent> backward_events, forward_events;
-  std::string forward_reason, backward_reason;
-  if (callbacks.on_point) callbacks.on_point(start);
-  // A half that would begin by leaving the window (the start on its edge in the second
-  // parameter, the direction each half is oriented by) is not run.
-  const auto on_edge = [&](int direction) {
-    return direction > 0 ? p2 >= options.second_upper : p2 <= options.second_lower;
+  CurveNode first;
+  static_cast<CurvePoint&>(first) = start;
+  first.jacobian = *j;
+  first.borders = s.borders();
+  driver::Options o;
+  o.initial_step = options.initial_step;
+  o.min_step = options.min_step;
+  o.max_step = options.max_step;
+  o.max_points = options.max_points;  // per half, its start included, as every branch's
+  o.min_tangent_cosine = options.min_tangent_cosine;
+  // A chord from the previous point's Jacobian contracts more slowly the longer the step: four
+  // or five iterations are its normal pace at steps of a few hundredths.
+  o.rule = {4, 1.5, 1.5, 8, 0.7};
+  using Result = driver::Result<CurveNode, CurveEvent>;
+  // One half, in `direction` of the second parameter, reported with the sign of its direction
+  // on its indices; a half that would begin by leaving the window (the start on its edge in the
+  // second parameter) is not run.
+  const auto half = [&](int direction) {
+    const bool on_edge = direction > 0 ? p2 >= options.second_upper : p2 <= options.second_lower;
+    CurveNode from = first;
+    from.tangent = s.tangent(*j, Eigen::VectorXd(), direction);
+    if (on_edge) {
+      Result r;
+      r.points.push_back(std::move(from));
+      r.message = "the start lies on the window's edge";
+      return r;
+    }
+    driver::Callbacks<CurveNode, CurveEvent> cb;
+    if (callbacks.on_point)
+      cb.on_point = [&](const CurveNode& n) {
+        if (n.index == 0) return;  // the start is reported once, before both halves
+        CurvePoint q = n;
+        q.index *= direction;
+        callbacks.on_point(q);
+      };
+    cb.on_event = callbacks.on_event;
+    cb.stop_requested = callbacks.stop_requested;
+    CurveContinuation problem(s, curve, options, {event.parameter, p2}, start);
+    return driver::continuation(problem, std::move(from), o, cb);
   };
-  const std::string edge_reason = "the start lies on the window's edge";
-  CurveStop forward_stop = CurveStop::WindowEdge;
-  if (on_edge(+1))
-    forward_reason = edge_reason;
-  else
-    forward_stop = run.run(start, *j, +1, forward, forward_events, forward_reason);
-  CurveStop backward_stop = CurveStop::Closed;
-  if (forward_stop != CurveStop::Closed && forward_stop != CurveStop::Interrupted) {
-    s.set_section(start.unknowns);
-    s.set_borders(start_borders);
-    backward_stop = CurveStop::WindowEdge;
-    if (on_edge(-1))
-      backward_reason = edge_reason;
-    else
-      backward_stop = run.run(start, *j, -1, backward, backward_events, backward_reason);
+  if (callbacks.on_point) callbacks.on_point(start);
+  Result forward = half(+1);
+  Result joined;
+  if (forward.stop == driver::Stop::Closed || forward.stop == driver::Stop::Interrupted) {
+    joined = std::move(forward);
+  } else {
+    joined = driver::join(half(-1), std::move(forward));
+    curve.backward_stop = curve_stop(*joined.backward_stop);
   }
-  // One curve: the backward half reversed, the start, the forward half.
-  for (auto it = backward.rbegin(); it != backward.rend(); ++it) curve.points.push_back(*it);
-  curve.points.push_back(start);
-  for (auto& p : forward) curve.points.push_back(p);
-  for (auto it = backward_events.rbegin(); it != backward_events.rend(); ++it)
-    curve.events.push_back(*it);
-  for (auto& ev : forward_events) curve.events.push_back(ev);
-  if (forward_stop == CurveStop::Closed || forward_stop == CurveStop::Interrupted)
-    return finish(forward_stop, forward_reason);
-  curve.backward_stop = backward_stop;
-  const CurveStop stop =
-      backward_stop == CurveStop::Interrupted ? CurveStop::Interrupted : forward_stop;
-  return finish(stop, "backward: " + backward_reason + "; forward: " + forward_reason);
+  // One curve: the backward half reversed, the start, the forward half (the start's tangent
+  // as the curve's, along the forward half).
+  for (auto& n : joined.points) {
+    CurvePoint& p = n;
+    if (p.index == 0) p.tangent = start.tangent;
+    curve.points.push_back(std::move(p));
+  }
+  curve.events = std::move(joined.events);
+  return finish(curve_stop(joined.stop), joined.message);
 }
 
 }  // namespace sympathy

@@ -53,7 +53,7 @@ struct CurveOptions {
   double initial_step = 0.01;  // scaled arclength: parameters by the window's widths
   double min_step = 1e-5;
   double max_step = 0.05;
-  int max_points = 200;              // per direction
+  int max_points = 200;              // per half, its start included
   int max_iterations = 12;           // chord iterations per point
   double tolerance = 1e-9;           // |shooting residual|_inf, as the corrector's
   double min_tangent_cosine = 0.95;  // between consecutive tangents, else the step is halved
