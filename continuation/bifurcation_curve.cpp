@@ -115,7 +115,7 @@ class CurveContinuation {
            format_number(b.first) + ", " + curve_.second_name + " = " + format_number(b.second);
   }
   std::optional<Point> onto_edge(const Point& a, const Point& b);
-  driver::Found<Event> detect(const Point& a, const Point& b);
+  driver::Found<Event> detect(const Point*, const Point& a, const Point& b);
   std::optional<driver::Ending> ends(const Point& a, const Point& b, std::vector<Event>&);
   void accept(Point&) {}
   double parameter(const Point& p) const { return p.first; }
@@ -409,7 +409,8 @@ CurveEvent CurveContinuation::locate_turn(int k, const Point& from, const Point&
   return e;
 }
 
-driver::Found<CurveEvent> CurveContinuation::detect(const Point& from, const Point& to) {
+driver::Found<CurveEvent> CurveContinuation::detect(const Point*, const Point& from,
+                                                    const Point& to) {
   driver::Found<CurveEvent> found;
   if (!options_.detect) return found;
   std::vector<CurveEvent>& events = found.events;

@@ -10,6 +10,7 @@
 
 #include "stiffness_choice.hpp"
 #include "sympathy/continuation/detection.hpp"
+#include "sympathy/continuation/driver.hpp"
 #include "sympathy/continuation/hopf.hpp"
 #include "sympathy/continuation/location.hpp"
 #include "sympathy/continuation/multiplier_tracking.hpp"
@@ -20,6 +21,42 @@
 #include "sympathy/core/text.hpp"
 
 namespace sympathy {
+
+namespace detail {
+// A point of an orbit branch as the driver follows it: with its shooting Jacobian (in the section
+// of the step that found it), which location interpolates and the next step starts from.
+struct OrbitNode : ContinuationPoint {
+  Eigen::SparseMatrix<double> jacobian;
+};
+}  // namespace detail
+using detail::OrbitNode;
+
+class Continuation::Run {
+ public:
+  using Point = OrbitNode;
+  using Event = Bifurcation;
+  explicit Run(Continuation& c);
+  double limit_step(const OrbitNode& a, double ds) const;
+  driver::Attempt<OrbitNode> step(const OrbitNode* before, const OrbitNode& a, double ds);
+  double turn_cosine(const OrbitNode& a, const OrbitNode& b) const;
+  driver::Screen screen(const OrbitNode* before, const OrbitNode& a, const OrbitNode& b,
+                        double ds) const;
+  bool outside(const OrbitNode& b) const;
+  std::string edge_message(const OrbitNode& b) const;
+  std::optional<OrbitNode> onto_edge(const OrbitNode& a, const OrbitNode& b);
+  driver::Found<Bifurcation> detect(const OrbitNode* before, const OrbitNode& a,
+                                    const OrbitNode& b);
+  std::optional<driver::Ending> ends(const OrbitNode& a, const OrbitNode& b,
+                                     std::vector<Bifurcation>& events);
+  void accept(OrbitNode& b);
+  double parameter(const OrbitNode& p) const { return p.parameter; }
+
+  std::optional<HopfPoint> hopf_end;  // where the family ended at a Hopf point
+
+ private:
+  Continuation& c_;
+  int N_;
+};
 
 OptionCheck ContinuationOptions::validate() const {
   if (!positive(min_step)) return OptionProblem{"min_step", "a positive number"};
@@ -298,206 +335,248 @@ Branch Continuation::run_from(const PeriodicOrbit& start, int direction,
     tau = space.tangent(problem_->jacobian(c0.evaluation, true), c0.y, direction * along_parameter);
   }
   chord_jacobian_ = problem_->jacobian(c0.evaluation, true);
-  branch.points.push_back(make_point(c0, tau, 0, 0.0));
-  if (callbacks.on_point) callbacks.on_point(branch.points.back());
-  // A point's samples serve its callback and scales, not the branch kept (801 states a point).
-  branch.points.back().orbit.samples = PeriodSamples{};
+  jacobian_before_ = Eigen::SparseMatrix<double>();
+  OrbitNode first;
+  static_cast<ContinuationPoint&>(first) = make_point(c0, tau, 0, 0.0);
 
-  double ds = options_.initial_step;
-  int location_retries = 0;  // shorter tries of the current step for an unlocated event
-  bool after_retry = false;  // the step being tried was retried for the multipliers' motion
-  for (;;) {
-    if (callbacks.stop_requested && callbacks.stop_requested())
-      return finish(StopReason::Interrupted, "interrupted");
-    if (static_cast<int>(branch.points.size()) >= options_.max_points)
-      return finish(StopReason::PointLimit,
-                    "point limit (" + std::to_string(options_.max_points) + ") reached");
-    const ContinuationPoint& a = branch.points.back();
-    ds = parameter_limited_step(ds, std::abs(a.tangent[N]), options_);
-    Eigen::VectorXd ya(N + 1);
-    ya << a.unknowns, a.parameter;
-    problem_->set_phase_section(a.section, a.section_normal);
-    const ContinuationPoint* previous =
-        branch.points.size() >= 2 ? &branch.points[branch.points.size() - 2] : nullptr;
-    // The quasi-Newton steps start from the Jacobian extrapolated along the branch from the last
-    // two points (when they share a's section): its error is then O(ds^2), not O(ds).
-    Eigen::SparseMatrix<double> chord = chord_jacobian_;
-    if (previous && previous->section == a.section && a.step > 0.0 &&
-        jacobian_before_.rows() == chord.rows() && jacobian_before_.cols() == chord.cols())
-      chord = chord_jacobian_ + (ds / a.step) * (chord_jacobian_ - jacobian_before_);
-    const Eigen::VectorXd predicted =
-        predict(space, previous, a, ds, options_.curved_predictor, options_.min_tangent_cosine);
-    // A prediction past the bound, where the last one landed: the point on the bound at once,
-    // not first the step's point beyond it and then the bound's (one correction instead of two:
-    // 1 of the fast preset's 89 on the anti-phase k-branch). Its multipliers are watched as a
-    // step's; too far, the step is retried shorter as any other, until its prediction falls
-    // short of the bound. Not where predictions miss: the branch may turn before the bound (the
-    // in-phase s-branch shrinks into its Hopf point at s = 2.4e-9, and a point at s = 0 was
-    // sought in vain: 5 integrations).
-    std::optional<ContinuationPoint> at_bound;
-    const double predicted_bound = std::clamp(predicted[N], options_.lower, options_.upper);
-    if (predictions_land_ && predicted_bound != predicted[N] && a.parameter > options_.lower &&
-        a.parameter < options_.upper) {
-      ContinuationPoint ahead;
-      ahead.unknowns = predicted.head(N);
-      ahead.parameter = predicted[N];
-      at_bound = point_on_bound(a, ahead, predicted_bound);
-    }
-    Correction c;
-    Eigen::SparseMatrix<double> jacobian_b;
-    ContinuationPoint b;
-    if (at_bound) {
-      b = std::move(*at_bound);
-    } else {
-      c = correct_step(ya, a.tangent, ds, predicted, &chord, guess_residual_);
-      predictions_land_ = c.converged && c.chord_steps == 0 && c.iterations == 0;
-      if (std::isfinite(c.guess_residual)) guess_residual_ = c.guess_residual;
-      if (!c.converged) {
-        ++branch.rejected.corrector;
-        ds *= 0.5;
-        if (ds < options_.min_step)
-          return finish(StopReason::MinimumStep, "step size below the minimum: " + c.reason);
-        continue;
-      }
-      // A branch in its symmetric subspace stays there exactly, its tangents too.
-      const bool in_subspace = problem_->keep_in_subspace(c.y, space.values_at(c.y[N]));
-      // The section stays while the flow crosses it well (the angle in the scaled norm): kept, the
-      // points lie on one smooth curve, which the predictor and the extrapolated Jacobian follow.
-      const int n = problem_->dimension();
-      const Eigen::VectorXd zb = c.y.head(n);
-      const Eigen::VectorXd w = space.weights().head(n);
-      const Eigen::VectorXd flow_b = w.asDiagonal() * system_.rhs(0.0, zb, space.values_at(c.y[N]));
-      const Eigen::VectorXd flow_ref = w.cwiseInverse().asDiagonal() * problem_->phase_normal();
-      const double crossing = flow_ref.normalized().dot(flow_b.normalized());
-      if (crossing < 0.9) problem_->set_phase_section(zb, space.section_normal(zb, c.y[N]));
-      jacobian_b = problem_->jacobian(c.evaluation, true);
-      Eigen::VectorXd tau_b = space.tangent(jacobian_b, c.y, a.tangent);
-      if (in_subspace) problem_->project_on_subspace(tau_b);
-      if (space.orbit_cosine(tau_b, a.tangent, c.y) < options_.min_tangent_cosine &&
-          ds > 4 * options_.min_step) {
-        ++branch.rejected.turn;
-        ds *= 0.5;
-        continue;
-      }
-      b = make_point(c, tau_b, a.index + 1, ds);
-    }
-    // A step whose multipliers could not be paired with confidence, or moved too far near the
-    // circle, is rejected after its whole cost: the retry, and the step after an accepted one,
-    // aim below both limits at the rates just seen.
-    TrackedMultipliers tracked = track(previous, a, b);
-    const MultiplierMotion motion = multiplier_motion(tracked, ds, options_);
-    const double aim = motion.aim;
-    if (motion.too_far && ds > 4 * options_.min_step) {
-      ++branch.rejected.multipliers;
-      ds = std::max(std::min(0.5 * ds, aim), 4 * options_.min_step);
-      after_retry = true;
-      continue;
-    }
-    // The last point lies on the bound, never beyond it: a point past the bound gives way to the
-    // branch's point at the bound (the parameter fixed there instead of the arclength), and the
-    // events between a and it are the branch's last.
-    const double bound = std::clamp(b.parameter, options_.lower, options_.upper);
-    bool on_bound = at_bound.has_value();
-    if (!on_bound && bound != b.parameter) {
-      if (auto at = point_on_bound(a, b, bound)) {
-        b = std::move(*at);
-        tracked = track(previous, a, b);
-        on_bound = true;
-      }
-    }
-    std::vector<Bifurcation> events;
-    if (options_.detect_bifurcations) {
-      // Location probes along a's tangent in a's section, guessed on the cubic through a and b
-      // and corrected from the Jacobian interpolated between theirs (b's is the bound point's
-      // neighbour's when b was moved onto the bound: a's alone then).
-      const Locator locator = [&](BifurcationType type, int multiplicity, std::complex<double> mu_a,
-                                  std::complex<double> mu_b) {
-        problem_->set_phase_section(a.section, a.section_normal);
-        Bifurcation e =
-            locate(a, b, type, multiplicity, mu_a, mu_b, options_.location_tolerance,
-                   0.01 * (options_.upper - options_.lower), [&](double s, std::string& why) {
-                     return point_at(a, s, why, &b, on_bound ? nullptr : &jacobian_b);
-                   });
-        refine_branch_point(e, a, b);
-        return e;
-      };
-      events = detect(tracked, a, b, options_.trust_limit, locator);
-      // An event that could not be located in this step: try a shorter one (the multipliers
-      // are then easier to follow), unless the step is short already.
-      const bool unlocated =
-          std::any_of(events.begin(), events.end(), [](const auto& e) { return !e.located(); });
-      if (unlocated && location_retries < 3 && ds > 4 * options_.min_step) {
-        ++branch.rejected.location;
-        ++location_retries;
-        ds *= 0.5;
-        continue;
-      }
-    }
-    if (!options_.user_points.empty()) {  // AUTO's UZ, among the step's events along it
-      auto passed = user_points_between(a, b);
-      events.insert(events.end(), passed.begin(), passed.end());
-      std::stable_sort(events.begin(), events.end(),
-                       [](const auto& x, const auto& y) { return x.arclength < y.arclength; });
-    }
-    location_retries = 0;
-    std::optional<double> turned_back;  // a fold without its multiplier at +1, in this step
-    for (const auto& e : events)
-      if (e.trust == EventTrust::NoCrossingMultiplier) turned_back = e.parameter;
-    if (turned_back) {
-      // Where the orbits shrink into an equilibrium the branch turns at its Hopf point: that
-      // point, located on the equilibria, ends the family (and the turn is no fold to report).
-      const auto turn = std::find_if(events.begin(), events.end(), [](const auto& e) {
-        return e.trust == EventTrust::NoCrossingMultiplier;
-      });
-      if (auto hopf = hopf_end(*turn)) {
-        events.erase(turn);
-        for (auto& e : events) {
-          branch.events.push_back(std::move(e));
-          if (callbacks.on_event) callbacks.on_event(branch.events.back());
-        }
-        branch.hopf_end = hopf;
-        char omega[96];
-        std::snprintf(omega, sizeof omega, "omega %.10g, period 2 pi / omega = %.10g", hopf->omega,
-                      hopf->period);
-        return finish(StopReason::HopfPoint, "ended at the Hopf point of the equilibrium at " +
-                                                 branch.parameter_name + " = " +
-                                                 format_double(hopf->parameter) + " (" + omega +
-                                                 ", " + describe_criticality(hopf->lyapunov) +
-                                                 "): the orbits shrink into the equilibrium there");
-      }
-    }
-    branch.points.push_back(std::move(b));
-    jacobian_before_ = std::move(chord_jacobian_);
-    chord_jacobian_ = std::move(jacobian_b);
-    const ContinuationPoint& added = branch.points.back();
-    if (callbacks.on_point) callbacks.on_point(added);
-    const PeriodSamples samples = std::move(branch.points.back().orbit.samples);
-    branch.points.back().orbit.samples = PeriodSamples{};  // as the start's
-    for (auto& e : events) {
-      branch.events.push_back(std::move(e));
-      if (callbacks.on_event) callbacks.on_event(branch.events.back());
-    }
-    if (on_bound || added.parameter < options_.lower || added.parameter > options_.upper)
-      return finish(StopReason::ParameterBound, "reached the parameter bound");
-    if (turned_back)
-      return finish(StopReason::TurnedBack,
-                    "turned back at " + branch.parameter_name + " = " +
-                        format_double(*turned_back) +
-                        " without a multiplier at +1 (where an orbit shrinks into an "
-                        "equilibrium, a Hopf point, the branch ends there): stopped rather than "
-                        "retrace itself");
-    // Scales follow the amplitudes met so far; the tangent stays a unit vector in them.
-    try {
-      space_->widen_scales(added.orbit.state0, added.orbit.parameters, added.orbit.period,
-                           options_.orbit.transient_flow, &samples);
-    } catch (const IntegrationError&) {
-      // keep the scales as they are
-    }
-    auto& last = branch.points.back();
-    last.tangent /= std::sqrt(space.dot(last.tangent, last.tangent));
-    ds = next_step(ds, c.iterations, aim, options_, after_retry);
-    after_retry = false;
+  Run run(*this);
+  driver::Options o;
+  o.initial_step = options_.initial_step;
+  o.min_step = options_.min_step;
+  o.max_step = options_.max_step;
+  o.max_points = options_.max_points;
+  o.min_tangent_cosine = options_.min_tangent_cosine;
+  o.location_retries = 3;
+  // Growth by at most 1.2 after a step the multipliers' motion shortened: near a branch point
+  // their motion grows faster than the step (on the anti-phase k-branch a step grown 1.5 times
+  // after such a retry was retried again at least 8 times of its 15 retries; at 1.2, 8 retries
+  // and 65 points instead of 15 and 70, 13% less time).
+  o.rule = {2, 1.5, 1.2, 5, 0.6};
+  driver::Callbacks<OrbitNode, Bifurcation> cb;
+  cb.on_point = [&](const OrbitNode& p) {
+    if (callbacks.on_point) callbacks.on_point(p);
+  };
+  cb.on_event = callbacks.on_event;
+  cb.stop_requested = callbacks.stop_requested;
+  auto result = driver::continuation(run, std::move(first), o, cb);
+  // A point's samples serve its callback and scales, not the branch kept (801 states a point).
+  for (auto& p : result.points) {
+    p.orbit.samples = PeriodSamples{};
+    branch.points.push_back(std::move(static_cast<ContinuationPoint&>(p)));
   }
+  branch.events = std::move(result.events);
+  const auto count = [&](driver::Cause c) { return result.rejected[static_cast<int>(c)]; };
+  branch.rejected.corrector = count(driver::Cause::Corrector) + count(driver::Cause::Edge);
+  branch.rejected.turn = count(driver::Cause::Turn);
+  branch.rejected.multipliers = count(driver::Cause::Multipliers);
+  branch.rejected.location = count(driver::Cause::Location);
+  branch.hopf_end = run.hopf_end;
+  switch (result.stop) {
+    case driver::Stop::Bound:
+      return finish(StopReason::ParameterBound, result.message);
+    case driver::Stop::PointLimit:
+      return finish(StopReason::PointLimit, result.message);
+    case driver::Stop::MinimumStep:
+      return finish(StopReason::MinimumStep, result.message);
+    case driver::Stop::Interrupted:
+      return finish(StopReason::Interrupted, result.message);
+    case driver::Stop::StartFailed:
+      return finish(StopReason::StartFailed, result.message);
+    case driver::Stop::ProblemEnd:
+    case driver::Stop::Closed:
+      break;
+  }
+  return finish(run.hopf_end ? StopReason::HopfPoint : StopReason::TurnedBack, result.message);
+}
+
+// One way along a branch of periodic orbits, as the driver's problem (driver.hpp): the pieces of
+// the header's comment. The chord Jacobians of the last two accepted points stay with the
+// Continuation (chord_jacobian_, jacobian_before_), replaced only when a point is accepted.
+Continuation::Run::Run(Continuation& c) : c_(c), N_(c.problem_->unknowns()) {}
+
+double Continuation::Run::limit_step(const OrbitNode& a, double ds) const {
+  return parameter_limited_step(ds, std::abs(a.tangent[N_]), c_.options_);
+}
+
+driver::Attempt<OrbitNode> Continuation::Run::step(const OrbitNode* before, const OrbitNode& a,
+                                                   double ds) {
+  ShootingProblem& problem = *c_.problem_;
+  const BranchSpace& space = *c_.space_;
+  const ContinuationOptions& options = c_.options_;
+  driver::Attempt<OrbitNode> attempt;
+  Eigen::VectorXd ya(N_ + 1);
+  ya << a.unknowns, a.parameter;
+  problem.set_phase_section(a.section, a.section_normal);
+  // The quasi-Newton steps start from the Jacobian extrapolated along the branch from the last
+  // two points (when they share a's section): its error is then O(ds^2), not O(ds).
+  Eigen::SparseMatrix<double> chord = c_.chord_jacobian_;
+  if (before && before->section == a.section && a.step > 0.0 &&
+      c_.jacobian_before_.rows() == chord.rows() && c_.jacobian_before_.cols() == chord.cols())
+    chord = c_.chord_jacobian_ + (ds / a.step) * (c_.chord_jacobian_ - c_.jacobian_before_);
+  const Eigen::VectorXd predicted =
+      predict(space, before, a, ds, options.curved_predictor, options.min_tangent_cosine);
+  // A prediction past the bound, where the last one landed: the point on the bound at once,
+  // not first the step's point beyond it and then the bound's (one correction instead of two:
+  // 1 of the fast preset's 89 on the anti-phase k-branch). Its multipliers are watched as a
+  // step's; too far, the step is retried shorter as any other, until its prediction falls
+  // short of the bound. Not where predictions miss: the branch may turn before the bound (the
+  // in-phase s-branch shrinks into its Hopf point at s = 2.4e-9, and a point at s = 0 was
+  // sought in vain: 5 integrations).
+  const double predicted_bound = std::clamp(predicted[N_], options.lower, options.upper);
+  if (c_.predictions_land_ && predicted_bound != predicted[N_] && a.parameter > options.lower &&
+      a.parameter < options.upper) {
+    ContinuationPoint ahead;
+    ahead.unknowns = predicted.head(N_);
+    ahead.parameter = predicted[N_];
+    if (auto at_bound = c_.point_on_bound(a, ahead, predicted_bound)) {
+      attempt.point.emplace();
+      static_cast<ContinuationPoint&>(*attempt.point) = std::move(*at_bound);
+      attempt.point->iterations = 0;  // the step rule's: the run ends here
+      attempt.on_edge = true;
+      return attempt;
+    }
+  }
+  Correction c = c_.correct_step(ya, a.tangent, ds, predicted, &chord, c_.guess_residual_);
+  c_.predictions_land_ = c.converged && c.chord_steps == 0 && c.iterations == 0;
+  if (std::isfinite(c.guess_residual)) c_.guess_residual_ = c.guess_residual;
+  if (!c.converged) {
+    attempt.why = c.reason;
+    return attempt;
+  }
+  // A branch in its symmetric subspace stays there exactly, its tangents too.
+  const bool in_subspace = problem.keep_in_subspace(c.y, space.values_at(c.y[N_]));
+  const Eigen::VectorXd& y = c.y;
+  // The section stays while the flow crosses it well (the angle in the scaled norm): kept, the
+  // points lie on one smooth curve, which the predictor and the extrapolated Jacobian follow.
+  const int n = problem.dimension();
+  const Eigen::VectorXd zb = y.head(n);
+  const Eigen::VectorXd w = space.weights().head(n);
+  const Eigen::VectorXd flow_b = w.asDiagonal() * c_.system_.rhs(0.0, zb, space.values_at(y[N_]));
+  const Eigen::VectorXd flow_ref = w.cwiseInverse().asDiagonal() * problem.phase_normal();
+  const double crossing = flow_ref.normalized().dot(flow_b.normalized());
+  if (crossing < 0.9) problem.set_phase_section(zb, space.section_normal(zb, y[N_]));
+  Eigen::SparseMatrix<double> jacobian_b = problem.jacobian(c.evaluation, true);
+  Eigen::VectorXd tau_b = space.tangent(jacobian_b, y, a.tangent);
+  if (in_subspace) problem.project_on_subspace(tau_b);
+  attempt.point.emplace();
+  static_cast<ContinuationPoint&>(*attempt.point) = c_.make_point(c, tau_b, a.index + 1, ds);
+  attempt.point->jacobian = std::move(jacobian_b);
+  return attempt;
+}
+
+double Continuation::Run::turn_cosine(const OrbitNode& a, const OrbitNode& b) const {
+  if (b.jacobian.rows() == 0) return 1.0;  // on the bound already: the run ends there
+  Eigen::VectorXd y(N_ + 1);
+  y << b.unknowns, b.parameter;
+  return c_.space_->orbit_cosine(b.tangent, a.tangent, y);
+}
+
+driver::Screen Continuation::Run::screen(const OrbitNode* before, const OrbitNode& a,
+                                         const OrbitNode& b, double ds) const {
+  // A step whose multipliers could not be paired with confidence, or moved too far near the
+  // circle, is rejected after its whole cost: the retry, and the step after an accepted one,
+  // aim below both limits at the rates just seen.
+  const MultiplierMotion motion = multiplier_motion(track(before, a, b), ds, c_.options_);
+  return {motion.too_far, motion.aim, "multipliers moved too far"};
+}
+
+bool Continuation::Run::outside(const OrbitNode& b) const {
+  return b.parameter < c_.options_.lower || b.parameter > c_.options_.upper;
+}
+
+std::optional<OrbitNode> Continuation::Run::onto_edge(const OrbitNode& a, const OrbitNode& b) {
+  // The last point lies on the bound, never beyond it: a point past the bound gives way to the
+  // branch's point at the bound (the parameter fixed there instead of the arclength), and the
+  // events between a and it are the branch's last.
+  const double bound = std::clamp(b.parameter, c_.options_.lower, c_.options_.upper);
+  auto at = c_.point_on_bound(a, b, bound);
+  if (!at) return std::nullopt;
+  OrbitNode node;
+  static_cast<ContinuationPoint&>(node) = std::move(*at);
+  return node;
+}
+
+driver::Found<Bifurcation> Continuation::Run::detect(const OrbitNode* before, const OrbitNode& a,
+                                                     const OrbitNode& b) {
+  driver::Found<Bifurcation> found;
+  const ContinuationOptions& options = c_.options_;
+  if (options.detect_bifurcations) {
+    // Location probes along a's tangent in a's section, guessed on the cubic through a and b
+    // and corrected from the Jacobian interpolated between theirs (a's alone where b lies on the
+    // bound: its Jacobian is not in a's section's step).
+    const TrackedMultipliers tracked = track(before, a, b);
+    const Eigen::SparseMatrix<double>* jacobian_b = b.jacobian.rows() ? &b.jacobian : nullptr;
+    const Locator locator = [&](BifurcationType type, int multiplicity, std::complex<double> mu_a,
+                                std::complex<double> mu_b) {
+      c_.problem_->set_phase_section(a.section, a.section_normal);
+      Bifurcation e = locate(
+          a, b, type, multiplicity, mu_a, mu_b, options.location_tolerance,
+          0.01 * (options.upper - options.lower),
+          [&](double s, std::string& why) { return c_.point_at(a, s, why, &b, jacobian_b); });
+      c_.refine_branch_point(e, a, b);
+      return e;
+    };
+    found.events = sympathy::detect(tracked, a, b, options.trust_limit, locator);
+    for (const auto& e : found.events) found.unlocated |= !e.located();
+  }
+  if (!options.user_points.empty()) {  // AUTO's UZ, among the step's events along it
+    auto passed = c_.user_points_between(a, b);
+    found.events.insert(found.events.end(), passed.begin(), passed.end());
+    std::stable_sort(found.events.begin(), found.events.end(),
+                     [](const auto& x, const auto& y) { return x.arclength < y.arclength; });
+  }
+  return found;
+}
+
+std::optional<driver::Ending> Continuation::Run::ends(const OrbitNode&, const OrbitNode&,
+                                                      std::vector<Bifurcation>& events) {
+  // A fold without its multiplier at +1 in this step: the branch turned back.
+  const auto turn = std::find_if(events.begin(), events.end(), [](const auto& e) {
+    return e.trust == EventTrust::NoCrossingMultiplier;
+  });
+  if (turn == events.end()) return std::nullopt;
+  const double turned_back = turn->parameter;
+  const std::string name = c_.system_.parameter_names()[c_.parameter_];
+  // Where the orbits shrink into an equilibrium the branch turns at its Hopf point: that
+  // point, located on the equilibria, ends the family (and the turn is no fold to report).
+  if (auto hopf = c_.hopf_end(*turn)) {
+    events.erase(turn);
+    hopf_end = hopf;
+    char omega[96];
+    std::snprintf(omega, sizeof omega, "omega %.10g, period 2 pi / omega = %.10g", hopf->omega,
+                  hopf->period);
+    return driver::Ending{driver::Stop::ProblemEnd,
+                          "ended at the Hopf point of the equilibrium at " + name + " = " +
+                              format_double(hopf->parameter) + " (" + omega + ", " +
+                              describe_criticality(hopf->lyapunov) +
+                              "): the orbits shrink into the equilibrium there",
+                          false};
+  }
+  return driver::Ending{driver::Stop::ProblemEnd,
+                        "turned back at " + name + " = " + format_double(turned_back) +
+                            " without a multiplier at +1 (where an orbit shrinks into an "
+                            "equilibrium, a Hopf point, the branch ends there): stopped rather "
+                            "than retrace itself",
+                        true};
+}
+
+void Continuation::Run::accept(OrbitNode& b) {
+  c_.jacobian_before_ = std::move(c_.chord_jacobian_);
+  c_.chord_jacobian_ = std::move(b.jacobian);
+  b.jacobian = Eigen::SparseMatrix<double>();
+  // Scales follow the amplitudes met so far; the tangent stays a unit vector in them.
+  try {
+    c_.space_->widen_scales(b.orbit.state0, b.orbit.parameters, b.orbit.period,
+                            c_.options_.orbit.transient_flow, &b.orbit.samples);
+  } catch (const IntegrationError&) {
+    // keep the scales as they are
+  }
+  b.orbit.samples = PeriodSamples{};
+  b.tangent /= std::sqrt(c_.space_->dot(b.tangent, b.tangent));
+}
+
+std::string Continuation::Run::edge_message(const OrbitNode&) const {
+  return "reached the parameter bound";
 }
 
 }  // namespace sympathy

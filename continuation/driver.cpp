@@ -34,7 +34,7 @@ OptionCheck Options::validate() const {
   if (!(min_tangent_cosine > 0.0 && min_tangent_cosine < 1.0))
     return OptionProblem{"min_tangent_cosine", "a number in (0, 1)"};
   if (location_retries < 0) return OptionProblem{"location_retries", "a non-negative integer"};
-  if (!(rule.growth >= 1.0 && rule.growth_after_retry >= 1.0 && rule.shrink > 0.0 &&
+  if (!(rule.growth >= 1.0 && rule.growth_after_screen >= 1.0 && rule.shrink > 0.0 &&
         rule.shrink <= 1.0 && rule.fast_iterations < rule.slow_iterations))
     return OptionProblem{"rule", "growths of at least 1, a shrink in (0, 1], fast below slow"};
   return std::nullopt;

@@ -237,7 +237,7 @@ class EquilibriumContinuation {
     p.step = std::sqrt(dot(y - ya, y - ya));
     return p;
   }
-  driver::Found<Event> detect(const Point& a, const Point& b) const {
+  driver::Found<Event> detect(const Point*, const Point& a, const Point& b) const {
     driver::Found<Event> found;
     if (!o_.detect_bifurcations) return found;
     found.events = events_between(a, b, b.step);

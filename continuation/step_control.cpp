@@ -32,13 +32,4 @@ MultiplierMotion multiplier_motion(const TrackedMultipliers& tracked, double ds,
   return m;
 }
 
-double next_step(double ds, int iterations, double aim, const ContinuationOptions& options,
-                 bool after_retry) {
-  if (iterations <= 2)
-    ds = std::min((after_retry ? 1.2 : 1.5) * ds, options.max_step);
-  else if (iterations >= 5)
-    ds *= 0.6;
-  return std::max(std::min(ds, aim), std::min(ds, 4 * options.min_step));
-}
-
 }  // namespace sympathy

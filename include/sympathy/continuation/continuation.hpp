@@ -69,6 +69,9 @@ class Continuation {
   const ContinuationOptions& options() const { return options_; }
 
  private:
+  // One run as the driver's problem (continuation.cpp, driver.hpp).
+  class Run;
+  friend class Run;
   // The run's pieces, each in its own file: BranchSpace (scaled norm, tangents), correct
   // (corrector.hpp), predict (predictor.hpp), track (multiplier_tracking.hpp), detect
   // (detection.hpp), locate (location.hpp), step control (step_control.hpp).

@@ -9,11 +9,15 @@
 // problem owns what only it knows: its unknowns, prediction and correction, tangent and turn,
 // the point on the window's edge, its test functions (located with the one locator), and its own
 // ends. Values travel with the points (a curve's borders and chord Jacobian, an orbit's phase
-// section): a rejected step leaves the problem as it was.
+// section and shooting Jacobian): a rejected step leaves no trace on the branch (an orbit's
+// problem keeps only what its corrections learnt of how well predictions land).
 //
-// Today equilibria (equilibrium_branch.cpp) and two-parameter curves (bifurcation_curve.cpp) run
-// on this driver; periodic orbits (Continuation::run_from) keep their own loop until they move
-// (their location is the one locator already).
+// Every branch runs here: periodic orbits (continuation.cpp's Continuation::Run), equilibria
+// (equilibrium_branch.cpp) and two-parameter curves (bifurcation_curve.cpp). Two ends are
+// problems' own: an orbit family that turns back into an equilibrium at its Hopf point, and a
+// curve that closes on its start. The step rule's constants are each problem's (Options::rule):
+// Newton with exact derivatives (equilibria) doubles, a chord (curves) grows 1.5 up to 4
+// iterations, an orbit's corrector 1.5 up to 2.
 //
 // A problem P provides (checked where `continuation` is instantiated):
 //   using Point = ...;   // with members `int index`, `int iterations` (and `tangent` to join)
@@ -25,11 +29,16 @@
 //   bool outside(const Point& b) const;                          // beyond the window
 //   std::string edge_message(const Point& b) const;  // the Bound stop's, naming where
 //   std::optional<Point> onto_edge(const Point& a, const Point& b);  // the branch on the edge
-//   driver::Found<Event> detect(const Point& a, const Point& b);  // events between, located
+//   driver::Found<Event> detect(const Point* before, const Point& a, const Point& b);
+//       // the events between a and b, located (with the one locator)
 //   std::optional<driver::Ending> ends(const Point& a, const Point& b, std::vector<Event>&);
 //       // the problem's own end between a and b (it may drop or add events); nullopt: go on
 //   void accept(Point& b);         // b joins the branch (scales widen, the tangent renormalised)
 //   double parameter(const Point& p) const;  // for progress
+// and where it has a view on them (optional):
+//   double limit_step(const Point& a, double ds);  // the step to try from a, at most ds
+//   driver::Screen screen(const Point* before, const Point& a, const Point& b, double ds);
+//       // the problem's own check of a corrected step (an orbit's multipliers moving too far)
 #pragma once
 
 #include <algorithm>
@@ -67,12 +76,13 @@ enum class Cause {
 constexpr int kCauses = 5;
 
 // How the step grows after an accepted point: by `growth` when the corrector took at most
-// `fast_iterations`, by `growth_after_retry` if that step was itself a retry; shrunk by `shrink`
-// when it took `slow_iterations` or more; never above max_step nor above the problem's aim.
+// `fast_iterations`, by `growth_after_screen` if that step was a retry after the problem's screen
+// rejected a longer one (what it watches was just seen moving fast); shrunk by `shrink` when it
+// took `slow_iterations` or more; never above max_step nor above the problem's aim.
 struct StepRule {
   int fast_iterations = 2;
   double growth = 1.5;
-  double growth_after_retry = 1.2;
+  double growth_after_screen = 1.2;
   int slow_iterations = 5;
   double shrink = 0.6;
 };
@@ -95,6 +105,15 @@ struct Attempt {
   // The longest step the problem would take next (a retry, or the step after this one):
   // infinity when it has no view.
   double aim = std::numeric_limits<double>::infinity();
+  bool on_edge = false;  // the point lies on the window's edge already (the branch ends there)
+};
+
+// The problem's check of a corrected step: rejected (retried at most at `aim`, and never below
+// four minimum steps), or accepted with the longest next step it would take.
+struct Screen {
+  bool reject = false;
+  double aim = std::numeric_limits<double>::infinity();
+  std::string why;
 };
 
 template <class Event>
@@ -165,6 +184,7 @@ Result<Point, Event> continuation(P& problem, Point start, const Options& o,
       return finish(Stop::MinimumStep, "step size below the minimum: " + last_failure);
     const Point& a = r.points.back();
     const Point* before = r.points.size() >= 2 ? &r.points[r.points.size() - 2] : nullptr;
+    if constexpr (requires { problem.limit_step(a, ds); }) ds = problem.limit_step(a, ds);
     const bool can_shorten = ds > 4 * o.min_step;
     auto retry = [&](Cause cause, std::string why, double aimed) {
       ++r.rejected[static_cast<int>(cause)];
@@ -172,7 +192,7 @@ Result<Point, Event> continuation(P& problem, Point start, const Options& o,
       ds = std::min(0.5 * ds, aimed);
       // The multipliers' aim may ask for far less than half; never below what can be shortened.
       if (cause == Cause::Multipliers) ds = std::max(ds, 4 * o.min_step);
-      retried = true;
+      if (cause == Cause::Multipliers) retried = true;  // until a point is accepted
     };
     Attempt<Point> attempt = problem.step(before, a, ds);
     if (!attempt.point) {
@@ -184,8 +204,17 @@ Result<Point, Event> continuation(P& problem, Point start, const Options& o,
       retry(Cause::Turn, "the tangent turned too far", attempt.aim);
       continue;
     }
-    bool on_edge = false;
-    if (problem.outside(b)) {
+    double aim_next = attempt.aim;
+    if constexpr (requires { problem.screen(before, a, b, ds); }) {
+      Screen screen = problem.screen(before, a, b, ds);
+      if (screen.reject && can_shorten) {
+        retry(Cause::Multipliers, screen.why, std::min(screen.aim, attempt.aim));
+        continue;
+      }
+      aim_next = std::min(aim_next, screen.aim);
+    }
+    bool on_edge = attempt.on_edge;
+    if (!on_edge && problem.outside(b)) {
       if (auto edge = problem.onto_edge(a, b)) {
         b = std::move(*edge);
         on_edge = true;
@@ -195,7 +224,7 @@ Result<Point, Event> continuation(P& problem, Point start, const Options& o,
       }
     }
     b.index = a.index + 1;
-    Found<Event> found = problem.detect(a, b);
+    Found<Event> found = problem.detect(before, a, b);
     if (found.unlocated && location_retries < o.location_retries && can_shorten) {
       ++location_retries;
       retry(Cause::Location, "an event was not located", attempt.aim);
@@ -216,10 +245,10 @@ Result<Point, Event> continuation(P& problem, Point start, const Options& o,
     if (on_edge || problem.outside(r.points.back()))
       return finish(Stop::Bound, problem.edge_message(r.points.back()));
     problem.accept(r.points.back());
-    aim = attempt.aim;
+    aim = aim_next;
     const StepRule& rule = o.rule;
     if (iterations <= rule.fast_iterations)
-      ds = std::min((retried ? rule.growth_after_retry : rule.growth) * ds, o.max_step);
+      ds = std::min((retried ? rule.growth_after_screen : rule.growth) * ds, o.max_step);
     else if (iterations >= rule.slow_iterations)
       ds *= rule.shrink;
     ds = std::max(std::min(ds, aim), std::min(ds, 4 * o.min_step));
