@@ -36,24 +36,6 @@ OptionCheck CurveOptions::validate() const {
   return nested("orbit.", orbit.validate());
 }
 
-std::string to_string(CurveStop s) {
-  switch (s) {
-    case CurveStop::WindowEdge:
-      return "window edge";
-    case CurveStop::Closed:
-      return "closed";
-    case CurveStop::PointLimit:
-      return "point limit";
-    case CurveStop::MinimumStep:
-      return "minimum step";
-    case CurveStop::Interrupted:
-      return "interrupted";
-    case CurveStop::StartFailed:
-      return "start failed";
-  }
-  return "?";
-}
-
 namespace {
 
 // Scalar functions along a curve whose sign changes mark codimension-two points.
@@ -490,23 +472,6 @@ driver::Found<CurveEvent> CurveContinuation::detect(const Point*, const Point& f
   return found;
 }
 
-CurveStop curve_stop(driver::Stop s) {
-  switch (s) {
-    case driver::Stop::Closed:
-      return CurveStop::Closed;
-    case driver::Stop::PointLimit:
-      return CurveStop::PointLimit;
-    case driver::Stop::MinimumStep:
-      return CurveStop::MinimumStep;
-    case driver::Stop::Interrupted:
-      return CurveStop::Interrupted;
-    case driver::Stop::StartFailed:
-      return CurveStop::StartFailed;
-    default:
-      return CurveStop::WindowEdge;
-  }
-}
-
 }  // namespace
 
 BifurcationCurve continue_curve(const OdeSystem& system, const Branch& branch,
@@ -577,7 +542,7 @@ BifurcationCurve continue_curve(const OdeSystem& system, const Branch& branch,
   Eigen::VectorXd u = s.unknowns_of(event.state0, event.period, event.parameter, p2);
   s.set_scales(u);
   s.set_section(u);
-  const auto finish = [&](CurveStop stop, std::string reason) {
+  const auto finish = [&](StopReason stop, std::string reason) {
     curve.stop = stop;
     curve.stop_reason = std::move(reason);
     curve.flow = s.statistics();
@@ -587,22 +552,22 @@ BifurcationCurve continue_curve(const OdeSystem& system, const Branch& branch,
   };
   // The event onto the augmented system at its own second parameter: only the first moves.
   auto e = s.evaluate(u);
-  if (!e.ok) return finish(CurveStop::StartFailed, "the event cannot be integrated: " + e.failure);
+  if (!e.ok) return finish(StopReason::StartFailed, "the event cannot be integrated: " + e.failure);
   s.measure_noise(u, e);
   curve.noise = s.noise();
   auto j = s.jacobian(u, e);
-  if (!j) return finish(CurveStop::StartFailed, "the event's Jacobian cannot be integrated");
+  if (!j) return finish(StopReason::StartFailed, "the event's Jacobian cannot be integrated");
   CurveSystem::Condition hold;
   hold.index = s.second_index();
   hold.value = p2;
   auto r = s.correct(u, hold, *j);
   if (!r.converged)
-    return finish(CurveStop::StartFailed, "the event is not corrected onto the " +
-                                              to_string(event.type) + " curve: " + r.reason);
+    return finish(StopReason::StartFailed, "the event is not corrected onto the " +
+                                               to_string(event.type) + " curve: " + r.reason);
   s.update_borders(r.evaluation);
   s.assemble(r.u, r.evaluation);
   j = s.jacobian(r.u, r.evaluation);
-  if (!j) return finish(CurveStop::StartFailed, "the start's Jacobian cannot be integrated");
+  if (!j) return finish(StopReason::StartFailed, "the start's Jacobian cannot be integrated");
   CurvePoint start = s.point(r.u, r.evaluation, *j, s.tangent(*j, Eigen::VectorXd(), +1));
   start.iterations = r.iterations;
 
@@ -653,7 +618,7 @@ BifurcationCurve continue_curve(const OdeSystem& system, const Branch& branch,
     joined = std::move(forward);
   } else {
     joined = driver::join(half(-1), std::move(forward));
-    curve.backward_stop = curve_stop(*joined.backward_stop);
+    curve.backward_stop = joined.backward_stop;
   }
   // One curve: the backward half reversed, the start, the forward half (the start's tangent
   // as the curve's, along the forward half).
@@ -663,7 +628,7 @@ BifurcationCurve continue_curve(const OdeSystem& system, const Branch& branch,
     curve.points.push_back(std::move(p));
   }
   curve.events = std::move(joined.events);
-  return finish(curve_stop(joined.stop), joined.message);
+  return finish(joined.stop, joined.message);
 }
 
 }  // namespace sympathy

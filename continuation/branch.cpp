@@ -37,26 +37,6 @@ std::string describe(BifurcationType t) {
   return "?";
 }
 
-std::string to_string(StopReason r) {
-  switch (r) {
-    case StopReason::ParameterBound:
-      return "parameter bound";
-    case StopReason::PointLimit:
-      return "point limit";
-    case StopReason::MinimumStep:
-      return "minimum step";
-    case StopReason::Interrupted:
-      return "interrupted";
-    case StopReason::StartFailed:
-      return "start failed";
-    case StopReason::TurnedBack:
-      return "turned back";
-    case StopReason::HopfPoint:
-      return "Hopf point";
-  }
-  return "?";
-}
-
 std::string to_string(LocationOutcome o) {
   switch (o) {
     case LocationOutcome::Located:
@@ -84,19 +64,24 @@ Branch join_branches(Branch backward, Branch forward) {
   joined.options = forward.options;
   joined.start_values = forward.start_values;
   joined.stiffness = backward.stiffness ? backward.stiffness : forward.stiffness;
-  for (auto& p : backward.points) p.index = -p.index;
-  // The point before each event along the joined branch: -(k+1) for one between -k and -(k+1).
-  for (auto& e : backward.events) e.after_point = -(e.after_point + 1);
-  if (!backward.points.empty())
-    for (auto it = backward.points.rbegin(); it != backward.points.rend() - 1; ++it)
-      joined.points.push_back(std::move(*it));
-  for (auto& p : forward.points) joined.points.push_back(std::move(p));
-  for (auto& e : backward.events) joined.events.push_back(std::move(e));
-  for (auto& e : forward.events) joined.events.push_back(std::move(e));
+  // The driver's join: the backward part reversed (indices negated, tangents along the joined
+  // branch, each event after the point before it), the start once, the forward part.
+  driver::Result<ContinuationPoint, Bifurcation> back, ahead;
+  back.points = std::move(backward.points);
+  back.events = std::move(backward.events);
+  back.stop = backward.stop;
+  back.message = std::move(backward.stop_reason);
+  ahead.points = std::move(forward.points);
+  ahead.events = std::move(forward.events);
+  ahead.stop = forward.stop;
+  ahead.message = std::move(forward.stop_reason);
+  auto r = driver::join(std::move(back), std::move(ahead));
+  joined.points = std::move(r.points);
+  joined.events = std::move(r.events);
   order_events(joined.events);
-  joined.stop = forward.stop;
-  joined.backward_stop = backward.stop;
-  joined.stop_reason = "backward: " + backward.stop_reason + "; forward: " + forward.stop_reason;
+  joined.stop = r.stop;
+  joined.backward_stop = r.backward_stop;
+  joined.stop_reason = std::move(r.message);
   joined.rejected = backward.rejected;
   joined.rejected += forward.rejected;
   joined.flow = backward.flow;

@@ -371,22 +371,7 @@ Branch Continuation::run_from(const PeriodicOrbit& start, int direction,
   branch.rejected.multipliers = count(driver::Cause::Multipliers);
   branch.rejected.location = count(driver::Cause::Location);
   branch.hopf_end = run.hopf_end;
-  switch (result.stop) {
-    case driver::Stop::Bound:
-      return finish(StopReason::ParameterBound, result.message);
-    case driver::Stop::PointLimit:
-      return finish(StopReason::PointLimit, result.message);
-    case driver::Stop::MinimumStep:
-      return finish(StopReason::MinimumStep, result.message);
-    case driver::Stop::Interrupted:
-      return finish(StopReason::Interrupted, result.message);
-    case driver::Stop::StartFailed:
-      return finish(StopReason::StartFailed, result.message);
-    case driver::Stop::ProblemEnd:
-    case driver::Stop::Closed:
-      break;
-  }
-  return finish(run.hopf_end ? StopReason::HopfPoint : StopReason::TurnedBack, result.message);
+  return finish(result.stop, result.message);
 }
 
 // One way along a branch of periodic orbits, as the driver's problem (driver.hpp): the pieces of
@@ -545,14 +530,14 @@ std::optional<driver::Ending> Continuation::Run::ends(const OrbitNode&, const Or
     char omega[96];
     std::snprintf(omega, sizeof omega, "omega %.10g, period 2 pi / omega = %.10g", hopf->omega,
                   hopf->period);
-    return driver::Ending{driver::Stop::ProblemEnd,
+    return driver::Ending{driver::Stop::HopfPoint,
                           "ended at the Hopf point of the equilibrium at " + name + " = " +
                               format_double(hopf->parameter) + " (" + omega + ", " +
                               describe_criticality(hopf->lyapunov) +
                               "): the orbits shrink into the equilibrium there",
                           false};
   }
-  return driver::Ending{driver::Stop::ProblemEnd,
+  return driver::Ending{driver::Stop::TurnedBack,
                         "turned back at " + name + " = " + format_double(turned_back) +
                             " without a multiplier at +1 (where an orbit shrinks into an "
                             "equilibrium, a Hopf point, the branch ends there): stopped rather "

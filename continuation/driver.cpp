@@ -2,27 +2,33 @@
 
 #include <cmath>
 
-namespace sympathy::driver {
+namespace sympathy {
 
-std::string to_string(Stop s) {
+std::string to_string(StopReason s) {
   switch (s) {
-    case Stop::Bound:
-      return "bound";
-    case Stop::PointLimit:
+    case StopReason::ParameterBound:
+      return "parameter bound";
+    case StopReason::PointLimit:
       return "point limit";
-    case Stop::MinimumStep:
+    case StopReason::MinimumStep:
       return "minimum step";
-    case Stop::Interrupted:
+    case StopReason::Interrupted:
       return "interrupted";
-    case Stop::StartFailed:
+    case StopReason::StartFailed:
       return "start failed";
-    case Stop::ProblemEnd:
-      return "problem end";
-    case Stop::Closed:
+    case StopReason::TurnedBack:
+      return "turned back";
+    case StopReason::HopfPoint:
+      return "Hopf point";
+    case StopReason::Closed:
       return "closed";
   }
   return "?";
 }
+
+}  // namespace sympathy
+
+namespace sympathy::driver {
 
 OptionCheck Options::validate() const {
   if (!positive(min_step)) return OptionProblem{"min_step", "a positive number"};

@@ -44,22 +44,6 @@ std::string to_string(EquilibriumEventType t) {
   return "?";
 }
 
-std::string to_string(EquilibriumStop s) {
-  switch (s) {
-    case EquilibriumStop::ParameterBound:
-      return "parameter bound";
-    case EquilibriumStop::PointLimit:
-      return "point limit";
-    case EquilibriumStop::MinimumStep:
-      return "minimum step";
-    case EquilibriumStop::Interrupted:
-      return "interrupted";
-    case EquilibriumStop::StartFailed:
-      return "start failed";
-  }
-  return "?";
-}
-
 std::string EquilibriumProblem::problem_with(const OdeSystem& system) const {
   if (parameter < 0 || parameter >= system.parameter_count())
     return "parameter: expected the index of a named parameter";
@@ -371,21 +355,6 @@ driver::Options driver_options(const EquilibriumOptions& o) {
   return d;
 }
 
-EquilibriumStop stop_of(driver::Stop s) {
-  switch (s) {
-    case driver::Stop::PointLimit:
-      return EquilibriumStop::PointLimit;
-    case driver::Stop::MinimumStep:
-      return EquilibriumStop::MinimumStep;
-    case driver::Stop::Interrupted:
-      return EquilibriumStop::Interrupted;
-    case driver::Stop::StartFailed:
-      return EquilibriumStop::StartFailed;
-    default:
-      return EquilibriumStop::ParameterBound;
-  }
-}
-
 }  // namespace
 
 EquilibriumBranch continue_equilibria(const OdeSystem& system, const EquilibriumProblem& problem,
@@ -408,7 +377,7 @@ EquilibriumBranch continue_equilibria(const OdeSystem& system, const Equilibrium
   const Equilibrium start =
       solve_equilibrium(system, branch.start_values, problem.start_state, problem.newton);
   if (!start.converged) {
-    branch.stop = EquilibriumStop::StartFailed;
+    branch.stop = StopReason::StartFailed;
     branch.stop_reason = "no equilibrium near the start at " + branch.parameter_name + " = " +
                          format_double(first) + ": " + start.reason;
     branch.seconds = started.seconds();
@@ -439,7 +408,7 @@ EquilibriumBranch continue_equilibria(const OdeSystem& system, const Equilibrium
   }
   branch.points = std::move(result.points);
   branch.events = std::move(result.events);
-  branch.stop = stop_of(result.stop);
+  branch.stop = result.stop;
   branch.stop_reason = std::move(result.message);
   branch.seconds = started.seconds();
   return branch;

@@ -66,7 +66,7 @@ std::vector<BifurcationCurve> event_curves(const OdeSystem& system, const Branch
       none.second_name = system.parameter_names().at(second);
       none.origin =
           to_string(e.type) + " at " + branch.parameter_name + " = " + format_number(e.parameter);
-      none.stop = CurveStop::StartFailed;
+      none.stop = StopReason::StartFailed;
       none.stop_reason = refused.what();
       curves.push_back(std::move(none));
     }

@@ -325,7 +325,7 @@ class Case {
         const Bifurcation& event = cli::find_event(parent, request.event, "--event");
         curve = cli::follow_curve(request, c.system(), parent, event, callbacks);
       } else {
-        curve.stop = hooks.interrupted() ? CurveStop::Interrupted : CurveStop::StartFailed;
+        curve.stop = hooks.interrupted() ? StopReason::Interrupted : StopReason::StartFailed;
         curve.stop_reason = "the branch: " + parent.stop_reason;
       }
       if (csv) csv->close();

@@ -225,7 +225,7 @@ int run_curve(const std::vector<std::string>& argv) {
     write_json(*json_path, j);
   }
   if (!curve.started()) return 4;
-  return curve.stop == CurveStop::Interrupted ? kInterrupted : 0;
+  return curve.stop == StopReason::Interrupted ? kInterrupted : 0;
 }
 
 }  // namespace sympathy::cli

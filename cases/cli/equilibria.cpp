@@ -173,7 +173,7 @@ int run_equilibria(const std::vector<std::string>& argv) {
     j["seconds"] = clock.seconds();
     write_json(*json_path, j);
   }
-  return branch.stop == EquilibriumStop::Interrupted ? kInterrupted : 0;
+  return branch.stop == StopReason::Interrupted ? kInterrupted : 0;
 }
 
 }  // namespace sympathy::cli

@@ -72,7 +72,7 @@ TEST(RowCurves, AntiPhaseBranchPointAndNeimarkSackerCurvesMeetTheOneParameterPoi
     const BifurcationCurve curve = continue_curve(model, branch, *t.event, t.second, o);
     ASSERT_TRUE(curve.started()) << curve.stop_reason;
     const CurvePoint& end = curve.points.back();
-    ASSERT_EQ(curve.stop, CurveStop::WindowEdge) << curve.stop_reason;
+    ASSERT_EQ(curve.stop, StopReason::ParameterBound) << curve.stop_reason;
     ASSERT_EQ(end.second, t.upper);
     for (const auto& p : curve.points) EXPECT_LT(p.floquet.trivial_error, 1e-8);
 

@@ -147,7 +147,7 @@ TEST(BifurcationCurve, BranchPointCurveIsTheParabola) {
   const BifurcationCurve curve =
       continue_curve(system, s.branch, *s.event, 1, window(-1.0, 2.0, -0.8, 1.2));
   ASSERT_TRUE(curve.started()) << curve.stop_reason;
-  EXPECT_EQ(curve.stop, CurveStop::WindowEdge) << curve.stop_reason;
+  EXPECT_EQ(curve.stop, StopReason::ParameterBound) << curve.stop_reason;
   ASSERT_GE(curve.points.size(), 10u);
   for (const auto& p : curve.points) {
     EXPECT_NEAR(p.first, p.second * p.second, 1e-8) << "a = " << p.second;
@@ -215,7 +215,7 @@ TEST(BifurcationCurve, NeimarkSackerCurveBesideTheTrivialMultiplierMeetsAnotherC
   ASSERT_TRUE(curve.started()) << curve.stop_reason;
   ASSERT_GE(curve.points.size(), 5u);
   for (const auto& p : curve.points) EXPECT_NEAR(p.first, p.second * p.second, 1e-8);
-  EXPECT_EQ(curve.stop, CurveStop::WindowEdge) << curve.stop_reason;
+  EXPECT_EQ(curve.stop, StopReason::ParameterBound) << curve.stop_reason;
   int found = 0;
   for (const auto& e : curve.events) {
     if (e.type.rfind("turn", 0) == 0 || e.type[0] == 'R') continue;

@@ -113,7 +113,7 @@ TEST(Driver, StopsOnTheWindowsEdgeAndLocatesTheFoldExactly) {
   circle.upper = 1.5;
   circle.lower = -1.9;
   auto r = driver::continuation(circle, circle.at(0.0), options());
-  ASSERT_EQ(r.stop, driver::Stop::Bound) << r.message;
+  ASSERT_EQ(r.stop, driver::Stop::ParameterBound) << r.message;
   EXPECT_EQ(r.message, "edge");
   EXPECT_NEAR(circle.parameter(r.points.back()), 1.5, 1e-14);
   EXPECT_TRUE(r.events.empty());
@@ -122,7 +122,7 @@ TEST(Driver, StopsOnTheWindowsEdgeAndLocatesTheFoldExactly) {
   circle.lower = -3.0;
   circle.direction = -1;
   auto s = driver::continuation(circle, circle.at(0.0), options());
-  ASSERT_EQ(s.stop, driver::Stop::Bound);
+  ASSERT_EQ(s.stop, driver::Stop::ParameterBound);
   ASSERT_EQ(s.events.size(), 1u);
   EXPECT_TRUE(s.events[0].located);
   EXPECT_NEAR(s.events[0].parameter, -2.0, 1e-11);  // p at the fold: r exactly, to 1e-12 * r

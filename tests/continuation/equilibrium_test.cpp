@@ -69,7 +69,7 @@ TEST(EquilibriumBranch, FoldLocatedExactly) {
   EXPECT_NEAR(folds[0].state[0], 0.0, 1e-5);  // x ~ sqrt(p): the location's error, square-rooted
   EXPECT_TRUE(events_of(branch, EquilibriumEventType::BranchPoint).empty());
   EXPECT_TRUE(events_of(branch, EquilibriumEventType::Hopf).empty());
-  EXPECT_EQ(branch.stop, EquilibriumStop::ParameterBound) << branch.stop_reason;
+  EXPECT_EQ(branch.stop, StopReason::ParameterBound) << branch.stop_reason;
   EXPECT_EQ(branch.points.front().unstable, 0);
   EXPECT_EQ(branch.points.back().unstable, 1);
   EXPECT_NEAR(branch.points.back().parameter, 1.0, 1e-14);  // on the bound, after the fold

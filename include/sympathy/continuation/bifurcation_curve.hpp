@@ -64,16 +64,6 @@ struct CurveOptions {
   OptionCheck validate() const;
 };
 
-enum class CurveStop {
-  WindowEdge,   // reached the edge of the window (the last point lies on it)
-  Closed,       // came back to its start
-  PointLimit,   // max_points
-  MinimumStep,  // the step fell below min_step
-  Interrupted,  // stop_requested
-  StartFailed,  // the event could not be corrected onto the augmented system
-};
-std::string to_string(CurveStop s);
-
 struct CurvePoint {
   int index = 0;                     // negative on the backward half
   double first = 0.0, second = 0.0;  // the two parameters' values
@@ -129,9 +119,9 @@ struct BifurcationCurve {
   SymmetryKind symmetry = SymmetryKind::Unlabelled;
   std::vector<CurvePoint> points;  // in order along the curve
   std::vector<CurveEvent> events;
-  CurveStop stop = CurveStop::WindowEdge;
+  StopReason stop = StopReason::ParameterBound;
   std::string stop_reason;
-  std::optional<CurveStop> backward_stop;
+  std::optional<StopReason> backward_stop;
   std::string origin;  // "BP at k = 47.0655622456"
   double seconds = 0.0;
   FlowStatistics flow;
@@ -141,7 +131,7 @@ struct BifurcationCurve {
   double noise = 0.0;
   CurveOptions options;
   ParameterValues start_values;
-  bool started() const { return stop != CurveStop::StartFailed; }
+  bool started() const { return stop != StopReason::StartFailed; }
 };
 
 // The curve of `event` (a located LP, BP, PD or NS of `branch`, a branch of `system`) in the

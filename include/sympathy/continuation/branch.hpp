@@ -11,6 +11,7 @@
 #include <Eigen/Dense>
 
 #include "sympathy/continuation/continuation_options.hpp"
+#include "sympathy/continuation/driver.hpp"
 #include "sympathy/continuation/equilibrium.hpp"
 #include "sympathy/continuation/periodic_orbit.hpp"
 
@@ -116,19 +117,6 @@ struct StepRejections {
     return *this;
   }
 };
-
-// Why a run ended, for programs to switch on; the branch's stop_reason says it for people.
-enum class StopReason {
-  ParameterBound,  // left the interval asked for (the normal end)
-  PointLimit,      // max_points reached
-  MinimumStep,     // the step fell below min_step (the corrector kept failing)
-  Interrupted,     // stop_requested() said so
-  StartFailed,     // no starting orbit (not found, not convergent, or not integrable)
-  TurnedBack,      // turned back without a multiplier at +1 (see EventTrust::NoCrossingMultiplier):
-                   // stopped there rather than retrace itself
-  HopfPoint,       // the orbits shrank into an equilibrium at its Hopf point (Branch::hopf_end)
-};
-std::string to_string(StopReason r);
 
 struct Branch {
   std::string parameter_name;

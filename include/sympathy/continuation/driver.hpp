@@ -27,7 +27,7 @@
 //       // tangent oriented along a's; the cause and reason when it fails
 //   double turn_cosine(const Point& a, const Point& b) const;  // of their tangents, scaled
 //   bool outside(const Point& b) const;                          // beyond the window
-//   std::string edge_message(const Point& b) const;  // the Bound stop's, naming where
+//   std::string edge_message(const Point& b) const;  // the ParameterBound stop's, naming where
 //   std::optional<Point> onto_edge(const Point& a, const Point& b);  // the branch on the edge
 //   driver::Found<Event> detect(const Point* before, const Point& a, const Point& b);
 //       // the events between a and b, located (with the one locator)
@@ -50,20 +50,28 @@
 
 #include "sympathy/core/option_check.hpp"
 
+namespace sympathy {
+
+// Why a run ended: one enumeration for every branch (orbits, equilibria, curves); callers switch
+// on it, and a result's message says it for people, with numbers.
+enum class StopReason {
+  ParameterBound,  // reached the window's edge (the normal end); the last point lies on it
+  PointLimit,      // max_points reached
+  MinimumStep,     // the step fell below min_step: the corrector kept failing (its reason kept)
+  Interrupted,     // stop_requested said so
+  StartFailed,     // no starting point
+  TurnedBack,      // an orbit branch turned back without a multiplier at +1 (see
+                   // EventTrust::NoCrossingMultiplier): stopped there rather than retrace itself
+  HopfPoint,       // an orbit family shrank into an equilibrium at its Hopf point
+  Closed,          // a curve came back to its start
+};
+std::string to_string(StopReason s);  // "parameter bound", "point limit", ...
+
+}  // namespace sympathy
+
 namespace sympathy::driver {
 
-// Why a run ended: one enumeration for every problem (callers switch on it; a result's `message`
-// says it for people, with numbers).
-enum class Stop {
-  Bound,        // reached the window's edge (the normal end); the last point lies on it
-  PointLimit,   // max_points reached
-  MinimumStep,  // the step fell below min_step: the corrector kept failing (its reason kept)
-  Interrupted,  // Callbacks::stop_requested said so
-  StartFailed,  // no starting point
-  ProblemEnd,   // the problem says the branch ends here (an orbit family at its Hopf point)
-  Closed,       // the branch came back to its start (a closed curve)
-};
-std::string to_string(Stop s);
+using Stop = StopReason;
 
 // Why a step was tried again shorter.
 enum class Cause {
@@ -123,7 +131,7 @@ struct Found {
 };
 
 struct Ending {
-  Stop stop = Stop::ProblemEnd;
+  Stop stop = Stop::TurnedBack;
   std::string why;
   bool keep_point = true;  // b joins the branch before it ends
 };
@@ -146,7 +154,7 @@ template <class Point, class Event>
 struct Result {
   std::vector<Point> points;  // in order along the branch
   std::vector<Event> events;
-  Stop stop = Stop::Bound;
+  Stop stop = Stop::ParameterBound;
   std::string message;
   std::optional<Stop> backward_stop;  // a joined two-way run's backward part
   int rejected[kCauses] = {};         // steps tried again, by cause
@@ -243,7 +251,7 @@ Result<Point, Event> continuation(P& problem, Point start, const Options& o,
     }
     if (ending) return finish(ending->stop, ending->why);
     if (on_edge || problem.outside(r.points.back()))
-      return finish(Stop::Bound, problem.edge_message(r.points.back()));
+      return finish(Stop::ParameterBound, problem.edge_message(r.points.back()));
     problem.accept(r.points.back());
     aim = aim_next;
     const StepRule& rule = o.rule;

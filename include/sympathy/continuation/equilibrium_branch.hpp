@@ -25,6 +25,7 @@
 
 #include <Eigen/Dense>
 
+#include "sympathy/continuation/driver.hpp"
 #include "sympathy/continuation/equilibrium.hpp"
 
 namespace sympathy {
@@ -80,27 +81,18 @@ struct EquilibriumEvent {
   std::string note;
 };
 
-enum class EquilibriumStop {
-  ParameterBound,  // left the window (the normal end)
-  PointLimit,      // max_points reached
-  MinimumStep,     // the corrector kept failing
-  Interrupted,     // stop_requested() said so
-  StartFailed,     // no equilibrium at the start
-};
-std::string to_string(EquilibriumStop s);
-
 struct EquilibriumBranch {
   std::string parameter_name;
   int parameter = -1;
   std::vector<std::string> state_names;
   std::vector<EquilibriumPoint> points;  // in order along the branch
   std::vector<EquilibriumEvent> events;  // in order along the branch
-  EquilibriumStop stop = EquilibriumStop::ParameterBound;
+  StopReason stop = StopReason::ParameterBound;
   std::string stop_reason;
   EquilibriumOptions options;
   ParameterValues start_values;
   double seconds = 0.0;
-  bool started() const { return stop != EquilibriumStop::StartFailed; }
+  bool started() const { return stop != StopReason::StartFailed; }
 };
 
 // What to continue: as BranchProblem, from an equilibrium near `start_state`.
