@@ -88,6 +88,50 @@ std::vector<Bifurcation> detect(const TrackedMultipliers& tracked, const Continu
   if (minus.empty() && sign_at(-1.0, false) != sign_at(-1.0, true))
     minus.push_back(real_crossing(-1.0));
   if (plus.empty() && sign_at(1.0, false) != sign_at(1.0, true)) plus.push_back(real_crossing(1.0));
+  // One complex pair is one crossing: paired across the step with its halves swapped (upper at
+  // a with lower at b), each half looked like a crossing of its own.
+  for (std::size_t i = 0; i < complex.size(); ++i)
+    for (std::size_t j = complex.size(); j-- > i + 1;)
+      if (std::abs(complex[j].a - std::conj(complex[i].a)) <= 1e-12 &&
+          std::abs(complex[j].b - std::conj(complex[i].b)) <= 1e-12)
+        complex.erase(complex.begin() + static_cast<std::ptrdiff_t>(j));
+  // The number of multipliers outside the unit circle, which only crossings change: each
+  // crossing found explains a change of one (real) or two (a pair). What they leave unexplained
+  // is a crossing the pairing hid: a change of two with both signs unchanged is a pair through
+  // the circle (an NS), made of the complex multipliers nearest the circle at the two ends;
+  // anything else is reported unresolved (and the step refined: it is not located).
+  const auto outside = [&](bool at_b) {
+    int n = 0;
+    for (const auto& [mx, my] : tracked.pairs) n += std::abs((at_b ? my : mx).value) > 1.0;
+    return n;
+  };
+  const auto direction = [](const Crossing& c) { return std::abs(c.b) > 1.0 ? 1 : -1; };
+  int explained = 0;
+  for (const auto& c : plus) explained += direction(c);
+  for (const auto& c : minus) explained += direction(c);
+  for (const auto& c : complex) explained += 2 * direction(c);
+  const int count_a = outside(false), count_b = outside(true);
+  int unexplained = count_b - count_a - explained;
+  if (std::abs(unexplained) == 2 && complex.empty()) {
+    const auto nearest_circle = [&](bool at_b) {
+      std::complex<double> best = 0.0;
+      double distance = INFINITY;
+      for (const auto& [mx, my] : tracked.pairs) {
+        const auto mu = (at_b ? my : mx).value;
+        if (mu.imag() > 0.0 && !is_real(mu) && std::abs(std::abs(mu) - 1.0) < distance) {
+          distance = std::abs(std::abs(mu) - 1.0);
+          best = mu;
+        }
+      }
+      return best;
+    };
+    const Crossing pair{nearest_circle(false), nearest_circle(true)};
+    if (pair.a != 0.0 && pair.b != 0.0 && (std::abs(pair.a) - 1.0) * (std::abs(pair.b) - 1.0) < 0 &&
+        2 * direction(pair) == unexplained) {
+      complex.push_back(pair);
+      unexplained = 0;
+    }
+  }
   // Crossings with equal multipliers happen together (symmetry): one event, its multiplicity.
   auto clusters = [](const std::vector<Crossing>& c) {
     std::vector<std::vector<Crossing>> groups;
@@ -157,6 +201,30 @@ std::vector<Bifurcation> detect(const TrackedMultipliers& tracked, const Continu
                            g.front().b);
     if (g.size() > 1) e.note = together_note(e.type, static_cast<int>(g.size()));
     report(e);
+  }
+  if (unexplained != 0) {
+    // Not located, so that the step is tried shorter (the driver's location retries); reported
+    // between the two points if it stays unexplained.
+    Bifurcation e;
+    e.type =
+        std::abs(unexplained) % 2 ? BifurcationType::BranchPoint : BifurcationType::NeimarkSacker;
+    e.after_point = a.index;
+    e.parameter = 0.5 * (a.parameter + b.parameter);
+    e.uncertainty = 0.5 * std::abs(b.parameter - a.parameter);
+    e.bracket = std::abs(b.parameter - a.parameter);
+    e.arclength = 0.5 * b.step;
+    e.location = LocationOutcome::NotNarrowed;
+    e.trust = EventTrust::CrossingNotResolved;
+    e.period = 0.5 * (a.orbit.period + b.orbit.period);
+    e.floquet = b.orbit.floquet;
+    e.state0 = b.orbit.state0;
+    e.unknowns = b.unknowns;
+    e.tangent = b.tangent;
+    std::ostringstream msg;
+    msg << "unresolved: the number of multipliers outside the unit circle went from " << count_a
+        << " to " << count_b << " between these points, which the crossings found do not explain";
+    e.note = msg.str();
+    found.push_back(std::move(e));
   }
   std::stable_sort(found.begin(), found.end(),
                    [](const auto& x, const auto& y) { return x.arclength < y.arclength; });

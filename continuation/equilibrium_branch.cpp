@@ -291,6 +291,33 @@ class EquilibriumContinuation {
       e.hopf->uncertainty = e.uncertainty;
       events.push_back(std::move(e));
     }
+    // The number of eigenvalues in the right half plane, which only crossings change: one a fold
+    // or branch point, two a Hopf pair. A change they do not explain (a pair that turned real
+    // beside the axis, two crossings in one step) is reported unresolved, not located, so that
+    // the driver tries the step shorter first.
+    int explained = 0;
+    for (const auto& e : events) explained += e.type == EquilibriumEventType::Hopf ? 2 : 1;
+    const int change = std::abs(b.unstable - a.unstable);
+    if (change > explained || (explained - change) % 2 != 0) {
+      EquilibriumEvent e;
+      // Named by b's eigenvalue nearest the imaginary axis: a pair (HB) or real (BP).
+      Complex nearest = b.eigenvalues[0];
+      for (const auto& l : b.eigenvalues)
+        if (std::abs(l.real()) < std::abs(nearest.real())) nearest = l;
+      e.type = std::abs(nearest.imag()) > 1e-9 * size ? EquilibriumEventType::Hopf
+                                                      : EquilibriumEventType::BranchPoint;
+      e.after_point = a.index;
+      e.parameter = 0.5 * (a.parameter + b.parameter);
+      e.uncertainty = 0.5 * std::abs(b.parameter - a.parameter);
+      e.state = 0.5 * (a.state + b.state);
+      e.eigenvalues = b.eigenvalues;
+      e.tangent = b.tangent;
+      e.arclength = 0.5 * ds;
+      e.note = "unresolved: the eigenvalues in the right half plane went from " +
+               std::to_string(a.unstable) + " to " + std::to_string(b.unstable) +
+               " between these points, which the crossings found do not explain";
+      events.push_back(std::move(e));
+    }
     std::sort(events.begin(), events.end(),
               [](const auto& x, const auto& y) { return x.arclength < y.arclength; });
     return events;
@@ -350,6 +377,7 @@ driver::Options driver_options(const EquilibriumOptions& o) {
   d.max_step = o.max_step;
   d.max_points = o.max_points;
   d.min_tangent_cosine = o.min_tangent_cosine;
+  d.location_retries = 3;  // an event not located (or a count not explained): a shorter step
   // Newton with exact derivatives: a step that took at most 3 iterations is doubled.
   d.rule = {3, 2.0, 2.0, std::numeric_limits<int>::max(), 1.0};
   return d;

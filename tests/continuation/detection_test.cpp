@@ -6,6 +6,8 @@
 
 #include <gtest/gtest.h>
 
+#include <algorithm>
+
 #include "sympathy/continuation/location.hpp"
 
 namespace sympathy {
@@ -132,6 +134,72 @@ Multiplier labelled(std::complex<double> value, SymmetryKind symmetry) {
 // blocks of the monodromy, which cannot exchange. By distance alone the least-cost pairing swaps
 // them (0.0002 against 0.0004, squared); by symmetry each is followed as itself, and no other
 // multiplier of its own symmetry is near enough to make the pairing doubtful.
+// Steps whose multipliers the pairing matched across wrongly: the number outside the unit circle
+// (which only crossings change) must be explained by the crossings reported.
+struct Pairs {
+  ContinuationPoint a, b;
+  TrackedMultipliers tracked;
+  explicit Pairs(std::initializer_list<std::pair<std::complex<double>, std::complex<double>>> p) {
+    for (auto* q : {&a, &b}) {
+      q->tangent = Eigen::Vector2d(0.0, 1.0);
+      q->orbit.floquet.trivial_error = 1e-10;
+    }
+    b.index = 1;
+    b.parameter = 1.0;
+    for (const auto& [x, y] : p) {
+      Multiplier mx, my;
+      mx.value = x;
+      my.value = y;
+      tracked.pairs.push_back({mx, my});
+    }
+  }
+};
+
+std::vector<BifurcationType> types_of(const std::vector<Bifurcation>& events) {
+  std::vector<BifurcationType> t;
+  for (const auto& e : events) t.push_back(e.type);
+  return t;
+}
+
+TEST(Detection, PairMatchedWithItsHalvesSwappedIsOneCrossing) {
+  // 0.9 +- 0.3i leaves through the circle as 1.0 -+ 0.35i: each half paired with the other's
+  // successor looked like a crossing of its own (two NS for one pair).
+  const std::complex<double> x(0.9, 0.3), y(1.0, 0.35);
+  const Pairs s({{x, std::conj(y)}, {std::conj(x), y}});
+  const auto events = detect(s.tracked, s.a, s.b, 1e-6, locator_with(std::polar(1.0, 0.35)));
+  EXPECT_EQ(types_of(events), std::vector{BifurcationType::NeimarkSacker});
+}
+
+TEST(Detection, PairHiddenByThePairingIsFoundByTheCount) {
+  // A real multiplier enters through +1 (1.5 to 0.3) while the pair 0.5 +- 0.8i leaves (to
+  // 0.6 +- 0.9i, modulus 1.08). Paired as 1.5 -> 0.6 + 0.9i, 0.5 + 0.8i -> 0.3 and the lower halves
+  // together, only the lower halves cross (a pair is followed by its upper half): the count goes
+  // from 1 to 2, the real crossing explains -1, the pair the other +2.
+  const std::complex<double> x(0.5, 0.8), y(0.6, 0.9);
+  const Pairs s({{1.5, y}, {x, 0.3}, {std::conj(x), std::conj(y)}});
+  const auto events = detect(s.tracked, s.a, s.b, 1e-6, locator_with(1.0));
+  auto types = types_of(events);
+  std::sort(types.begin(), types.end());
+  EXPECT_EQ(types, (std::vector{BifurcationType::BranchPoint, BifurcationType::NeimarkSacker}));
+  for (const auto& e : events) EXPECT_TRUE(e.located()) << e.note;
+}
+
+TEST(Detection, CountTheCrossingsDoNotExplainIsReportedUnresolved) {
+  // Two reals enter through +1 (both signs unchanged: an even number) while a pair leaves, and
+  // the pairing shows one real crossing: the count stays at 2, the crossings found explain -1.
+  const std::complex<double> x(0.5, 0.8), y(0.6, 0.9);
+  const Pairs s({{1.5, y}, {x, 0.3}, {std::conj(x), std::conj(y)}, {1.6, 0.4}});
+  const auto events = detect(s.tracked, s.a, s.b, 1e-6, locator_with(1.0));
+  const auto unresolved = std::find_if(events.begin(), events.end(), [](const auto& e) {
+    return e.trust == EventTrust::CrossingNotResolved;
+  });
+  ASSERT_NE(unresolved, events.end());
+  EXPECT_FALSE(unresolved->located());  // so that the driver tries the step shorter
+  EXPECT_NE(unresolved->note.find("from 2 to 2"), std::string::npos) << unresolved->note;
+  EXPECT_DOUBLE_EQ(unresolved->parameter, 0.5);  // between the two points, with that uncertainty
+  EXPECT_DOUBLE_EQ(unresolved->uncertainty, 0.5);
+}
+
 TEST(MultiplierTracking, MultipliersOfDifferentSymmetryPassWithoutExchanging) {
   for (bool with_labels : {true, false}) {
     const SymmetryKind keeps = with_labels ? SymmetryKind::Keeping : SymmetryKind::Unlabelled;

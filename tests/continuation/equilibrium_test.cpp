@@ -93,6 +93,24 @@ TEST(EquilibriumBranch, BranchPointLocatedExactly) {
   EXPECT_EQ(branch.points.back().unstable, 1);
 }
 
+// Two eigenvalues through zero at once, which no test function sees (both pitchforks of the
+// DoublePitchfork form at p = 0): the count of unstable eigenvalues goes from 0 to 2, and the
+// step is reported unresolved around p = 0 (not located), never passed silently.
+TEST(EquilibriumBranch, CountNotExplainedIsReportedUnresolved) {
+  Equilibria1D system(Equilibria1D::Kind::DoublePitchfork, -1.0);
+  const auto branch =
+      continue_equilibria(system, problem_of(system, -1.0, 1.0, Eigen::Vector2d::Zero()), {});
+  EXPECT_EQ(branch.points.front().unstable, 0);
+  EXPECT_EQ(branch.points.back().unstable, 2);
+  ASSERT_EQ(branch.events.size(), 1u);
+  const EquilibriumEvent& e = branch.events[0];
+  EXPECT_FALSE(e.located);
+  EXPECT_EQ(e.type, EquilibriumEventType::BranchPoint);  // real eigenvalues at the axis
+  EXPECT_NE(e.note.find("from 0 to 2"), std::string::npos) << e.note;
+  EXPECT_LE(std::abs(e.parameter), e.uncertainty);  // its interval holds p = 0
+  EXPECT_LT(e.uncertainty, 0.05);
+}
+
 // The origin of x' = -y + x g, y' = x + y g, g = mu + (1 + a) r^2 - r^4 has eigenvalues mu +- i:
 // a Hopf point at mu = 0, omega 1. In z = x + i y, z' = (mu + i) z + (1 + a) |z|^2 z + ..., and
 // with |q| = 1 (q = (1, -i) / sqrt 2, z = sqrt 2 times Kuznetsov's coordinate) the first

@@ -405,10 +405,13 @@ class CrossingCircles final : public AutoDiffSystem<CrossingCircles> {
 
 // Branches of equilibria with exactly known events, a second state y' = -y beside them:
 //   SaddleNode:    x' = p - x^2: x = +-sqrt(p), a fold at p = 0 (x = 0);
-//   Transcritical: x' = p x - x^2: the branches x = 0 and x = p cross at p = 0, a branch point.
+//   Transcritical: x' = p x - x^2: the branches x = 0 and x = p cross at p = 0, a branch point;
+//   DoublePitchfork: x' = p x - x^3 and y' = p y - y^3 instead: at the origin both eigenvalues
+//                  are p, two pitchforks at p = 0 at once (the bordered determinant goes as p^2
+//                  and keeps its sign: only the count of unstable eigenvalues, 0 to 2, sees it).
 class Equilibria1D final : public AutoDiffSystem<Equilibria1D> {
  public:
-  enum class Kind { SaddleNode, Transcritical };
+  enum class Kind { SaddleNode, Transcritical, DoublePitchfork };
   explicit Equilibria1D(Kind kind, double p = 1.0) : kind_(kind) {
     set_parameter_layout({{"p", {0}}}, {p});
   }
@@ -416,6 +419,11 @@ class Equilibria1D final : public AutoDiffSystem<Equilibria1D> {
   std::vector<std::string> state_names() const override { return {"x", "y"}; }
   template <class T, class P>
   void evaluate(double, const T* z, const P* p, T* dz) const {
+    if (kind_ == Kind::DoublePitchfork) {
+      dz[0] = p[0] * z[0] - z[0] * z[0] * z[0];
+      dz[1] = p[0] * z[1] - z[1] * z[1] * z[1];
+      return;
+    }
     dz[0] = kind_ == Kind::SaddleNode ? T(p[0] - z[0] * z[0]) : T(p[0] * z[0] - z[0] * z[0]);
     dz[1] = -z[1];
   }
