@@ -539,6 +539,7 @@ BifurcationCurve continue_curve(const OdeSystem& system, const Branch& branch,
                  format_number(event.parameter);
 
   CurveSystem s(system, event.type, subspace, block, branch.parameter, second, base, options);
+  s.wind_as(event.state0, event.period, base);
   Eigen::VectorXd u = s.unknowns_of(event.state0, event.period, event.parameter, p2);
   s.set_scales(u);
   s.set_section(u);

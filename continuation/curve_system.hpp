@@ -80,6 +80,12 @@ class CurveSystem {
   Correction correct(Eigen::VectorXd guess, const Condition& condition,
                      const Eigen::MatrixXd& jacobian);
 
+  // The whole turns each angle state gains over a period (ShootingProblem's winding), from the
+  // orbit at z0 with `period` at the values p: a rotating orbit's residual is
+  // Phi_T(z0) - 2 pi k - z0. Integrates one period where the system has angle states.
+  void wind_as(const Eigen::VectorXd& z0, double period, const ParameterValues& p) {
+    problem_.unknowns_from(z0, p, period);
+  }
   // The scaled norm's weights from the start u (state by its largest component, the period by
   // itself, each parameter by its window's width).
   void set_scales(const Eigen::VectorXd& u);

@@ -10,6 +10,7 @@
 #include "cases/cli/commands.hpp"
 #include "cases/cli/loaded_system.hpp"
 #include "cases/cli/requests.hpp"
+#include "cases/cli/start_data.hpp"
 #include "sympathy/continuation/bifurcation_curve.hpp"
 #include "sympathy/continuation/branch_output.hpp"
 #include "sympathy/continuation/curve_output.hpp"
@@ -62,6 +63,7 @@ std::vector<OptionSpec> curve_options() {
   const auto integrator = integrator_options();
   options.insert(options.end(), integrator.begin(), integrator.end());
   options.push_back(accuracy_option());
+  options.push_back(start_data_option());
   return options;
 }
 
@@ -70,9 +72,11 @@ CurveRequest curve_request(const Arguments& args, const LoadedSystem& c) {
   const ParameterWindow window = c.window(args);
   for (const char* required : {"--event", "--second", "--second-from", "--second-to"})
     if (!args.has(required)) throw InputError(std::string(required) + " is required");
-  if (!c.equations() && !args.has("--start")) throw InputError("--start is required");
   CurveRequest r;
   BranchRequest& request = r.branch;
+  request.start_data = c.start_data();
+  if (!c.equations() && !args.has("--start") && !request.start_data)
+    throw InputError("--start is required (or --start-data FILE.csv)");
   request.start = args.text("--start", "");
   request.parameter = window.parameter;
   c.require_parameter("--second", *args.value("--second"));
@@ -112,7 +116,7 @@ CurveRequest curve_request(const Arguments& args, const LoadedSystem& c) {
   check_options(co.validate(), "");  // names initial_step --step, ...
   c.check_range(request.parameter, {{"--from", request.from}, {"--to", request.to}});
   c.check_range(second, {{"--second-from", co.second_lower}, {"--second-to", co.second_upper}});
-  c.source(request.start, request.initial);  // fails early with the list of starts
+  c.source(request.start, request.initial, request.start_data);  // fails early: the starts
   // The curve starts at the branch's value of the second parameter: the window must hold it.
   const double base_second = c.value_of(second);
   if (base_second < co.second_lower || base_second > co.second_upper)
@@ -153,7 +157,7 @@ int run_curve(const std::vector<std::string>& argv) {
   const EventName& name = r.event;
   const std::string& second = r.second;
   const CurveOptions& curve_options = r.options;
-  const BranchSource source = c.source(request.start, request.initial);
+  const BranchSource source = c.source(request.start, request.initial, request.start_data);
   const auto json_path = args.value("--json");
   const std::string csv_path = args.text("--csv", "");
   if (json_path) check_writable(*json_path, "--json");
@@ -165,8 +169,10 @@ int run_curve(const std::vector<std::string>& argv) {
       "sympathy curve %s  params %s  start %s  %s of the %s-branch (%g to %g) in %s "
       "(%g to %g)\n",
       c.path().c_str(), c.params().empty() ? "(none)" : c.params().c_str(),
-      request.start.empty() ? "(the file's [states])" : request.start.c_str(), name.text.c_str(),
-      request.parameter.c_str(), request.from, request.to, second.c_str(),
+      request.start_data      ? describe_start_data(*request.start_data).c_str()
+      : request.start.empty() ? "(the file's [states])"
+                              : request.start.c_str(),
+      name.text.c_str(), request.parameter.c_str(), request.from, request.to, second.c_str(),
       curve_options.second_lower, curve_options.second_upper);
   if (c.equations()) std::printf("  %s\n", c.build_note().c_str());
   std::fflush(stdout);

@@ -75,6 +75,27 @@ sed -i 's/user_points = \[15.0\]/user_points = [15.0, 17.0]/' "$work/study.toml"
 "$bin" study "$work/study.toml" --out "$work/study" > /dev/null 2> "$work/study.err"
 check "study: a user point beyond from .. to is located" grep -qF "study.toml:9: key 'branches[1].user_points': expected values between from and to (the branch never reaches 17)" "$work/study.err"
 
+# A curve from data, on a rotating orbit (AUTO's pen: ph1, ph2 angles gaining 2 pi a period):
+# one period of the rotation at ri = 0.4 recorded, `curve --start-data` follows the PD curve of
+# the ri-branch in eps as `curve` from the file's [states] does (the same points to the printed
+# digits), and the curve's end on the window's edge ri = 0.4 is a PD of the one-parameter branch
+# at that eps: independent, located there to its uncertainty (2e-9; measured 5e-12).
+pen=$src/tests/auto/cases/pen.toml
+"$bin" orbit "$pen" --json "$work/pen.json" > /dev/null
+initial=$(json_value "$work/pen.json" "' '.join('--initial %s=%r' % (n, v) for n, v in zip(j['state_names'], j['state0']))")
+# shellcheck disable=SC2086
+"$bin" simulate "$pen" $initial --t-end "$(json_value "$work/pen.json" "j['period']")" --dt 0.01 --out "$work/pen.csv" 2> /dev/null
+curve_args=(--param ri --from 0.4 --to 0.15 --event PD1 --second eps --second-from 0.05 --second-to 0.5 --quiet)
+"$bin" curve "$pen" --start-data "$work/pen.csv" "${curve_args[@]}" --json "$work/pd_data.json" > "$work/pd_data.out"
+check "curve --start-data on a rotation exits 0" test $? -eq 0
+check "curve --start-data: the report names the data" grep -q "start data $work/pen.csv" "$work/pd_data.out"
+"$bin" curve "$pen" "${curve_args[@]}" --json "$work/pd.json" > "$work/pd.out"
+check "curve of the rotation's PD from [states] exits 0" test $? -eq 0
+check "the two curves end at the same points" test "$(grep stopped "$work/pd_data.out")" = "$(grep stopped "$work/pd.out")"
+eps=$(json_value "$work/pd.json" "repr([p for p in j['points'] if p['first'] == 0.4][0]['second'])")
+"$bin" continue "$pen" --set "eps=$eps" --param ri --from 0.6 --to 0.15 --quiet --json "$work/pd_branch.json" > /dev/null
+check "the curve's point at ri = 0.4 is the branch's PD at its eps" test "$(json_value "$work/pd_branch.json" "[e['type'] for e in j['events']] == ['PD'] and abs(j['events'][0]['value'] - 0.4) < 2e-9 + j['events'][0]['uncertainty']")" = True
+
 # Bad data: each refused with exit code 2, a located error, nothing compiled and nothing computed.
 bad() {  # bad NAME CONTENT EXPECTED...: orbit on lcbp from this data must fail so
   local name=$1 content=$2; shift 2

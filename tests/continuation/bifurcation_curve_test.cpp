@@ -327,6 +327,27 @@ TEST(BifurcationCurve, PeriodDoublingCurveIsTheParabola) {
   }
 }
 
+// The same PD curve on an orbit that rotates (theta an angle state gaining 2 pi a period): the
+// curve's shooting residual must take the winding off (issue 33, class 5: AUTO's pen, whose PD
+// curve did not start: "the chord diverged").
+TEST(BifurcationCurve, PeriodDoublingCurveOfARotatingOrbitIsTheParabola) {
+  const NormalForm system(NormalForm::Kind::RotatingMoebius, -0.3);
+  const Start s = branch_to(system, -0.3, -0.5, 0.5, 1.0, BifurcationType::PeriodDoubling);
+  ASSERT_NE(s.event, nullptr);
+  EXPECT_NEAR(s.event->parameter, 0.0, 1e-8);
+  const BifurcationCurve curve =
+      continue_curve(system, s.branch, *s.event, 1, window(-1.0, 1.0, -0.6, 0.7));
+  ASSERT_TRUE(curve.started()) << curve.stop_reason;
+  ASSERT_GE(curve.points.size(), 8u) << curve.stop_reason;
+  for (const auto& p : curve.points) {
+    EXPECT_NEAR(p.first, p.second * p.second, 1e-8) << "a = " << p.second;
+    EXPECT_NEAR(std::abs(p.critical[0] + 1.0), 0.0, 1e-8);
+    EXPECT_NEAR(p.period, 2 * kPi, 1e-8);
+  }
+  EXPECT_NEAR(curve.points.front().second, -0.6, 1e-12);
+  EXPECT_NEAR(curve.points.back().second, 0.7, 1e-12);
+}
+
 // LP of the fold form in (mu, a): mu = -(1 + a)^2 / 4 with the orbit at r^2 = (1 + a) / 2, the
 // fold's Jordan partner of the trivial multiplier at 1 (to the square root of the error).
 TEST(BifurcationCurve, FoldCurveIsTheParabola) {

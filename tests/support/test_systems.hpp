@@ -227,6 +227,10 @@ class TwoHopf final : public AutoDiffSystem<TwoHopf> {
 //               period: in the frame turning with theta / 2, xi' = mu xi - xi^3 and eta' = -eta,
 //               so the multipliers are -exp(2 pi mu) and -exp(-2 pi): period doubling at
 //               mu = 0, the doubled orbit xi = +-sqrt(mu) of period 4 pi beyond it.
+//   RotatingMoebius: Moebius written in (theta, a, w) with theta' = 1 an angle state
+//               (angle_states): the orbit a = w = 0 gains 2 pi in theta each period, so its
+//               shooting residual is Phi_T(z0) - 2 pi e_theta - z0; the same multipliers, PD at
+//               mu = 0 and, with mu - a^2 for mu, the PD curve mu = a^2.
 //   MoebiusPair: the same turning plane with the linear w' = (mu I + omega J + c K) w in the
 //               turning frame (J the rotation generator, K = diag(1, -1), c = 1/2): multipliers
 //               -exp(2 pi (mu +- sqrt(c^2 - omega^2))) exactly, a complex pair for omega > c
@@ -243,7 +247,8 @@ class NormalForm final : public AutoDiffSystem<NormalForm> {
     ShearedFold,
     Resonance,
     RotationAndGrowth,
-    MoebiusPair
+    MoebiusPair,
+    RotatingMoebius
   };
   NormalForm(Kind kind, double mu, int copies = 1, double a = 0.0, double omega = 0.3)
       : kind_(kind), copies_(copies) {
@@ -261,6 +266,7 @@ class NormalForm final : public AutoDiffSystem<NormalForm> {
         return 4;
       case Kind::Moebius:
       case Kind::MoebiusPair:
+      case Kind::RotatingMoebius:
         return 3;
       case Kind::PitchforkAndGrowth:
         return 4;
@@ -269,7 +275,11 @@ class NormalForm final : public AutoDiffSystem<NormalForm> {
     }
     return 2;
   }
+  std::vector<int> angle_states() const override {
+    return kind_ == Kind::RotatingMoebius ? std::vector<int>{0} : std::vector<int>{};
+  }
   std::vector<std::string> state_names() const override {
+    if (kind_ == Kind::RotatingMoebius) return {"theta", "a", "w"};
     std::vector<std::string> n{"x", "y"};
     for (int i = 2; i < dimension(); ++i)
       n.push_back(std::string("w").append(std::to_string(i - 1)));
@@ -295,9 +305,13 @@ class NormalForm final : public AutoDiffSystem<NormalForm> {
       dz[2] = dw;
       return;
     }
-    if (kind_ == Kind::Moebius) {
+    if (kind_ == Kind::Moebius || kind_ == Kind::RotatingMoebius) {
+      using std::cos;
+      using std::sin;
+      const bool polar = kind_ == Kind::RotatingMoebius;
       const T r = sqrt(r2);
-      const T c = z[0] / r, s = z[1] / r, a = r - 1.0, w = z[2];
+      const T c = polar ? T(cos(z[0])) : T(z[0] / r), s = polar ? T(sin(z[0])) : T(z[1] / r);
+      const T a = polar ? z[1] : T(r - 1.0), w = z[2];
       const T cc = 0.5 * (1.0 + c), ss = 0.5 * (1.0 - c), cs = 0.5 * s;  // of theta / 2
       const T xi2 = a * a * cc + 2.0 * a * w * cs + w * w * ss;
       // [a; w]' = (J/2 + (mu - 1)/2 I + (mu + 1)/2 S(theta)) [a; w] - xi^2 xi [cos; sin](theta/2)
@@ -305,8 +319,13 @@ class NormalForm final : public AutoDiffSystem<NormalForm> {
                    xi2 * (a * cc + w * cs);
       const T dw = 0.5 * a + 0.5 * (mu - 1.0) * w + 0.5 * (mu + 1.0) * (s * a - c * w) -
                    xi2 * (a * cs + w * ss);
-      dz[0] = -z[1] + c * da;
-      dz[1] = z[0] + s * da;
+      if (polar) {
+        dz[0] = T(1.0);
+        dz[1] = da;
+      } else {
+        dz[0] = -z[1] + c * da;
+        dz[1] = z[0] + s * da;
+      }
       dz[2] = dw;
       return;
     }
