@@ -61,6 +61,24 @@ std::optional<HopfPoint> hopf_point_near(const OdeSystem& system, int parameter,
   return std::nullopt;
 }
 
+std::optional<double> hopf_offset_per_squared_amplitude(const OdeSystem& system, int parameter,
+                                                        const HopfPoint& hopf) {
+  if (!hopf.lyapunov || *hopf.lyapunov == 0.0) return std::nullopt;
+  const double h = 1e-6 * std::max(1.0, std::abs(hopf.parameter));
+  double re[2];
+  for (int k = 0; k < 2; ++k) {
+    const double p = hopf.parameter + (k ? h : -h);
+    const Equilibrium e =
+        solve_equilibrium(system, system.with_parameter(hopf.values, parameter, p), hopf.state);
+    if (!e.converged) return std::nullopt;
+    re[k] = nearest_eigenvalue(e.eigenvalues, {0.0, hopf.omega}).real();
+  }
+  const double slope = (re[1] - re[0]) / (2 * h);
+  if (!(std::isfinite(slope) && slope != 0.0)) return std::nullopt;
+  const double k = -hopf.omega * *hopf.lyapunov / (4 * slope);
+  return std::isfinite(k) ? std::optional<double>(k) : std::nullopt;
+}
+
 namespace {
 
 // The first orbit's amplitude along Re q (state units): the option's, else 2% of the state's size.
@@ -82,7 +100,11 @@ PeriodicOrbit orbit_at_amplitude(const OdeSystem& system, int parameter, const H
   const int N = problem.unknowns();
   const Eigen::VectorXd z_ref = hopf.state + eps * qr;
   problem.set_phase_section(z_ref, qi);
+  // Newton starts at the normal form's parameter (to second order in eps), not at p_H, where the
+  // bordered Jacobian has the family's double multiplier 1 nearly in it.
   double p = hopf.parameter;
+  if (const auto k = hopf_offset_per_squared_amplitude(system, parameter, hopf))
+    p += *k * eps * eps;
   ParameterValues values = hopf.values;
   Eigen::VectorXd x = problem.unknowns_from(z_ref, values, hopf.period);
   const double tolerance =

@@ -15,6 +15,7 @@
 #include "cases/cli/common.hpp"
 #include "cases/cli/event_name.hpp"
 #include "sympathy/continuation/branch_run.hpp"
+#include "sympathy/continuation/hopf.hpp"
 #include "sympathy/continuation/orbit_describer.hpp"
 #include "sympathy/continuation/recorded_period.hpp"
 
@@ -36,6 +37,8 @@ struct BranchRequest {
   // "BP1", "PD2": continue the branch born at that event of the branch asked for instead (its
   // points and events are what the CSV, the events file and the result hold).
   std::string switch_at;
+  // With switch_at a Hopf point (HBn): how the family's first orbit is found there.
+  HopfStartOptions hopf_start;
   // With switch_at: the parent branch read from this JSON (written by continue --json) instead
   // of computed ...
   std::string parent_path;

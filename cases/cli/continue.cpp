@@ -63,6 +63,10 @@ std::vector<OptionSpec> continue_options() {
        {"--switch-at", "EVENT", false,
         "continue the branch born at this event instead (BP1, PD1, ...: the first BP, ...; "
         "HB1: the family born at the first Hopf point of the equilibria through the start)"},
+       {"--hopf-amplitude", "A", false,
+        "with --switch-at HBn: the first orbit's amplitude along the critical eigenvector's real "
+        "part, in state units (default: 2% of the state's size, grown where the family is "
+        "nearly vertical, shrunk where Newton fails)"},
        {"--parent", "FILE", false,
         "with --switch-at: the parent branch from this JSON (continue --json; for HB, equilibria "
         "--json) instead of computed"},
@@ -102,6 +106,16 @@ BranchRequest continue_request(const Arguments& args, const LoadedSystem& c) {
                      "equilibria (BP, PD or HB followed by its number, e.g. BP1 or HB1): only "
                      "there is a branch born");
   if (!request.switch_at.empty()) c.require_autonomous("--switch-at (branch switching)");
+  if (args.has("--hopf-amplitude")) {
+    if (request.switch_at.empty() || !parse_hopf_name(request.switch_at, "--switch-at"))
+      throw InputError(
+          "--hopf-amplitude: only with --switch-at HBn (the family born at a Hopf point); "
+          "expected --switch-at HB1, HB2, ... or no --hopf-amplitude");
+    request.hopf_start.amplitude = args.number("--hopf-amplitude", 0.0);
+    if (!(request.hopf_start.amplitude > 0.0))
+      throw InputError("--hopf-amplitude " + format_number(request.hopf_start.amplitude) +
+                       ": expected a positive amplitude (state units)");
+  }
   request.parent_path = args.text("--parent", "");
   if (!request.parent_path.empty() && request.switch_at.empty())
     throw InputError("--parent " + request.parent_path +

@@ -130,7 +130,8 @@ Branch run_hopf_branch(const BranchSource& source, const BranchRequest& request,
   window.lower = std::min(request.from, request.to);
   window.upper = std::max(request.from, request.to);
   try {
-    born = continue_from_hopf(system, parameter, *hopf->hopf, window, callbacks);
+    born =
+        continue_from_hopf(system, parameter, *hopf->hopf, window, callbacks, request.hopf_start);
   } catch (const std::runtime_error& e) {
     born.stop = StopReason::StartFailed;
     born.stop_reason = "no family born at " + request.switch_at + ": " + e.what();

@@ -43,6 +43,15 @@ sorted(round(e['value'], 6) for e in j['events'] if e['type'] == 'LP') == [0.211
 check "computed equilibria give the same family" test "$(json "$work/hb1b.json" "len(j['points'])")" = \
   "$(json "$work/hb1.json" "len(j['points'])")"
 
+# The first orbit's amplitude asked for (--hopf-amplitude): the same folds from another start.
+"$bin" continue "$abc" --param p1 --from 0.2 --to 0.25 --switch-at HB1 --parent "$work/eq.json" \
+  --hopf-amplitude 0.005 --json "$work/hb1c.json" --quiet > /dev/null 2>&1
+check "--hopf-amplitude: the same two folds" test "$(json "$work/hb1c.json" "
+sorted(round(e['value'], 6) for e in j['events'] if e['type'] == 'LP') == [0.211903, 0.213697]")" = True
+"$bin" continue "$abc" --param p1 --from 0.2 --to 0.25 --hopf-amplitude 0.01 > /dev/null 2> "$work/bad.err"
+check "--hopf-amplitude without --switch-at HBn exits 2, saying so" \
+  grep -q -- "--hopf-amplitude: only with --switch-at HBn" "$work/bad.err"
+
 # From p1 = 0.25 down, the family ends at the Hopf point it was born at.
 "$bin" continue "$abc" --param p1 --from 0.25 --to 0.2 --json "$work/down.json" --quiet \
   > "$work/down.out" 2>&1

@@ -129,6 +129,12 @@ TEST(EquilibriumBranch, HopfPointWithItsLyapunovCoefficient) {
     EXPECT_NEAR(hopf[0].hopf->period, 2 * kPi, 1e-9);
     ASSERT_TRUE(hopf[0].hopf->lyapunov.has_value());
     EXPECT_NEAR(*hopf[0].hopf->lyapunov, 2 * (1 + a), 1e-5) << "a = " << a;
+    // The family mu = -(1 + a) r^2 + r^4, r = |z| = eps / sqrt 2 for the amplitude eps along
+    // Re q = (1, 0) / sqrt 2: mu = -(1 + a) eps^2 / 2 to second order, the normal form's
+    // -omega l1 eps^2 / (4 mu') with mu' = 1.
+    const auto k = hopf_offset_per_squared_amplitude(system, 0, *hopf[0].hopf);
+    ASSERT_TRUE(k.has_value());
+    EXPECT_NEAR(*k, -(1 + a) / 2, 1e-5) << "a = " << a;
     EXPECT_EQ(branch.points.front().unstable, 0);
     EXPECT_EQ(branch.points.back().unstable, 2);
   }

@@ -39,6 +39,16 @@ std::optional<HopfPoint> hopf_point_near(const OdeSystem& system, int parameter,
                                          const ParameterValues& p, const Eigen::VectorXd& guess,
                                          double omega_guess, double step, std::string& why);
 
+// The family's parameter offset per squared amplitude at `hopf` from its normal form: the orbit
+// of amplitude eps along Re q (x - x_H = eps (Re q cos(omega t) - Im q sin(omega t)), |q| = 1)
+// lies at p - p_H = k eps^2 + O(eps^3), k = -omega l1 / (4 d Re(lambda)/dp) (Kuznetsov's w =
+// (eps / 2) e^(i omega t) on w' = (mu(p) + i omega) w + c1 |w|^2 w, l1 = Re c1 / omega). The
+// sign says on which side of p_H the family lies; Newton on the first orbit starts there.
+// d Re(lambda)/dp by central differences of the equilibrium's pair (step 1e-6 relative).
+// nullopt where l1 or d Re(lambda)/dp is unknown or zero.
+std::optional<double> hopf_offset_per_squared_amplitude(const OdeSystem& system, int parameter,
+                                                        const HopfPoint& hopf);
+
 // The small orbit of the family born at `hopf` (hopf.values, the continued `parameter`), as
 // above; where Newton fails at the amplitude asked for, retried at a quarter and a sixteenth of
 // it. Throws std::runtime_error naming what failed at each.
