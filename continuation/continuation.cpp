@@ -54,8 +54,13 @@ class Continuation::Run {
   std::optional<HopfPoint> hopf_end;  // where the family ended at a Hopf point
 
  private:
+  Eigen::VectorXd y_of(const OrbitNode& p) const;  // (unknowns, parameter)
   Continuation& c_;
   int N_;
+  std::vector<Eigen::VectorXd> path_;  // the accepted points' (unknowns, parameter), in order
+  // The first turn without a multiplier at +1: the points before it (their count in path_) and
+  // its parameter.
+  std::optional<std::pair<std::size_t, double>> turn_;
 };
 
 OptionCheck ContinuationOptions::validate() const {
@@ -513,15 +518,34 @@ driver::Found<Bifurcation> Continuation::Run::detect(const OrbitNode* before, co
   return found;
 }
 
-std::optional<driver::Ending> Continuation::Run::ends(const OrbitNode&, const OrbitNode&,
+std::optional<driver::Ending> Continuation::Run::ends(const OrbitNode& a, const OrbitNode& b,
                                                       std::vector<Bifurcation>& events) {
+  const std::string name = c_.system_.parameter_names()[c_.parameter_];
+  if (path_.empty()) path_.push_back(y_of(a));
+  // A branch that turned back without a multiplier at +1 and now retraces itself: b lies on the
+  // branch's chords before the turn (within a tenth of the chord: a chord misses the branch by
+  // about step^2 times its curvature). Stopped there, b not kept.
+  if (turn_) {
+    const Eigen::VectorXd yb = y_of(b);
+    const BranchSpace& space = *c_.space_;
+    for (std::size_t k = 1; k <= turn_->first && k < path_.size(); ++k) {
+      const Eigen::VectorXd chord = path_[k] - path_[k - 1];
+      const double length2 = space.dot(chord, chord);
+      if (!(length2 > 0.0)) continue;
+      const double along = std::clamp(space.dot(yb - path_[k - 1], chord) / length2, 0.0, 1.0);
+      const Eigen::VectorXd miss = path_[k - 1] + along * chord - yb;
+      if (std::sqrt(space.dot(miss, miss)) < 0.1 * std::sqrt(length2))
+        return driver::Ending{driver::Stop::TurnedBack,
+                              "turned back at " + name + " = " + format_double(turn_->second) +
+                                  " without a multiplier at +1 and retraced itself: stopped there",
+                              false};
+    }
+  }
   // A fold without its multiplier at +1 in this step: the branch turned back.
   const auto turn = std::find_if(events.begin(), events.end(), [](const auto& e) {
     return e.trust == EventTrust::NoCrossingMultiplier;
   });
   if (turn == events.end()) return std::nullopt;
-  const double turned_back = turn->parameter;
-  const std::string name = c_.system_.parameter_names()[c_.parameter_];
   // Where the orbits shrink into an equilibrium the branch turns at its Hopf point: that
   // point, located on the equilibria, ends the family (and the turn is no fold to report).
   if (auto hopf = c_.hopf_end(*turn)) {
@@ -537,15 +561,22 @@ std::optional<driver::Ending> Continuation::Run::ends(const OrbitNode&, const Or
                               "): the orbits shrink into the equilibrium there",
                           false};
   }
-  return driver::Ending{driver::Stop::TurnedBack,
-                        "turned back at " + name + " = " + format_double(turned_back) +
-                            " without a multiplier at +1 (where an orbit shrinks into an "
-                            "equilibrium, a Hopf point, the branch ends there): stopped rather "
-                            "than retrace itself",
-                        true};
+  // Elsewhere the branch goes on through the turn (reported, untrusted): a fold whose multiplier
+  // the pairing missed, or the tangent's parameter component flipping within the noise where the
+  // branch is nearly vertical (AUTO's fhn: a canard at a = 0.4305, multiplier 23), is no end. It
+  // stops where it retraces itself (above).
+  if (!turn_) turn_ = {path_.size() - 1, turn->parameter};
+  return std::nullopt;
+}
+
+Eigen::VectorXd Continuation::Run::y_of(const OrbitNode& p) const {
+  Eigen::VectorXd y(N_ + 1);
+  y << p.unknowns, p.parameter;
+  return y;
 }
 
 void Continuation::Run::accept(OrbitNode& b) {
+  path_.push_back(y_of(b));
   c_.jacobian_before_ = std::move(c_.chord_jacobian_);
   c_.chord_jacobian_ = std::move(b.jacobian);
   b.jacobian = Eigen::SparseMatrix<double>();
