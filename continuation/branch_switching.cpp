@@ -389,7 +389,11 @@ Branch switch_branch(const OdeSystem& system, const Branch& branch, const Bifurc
     v = eb.transitions[j] * v;
   }
   // The old tangent (BP: the same unknowns; PD: unknown in the doubled ones, see run_switched).
-  const Eigen::VectorXd old_tangent = doubling ? Eigen::VectorXd() : event.tangent;
+  // (An event located before the branch was refined onto more segments has a tangent in fewer
+  // unknowns: none then, as for a PD.)
+  const Eigen::VectorXd old_tangent = doubling || event.tangent.size() != problem.unknowns() + 1
+                                          ? Eigen::VectorXd()
+                                          : event.tangent;
   base.floquet = FloquetAnalysis();
   base.newton.converged = true;
   // A BP that breaks no declared symmetry (two families crossing, lcbp's circles): the new

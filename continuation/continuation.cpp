@@ -49,6 +49,7 @@ class Continuation::Run {
   std::optional<driver::Ending> ends(const OrbitNode& a, const OrbitNode& b,
                                      std::vector<Bifurcation>& events);
   void accept(OrbitNode& b);
+  bool refine(OrbitNode& a, const std::string& why);
   double parameter(const OrbitNode& p) const { return p.parameter; }
 
   std::optional<HopfPoint> hopf_end;  // where the family ended at a Hopf point
@@ -370,6 +371,9 @@ Branch Continuation::run_from(const PeriodicOrbit& start, int direction,
     branch.points.push_back(std::move(static_cast<ContinuationPoint&>(p)));
   }
   branch.events = std::move(result.events);
+  // The segments the branch ended on (refined where the corrector kept failing; each point
+  // records its own).
+  branch.options.orbit.shooting.segments = problem_->segments();
   const auto count = [&](driver::Cause c) { return result.rejected[static_cast<int>(c)]; };
   branch.rejected.corrector = count(driver::Cause::Corrector) + count(driver::Cause::Edge);
   branch.rejected.turn = count(driver::Cause::Turn);
@@ -390,6 +394,7 @@ double Continuation::Run::limit_step(const OrbitNode& a, double ds) const {
 
 driver::Attempt<OrbitNode> Continuation::Run::step(const OrbitNode* before, const OrbitNode& a,
                                                    double ds) {
+  if (before && before->unknowns.size() != a.unknowns.size()) before = nullptr;  // refined at a
   ShootingProblem& problem = *c_.problem_;
   const BranchSpace& space = *c_.space_;
   const ContinuationOptions& options = c_.options_;
@@ -589,6 +594,69 @@ void Continuation::Run::accept(OrbitNode& b) {
   }
   b.orbit.samples = PeriodSamples{};
   b.tangent /= std::sqrt(c_.space_->dot(b.tangent, b.tangent));
+}
+
+bool Continuation::Run::refine(OrbitNode& a, const std::string& why) {
+  // Where the corrector keeps failing, an orbit whose solutions grow fast along the period (a
+  // canard, strongly unstable orbits: AUTO's fhn and ab) is resolved on twice the segments: the
+  // last point re-sampled on them (each segment's start from one integration), corrected at its
+  // parameter, its Jacobian and tangent recomputed, and the step tried again. Up to 8 segments,
+  // the count recorded in each point (orbit.segments).
+  (void)why;
+  const int m = c_.problem_->segments();
+  if (m >= 8 || !c_.system_.autonomous()) return false;
+  std::unique_ptr<ShootingProblem> old_problem = std::move(c_.problem_);
+  std::unique_ptr<BranchSpace> old_space = std::move(c_.space_);
+  const auto restore = [&] {
+    c_.problem_ = std::move(old_problem);
+    c_.space_ = std::move(old_space);
+    return false;
+  };
+  ShootingOptions shooting = c_.options_.orbit.shooting;
+  shooting.segments = 2 * m;
+  try {
+    c_.problem_ = std::make_unique<ShootingProblem>(c_.system_, shooting);
+    c_.problem_->record_samples(true);
+    c_.problem_->use_symmetry(c_.options_.orbit.use_symmetry ? c_.subspace_ : InvariantSubspace());
+    c_.space_ = std::make_unique<BranchSpace>(
+        c_.system_, *c_.problem_, c_.parameter_, a.orbit.parameters,
+        c_.options_.upper - c_.options_.lower, c_.options_.orbit.newton.rank_tolerance);
+    c_.space_->reset_scales(a.orbit.state0, a.orbit.period, c_.options_.orbit.transient_flow);
+    c_.space_->include_sizes(old_space->sizes());
+    c_.problem_->set_phase_section(a.section, a.section_normal);
+    const int N = c_.problem_->unknowns();
+    Eigen::VectorXd y(N + 1);
+    y.head(N) = c_.problem_->unknowns_from(a.orbit.state0, a.orbit.parameters, a.orbit.period);
+    y[N] = a.parameter;
+    const double w = c_.space_->weights()[N];
+    Eigen::VectorXd along_parameter = Eigen::VectorXd::Zero(N + 1);
+    along_parameter[N] = 1.0 / (w * w);
+    const Correction c = c_.correct_step(y, along_parameter, 0.0, y, nullptr);
+    if (!c.converged) return restore();
+    // The old tangent in the new unknowns, for orientation: the first segment's start, the
+    // period and the parameter mean the same in both.
+    const int n = c_.problem_->dimension(), N_old = N_;
+    Eigen::VectorXd along = Eigen::VectorXd::Zero(N + 1);
+    along.head(n) = a.tangent.head(n);
+    along[N - 1] = a.tangent[N_old - 1];
+    along[N] = a.tangent[N_old];
+    Eigen::SparseMatrix<double> jacobian = c_.problem_->jacobian(c.evaluation, true);
+    const Eigen::VectorXd tau = c_.space_->tangent(jacobian, c.y, along);
+    OrbitNode refined;
+    static_cast<ContinuationPoint&>(refined) = c_.make_point(c, tau, a.index, a.step);
+    refined.orbit.samples = PeriodSamples{};
+    a = std::move(refined);
+    N_ = N;
+    c_.chord_jacobian_ = std::move(jacobian);
+    c_.jacobian_before_ = Eigen::SparseMatrix<double>();
+    c_.predictions_land_ = false;
+    c_.guess_residual_ = std::numeric_limits<double>::infinity();
+    path_.clear();  // unknowns of another size: the retrace check starts again
+    turn_.reset();
+    return true;
+  } catch (const IntegrationError&) {
+    return restore();
+  }
 }
 
 std::string Continuation::Run::edge_message(const OrbitNode&) const {

@@ -39,6 +39,9 @@
 //   double limit_step(const Point& a, double ds);  // the step to try from a, at most ds
 //   driver::Screen screen(const Point* before, const Point& a, const Point& b, double ds);
 //       // the problem's own check of a corrected step (an orbit's multipliers moving too far)
+//   bool refine(Point& a, const std::string& why);
+//       // where the step fell below the minimum at a: a resolved better (in place), to try again
+//       // from the initial step; false: the branch ends there
 #pragma once
 
 #include <algorithm>
@@ -188,8 +191,17 @@ Result<Point, Event> continuation(P& problem, Point start, const Options& o,
       return finish(Stop::Interrupted, "interrupted");
     if (static_cast<int>(r.points.size()) >= o.max_points)
       return finish(Stop::PointLimit, "point limit (" + std::to_string(o.max_points) + ") reached");
-    if (ds < o.min_step)
+    if (ds < o.min_step) {
+      // The problem may resolve its last point better (an orbit on more shooting segments) and
+      // try again from the initial step before the branch ends here.
+      if constexpr (requires { problem.refine(r.points.back(), last_failure); }) {
+        if (problem.refine(r.points.back(), last_failure)) {
+          ds = o.initial_step;
+          continue;
+        }
+      }
       return finish(Stop::MinimumStep, "step size below the minimum: " + last_failure);
+    }
     const Point& a = r.points.back();
     const Point* before = r.points.size() >= 2 ? &r.points[r.points.size() - 2] : nullptr;
     if constexpr (requires { problem.limit_step(a, ds); }) ds = problem.limit_step(a, ds);
