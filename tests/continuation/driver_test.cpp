@@ -5,6 +5,7 @@
 #include <gtest/gtest.h>
 
 #include <cmath>
+#include <limits>
 #include <numbers>
 
 #include <Eigen/Dense>
@@ -198,6 +199,52 @@ TEST(Driver, MinimumStepInterruptedAndTheJoin) {
     EXPECT_GT(joined.points[k].tangent[1], 0.0);  // p increases along the joined branch
   }
   EXPECT_EQ(joined.message, "backward: edge; forward: edge");
+}
+
+// The optional hooks: a screen that rejects long steps (retried at its aim, growing 1.2 after),
+// and a refinement that lets the branch go on where the step fell below the minimum.
+class ScreenedCircle : public Circle {
+ public:
+  double screen_above = 0.2;
+  int refinements = 0, max_refinements = 1;
+  driver::Screen screen(const Point*, const Point&, const Point& b, double ds) const {
+    (void)b;
+    const bool reject = ds > screen_above;
+    return {reject, reject ? 0.15 : std::numeric_limits<double>::infinity(), "too fast"};
+  }
+  bool refine(Point&, const std::string& why) {
+    if (refinements >= max_refinements) return false;
+    EXPECT_EQ(why, "too long");
+    ++refinements;
+    longest = 1e9;  // resolved better: every step corrects again
+    return true;
+  }
+};
+
+TEST(Driver, ScreenAndRefinement) {
+  ScreenedCircle circle;
+  driver::Options o = options();
+  o.max_points = 6;
+  auto r = driver::continuation(circle, circle.at(0.0), o);
+  // 0.1, 0.15, then 0.225 is screened (above 0.2): retried at half (below its aim 0.15), then
+  // 1.2 times that.
+  EXPECT_DOUBLE_EQ(r.points[1].step, 0.1);
+  EXPECT_DOUBLE_EQ(r.points[2].step, 0.15);
+  EXPECT_DOUBLE_EQ(r.points[3].step, 0.1125);
+  EXPECT_DOUBLE_EQ(r.points[4].step, 0.1125 * 1.2);
+  // ... and 1.5 times after that again: 0.2025, screened a second time.
+  EXPECT_EQ(r.rejected[static_cast<int>(driver::Cause::Multipliers)], 2);
+
+  ScreenedCircle failing;
+  failing.longest = 1e-9;  // every step fails until refined
+  auto f = driver::continuation(failing, failing.at(0.0), o);
+  EXPECT_EQ(failing.refinements, 1);
+  EXPECT_EQ(f.stop, driver::Stop::PointLimit) << f.message;  // went on from the initial step
+  EXPECT_DOUBLE_EQ(f.points[1].step, 0.1);
+  failing.max_refinements = 0;
+  failing.longest = 1e-9;
+  auto g = driver::continuation(failing, failing.at(0.0), o);
+  EXPECT_EQ(g.stop, driver::Stop::MinimumStep);
 }
 
 TEST(Locator, RootOfACurvedFunctionToTheTolerance) {
