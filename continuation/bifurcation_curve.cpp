@@ -21,16 +21,9 @@ OptionCheck CurveOptions::validate() const {
     return OptionProblem{"first window", "finite bounds, the lower below the upper"};
   if (!(std::isfinite(second_lower) && std::isfinite(second_upper) && second_lower < second_upper))
     return OptionProblem{"second window", "finite bounds, the lower below the upper"};
-  if (!positive(min_step)) return OptionProblem{"min_step", "a positive number"};
-  if (!(positive(initial_step) && initial_step >= min_step))
-    return OptionProblem{"initial_step", "a positive number, at least the minimum step"};
-  if (!(std::isfinite(max_step) && max_step >= initial_step))
-    return OptionProblem{"max_step", "a number at least the initial step"};
-  if (max_points < 2) return OptionProblem{"max_points", "an integer of at least 2"};
+  if (auto wrong = driver::step_options(*this).validate()) return wrong;  // the step fields
   if (max_iterations < 1) return OptionProblem{"max_iterations", "a positive integer"};
   if (!positive(tolerance)) return OptionProblem{"tolerance", "a positive number"};
-  if (!(min_tangent_cosine > 0.0 && min_tangent_cosine < 1.0))
-    return OptionProblem{"min_tangent_cosine", "a number in (0, 1)"};
   if (!positive(location_tolerance))
     return OptionProblem{"location_tolerance", "a positive number"};
   return nested("orbit.", orbit.validate());
@@ -576,12 +569,7 @@ BifurcationCurve continue_curve(const OdeSystem& system, const Branch& branch,
   static_cast<CurvePoint&>(first) = start;
   first.jacobian = *j;
   first.borders = s.borders();
-  driver::Options o;
-  o.initial_step = options.initial_step;
-  o.min_step = options.min_step;
-  o.max_step = options.max_step;
-  o.max_points = options.max_points;  // per half, its start included, as every branch's
-  o.min_tangent_cosine = options.min_tangent_cosine;
+  driver::Options o = driver::step_options(options);  // max_points per half, its start included
   // A chord from the previous point's Jacobian contracts more slowly the longer the step: four
   // or five iterations are its normal pace at steps of a few hundredths.
   o.rule = {4, 1.5, 1.5, 8, 0.7};

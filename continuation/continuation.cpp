@@ -346,12 +346,7 @@ Branch Continuation::run_from(const PeriodicOrbit& start, int direction,
   static_cast<ContinuationPoint&>(first) = make_point(c0, tau, 0, 0.0);
 
   Run run(*this);
-  driver::Options o;
-  o.initial_step = options_.initial_step;
-  o.min_step = options_.min_step;
-  o.max_step = options_.max_step;
-  o.max_points = options_.max_points;
-  o.min_tangent_cosine = options_.min_tangent_cosine;
+  driver::Options o = driver::step_options(options_);
   o.location_retries = 3;
   // Growth by at most 1.2 after a step the multipliers' motion shortened: near a branch point
   // their motion grows faster than the step (on the anti-phase k-branch a step grown 1.5 times

@@ -371,12 +371,7 @@ class EquilibriumContinuation {
 };
 
 driver::Options driver_options(const EquilibriumOptions& o) {
-  driver::Options d;
-  d.initial_step = o.initial_step;
-  d.min_step = o.min_step;
-  d.max_step = o.max_step;
-  d.max_points = o.max_points;
-  d.min_tangent_cosine = o.min_tangent_cosine;
+  driver::Options d = driver::step_options(o);
   d.location_retries = 3;  // an event not located (or a count not explained): a shorter step
   // Newton with exact derivatives: a step that took at most 3 iterations is doubled.
   d.rule = {3, 2.0, 2.0, std::numeric_limits<int>::max(), 1.0};

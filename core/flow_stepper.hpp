@@ -14,7 +14,6 @@
 #pragma once
 
 #include <cmath>
-#include <cmath>
 #include <exception>
 #include <functional>
 #include <map>

@@ -107,6 +107,19 @@ struct Options {
   OptionCheck validate() const;
 };
 
+// The driver's options from a problem's own (each names its step fields alike: initial_step,
+// min_step, max_step, max_points, min_tangent_cosine); the rule and retries are the problem's.
+template <class ProblemOptions>
+Options step_options(const ProblemOptions& p) {
+  Options o;
+  o.initial_step = p.initial_step;
+  o.min_step = p.min_step;
+  o.max_step = p.max_step;
+  o.max_points = p.max_points;
+  o.min_tangent_cosine = p.min_tangent_cosine;
+  return o;
+}
+
 // A step's outcome, from the problem.
 template <class Point>
 struct Attempt {
