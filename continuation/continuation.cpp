@@ -39,8 +39,7 @@ class Continuation::Run {
   double limit_step(const OrbitNode& a, double ds) const;
   driver::Attempt<OrbitNode> step(const OrbitNode* before, const OrbitNode& a, double ds);
   double turn_cosine(const OrbitNode& a, const OrbitNode& b) const;
-  driver::Screen screen(const OrbitNode* before, const OrbitNode& a, const OrbitNode& b,
-                        double ds) const;
+  driver::Screen screen(const OrbitNode* before, const OrbitNode& a, const OrbitNode& b, double ds);
   bool outside(const OrbitNode& b) const;
   std::string edge_message(const OrbitNode& b) const;
   std::optional<OrbitNode> onto_edge(const OrbitNode& a, const OrbitNode& b);
@@ -59,6 +58,10 @@ class Continuation::Run {
   Continuation& c_;
   int N_;
   std::vector<Eigen::VectorXd> path_;  // the accepted points' (unknowns, parameter), in order
+  // The screen's pairing of the multipliers from a to the b it saw, which detection reuses.
+  TrackedMultipliers tracked_;
+  Eigen::VectorXd tracked_unknowns_;
+  double tracked_parameter_ = 0.0;
   // The first turn without a multiplier at +1: the points before it (their count in path_) and
   // its parameter.
   std::optional<std::pair<std::size_t, double>> turn_;
@@ -462,11 +465,14 @@ double Continuation::Run::turn_cosine(const OrbitNode& a, const OrbitNode& b) co
 }
 
 driver::Screen Continuation::Run::screen(const OrbitNode* before, const OrbitNode& a,
-                                         const OrbitNode& b, double ds) const {
+                                         const OrbitNode& b, double ds) {
   // A step whose multipliers could not be paired with confidence, or moved too far near the
   // circle, is rejected after its whole cost: the retry, and the step after an accepted one,
   // aim below both limits at the rates just seen.
-  const MultiplierMotion motion = multiplier_motion(track(before, a, b), ds, c_.options_);
+  tracked_ = track(before, a, b);
+  tracked_unknowns_ = b.unknowns;
+  tracked_parameter_ = b.parameter;
+  const MultiplierMotion motion = multiplier_motion(tracked_, ds, c_.options_);
   return {motion.too_far, motion.aim, "multipliers moved too far"};
 }
 
@@ -494,7 +500,9 @@ driver::Found<Bifurcation> Continuation::Run::detect(const OrbitNode* before, co
     // Location probes along a's tangent in a's section, guessed on the cubic through a and b
     // and corrected from the Jacobian interpolated between theirs (a's alone where b lies on the
     // bound: its Jacobian is not in a's section's step).
-    const TrackedMultipliers tracked = track(before, a, b);
+    // The screen's pairing where b is the point it saw (not moved onto the bound since).
+    const bool same = b.parameter == tracked_parameter_ && b.unknowns == tracked_unknowns_;
+    const TrackedMultipliers tracked = same ? tracked_ : track(before, a, b);
     const Eigen::SparseMatrix<double>* jacobian_b = b.jacobian.rows() ? &b.jacobian : nullptr;
     const Locator locator = [&](BifurcationType type, int multiplicity, std::complex<double> mu_a,
                                 std::complex<double> mu_b) {
@@ -520,7 +528,7 @@ driver::Found<Bifurcation> Continuation::Run::detect(const OrbitNode* before, co
 
 std::optional<driver::Ending> Continuation::Run::ends(const OrbitNode& a, const OrbitNode& b,
                                                       std::vector<Bifurcation>& events) {
-  const std::string name = c_.system_.parameter_names()[c_.parameter_];
+  const auto name = [&] { return c_.system_.parameter_names()[c_.parameter_]; };
   if (path_.empty()) path_.push_back(y_of(a));
   // A branch that turned back without a multiplier at +1 and now retraces itself: b lies on the
   // branch's chords before the turn (within a tenth of the chord: a chord misses the branch by
@@ -536,7 +544,7 @@ std::optional<driver::Ending> Continuation::Run::ends(const OrbitNode& a, const 
       const Eigen::VectorXd miss = path_[k - 1] + along * chord - yb;
       if (std::sqrt(space.dot(miss, miss)) < 0.1 * std::sqrt(length2))
         return driver::Ending{driver::Stop::TurnedBack,
-                              "turned back at " + name + " = " + format_double(turn_->second) +
+                              "turned back at " + name() + " = " + format_double(turn_->second) +
                                   " without a multiplier at +1 and retraced itself: stopped there",
                               false};
     }
@@ -555,7 +563,7 @@ std::optional<driver::Ending> Continuation::Run::ends(const OrbitNode& a, const 
     std::snprintf(omega, sizeof omega, "omega %.10g, period 2 pi / omega = %.10g", hopf->omega,
                   hopf->period);
     return driver::Ending{driver::Stop::HopfPoint,
-                          "ended at the Hopf point of the equilibrium at " + name + " = " +
+                          "ended at the Hopf point of the equilibrium at " + name() + " = " +
                               format_double(hopf->parameter) + " (" + omega + ", " +
                               describe_criticality(hopf->lyapunov) +
                               "): the orbits shrink into the equilibrium there",
