@@ -319,6 +319,16 @@ def test_case_from_a_dict():
         sympathy.Case({"metronome": {"mp": [None]}})
 
 
+def test_hopf_family_with_the_first_orbits_amplitude():
+    # The family born at abc's HB1 from a first orbit of amplitude 0.005 (continue's
+    # --hopf-amplitude): AUTO's two folds of cycles, p1 = 0.211903 and 0.213697 (test/hyper.all).
+    abc = os.path.join(SOURCE, "cases/examples/abc.toml")
+    branch = sympathy.Case(abc).continue_branch(param="p1", from_=0.2, to=0.25, switch_at="HB1",
+                                                hopf_amplitude=0.005)
+    assert sorted(round(e.value, 6) for e in branch.events if e.type == "LP") == [0.211903,
+                                                                                 0.213697]
+
+
 def test_equilibria_equal_the_program():
     # AUTO's demo abc: four Hopf points of the equilibria (cases/examples/abc.toml; its header
     # gives AUTO's values, p1 = 0.204184536, 0.229839038, 0.259957854, 0.346208522).
