@@ -197,7 +197,7 @@ Result<Point, Event> continuation(P& problem, Point start, const Options& o,
   double ds = o.initial_step;
   double aim = std::numeric_limits<double>::infinity();
   int location_retries = 0;
-  bool retried = false;  // the step being tried is a retry
+  bool retried = false;  // a step the screen rejected was retried shorter (until one is accepted)
   std::string last_failure;
   for (;;) {
     if (callbacks.stop_requested && callbacks.stop_requested())
@@ -224,8 +224,10 @@ Result<Point, Event> continuation(P& problem, Point start, const Options& o,
       last_failure = std::move(why);
       ds = std::min(0.5 * ds, aimed);
       // The multipliers' aim may ask for far less than half; never below what can be shortened.
-      if (cause == Cause::Multipliers) ds = std::max(ds, 4 * o.min_step);
-      if (cause == Cause::Multipliers) retried = true;  // until a point is accepted
+      if (cause == Cause::Multipliers) {
+        ds = std::max(ds, 4 * o.min_step);
+        retried = true;
+      }
     };
     Attempt<Point> attempt = problem.step(before, a, ds);
     if (!attempt.point) {
@@ -266,6 +268,7 @@ Result<Point, Event> continuation(P& problem, Point start, const Options& o,
     location_retries = 0;
     std::optional<Ending> ending = problem.ends(a, b, found.events);
     const int iterations = b.iterations;
+    // (a and before are not used past here: the push may move the points.)
     if (!ending || ending->keep_point) {
       r.points.push_back(std::move(b));
       report(r.points.back());
