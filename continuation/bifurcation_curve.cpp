@@ -100,6 +100,9 @@ class CurveContinuation {
   // The node at a converged correction: the borders moved to its null vectors first, so that
   // its Jacobian (the chord of the next step) has g's row under the borders that step will use.
   std::optional<Point> complete(CurveSystem::Correction& r, const Point& a, std::string& why);
+  // The curve's point at arclength s from a along a's tangent, from a's chord Jacobian (in the
+  // section and under the borders set now): what a step and every location probe correct.
+  CurveSystem::Correction along(const Point& a, double s);
   std::vector<Watch> watches() const;
   CurveEvent locate(const Watch& w, const Point& from, const Point& to, double f0, double f1);
   CurveEvent locate_turn(int k, const Point& from, const Point& to, double t0);
@@ -137,15 +140,19 @@ std::optional<CurveNode> CurveContinuation::complete(CurveSystem::Correction& r,
   return n;
 }
 
-driver::Attempt<CurveNode> CurveContinuation::step(const Point*, const Point& a, double ds) {
-  system_.set_section(a.unknowns);
-  system_.set_borders(*a.borders);
+CurveSystem::Correction CurveContinuation::along(const Point& a, double s) {
   CurveSystem::Condition c;
   c.tangent = a.tangent;
   c.from = a.unknowns;
-  c.step = ds;
+  c.step = s;
+  return system_.correct(a.unknowns + s * a.tangent, c, a.jacobian);
+}
+
+driver::Attempt<CurveNode> CurveContinuation::step(const Point*, const Point& a, double ds) {
+  system_.set_section(a.unknowns);
+  system_.set_borders(*a.borders);
   driver::Attempt<Point> attempt;
-  auto r = system_.correct(a.unknowns + ds * a.tangent, c, a.jacobian);
+  auto r = along(a, ds);
   if (!r.converged) {
     attempt.why = r.reason;
     return attempt;
@@ -229,11 +236,7 @@ CurveEvent CurveContinuation::locate(const Watch& w, const Point& from, const Po
   using Probe = std::pair<double, CurvePoint>;  // its arclength, and the point
   using Tag = int;
   const auto probe = [&](double s, std::string& why) -> std::optional<Probe> {
-    CurveSystem::Condition c;
-    c.tangent = from.tangent;
-    c.from = from.unknowns;
-    c.step = s;
-    auto r = system_.correct(from.unknowns + s * from.tangent, c, from.jacobian);
+    auto r = along(from, s);
     if (!r.converged) {
       why = r.reason;
       return std::nullopt;
@@ -320,7 +323,6 @@ CurveEvent CurveContinuation::locate(const Watch& w, const Point& from, const Po
 
 CurveEvent CurveContinuation::locate_turn(int k, const Point& from, const Point& to, double t0) {
   const double step = to.step;
-  const Eigen::MatrixXd& jacobian = from.jacobian;
   // Near a turn the curve's value of parameter k is a parabola in the arclength s from `from`
   // (along its tangent, each probe corrected onto the curve under the arclength condition), its
   // vertex the turn: parabolic interpolation through the three latest samples converges
@@ -342,16 +344,12 @@ CurveEvent CurveContinuation::locate_turn(int k, const Point& from, const Point&
   bool have = false;
   for (int probe = 0; probe < 12; ++probe) {
     t = std::clamp(t, 0.0, step);
-    CurveSystem::Condition c;
-    c.tangent = from.tangent;
-    c.from = from.unknowns;
-    c.step = t;
-    const auto r = system_.correct(from.unknowns + t * from.tangent, c, jacobian);
+    const auto r = along(from, t);
     if (!r.converged) {
       e.note = "a probe failed: " + r.reason;
       break;
     }
-    samples.push_back({t, system_.point(r.u, r.evaluation, jacobian, from.tangent)});
+    samples.push_back({t, system_.point(r.u, r.evaluation, from.jacobian, from.tangent)});
     have = true;
     if (std::abs(t - previous) <= tolerance) break;
     previous = t;

@@ -87,12 +87,15 @@ double start_amplitude(const HopfPoint& hopf, const HopfStartOptions& start) {
                                : 0.02 * std::max(1.0, hopf.state.lpNorm<Eigen::Infinity>());
 }
 
-// Newton on the orbit of amplitude `amplitude` along Re q (see orbit_from_hopf). With `growth`,
-// also the family's direction there (shooting unknowns and parameter) in which the amplitude
-// grows: d(x, p)/d eps from the same bordered system, its last row's right-hand side |Re q|^2.
+// Newton on the orbit of amplitude `amplitude` along Re q (see orbit_from_hopf), from the
+// parameter offset k eps^2 (`offset`: hopf_offset_per_squared_amplitude, computed once per
+// start). With `growth`, also the family's direction there (shooting unknowns and parameter) in
+// which the amplitude grows: d(x, p)/d eps from the same bordered system, its last row's
+// right-hand side |Re q|^2.
 PeriodicOrbit orbit_at_amplitude(const OdeSystem& system, int parameter, const HopfPoint& hopf,
                                  const OrbitOptions& options, const HopfStartOptions& start,
-                                 double amplitude, Eigen::VectorXd* growth = nullptr) {
+                                 std::optional<double> offset, double amplitude,
+                                 Eigen::VectorXd* growth = nullptr) {
   const Eigen::VectorXd qr = hopf.eigenvector.real(), qi = hopf.eigenvector.imag();
   const double eps = amplitude / qr.lpNorm<Eigen::Infinity>();
   ShootingProblem problem(system, options.shooting);
@@ -103,8 +106,7 @@ PeriodicOrbit orbit_at_amplitude(const OdeSystem& system, int parameter, const H
   // Newton starts at the normal form's parameter (to second order in eps), not at p_H, where the
   // bordered Jacobian has the family's double multiplier 1 nearly in it.
   double p = hopf.parameter;
-  if (const auto k = hopf_offset_per_squared_amplitude(system, parameter, hopf))
-    p += *k * eps * eps;
+  if (offset) p += *offset * eps * eps;
   ParameterValues values = hopf.values;
   Eigen::VectorXd x = problem.unknowns_from(z_ref, values, hopf.period);
   const double tolerance =
@@ -156,7 +158,8 @@ PeriodicOrbit orbit_at_amplitude(const OdeSystem& system, int parameter, const H
 
 // orbit_from_hopf, with the amplitude of the orbit found in `used`.
 PeriodicOrbit first_orbit(const OdeSystem& system, int parameter, const HopfPoint& hopf,
-                          const OrbitOptions& options, const HopfStartOptions& start, double& used,
+                          const OrbitOptions& options, const HopfStartOptions& start,
+                          std::optional<double> offset, double& used,
                           Eigen::VectorXd* growth = nullptr) {
   if (auto wrong = start.validate()) throw std::invalid_argument("Hopf start: " + wrong->message());
   if (!(hopf.omega > 0.0) || hopf.eigenvector.size() != system.dimension())
@@ -169,7 +172,8 @@ PeriodicOrbit first_orbit(const OdeSystem& system, int parameter, const HopfPoin
   for (double amplitude : {first, first / 4, first / 16}) {
     PeriodicOrbit orbit;
     try {
-      orbit = orbit_at_amplitude(system, parameter, hopf, options, start, amplitude, growth);
+      orbit =
+          orbit_at_amplitude(system, parameter, hopf, options, start, offset, amplitude, growth);
       used = amplitude;
     } catch (const std::runtime_error& e) {
       failures += (failures.empty() ? "" : "; ") + std::string(e.what());
@@ -185,8 +189,8 @@ PeriodicOrbit first_orbit(const OdeSystem& system, int parameter, const HopfPoin
       if (orbit.family_dimension == 0 || start.amplitude > 0.0) break;
       try {
         Eigen::VectorXd wider_growth;
-        PeriodicOrbit wider =
-            orbit_at_amplitude(system, parameter, hopf, options, start, larger, &wider_growth);
+        PeriodicOrbit wider = orbit_at_amplitude(system, parameter, hopf, options, start, offset,
+                                                 larger, &wider_growth);
         orbit = std::move(wider);
         used = larger;
         if (growth) *growth = std::move(wider_growth);
@@ -204,7 +208,8 @@ PeriodicOrbit first_orbit(const OdeSystem& system, int parameter, const HopfPoin
 PeriodicOrbit orbit_from_hopf(const OdeSystem& system, int parameter, const HopfPoint& hopf,
                               const OrbitOptions& options, const HopfStartOptions& start) {
   double used = 0.0;
-  return first_orbit(system, parameter, hopf, options, start, used);
+  return first_orbit(system, parameter, hopf, options, start,
+                     hopf_offset_per_squared_amplitude(system, parameter, hopf), used);
 }
 
 Branch continue_from_hopf(const OdeSystem& system, int parameter, const HopfPoint& hopf,
@@ -216,8 +221,9 @@ Branch continue_from_hopf(const OdeSystem& system, int parameter, const HopfPoin
   // Hopf point and ended there after one point.
   double amplitude = 0.0;
   Eigen::VectorXd growth;
+  const auto offset = hopf_offset_per_squared_amplitude(system, parameter, hopf);
   PeriodicOrbit orbit =
-      first_orbit(system, parameter, hopf, options.orbit, start, amplitude, &growth);
+      first_orbit(system, parameter, hopf, options.orbit, start, offset, amplitude, &growth);
   double p = system.parameter(orbit.parameters, parameter);
   // A user point between the Hopf point and the first orbit would never be passed (issue 33:
   // AUTO's lrz asks for rho = 24.7263, 0.01 from its Hopf point, where the first orbit lay 0.1
@@ -232,8 +238,8 @@ Branch continue_from_hopf(const OdeSystem& system, int parameter, const HopfPoin
     const double closer = amplitude * std::sqrt(0.5 * nearest);
     try {
       Eigen::VectorXd inner_growth;
-      PeriodicOrbit inner =
-          orbit_at_amplitude(system, parameter, hopf, options.orbit, start, closer, &inner_growth);
+      PeriodicOrbit inner = orbit_at_amplitude(system, parameter, hopf, options.orbit, start,
+                                               offset, closer, &inner_growth);
       if (inner.family_dimension == 0) {
         orbit = std::move(inner);
         growth = std::move(inner_growth);
