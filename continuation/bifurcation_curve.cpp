@@ -188,16 +188,14 @@ std::optional<CurveNode> CurveContinuation::onto_edge(const Point& a, const Poin
 std::optional<driver::Ending> CurveContinuation::ends(const Point& a, const Point& b,
                                                       std::vector<Event>&) {
   // Back at the start: the curve went away from it and the last step passed through it
-  // (within a tenth of the step: a curve's chord misses it by about step^2 times its
-  // curvature). A point merely near the start in the scaled norm is not enough: two NS points
-  // 6 N/m apart on a 1-100 N/m window are 0.06 apart, about one step.
-  const double distance = system_.norm(b.unknowns - start_.unknowns);
-  farthest_ = std::max(farthest_, distance);
-  const Eigen::VectorXd chord = b.unknowns - a.unknowns;
-  const double along = std::clamp(
-      system_.dot(start_.unknowns - a.unknowns, chord) / system_.dot(chord, chord), 0.0, 1.0);
-  const double miss = system_.norm(a.unknowns + along * chord - start_.unknowns);
-  if (farthest_ > 4.0 * options_.max_step && miss < 0.1 * system_.norm(chord))
+  // (driver::on_chord). A point merely near the start in the scaled norm is not enough: two NS
+  // points 6 N/m apart on a 1-100 N/m window are 0.06 apart, about one step.
+  farthest_ = std::max(farthest_, system_.norm(b.unknowns - start_.unknowns));
+  const auto dot = [&](const Eigen::VectorXd& u, const Eigen::VectorXd& v) {
+    return system_.dot(u, v);
+  };
+  if (farthest_ > 4.0 * options_.max_step &&
+      driver::on_chord(start_.unknowns, a.unknowns, b.unknowns, dot))
     return driver::Ending{driver::Stop::Closed, "closed: back at the start", true};
   return std::nullopt;
 }

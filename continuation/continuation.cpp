@@ -530,19 +530,15 @@ std::optional<driver::Ending> Continuation::Run::ends(const OrbitNode& a, const 
                                                       std::vector<Bifurcation>& events) {
   const auto name = [&] { return c_.system_.parameter_names()[c_.parameter_]; };
   if (path_.empty()) path_.push_back(y_of(a));
-  // A branch that turned back without a multiplier at +1 and now retraces itself: b lies on the
-  // branch's chords before the turn (within a tenth of the chord: a chord misses the branch by
-  // about step^2 times its curvature). Stopped there, b not kept.
+  // A branch that turned back without a multiplier at +1 and now retraces itself: b lies on one
+  // of the branch's chords before the turn (driver::on_chord). Stopped there, b not kept.
   if (turn_) {
     const Eigen::VectorXd yb = y_of(b);
-    const BranchSpace& space = *c_.space_;
+    const auto dot = [&](const Eigen::VectorXd& u, const Eigen::VectorXd& v) {
+      return c_.space_->dot(u, v);
+    };
     for (std::size_t k = 1; k <= turn_->first && k < path_.size(); ++k) {
-      const Eigen::VectorXd chord = path_[k] - path_[k - 1];
-      const double length2 = space.dot(chord, chord);
-      if (!(length2 > 0.0)) continue;
-      const double along = std::clamp(space.dot(yb - path_[k - 1], chord) / length2, 0.0, 1.0);
-      const Eigen::VectorXd miss = path_[k - 1] + along * chord - yb;
-      if (std::sqrt(space.dot(miss, miss)) < 0.1 * std::sqrt(length2))
+      if (driver::on_chord(yb, path_[k - 1], path_[k], dot))
         return driver::Ending{driver::Stop::TurnedBack,
                               "turned back at " + name() + " = " + format_double(turn_->second) +
                                   " without a multiplier at +1 and retraced itself: stopped there",

@@ -247,6 +247,23 @@ TEST(Driver, ScreenAndRefinement) {
   EXPECT_EQ(g.stop, driver::Stop::MinimumStep);
 }
 
+TEST(Driver, OnChordWithinATenthOfItsLength) {
+  // The chord from (0, 0) to (1, 0) in the plain inner product, and in one that weighs the second
+  // coordinate 100 times (distances across it 10 times longer).
+  const auto plain = [](const Eigen::VectorXd& u, const Eigen::VectorXd& v) { return u.dot(v); };
+  const auto weighted = [](const Eigen::VectorXd& u, const Eigen::VectorXd& v) {
+    return u[0] * v[0] + 100 * u[1] * v[1];
+  };
+  const Eigen::Vector2d a(0, 0), b(1, 0);
+  EXPECT_TRUE(driver::on_chord(Eigen::Vector2d(0.5, 0.0), a, b, plain));
+  EXPECT_TRUE(driver::on_chord(Eigen::Vector2d(0.3, 0.099), a, b, plain));
+  EXPECT_FALSE(driver::on_chord(Eigen::Vector2d(0.3, 0.101), a, b, plain));
+  EXPECT_FALSE(driver::on_chord(Eigen::Vector2d(0.3, 0.0101), a, b, weighted));
+  EXPECT_TRUE(driver::on_chord(Eigen::Vector2d(1.05, 0.0), a, b, plain));   // 0.05 past b
+  EXPECT_FALSE(driver::on_chord(Eigen::Vector2d(1.11, 0.0), a, b, plain));  // 0.11 past b
+  EXPECT_FALSE(driver::on_chord(Eigen::Vector2d(0.0, 0.0), a, a, plain));   // no chord
+}
+
 TEST(Locator, RootOfACurvedFunctionToTheTolerance) {
   // The "branch" is the line p = s; the test s^3 - 0.3: its root 0.3^(1/3) exactly.
   using Tag = int;

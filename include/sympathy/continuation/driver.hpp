@@ -51,6 +51,8 @@
 #include <string>
 #include <vector>
 
+#include <Eigen/Dense>
+
 #include "sympathy/core/option_check.hpp"
 
 namespace sympathy {
@@ -118,6 +120,21 @@ Options step_options(const ProblemOptions& p) {
   o.max_points = p.max_points;
   o.min_tangent_cosine = p.min_tangent_cosine;
   return o;
+}
+
+// Whether x lies on the chord from a to b, within a tenth of the chord's length (a chord misses
+// its branch by about step^2 times the curvature), in the problem's scaled inner product `dot`:
+// how a branch sees itself come back onto points it has passed (a closed curve, an orbit branch
+// retracing itself).
+template <class Dot>
+bool on_chord(const Eigen::VectorXd& x, const Eigen::VectorXd& a, const Eigen::VectorXd& b,
+              const Dot& dot) {
+  const Eigen::VectorXd chord = b - a;
+  const double length2 = dot(chord, chord);
+  if (!(length2 > 0.0)) return false;
+  const double along = std::clamp(dot(x - a, chord) / length2, 0.0, 1.0);
+  const Eigen::VectorXd miss = a + along * chord - x;
+  return dot(miss, miss) < 0.01 * length2;
 }
 
 // A step's outcome, from the problem.
