@@ -595,13 +595,12 @@ void Continuation::Run::accept(OrbitNode& b) {
   b.tangent /= std::sqrt(c_.space_->dot(b.tangent, b.tangent));
 }
 
-bool Continuation::Run::refine(OrbitNode& a, const std::string& why) {
+bool Continuation::Run::refine(OrbitNode& a, const std::string&) {
   // Where the corrector keeps failing, an orbit whose solutions grow fast along the period (a
   // canard, strongly unstable orbits: AUTO's fhn and ab) is resolved on twice the segments: the
   // last point re-sampled on them (each segment's start from one integration), corrected at its
   // parameter, its Jacobian and tangent recomputed, and the step tried again. Up to 8 segments,
   // the count recorded in each point (orbit.segments).
-  (void)why;
   const int m = c_.problem_->segments();
   if (m >= 8 || !c_.system_.autonomous()) return false;
   std::unique_ptr<ShootingProblem> old_problem = std::move(c_.problem_);
