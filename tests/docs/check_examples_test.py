@@ -1,0 +1,106 @@
+"""Tests of scripts/check_examples, the documentation's example checker: it must fail on one
+changed digit, accept an output shown with fewer digits than printed, honour `...`, and
+--update must rewrite only what changed and report the relative change."""
+
+import importlib.machinery
+import importlib.util
+import pathlib
+import subprocess
+import sys
+
+import pytest
+
+ROOT = pathlib.Path(__file__).resolve().parents[2]
+SCRIPT = ROOT / "scripts" / "check_examples"
+
+
+def load():
+    loader = importlib.machinery.SourceFileLoader("check_examples", str(SCRIPT))
+    spec = importlib.util.spec_from_loader("check_examples", loader)
+    module = importlib.util.module_from_spec(spec)
+    loader.exec_module(module)
+    return module
+
+
+check = load()
+
+
+def run(tmp_path, text, *options):
+    doc = tmp_path / "doc.md"
+    doc.write_text(text)
+    done = subprocess.run([sys.executable, str(SCRIPT), "--sympathy", "/bin/true", *options,
+                           str(doc)], capture_output=True, text=True)
+    return done.returncode, done.stdout + done.stderr, doc.read_text()
+
+
+PERIOD = "```console\n$ echo 'period 0.577048204146 s'\n{}\n```\n"
+
+
+@pytest.mark.parametrize("shown,ok", [
+    ("period 0.577048204146 s", True),   # as printed
+    ("period 0.577048204147 s", False),  # the last digit changed
+    ("period 0.577048 s", True),         # fewer digits, correctly rounded
+    ("period 0.577049 s", False),        # fewer digits, wrongly rounded
+    ("period 0.5770 s", True),
+    ("period 0.5771 s", False),
+    ("period ... s", True),              # masked
+    ("period 0.577048204146 ms", False),  # text changed
+])
+def test_one_changed_digit_fails(tmp_path, shown, ok):
+    status, out, _ = run(tmp_path, PERIOD.format(shown))
+    assert (status == 0) == ok, out
+
+
+def test_number_rule():
+    assert check.number_matches("1.5e-3", "1.46e-3")
+    assert not check.number_matches("1.5e-3", "1.44e-3")
+    assert check.number_matches("12", "12")
+    assert not check.number_matches("12", "13")
+    assert check.number_matches("+0.000000", "-0.000000")  # a zero's sign is noise
+
+
+def test_elided_lines(tmp_path):
+    text = "```console\n$ printf 'a\\nb\\nc\\nd\\n'\na\n...\nd\n```\n"
+    assert run(tmp_path, text)[0] == 0
+    text = "```console\n$ printf 'a\\nb\\nc\\nd\\n'\na\n...\nc\n```\n"
+    assert run(tmp_path, text)[0] == 1
+
+
+def test_failing_command_fails(tmp_path):
+    assert run(tmp_path, "```console\n$ false\n```\n")[0] == 1
+    assert run(tmp_path, "```console\n$ false; echo \"exit $?\"\nexit 1\n```\n")[0] == 0
+
+
+def test_prompt_outside_an_example_block_is_an_error(tmp_path):
+    status, out, _ = run(tmp_path, "```sh\n$ echo hi\n```\n")
+    assert status == 2 and "doc.md:2" in out
+    assert run(tmp_path, "<!-- not run: builds everything -->\n```sh\n$ echo hi\n```\n")[0] == 0
+
+
+def test_python_blocks_share_a_namespace(tmp_path):
+    text = "```pycon\n>>> x = 2.5\n>>> x * 2\n5.0\n```\ntext\n```pycon\n>>> print(x)\n2.5\n```\n"
+    assert run(tmp_path, text)[0] == 0
+    text = "```pycon\n>>> 1 / 0\nTraceback (most recent call last):\n...\nZeroDivisionError: division by zero\n```\n"
+    assert run(tmp_path, text)[0] == 0
+    assert run(tmp_path, "```pycon\n>>> 1 / 0\n```\n")[0] == 1
+
+
+def test_update_rewrites_only_what_changed(tmp_path):
+    text = ("intro\n\n```console\n$ printf 'period 0.5770482 s\\nrun time 0.03 s\\nsame\\n'\n"
+            "period 0.5770 s\nrun time ... s\nold\n```\nafter\n")
+    status, out, new = run(tmp_path, text, "--update")
+    assert status == 1
+    assert new == ("intro\n\n```console\n$ printf 'period 0.5770482 s\\nrun time 0.03 s\\nsame\\n'\n"
+                   "period 0.5770 s\nrun time ... s\nsame\n```\nafter\n")
+    assert run(tmp_path, new)[0] == 0
+    text = PERIOD.format("period 0.5771 s")
+    status, out, new = run(tmp_path, text, "--update")
+    assert "0.5771 -> 0.577048204146" in out and "relative change 8.98e-05" in out
+    assert "period 0.577048204146 s" in new
+    assert "largest change" in out
+
+
+def test_update_masks_run_times(tmp_path):
+    text = "```console\n$ echo 'run time     0.028 s'\n```\n"
+    _, _, new = run(tmp_path, text, "--update")
+    assert "run time     ... s" in new
