@@ -1,6 +1,11 @@
 #include "cases/cli/arguments.hpp"
 
+#include <sys/ioctl.h>
+#include <unistd.h>
+
+#include <algorithm>
 #include <cmath>
+#include <cstdlib>
 
 namespace sympathy::cli {
 
@@ -35,19 +40,29 @@ Arguments::Arguments(std::string command, const std::vector<std::string>& args,
     } else {
       if (positional_.size() >= positional_names_.size())
         throw InputError("unexpected argument '" + a + "' for 'sympathy " + command_ + "'\n" +
-                         usage());
+                         synopsis());
       positional_.push_back(a);
     }
   }
   if (positional_.size() < positional_names_.size())
     throw InputError("missing " + positional_names_[positional_.size()] + " for 'sympathy " +
-                     command_ + "'\n" + usage());
+                     command_ + "'\n" + synopsis());
+  for (const auto& s : options_)
+    if (s.required && !has(s.name))
+      throw InputError("missing " + s.name + " " + s.value + " for 'sympathy " + command_ +
+                       "': " + s.help + "\n" + synopsis());
 }
 
 const OptionSpec& Arguments::spec(const std::string& option) const {
-  for (const auto& s : options_)
+  std::vector<std::string> known;
+  for (const auto& s : options_) {
     if (s.name == option) return s;
-  throw InputError("unknown option '" + option + "' for 'sympathy " + command_ + "'\n" + usage());
+    known.push_back(s.name);
+  }
+  const std::string near = did_you_mean(option, known);
+  throw InputError("unknown option '" + option + "' for 'sympathy " + command_ + "'" +
+                   (near.empty() ? "" : "; did you mean '" + near + "'?") + " ('sympathy " +
+                   command_ + " --help' lists its options)");
 }
 
 bool Arguments::has(const std::string& option) const {
@@ -135,20 +150,108 @@ std::vector<Assignment> Arguments::assignments(const std::string& option) const 
   return out;
 }
 
-std::string Arguments::usage() const {
+std::string Arguments::synopsis() const {
   std::string u = "usage: sympathy " + command_;
   for (const auto& p : positional_names_) u += " " + p;
+  for (const auto& s : options_)
+    if (s.required) u += " " + s.name + (s.value.empty() ? "" : " " + s.value);
+  u += " [options]";
+  return wrap(u, 8, help_width()) + "\n";
+}
+
+std::string Arguments::usage() const {
+  const int width = help_width();
+  std::string u = synopsis() + "\noptions:\n";
+  // The options' names in a column as wide as the longest that fits in 30 characters.
+  std::size_t column = 0;
   for (const auto& s : options_) {
-    u += " [" + s.name + (s.value.empty() ? "" : " " + s.value) + "]";
-    if (s.repeatable) u += "...";
+    const std::size_t w = 4 + s.name.size() + (s.value.empty() ? 0 : 1 + s.value.size());
+    if (w <= 30) column = std::max(column, w);
   }
-  u += "\n";
   for (const auto& s : options_) {
     std::string left = "  " + s.name + (s.value.empty() ? "" : " " + s.value);
-    if (left.size() < 28) left.resize(28, ' ');
-    u += left + " " + s.help + "\n";
+    const std::string help =
+        s.help + (s.required ? " (required)" : "") + (s.repeatable ? " (repeatable)" : "");
+    if (left.size() + 2 > column) {
+      u += left + "\n" + std::string(column, ' ');
+    } else {
+      left.resize(column, ' ');
+      u += left;
+    }
+    u += wrap(help, static_cast<int>(column), width) + "\n";
   }
   return u;
+}
+
+namespace {
+
+std::size_t edit_distance(const std::string& a, const std::string& b) {
+  std::vector<std::size_t> row(b.size() + 1);
+  for (std::size_t j = 0; j <= b.size(); ++j) row[j] = j;
+  for (std::size_t i = 1; i <= a.size(); ++i) {
+    std::size_t diagonal = row[0];
+    row[0] = i;
+    for (std::size_t j = 1; j <= b.size(); ++j) {
+      const std::size_t up = row[j];
+      row[j] = std::min({row[j] + 1, row[j - 1] + 1, diagonal + (a[i - 1] == b[j - 1] ? 0 : 1)});
+      // A swap of two neighbours ("contineu") counts as one edit, as a typist makes it.
+      if (i > 1 && j > 1 && a[i - 1] == b[j - 2] && a[i - 2] == b[j - 1])
+        row[j] = std::min(row[j], diagonal);
+      diagonal = up;
+    }
+  }
+  return row[b.size()];
+}
+
+}  // namespace
+
+std::string did_you_mean(const std::string& given, const std::vector<std::string>& known) {
+  std::string best;
+  std::size_t best_distance = std::max<std::size_t>(1, given.size() / 3) + 1;
+  for (const auto& k : known) {
+    const std::size_t d = edit_distance(given, k);
+    if (d < best_distance) best = k, best_distance = d;
+  }
+  if (!best.empty()) return best;
+  std::string prefixed;
+  for (const auto& k : known)
+    if (given.size() >= 3 && k.rfind(given, 0) == 0) {
+      if (!prefixed.empty()) return "";
+      prefixed = k;
+    }
+  return prefixed;
+}
+
+int help_width(int fd) {
+  int width = 80;
+  if (const char* columns = std::getenv("COLUMNS"); columns && std::atoi(columns) > 0) {
+    width = std::atoi(columns);
+  } else {
+    winsize size{};
+    if (isatty(fd) && ioctl(fd, TIOCGWINSZ, &size) == 0 && size.ws_col > 0) width = size.ws_col;
+  }
+  return std::max(width, 60);
+}
+
+std::string wrap(const std::string& text, int indent, int width) {
+  std::string out, line;
+  std::size_t room = static_cast<std::size_t>(std::max(width - indent, 20));
+  std::size_t start = 0;
+  bool first = true;
+  while (start < text.size()) {
+    std::size_t end = text.find(' ', start);
+    if (end == std::string::npos) end = text.size();
+    const std::string word = text.substr(start, end - start);
+    start = end + 1;
+    if (!line.empty() && line.size() + 1 + word.size() > room) {
+      out += (first ? "" : "\n" + std::string(indent, ' ')) + line;
+      first = false;
+      line.clear();
+    }
+    line += (line.empty() ? "" : " ") + word;
+  }
+  if (!line.empty()) out += (first ? "" : "\n" + std::string(indent, ' ')) + line;
+  return out;
 }
 
 }  // namespace sympathy::cli

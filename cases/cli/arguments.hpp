@@ -20,7 +20,20 @@ struct OptionSpec {
   std::string value;  // placeholder for the help ("NAME"); empty for a flag
   bool repeatable = false;
   std::string help;
+  bool required = false;  // missing, the command stops before any work; shown without brackets
 };
+
+// The known name closest to a mistyped one ("contineu": "continue"; "--max-point":
+// "--max-points"): within an edit distance of a third of its length (at least 1), or the only
+// one it begins. Empty when nothing is that close.
+std::string did_you_mean(const std::string& given, const std::vector<std::string>& known);
+
+// The width text is wrapped to: $COLUMNS, else the width of the terminal on `fd` (stdout by
+// default), else 80; at least 60.
+int help_width(int fd = 1);
+
+// text wrapped at width, each line after the first indented by indent spaces.
+std::string wrap(const std::string& text, int indent, int width);
 
 class Arguments {
  public:
@@ -42,7 +55,8 @@ class Arguments {
   // Values of a repeatable KEY=VALUE option.
   std::vector<Assignment> assignments(const std::string& option) const;
 
-  std::string usage() const;
+  std::string usage() const;     // the synopsis, then every option with its help, wrapped
+  std::string synopsis() const;  // "usage: sympathy COMMAND CASE --param P [options]"
   // Every option as given, in order (a flag with an empty value).
   const std::vector<std::pair<std::string, std::string>>& given() const { return given_; }
 

@@ -15,6 +15,7 @@
 #include "cases/cli/basins_output.hpp"
 #include "cases/cli/commands.hpp"
 #include "cases/cli/common.hpp"
+#include "cases/cli/progress.hpp"
 #include "cases/cli/task_run.hpp"
 #include "sympathy/cases/basin_study.hpp"
 #include "sympathy/continuation/task_journal.hpp"
@@ -65,6 +66,7 @@ std::vector<OptionSpec> basins_options() {
         "simulations run side by side (default: one per core; under mpirun one per rank)"},
        {"--out", "DIR", false, "where the files go (default out/basins)"},
        {"--resume", "", false, "continue the journal in DIR: its runs are not computed again"},
+       {"--quiet", "", false, "no progress line on a terminal"},
        {"--confirm", "", false,
         "confirm each locked end by Newton to a periodic orbit (its period and stability)"},
        accuracy_option()});
@@ -262,7 +264,12 @@ int run_basins(const std::vector<std::string>& argv) {
                journal.resumed(), to_compute, workers, distributed ? "MPI worker" : "thread",
                workers == 1 ? "" : "s");
 
-  const auto summary = run_journaled(mpi, study.tasks(), &journal, work, b->run, stop);
+  ProgressLine line(args.flag("--quiet"));
+  const auto summary =
+      run_journaled(mpi, study.tasks(), &journal, work, b->run, stop, [&](std::size_t done) {
+        line.count("basins", done, study.tasks(), "runs", journal.resumed());
+      });
+  line.clear();
   journal.close();
   write_results(*b, summary, clock);
   return summary.interrupted ? kInterrupted : 0;

@@ -19,6 +19,7 @@
 #include <sstream>
 #include <tuple>
 
+#include "cases/cli/progress.hpp"
 #include "cases/cli/bench_branch.hpp"
 #include "cases/cli/bench_equations.hpp"
 #include "cases/cli/bench_identical.hpp"
@@ -282,6 +283,7 @@ int run_bench(const std::vector<std::string>& argv) {
       "bench", argv,
       {{"--out", "DIR", false, "where bench.csv and bench.md go (default out/bench)"},
        {"--quick", "", false, "fewer tolerances (for a smoke run)"},
+       {"--quiet", "", false, "no progress lines on a terminal"},
        {"--sections", "LIST", false,
         "which parts, e.g. abc (default abcdefghij): (a)-(c) error against run time, "
         "(d) cost of a continuation point, (e) cost against the number of metronomes, "
@@ -300,7 +302,18 @@ int run_bench(const std::vector<std::string>& argv) {
     if (ch < 'a' || ch > 'j')
       throw InputError("--sections: expected letters from a to j (e.g. abc), got '" + sections +
                        "'");
-  auto want = [&](char section) { return sections.find(section) != std::string::npos; };
+  // On a terminal, a line before each section: which, how many of how many, the time so far.
+  ProgressLine line(args.flag("--quiet"));
+  std::size_t started = 0;
+  auto want = [&](char section) {
+    if (sections.find(section) == std::string::npos) return false;
+    if (line.enabled()) {
+      std::fflush(stdout);
+      std::fprintf(line.log(), "bench: section (%c), %zu of %zu, %s so far\n", section, ++started,
+                   sections.size(), duration_text(clock.seconds()).c_str());
+    }
+    return true;
+  };
   const std::string root =
       std::filesystem::exists("cases/row2.toml") ? "" : SYMPATHY_SOURCE_DIR "/";
   const CaseFile file = CaseFile::load(root + "cases/row2.toml");

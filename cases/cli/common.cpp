@@ -20,22 +20,27 @@ namespace sympathy::cli {
 std::vector<OptionSpec> case_options() {
   return {
       {"--params", "NAME", false, "named parameter set of the case (default: the file's)"},
-      {"--set", "KEY=VALUE", true, "set a model parameter (M, c, k, mp, d2, eps, kappa, ...)"},
+      {"--set", "KEY=VALUE", true, "set a parameter of the case to a value"},
   };
 }
 
 std::vector<OptionSpec> integrator_options() {
   return {
-      {"--rtol", "R", false, "relative tolerance of the integrator"},
-      {"--atol", "A", false, "absolute tolerance of the integrator"},
+      {"--rtol", "R", false,
+       "relative tolerance of the integrator (default: 5e-12 for orbits, branches and curves, the "
+       "--accuracy preset's; 1e-8 for simulations; 1e-9 for fits)"},
+      {"--atol", "A", false,
+       "absolute tolerance of the integrator (default: 5e-14 for orbits, branches and curves, the "
+       "--accuracy preset's; 1e-10 for simulations; 1e-11 for fits)"},
       {"--method", "bdf|adams|erk", false,
        "integration method: CVODES's BDF or Adams, or ARKODE's explicit Runge-Kutta "
-       "(Dormand-Prince 5(4); with it the sensitivities are augmented) (default: bdf; for orbits "
-       "and branches the --accuracy preset's, switched to bdf where the start measures stiff; "
-       "given, it is used whatever the stiffness)"},
+       "(Dormand-Prince 5(4); with it the sensitivities are augmented) (default: adams for orbits, "
+       "branches and curves, the --accuracy preset's, switched to bdf where the start measures "
+       "stiff; bdf for simulations and fits; given, it is used whatever the stiffness)"},
       {"--sensitivities", "forward|augmented", false,
        "how the monodromy is integrated: CVODES's forward-sensitivity module, or the variational "
-       "equations appended to the state (default forward)"},
+       "equations appended to the state (default: augmented for orbits, branches and curves, the "
+       "--accuracy preset's; forward for fits)"},
       {"--linear-solver", "dense|klu|structured", false,
        "linear solver of the BDF Newton iteration (default: structured, sparse plus low rank, for "
        "more than 3 metronomes; else dense)"},

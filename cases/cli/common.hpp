@@ -8,6 +8,7 @@
 #include <vector>
 
 #include "cases/cli/arguments.hpp"
+#include "cases/cli/exit_codes.hpp"
 #include "sympathy/cases/case_file.hpp"
 #include "sympathy/cases/metronome_model.hpp"
 #include "sympathy/cases/names.hpp"
@@ -80,7 +81,6 @@ void check_options(const OptionCheck& problem, const std::string& where);
 // after its current point or output sample and writes complete files of what it has (exit code
 // kInterrupted). A second signal ends the program at once (exit code 130).
 const std::atomic<bool>* interrupt_flag();
-constexpr int kInterrupted = 6;
 
 // For commands that write nothing before their end (orbit, fit: one Newton or one optimisation,
 // their JSON and CSV written whole at the end): SIGINT, SIGTERM and SIGHUP end the program at

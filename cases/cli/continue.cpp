@@ -10,6 +10,7 @@
 #include "cases/cli/equations.hpp"
 #include "cases/cli/hopf_switch.hpp"
 #include "cases/cli/loaded_system.hpp"
+#include "cases/cli/progress.hpp"
 #include "cases/cli/report.hpp"
 #include "cases/cli/requests.hpp"
 #include "cases/cli/start_data.hpp"
@@ -50,9 +51,9 @@ std::vector<OptionSpec> continue_options() {
       {{"--start", "NAME", false,
         "named start of the case (required for a metronome case file; an equation case file's "
         "default: its [states])"},
-       {"--param", "P", false, "the continuation parameter (required): M, c, k, d, ..."},
-       {"--from", "A", false, "first parameter value (required): the branch starts here"},
-       {"--to", "B", false, "last parameter value (required)"},
+       {"--param", "P", false, "the continuation parameter, one of the case's", true},
+       {"--from", "A", false, "first parameter value: the branch starts here", true},
+       {"--to", "B", false, "last parameter value", true},
        {"--at", "V", false, "start at V instead and continue both ways, to A and to B"},
        {"--initial", "VAR=VALUE", true, "initial state value (on top of --start)"},
        {"--user-points", "V1,V2,...", false,
@@ -159,7 +160,16 @@ int run_continue(const std::vector<std::string>& argv) {
   // The case: a metronome case file, or an equation case file (its system compiled or from the
   // cache; its start the file's [states] unless --start names one).
   const LoadedSystem c(args);
-  const BranchRequest request = continue_request(args, c);
+  ProgressLine progress(args.flag("--quiet"));
+  BranchRequest request = continue_request(args, c);
+  if (request.progress) request.progress = progress.log();
+  int points = 0;
+  if (progress.enabled())
+    request.on_point = [&, own = request.on_point](const ContinuationPoint& p) {
+      if (own) own(p);
+      progress.position("continue", request.parameter, p.parameter, request.from, request.to,
+                        ++points);
+    };
   const BranchSource source = c.source(request.start, request.initial, request.start_data);
   const auto json_path = args.value("--json");
   const std::string start_name = request.start_data      ? describe_start_data(*request.start_data)
@@ -171,9 +181,10 @@ int run_continue(const std::vector<std::string>& argv) {
   if (c.equations()) std::printf("  %s\n", c.build_note().c_str());
   std::fflush(stdout);
   const Branch branch = run_branch(source, request, interrupt_flag());
+  progress.clear();
   if (!branch.started()) {
     std::printf("  %s\n  run time %.3f s\n", branch.stop_reason.c_str(), clock.seconds());
-    return 4;
+    return kNumericalFailure;
   }
   const auto& rj = branch.rejected;
   std::printf(
@@ -202,7 +213,7 @@ int run_continue(const std::vector<std::string>& argv) {
     j["seconds"] = clock.seconds();
     write_json(*json_path, j);
   }
-  return branch.stop == StopReason::Interrupted ? kInterrupted : 0;
+  return exit_code_of(branch);
 }
 
 }  // namespace sympathy::cli

@@ -9,6 +9,7 @@
 #include "cases/cli/branch_run.hpp"
 #include "cases/cli/commands.hpp"
 #include "cases/cli/loaded_system.hpp"
+#include "cases/cli/progress.hpp"
 #include "cases/cli/requests.hpp"
 #include "cases/cli/start_data.hpp"
 #include "sympathy/continuation/bifurcation_curve.hpp"
@@ -43,17 +44,16 @@ std::vector<OptionSpec> curve_options() {
       {{"--start", "NAME", false,
         "named start of the case (required for a metronome case file; an equation case file's "
         "default: its [states])"},
-       {"--param", "P", false, "the branch's parameter, the curve's first (required)"},
-       {"--from", "A", false, "the branch's first value, one end of the window (required)"},
-       {"--to", "B", false, "the branch's last value, the window's other end (required)"},
+       {"--param", "P", false, "the branch's parameter, the curve's first", true},
+       {"--from", "A", false, "the branch's first value, one end of the window", true},
+       {"--to", "B", false, "the branch's last value, the window's other end", true},
        {"--initial", "VAR=VALUE", true, "initial state value (on top of --start)"},
        {"--transient", "SECONDS", false, "integration before the first Newton (default 60)"},
        {"--parent", "FILE", false, "the branch from this JSON (continue --json) instead"},
-       {"--event", "EVENT", false,
-        "the event whose curve to follow (required): LP1, BP1, NS2, ..."},
-       {"--second", "Q", false, "the second parameter (required)"},
-       {"--second-from", "A", false, "the window in the second parameter (required) ..."},
-       {"--second-to", "B", false, "... and its other end (required)"},
+       {"--event", "EVENT", false, "the event whose curve to follow: LP1, BP1, NS2, ...", true},
+       {"--second", "Q", false, "the second parameter", true},
+       {"--second-from", "A", false, "the window in the second parameter ...", true},
+       {"--second-to", "B", false, "... and its other end", true},
        {"--step", "DS", false, "initial arclength step, scaled (default 0.01)"},
        {"--max-step", "DS", false, "largest arclength step, scaled (default 0.05)"},
        {"--max-points", "N", false, "point limit per direction (default 200)"},
@@ -70,8 +70,6 @@ std::vector<OptionSpec> curve_options() {
 CurveRequest curve_request(const Arguments& args, const LoadedSystem& c) {
   c.require_autonomous("curve (two-parameter curves)");
   const ParameterWindow window = c.window(args);
-  for (const char* required : {"--event", "--second", "--second-from", "--second-to"})
-    if (!args.has(required)) throw InputError(std::string(required) + " is required");
   CurveRequest r;
   BranchRequest& request = r.branch;
   request.start_data = c.start_data();
@@ -181,7 +179,7 @@ int run_curve(const std::vector<std::string>& argv) {
   if (!parent.started()) {
     std::printf("  the branch: %s\n  run time %.3f s\n", parent.stop_reason.c_str(),
                 clock.seconds());
-    return 4;
+    return kNumericalFailure;
   }
   if (interrupt_flag()->load()) return kInterrupted;
   const Bifurcation& event = find_event(parent, name, "--event");
@@ -196,25 +194,32 @@ int run_curve(const std::vector<std::string>& argv) {
   if (!csv_path.empty())
     csv = std::make_unique<CurveCsvWriter>(csv_path, model, request.parameter, second);
   const bool quiet = args.flag("--quiet");
+  ProgressLine progress(quiet);
+  std::FILE* log = progress.log();
+  int points = 0;
   CurveCallbacks callbacks;
   callbacks.on_point = [&](const CurvePoint& p) {
     if (csv) csv->write(p);
     if (!quiet) {
-      std::fprintf(stderr, "  [%4d] %s = %-14.9g %s = %-14.9g T = %.9f s  critical %.6f%+.6fi",
+      std::fprintf(log, "  [%4d] %s = %-14.9g %s = %-14.9g T = %.9f s  critical %.6f%+.6fi",
                    p.index, request.parameter.c_str(), p.first, second.c_str(), p.second, p.period,
                    p.critical.empty() ? NAN : p.critical[0].real(),
                    p.critical.empty() ? NAN : p.critical[0].imag());
-      if (std::isfinite(p.rotation)) std::fprintf(stderr, "  rotation %.6f", p.rotation);
-      std::fprintf(stderr, "  (%d it)\n", p.iterations);
+      if (std::isfinite(p.rotation)) std::fprintf(log, "  rotation %.6f", p.rotation);
+      std::fprintf(log, "  (%d it)\n", p.iterations);
     }
+    progress.show("curve " + name.text + ": " + request.parameter + " = " + format_number(p.first) +
+                  ", " + second + " = " + format_number(p.second) + ", " +
+                  std::to_string(++points) + " points, " + duration_text(clock.seconds()));
   };
   callbacks.on_event = [&](const CurveEvent& e) {
     if (!quiet)
-      std::fprintf(stderr, "  >> %s at %s = %.10g, %s = %.10g\n", e.type.c_str(),
+      std::fprintf(log, "  >> %s at %s = %.10g, %s = %.10g\n", e.type.c_str(),
                    request.parameter.c_str(), e.first, second.c_str(), e.second);
   };
   callbacks.stop_requested = [] { return interrupt_flag()->load(); };
   const BifurcationCurve curve = follow_curve(r, model, parent, event, callbacks);
+  progress.clear();
   if (csv) csv->close();
   std::printf("  %zu points; stopped: %s\n", curve.points.size(), curve.stop_reason.c_str());
   std::printf("codimension-two points and turns:\n");
@@ -230,8 +235,7 @@ int run_curve(const std::vector<std::string>& argv) {
     j["seconds"] = clock.seconds();
     write_json(*json_path, j);
   }
-  if (!curve.started()) return 4;
-  return curve.stop == StopReason::Interrupted ? kInterrupted : 0;
+  return exit_code_of(curve);
 }
 
 }  // namespace sympathy::cli

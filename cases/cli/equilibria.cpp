@@ -9,6 +9,7 @@
 #include "cases/cli/commands.hpp"
 #include "cases/cli/common.hpp"
 #include "cases/cli/loaded_system.hpp"
+#include "cases/cli/progress.hpp"
 #include "cases/cli/requests.hpp"
 #include "sympathy/continuation/branch_output.hpp"
 #include "sympathy/continuation/equilibrium_output.hpp"
@@ -61,9 +62,9 @@ std::vector<OptionSpec> equilibria_options() {
       {{"--start", "NAME", false,
         "named start of the case, Newton's first guess (required for a metronome case file; an "
         "equation case file's default: its [states])"},
-       {"--param", "P", false, "the continuation parameter (required)"},
-       {"--from", "A", false, "first parameter value (required): the branch starts here"},
-       {"--to", "B", false, "last parameter value (required)"},
+       {"--param", "P", false, "the continuation parameter, one of the case's", true},
+       {"--from", "A", false, "first parameter value: the branch starts here", true},
+       {"--to", "B", false, "last parameter value", true},
        {"--at", "V", false, "start at V instead and continue both ways, to A and to B"},
        {"--initial", "VAR=VALUE", true, "initial state value (on top of --start)"},
        {"--step", "DS", false, "initial arclength step, scaled (default 0.01)"},
@@ -134,22 +135,27 @@ int run_equilibria(const std::vector<std::string>& argv) {
   std::unique_ptr<EquilibriumCsvWriter> csv;
   if (!csv_path.empty()) csv = std::make_unique<EquilibriumCsvWriter>(csv_path, system, parameter);
   const bool quiet = args.flag("--quiet");
+  ProgressLine progress(quiet);
+  std::FILE* log = progress.log();
+  int points = 0;
   const auto* stop = interrupt_flag();
   EquilibriumCallbacks callbacks;
   callbacks.on_point = [&](const EquilibriumPoint& p) {
     if (csv) csv->write(p);
+    progress.position("equilibria", parameter, p.parameter, problem.from, problem.to, ++points);
     if (!quiet)
-      std::fprintf(stderr, "  [%4d] %s = %-14.9g |x| = %-12.6g %d unstable  ds %.2g (%d it)\n",
+      std::fprintf(log, "  [%4d] %s = %-14.9g |x| = %-12.6g %d unstable  ds %.2g (%d it)\n",
                    p.index, parameter.c_str(), p.parameter, p.state.lpNorm<Eigen::Infinity>(),
                    p.unstable, p.step, p.iterations);
   };
   callbacks.on_event = [&](const EquilibriumEvent& e) {
     if (!quiet)
-      std::fprintf(stderr, "  >> %s at %s = %.10g (+- %.1e)\n", to_string(e.type).c_str(),
+      std::fprintf(log, "  >> %s at %s = %.10g (+- %.1e)\n", to_string(e.type).c_str(),
                    parameter.c_str(), e.parameter, e.uncertainty);
   };
   callbacks.stop_requested = [&] { return stop && stop->load(); };
   const EquilibriumBranch branch = continue_equilibria(system, problem, o, callbacks);
+  progress.clear();
   if (csv) csv->close();
   if (!branch.started()) {
     std::printf("  %s\n  run time %.3f s\n", branch.stop_reason.c_str(), clock.seconds());
@@ -173,7 +179,7 @@ int run_equilibria(const std::vector<std::string>& argv) {
     j["seconds"] = clock.seconds();
     write_json(*json_path, j);
   }
-  return branch.stop == StopReason::Interrupted ? kInterrupted : 0;
+  return exit_code_of(branch);
 }
 
 }  // namespace sympathy::cli

@@ -80,7 +80,7 @@ std::vector<OptionSpec> fit_options() {
   auto options = case_options();
   options.insert(
       options.end(),
-      {{"--data", "FILE.csv", false, "the recording: columns t and state names (required)"},
+      {{"--data", "FILE.csv", false, "the recording: columns t and state names", true},
        {"--free", "NAME[,NAME...]", true, "parameters to fit (d, s, c, k, M, ...)"},
        {"--free-initial", "VAR[,VAR...]", true, "initial state values to fit too (th1, vth1, ...)"},
        {"--locked-pendula", "", false, "pendula fixed to their casings: the platform alone"},
@@ -127,7 +127,6 @@ FitSetup fit_setup(const Arguments& args) {
   const auto& metronomes = setup.c;
   const std::string& case_path = setup.case_path;
   FitRequest& request = setup.request;
-  if (!args.has("--data")) throw InputError("--data FILE.csv is required (the recording)");
   request.data = *args.value("--data");
   request.free = names(args, "--free");
   request.free_initial = names(args, "--free-initial");

@@ -7,71 +7,100 @@
 
 #include "cases/cli/arguments.hpp"
 #include "cases/cli/commands.hpp"
+#include "cases/cli/exit_codes.hpp"
 #include "sympathy/core/errors.hpp"
 #include "sympathy/core/flow.hpp"
 
 namespace {
 
-void print_usage() {
-  std::fputs(
-      "usage: sympathy COMMAND CASE [options]\n"
-      "commands:\n"
-      "  simulate   integrate from a start; time series to CSV, summary of the end state\n"
-      "  orbit      a periodic orbit from a start: period, Floquet multipliers, stability\n"
-      "  continue   a branch of orbits in one parameter, with its bifurcations\n"
-      "  equilibria a branch of equilibria in one parameter: folds, branch points, Hopf points\n"
-      "  curve      the curve of a branch's bifurcation in two parameters\n"
-      "  map        where orbits are stable in two parameters: curves and a grid\n"
-      "  study      the branches of a figure (cases/figures/*.toml), side by side\n"
-      "  bench      error against run time over integrator settings (the accuracy report)\n"
-      "  fit        parameters fitted to a recorded time series (least squares)\n"
-      "  basins     shares of the synchronized states from random starts, over a grid\n"
-      "  sweep      one-parameter branches over a grid of a second parameter\n"
-      "run 'sympathy COMMAND --help' for the options of a command\n",
-      stderr);
+struct Command {
+  const char* name;
+  int (*run)(const std::vector<std::string>&);
+  const char* what;
+};
+
+const Command kCommands[] = {
+    {"simulate", sympathy::cli::run_simulate,
+     "integrate from a start; time series to CSV, summary of the end state"},
+    {"orbit", sympathy::cli::run_orbit,
+     "a periodic orbit from a start: period, Floquet multipliers, stability"},
+    {"continue", sympathy::cli::run_continue,
+     "a branch of orbits in one parameter, with its bifurcations"},
+    {"equilibria", sympathy::cli::run_equilibria,
+     "a branch of equilibria in one parameter: folds, branch points, Hopf points"},
+    {"curve", sympathy::cli::run_curve, "the curve of a branch's bifurcation in two parameters"},
+    {"map", sympathy::cli::run_map, "where orbits are stable in two parameters: curves and a grid"},
+    {"study", sympathy::cli::run_study, "the branches of a figure (a study file), side by side"},
+    {"bench", sympathy::cli::run_bench,
+     "error against run time over integrator settings (the accuracy report)"},
+    {"fit", sympathy::cli::run_fit, "parameters fitted to a recorded time series (least squares)"},
+    {"basins", sympathy::cli::run_basins,
+     "shares of the synchronized states from random starts, over a grid"},
+    {"sweep", sympathy::cli::run_sweep, "one-parameter branches over a grid of a second parameter"},
+};
+
+std::string usage() {
+  const int width = sympathy::cli::help_width();
+  std::string u =
+      "usage: sympathy COMMAND ARGUMENTS [options]\n"
+      "       sympathy --version | --help\n\ncommands:\n";
+  for (const auto& c : kCommands) {
+    std::string left = std::string("  ") + c.name;
+    left.resize(14, ' ');
+    u += left + sympathy::cli::wrap(c.what, 14, width) + "\n";
+  }
+  u += "\n'sympathy COMMAND --help' lists a command's arguments and options.\n";
+  return u;
 }
 
 }  // namespace
 
 int main(int argc, char** argv) {
-  if (argc < 2 || !std::strcmp(argv[1], "--help") || !std::strcmp(argv[1], "-h")) {
-    print_usage();
-    return argc < 2 ? 2 : 0;
+  if (argc < 2) {
+    std::fputs(usage().c_str(), stderr);
+    return 2;
   }
   const std::string command = argv[1];
+  if (command == "--help" || command == "-h" || command == "help") {
+    std::fputs(usage().c_str(), stdout);
+    return 0;
+  }
+  if (command == "--version") {
+    std::printf("sympathy %s\n", SYMPATHY_VERSION);
+    return 0;
+  }
+  const Command* chosen = nullptr;
+  std::vector<std::string> names;
+  for (const auto& c : kCommands) {
+    if (command == c.name) chosen = &c;
+    names.push_back(c.name);
+  }
+  if (!chosen) {
+    const std::string near = sympathy::cli::did_you_mean(command, names);
+    std::fprintf(stderr, "sympathy: unknown command '%s'%s\n%s", command.c_str(),
+                 near.empty() ? "" : ("; did you mean '" + near + "'?").c_str(), usage().c_str());
+    return 2;
+  }
   std::vector<std::string> args(argv + 2, argv + argc);
   try {
-    if (command == "simulate") return sympathy::cli::run_simulate(args);
-    if (command == "orbit") return sympathy::cli::run_orbit(args);
-    if (command == "continue") return sympathy::cli::run_continue(args);
-    if (command == "equilibria") return sympathy::cli::run_equilibria(args);
-    if (command == "curve") return sympathy::cli::run_curve(args);
-    if (command == "map") return sympathy::cli::run_map(args);
-    if (command == "study") return sympathy::cli::run_study(args);
-    if (command == "bench") return sympathy::cli::run_bench(args);
-    if (command == "fit") return sympathy::cli::run_fit(args);
-    if (command == "basins") return sympathy::cli::run_basins(args);
-    if (command == "sweep") return sympathy::cli::run_sweep(args);
-    std::fprintf(stderr, "sympathy: unknown command '%s'\n", command.c_str());
-    print_usage();
-    return 2;
+    return chosen->run(args);
   } catch (const sympathy::cli::HelpRequested& help) {
     std::fputs(help.usage.c_str(), stdout);
     return 0;
   } catch (const sympathy::InputError& e) {
     std::fprintf(stderr, "sympathy %s: error: %s\n", command.c_str(), e.what());
-    return 2;
+    return sympathy::cli::kBadInput;
   } catch (const sympathy::OutputError& e) {
     std::fprintf(stderr, "sympathy %s: output failed: %s\n", command.c_str(), e.what());
-    return 5;
+    return sympathy::cli::kOutputFailed;
   } catch (const sympathy::Interrupted& e) {
     std::fprintf(stderr, "sympathy %s: interrupted: %s\n", command.c_str(), e.what());
-    return 6;
+    return sympathy::cli::kInterrupted;
   } catch (const sympathy::IntegrationError& e) {  // NOLINT: reported, not a crash
     std::fprintf(stderr, "sympathy %s: integration failed: %s\n", command.c_str(), e.what());
-    return 3;
+    return sympathy::cli::kIntegrationFailed;
   } catch (const std::exception& e) {
     std::fprintf(stderr, "sympathy %s: %s\n", command.c_str(), e.what());
-    return 1;
+    return sympathy::cli::kFailure;
   }
 }

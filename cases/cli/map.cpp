@@ -13,6 +13,7 @@
 #include "cases/cli/commands.hpp"
 #include "cases/cli/loaded_system.hpp"
 #include "cases/cli/map_file.hpp"
+#include "cases/cli/progress.hpp"
 #include "sympathy/continuation/branch_output.hpp"
 #include "sympathy/continuation/curve_output.hpp"
 #include "sympathy/continuation/stability_map.hpp"
@@ -108,10 +109,22 @@ int run_map(const std::vector<std::string>& argv) {
   const int second = index_of(model, map.second.parameter);
   std::vector<OrbitMap> results(map.orbits.size());
   std::mutex print;
+  ProgressLine progress(quiet);
+  std::FILE* log = progress.log();
+  // What each orbit is doing, for the status line on a terminal.
+  std::vector<std::string> doing(map.orbits.size());
+  std::size_t finished = 0;
+  const auto status = [&](std::size_t i, std::string what) {  // with `print` held
+    doing[i] = std::move(what);
+    std::string now;
+    for (const auto& d : doing)
+      if (!d.empty()) now += (now.empty() ? "" : "; ") + d;
+    progress.count("map", finished, map.orbits.size(), "orbits", 0, now);
+  };
   const auto say = [&](const char* format, auto... values) {
     if (quiet) return;
     std::lock_guard<std::mutex> lock(print);
-    std::fprintf(stderr, format, values...);
+    std::fprintf(log, format, values...);
   };
   std::size_t next = 0;
   auto worker = [&] {
@@ -138,6 +151,12 @@ int run_map(const std::vector<std::string>& argv) {
         request.at = o.at;
         if (!request.at && own > map.first.from && own < map.first.to) request.at = own;
         request.progress = nullptr;
+        if (progress.enabled())
+          request.on_point = [&, i](const ContinuationPoint& p) {
+            std::lock_guard<std::mutex> lock(print);
+            status(i, o.name + ": branch, " + map.first.parameter + " = " +
+                          format_number(p.parameter));
+          };
         apply_accuracy(args.has("--accuracy") ? accuracy(args) : map.accuracy,
                        request.continuation);
         r.branch = run_branch(sources[i], request, stop);
@@ -152,12 +171,23 @@ int run_map(const std::vector<std::string>& argv) {
           co.orbit = request.continuation.orbit;
           CurveCallbacks cb;
           cb.stop_requested = [stop] { return stop->load(); };
+          if (progress.enabled())
+            cb.on_point = [&, i](const CurvePoint& p) {
+              std::lock_guard<std::mutex> lock(print);
+              status(i, o.name + ": curves, " + map.first.parameter + " = " +
+                            format_number(p.first) + ", " + map.second.parameter + " = " +
+                            format_number(p.second));
+            };
           r.curves = event_curves(model, r.branch, second, co, cb);
           for (const auto& curve : r.curves)
             say("  %s: %s curve from %s, %zu points in %.1f s; %s\n", o.name.c_str(),
                 to_string(curve.kind).c_str(), curve.origin.c_str(), curve.points.size(),
                 curve.seconds, curve.stop_reason.c_str());
           if (map.first.points > 0 && !stop->load()) {
+            {
+              std::lock_guard<std::mutex> lock(print);
+              status(i, o.name + ": the stability grid");
+            }
             r.grid =
                 stability_grid(model, r.branch, second, map.first.from, map.first.to,
                                map.second.from, map.second.to, map.first.points, map.second.points,
@@ -171,12 +201,16 @@ int run_map(const std::vector<std::string>& argv) {
         r.error = e.what();
       }
       r.seconds = orbit_clock.seconds();
+      std::lock_guard<std::mutex> lock(print);
+      ++finished;
+      status(i, "");
     }
   };
   std::vector<std::thread> threads;
   for (int t = 0; t < std::min<int>(jobs, static_cast<int>(map.orbits.size())); ++t)
     threads.emplace_back(worker);
   for (auto& t : threads) t.join();
+  progress.clear();
 
   nlohmann::json j;
   j["map"] = map.name;

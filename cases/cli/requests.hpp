@@ -13,6 +13,7 @@
 #include "cases/cli/branch_run.hpp"
 #include "cases/cli/event_name.hpp"
 #include "cases/cli/loaded_system.hpp"
+#include "cases/cli/progress.hpp"
 #include "cases/cli/study_file.hpp"
 #include "sympathy/cases/parameter_fit.hpp"
 #include "sympathy/continuation/bifurcation_curve.hpp"
@@ -62,7 +63,8 @@ BifurcationCurve follow_curve(const CurveRequest& r, const OdeSystem& system, co
 // sympathy study: its options; the run prepared (the study file read, every branch's case, start
 // and outputs checked, its request made: what is checked before any work), its branches computed
 // side by side on run.jobs threads (each as continue computes it, its CSVs streamed; a line per
-// branch to `progress` unless nullptr; `stop` asked between points).
+// branch to `progress` unless nullptr; `stop` asked between points; the count of branches done
+// and where each running one is on `line`, unless nullptr).
 struct StudyRun {
   Study study;
   std::string out, json_path;
@@ -75,7 +77,8 @@ struct StudyRun {
 };
 std::vector<OptionSpec> study_options();
 StudyRun study_run(const Arguments& args);
-void run_study_branches(StudyRun& run, const std::atomic<bool>* stop, std::FILE* progress);
+void run_study_branches(StudyRun& run, const std::atomic<bool>* stop, std::FILE* progress,
+                        ProgressLine* line = nullptr);
 
 // sympathy equilibria: its options, and the engine's problem and options read from them, checked
 // against the case `c` (the problem's and the options' own checks, the range, the outputs).

@@ -11,6 +11,7 @@
 #include "cases/cli/branch_run.hpp"
 #include "cases/cli/commands.hpp"
 #include "cases/cli/loaded_system.hpp"
+#include "cases/cli/progress.hpp"
 #include "cases/cli/requests.hpp"
 #include "cases/cli/study_file.hpp"
 #include "sympathy/continuation/branch_output.hpp"
@@ -20,6 +21,7 @@ namespace sympathy::cli {
 std::vector<OptionSpec> study_options() {
   return {{"--out", "DIR", false, "where the CSV and JSON files go (default out/figures)"},
           {"--jobs", "N", false, "branches computed side by side (default 2)"},
+          {"--quiet", "", false, "no progress line on a terminal"},
           accuracy_option()};
 }
 
@@ -95,7 +97,8 @@ StudyRun study_run(const Arguments& args) {
   return run;
 }
 
-void run_study_branches(StudyRun& run, const std::atomic<bool>* stop, std::FILE* progress) {
+void run_study_branches(StudyRun& run, const std::atomic<bool>* stop, std::FILE* progress,
+                        ProgressLine* line) {
   const Study& study = run.study;
   auto& results = run.results;
   auto& errors = run.errors;
@@ -112,6 +115,25 @@ void run_study_branches(StudyRun& run, const std::atomic<bool>* stop, std::FILE*
                     [](const StudyBranch& b) { return b.parent.empty(); }));
   std::mutex print;
   std::size_t next = 0;
+  // Where each running branch is, for the status line on a terminal (with `print` held).
+  std::vector<std::string> doing(study.branches.size());
+  std::size_t finished = 0;
+  const auto status = [&](std::size_t i, std::string what) {
+    if (!line) return;
+    doing[i] = std::move(what);
+    std::string now;
+    for (const auto& d : doing)
+      if (!d.empty()) now += (now.empty() ? "" : "; ") + d;
+    line->count("study", finished, study.branches.size(), "branches", 0, now);
+  };
+  if (line && line->enabled())
+    for (std::size_t i = 0; i < requests.size(); ++i)
+      requests[i].on_point = [&, i, own = requests[i].on_point](const ContinuationPoint& p) {
+        if (own) own(p);
+        std::lock_guard<std::mutex> lock(print);
+        status(i, study.branches[i].name + " " + requests[i].parameter + " = " +
+                      format_number(p.parameter));
+      };
   auto worker = [&](std::size_t end) {
     for (;;) {
       std::size_t i;
@@ -132,8 +154,10 @@ void run_study_branches(StudyRun& run, const std::atomic<bool>* stop, std::FILE*
       } catch (const std::exception& e) {
         errors[i] = e.what();
       }
-      if (!progress) continue;
       std::lock_guard<std::mutex> lock(print);
+      ++finished;
+      status(i, "");
+      if (!progress) continue;
       std::fprintf(progress, "  branch %-14s %zu points in %.1f s; %s\n",
                    study.branches[i].name.c_str(), results[i].points.size(), results[i].seconds,
                    !errors[i].empty() ? errors[i].c_str() : results[i].stop_reason.c_str());
@@ -164,7 +188,9 @@ int run_study(const std::vector<std::string>& argv) {
               study.parameter.c_str());
   if (first.equations()) std::printf("  %s\n", first.build_note().c_str());
   std::fflush(stdout);
-  run_study_branches(run, interrupt_flag(), stdout);
+  ProgressLine line(args.flag("--quiet"));
+  run_study_branches(run, interrupt_flag(), line.enabled() ? line.log() : stdout, &line);
+  line.clear();
 
   nlohmann::json j;
   j["study"] = study.name;
@@ -189,11 +215,9 @@ int run_study(const std::vector<std::string>& argv) {
   write_json(json_path, j);
   std::printf("  wrote %s, %zu CSV files of points and %zu of events; run time %.2f s\n",
               json_path.c_str(), study.branches.size(), study.branches.size(), clock.seconds());
-  if (!ok) return 4;
-  const bool interrupted = std::any_of(results.begin(), results.end(), [](const Branch& b) {
-    return b.stop == StopReason::Interrupted;
-  });
-  return interrupted ? kInterrupted : 0;
+  int code = ok ? kDone : kNumericalFailure;
+  for (const Branch& b : results) code = worse(code, exit_code_of(b));
+  return code;
 }
 
 }  // namespace sympathy::cli

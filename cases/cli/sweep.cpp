@@ -16,6 +16,7 @@
 #include "cases/cli/branch_run.hpp"
 #include "cases/cli/commands.hpp"
 #include "cases/cli/loaded_system.hpp"
+#include "cases/cli/progress.hpp"
 #include "cases/cli/requests.hpp"
 #include "cases/cli/study_record.hpp"
 #include "cases/cli/task_run.hpp"
@@ -97,8 +98,6 @@ Sweep prepare_sweep(const Arguments& args, int ranks) {
         throw InputError(std::string(option) +
                          ": a fit's option, given without --data; expected "
                          "--data FILE.csv too, for a fit at each value");
-  if (!args.has("--over"))
-    throw InputError("--over is required: the second parameter's grid, NAME=FROM:TO:COUNT");
   w.over = parse_grid(*args.value("--over"), "--over");
   w.c->require_parameter("--over", w.over.parameter);
   if (w.job == Sweep::Job::Branches && w.over.parameter == w.window.parameter)
@@ -304,8 +303,7 @@ int run_sweep(const std::vector<std::string>& argv) {
        {"--to", "B", false, "each branch's last value (required with --param)"},
        {"--at", "V", false, "start each branch at V instead and continue both ways"},
        {"--over", "NAME=FROM:TO:COUNT", false,
-        "the second parameter's grid: a branch (or an orbit) at each of its COUNT values "
-        "(required)"},
+        "the second parameter's grid: a branch (or an orbit) at each of its COUNT values", true},
        {"--initial", "VAR=VALUE", true, "initial state value (on top of --start)"},
        {"--data", "FILE.csv", false,
         "a fit to this recording at each value (the swept parameter held there), as fit's"},
@@ -315,6 +313,7 @@ int run_sweep(const std::vector<std::string>& argv) {
         "tasks run side by side (default: one per core; under mpirun one per rank)"},
        {"--out", "DIR", false, "where the files go (default out/sweep)"},
        {"--resume", "", false, "continue the journal in DIR: its tasks are not computed again"},
+       {"--quiet", "", false, "no progress line on a terminal"},
        accuracy_option()});
   const auto steps = branch_step_options();
   options.insert(options.end(), steps.begin(), steps.end());
@@ -379,7 +378,16 @@ int run_sweep(const std::vector<std::string>& argv) {
                w->start.empty() ? "(the file's [states])" : w->start.c_str(), job,
                w->over.parameter.c_str(), w->over.from, w->over.to, w->over.count,
                w->journal->resumed(), to_compute);
-  const auto summary = run_journaled(mpi, w->values.size(), w->journal.get(), work, w->run, stop);
+  ProgressLine line(args.flag("--quiet"));
+  const auto summary = run_journaled(mpi, w->values.size(), w->journal.get(), work, w->run, stop,
+                                     [&](std::size_t done) {
+                                       line.count("sweep", done, w->values.size(),
+                                                  w->job == Sweep::Job::Fits     ? "fits"
+                                                  : w->job == Sweep::Job::Orbits ? "orbits"
+                                                                                 : "branches",
+                                                  w->journal->resumed());
+                                     });
+  line.clear();
   w->journal->close();
   write_results(*w, summary, clock);
   return summary.interrupted ? kInterrupted : 0;

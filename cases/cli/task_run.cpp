@@ -75,10 +75,13 @@ std::optional<int> prepare_every_rank(const MpiSession& mpi, const std::function
 
 TaskRunSummary run_journaled(const MpiSession& mpi, std::size_t count, TaskJournal* journal,
                              const std::function<std::optional<TaskRow>(std::size_t)>& work,
-                             const TaskRunOptions& run, const std::atomic<bool>* stop) {
+                             const TaskRunOptions& run, const std::atomic<bool>* stop,
+                             const std::function<void(std::size_t)>& on_recorded) {
   if (mpi.size() > 1 && mpi.rank() > 0) return run_tasks_mpi(mpi, count, {}, work, {}, stop);
+  std::size_t recorded = journal->resumed();
   const auto record = [&](std::size_t index, TaskRow&& row) {
     journal->append(index, std::move(row));
+    if (on_recorded) on_recorded(++recorded);
   };
   return mpi.size() > 1 ? run_tasks_mpi(mpi, count, journal->done(), work, record, stop)
                         : run_tasks<TaskRow>(count, journal->done(), work, record, run, stop);

@@ -31,9 +31,10 @@ std::optional<int> prepare_every_rank(const MpiSession& mpi, const std::function
 // The tasks [0, count) not yet in `journal`, on `run`'s threads, or with an MPI job of more than
 // one rank on its workers (rank 0 hands them out); each result appended to `journal` as it comes.
 // On an MPI job's workers `journal` is null: they only compute. The summary of the run (on a
-// worker: of its own tasks).
+// worker: of its own tasks). `on_recorded` hears how many are in the journal after each.
 TaskRunSummary run_journaled(const MpiSession& mpi, std::size_t count, TaskJournal* journal,
                              const std::function<std::optional<TaskRow>(std::size_t)>& work,
-                             const TaskRunOptions& run, const std::atomic<bool>* stop);
+                             const TaskRunOptions& run, const std::atomic<bool>* stop,
+                             const std::function<void(std::size_t)>& on_recorded = {});
 
 }  // namespace sympathy::cli

@@ -1,0 +1,56 @@
+// What a long command shows on a terminal while it runs: one status line on stderr, rewritten in
+// place at most ten times a second and erased at the end. Nothing when stderr is not a terminal
+// (a log, a pipe, CI), when TERM is "dumb", or with --quiet: the command's output is then exactly
+// what it would be without it.
+#pragma once
+
+#include <cstddef>
+#include <cstdio>
+#include <mutex>
+#include <string>
+
+#include "sympathy/core/text.hpp"
+
+namespace sympathy::cli {
+
+class ProgressLine {
+ public:
+  explicit ProgressLine(bool quiet);
+  ~ProgressLine();
+  ProgressLine(const ProgressLine&) = delete;
+  ProgressLine& operator=(const ProgressLine&) = delete;
+
+  bool enabled() const { return enabled_; }
+
+  // A count with the time left, from the rate so far: "map: 1 of 3 orbits, 41 s, about 1 min
+  // left". `already` were done before this run (a resumed journal) and do not count for the rate.
+  void count(const std::string& what, std::size_t done, std::size_t total, const std::string& unit,
+             std::size_t already = 0, const std::string& note = "");
+  // A continuation's place in its window: "continue: k = 48.2, 61% of 30 to 60, 57 points".
+  void position(const std::string& what, const std::string& parameter, double value, double from,
+                double to, int points);
+  // Any text.
+  void show(const std::string& text);
+  void clear();
+
+  // Where the log lines printed meanwhile go: on a terminal, a stream that erases the status
+  // line before each line and draws it again after; else stderr itself.
+  std::FILE* log();
+
+ private:
+  static ssize_t write_log(void* self, const char* data, std::size_t size);
+  void draw_locked(bool force);
+
+  bool enabled_ = false;
+  std::mutex mutex_;
+  std::string text_;
+  bool drawn_ = false;
+  double last_draw_ = -1.0;
+  Stopwatch clock_;
+  std::FILE* log_ = nullptr;
+};
+
+// Seconds as "41 s", "3 min", "2 h 5 min".
+std::string duration_text(double seconds);
+
+}  // namespace sympathy::cli
