@@ -1,5 +1,6 @@
 #!/usr/bin/env bash
-# The bench command end to end (--quick): its files, and that its errors behave as errors should.
+# The bench command end to end (--quick, the sections with accuracy claims): its files, its
+# claims, and that its errors behave as errors should.
 # Usage: bench_test.sh SYMPATHY_BINARY SOURCE_DIR WORK_DIR
 set -u
 bin=$1 src=$2 work=$3
@@ -17,7 +18,10 @@ def err(problem, setting, rtol, column):
 sys.exit(0 if ($1) else 1)"
 }
 
-(cd "$work" && "$bin" bench --quick --out "$work") > "$work/bench.out"
+# The sections whose numbers are accuracy claims; (d) the cost of a point, (e) the cost against the
+# number of metronomes and (i) the Fig. 8 study's wall time measure time only, which is the bench's
+# report and not a test's (the study's events are regression.study's).
+(cd "$work" && "$bin" bench --quick --sections abcfghj --out "$work") > "$work/bench.out"
 check "bench exits 0" test $? -eq 0
 check "bench writes bench.csv and bench.md" test -s "$work/bench.csv" -a -s "$work/bench.md"
 check "bench prints its run time" grep -q 'run time .* s$' "$work/bench.out"
@@ -42,27 +46,6 @@ check "difference quotients converge at rtol 1e-7" csv_check \
 check "every row reports seconds and evaluation counts" csv_check \
   "all(float(r['seconds']) >= 0 and int(r['rhs_evaluations']) > 0 for r in rows if r['converged'] == 'yes')"
 
-# (d) and (e): complete rows with counts that hold whatever the machine's load: each point needs at
-# least one integration (on the anti-phase branch, whose orbit k does not move, one in its subspace
-# with the block across it), so there are at least as many integrations as points. The times are
-# reported, not compared: their ratios (a point's time over one period with sensitivities, 0.67 and
-# 1.02 here) are what the bench measures, and a loaded CI machine moved one below a 0.9 floor.
-/usr/bin/python3 - "$work" <<'PY'
-import csv, sys
-work = sys.argv[1]
-cost = list(csv.DictReader(open(f"{work}/cost.csv")))
-scaling = list(csv.DictReader(open(f"{work}/scaling.csv")))
-ok = len(cost) == 2 and all(int(r["points"]) > 5 and int(r["integrations"]) >= int(r["points"]) and
-                            int(r["events"]) >= 0 and
-                            all(float(r[k]) > 0 for k in ("seconds", "seconds_per_point",
-                                "period_with_sensitivities", "period_plain", "ratio",
-                                "ratio_without_locating"))
-                            for r in cost)
-ok &= [(int(r["metronomes"]), r["linear_solver"]) for r in scaling] == [(2, "dense"), (2, "structured"), (4, "dense"), (4, "structured"), (8, "dense"), (8, "structured")]
-ok &= all(float(r["seconds"]) > 0 and int(r["steps"]) > 0 and r["note"] == "" for r in scaling)
-sys.exit(0 if ok else 1)
-PY
-check "(d) point costs and (e) scaling rows are complete and sensible" test $? -eq 0
 
 # (f): the anti-phase k-branch per accuracy preset, against the rtol 1e-13 reference, with AUTO-07p's
 # measured points beside (bench/anchors/auto07p_row_k.csv). The presets' stated accuracy
@@ -82,14 +65,6 @@ rows = list(csv.DictReader(open('$work/identical.csv')))
 sys.exit(0 if [r['metronomes'] for r in rows] == ['2', '4', '8'] and all(float(r['multiplier_difference']) < 1e-8 for r in rows) else 1)"
 check "(h): generated and hand-written systems compared" grep -q '^(h) lrz   rhs ' "$work/bench.out"
 check "(h): the compile time, first and cached" grep -q '^(h) lrz: compiled in .* s, from the cache in' "$work/bench.out"
-# (i): the Fig. 8 study as the command runs it, both branches with the paper's events (Table II:
-# NS pair on the in-phase branch, BP and two NS on the anti-phase one) and a wall time.
-check "(i) the Fig. 8 study: both branches, their events, a wall time" /usr/bin/python3 -c "
-import csv, sys
-rows = list(csv.DictReader(open('$work/study.csv')))
-ok = [r['branch'] for r in rows] == ['in-phase', 'anti-phase'] and float(rows[0]['wall_seconds']) > 0
-ok = ok and rows[0]['events'].count('NS') == 2 and rows[1]['events'].startswith('BP 47.06')
-sys.exit(0 if ok else 1)"
 # (j): the measured stiffness chooses Adams at Table II's platform (the indicator below 1: Adams'
 # higher orders take fewer steps than BDF) and BDF at k = 1e6 N/m, c = 5000 N s/m (measured 9.2
 # uncapped, reported as at least 4: Adams held at its stability bound); every choice on the side of
