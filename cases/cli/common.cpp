@@ -72,9 +72,10 @@ LoadedCase load_case(const std::string& path, const std::string& params,
 
 OptionSpec accuracy_option() {
   return {"--accuracy", "fast|default|high", false,
-          "integrator preset (--rtol, --method, --sensitivities override it): fast = explicit "
-          "Runge-Kutta and coarser branch steps, located points to about 4e-7; default = "
-          "located points within 1e-8; high = tighter (default: default)"};
+          "integrator preset: fast = explicit Runge-Kutta at rtol 1e-8 and coarser branch steps, "
+          "located points within 4e-7; default = Adams at rtol 5e-12, located points within "
+          "1e-8; high = tighter (default: default; where a command takes --rtol, --method or "
+          "--sensitivities, they override it)"};
 }
 
 Accuracy parse_accuracy(const std::string& text, const std::string& where) {

@@ -274,8 +274,15 @@ int run_map(const std::vector<std::string>& argv) {
   write_json(json_path, j);
   std::printf("  wrote %s and %d CSV files of curves; run time %.1f s\n", json_path.c_str(), files,
               clock.seconds());
-  if (!ok) return 4;
-  return stop->load() ? kInterrupted : 0;
+  // A branch or curve stopped short of its window for a numerical reason: exit code 7 (a curve
+  // that could not start from its event is reported in its row, as the map's own finding).
+  int code = ok ? kDone : kNumericalFailure;
+  for (const OrbitMap& r : results) {
+    if (r.branch.started()) code = worse(code, exit_code_of(r.branch));
+    for (const auto& curve : r.curves)
+      if (exit_code_of(curve) == kStoppedShort) code = worse(code, kStoppedShort);
+  }
+  return stop->load() ? kInterrupted : code;
 }
 
 }  // namespace sympathy::cli
