@@ -49,7 +49,9 @@ Branch run_branch(const BranchSource& source, const BranchRequest& request,
   // The engine's own check of the problem, before any work ("at 3: expected a value between
   // from and to"), in the command line's names.
   if (const std::string wrong = problem.problem_with(model); !wrong.empty())
-    throw InputError("--" + wrong);
+    // The problem's field `parameter` is the option --param; the others share their names.
+    throw InputError(wrong.rfind("parameter ", 0) == 0 ? "--param" + wrong.substr(9)
+                                                       : "--" + wrong);
 
   std::unique_ptr<BranchCsvWriter> csv;
   if (!request.csv_path.empty())
