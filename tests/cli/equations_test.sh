@@ -155,7 +155,7 @@ check "ffn: rms of x at that NS = sqrt(1 - b/c^2)" test "$(json_value "$work/ffn
 # autonomous systems: each refused before any work (exit 2), saying why.
 "$bin" continue "$ffn" --param beta --from 10 --to 11 > /dev/null 2> "$work/ffn_beta.err"
 check "ffn: continuing beta (the forcing's period moves) exits 2" test $? -eq 2
-check "... saying so" grep -qF "parameter beta: the forcing's period depends on it" "$work/ffn_beta.err"
+check "... saying so" grep -qF -- "--param beta: the forcing's period depends on it" "$work/ffn_beta.err"
 "$bin" equilibria "$ffn" --param a --from 0 --to 1 > /dev/null 2> "$work/ffn_eq.err"
 check "ffn: equilibria of a forced system exit 2" test $? -eq 2
 check "... saying why" grep -qF "ffn.toml: its equations use t (a periodically forced system); equilibria is for autonomous systems" "$work/ffn_eq.err"

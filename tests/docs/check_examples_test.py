@@ -107,3 +107,27 @@ def test_update_masks_run_times(tmp_path):
     text = "```console\n$ echo 'run time     0.028 s'\n```\n"
     _, _, new = run(tmp_path, text, "--update")
     assert "run time     ... s" in new
+
+
+def test_links_stay_in_the_repository(tmp_path):
+    # A repository of its own: the checker, a README and a page.
+    repo = tmp_path / "repo"
+    (repo / "scripts").mkdir(parents=True)
+    (repo / "docs").mkdir()
+    (repo / "scripts" / "check_examples").write_text(SCRIPT.read_text())
+    (repo / "README.md").write_text("front door\n")
+
+    def links(text):
+        page = repo / "docs" / "page.md"
+        page.write_text(text)
+        done = subprocess.run([sys.executable, str(repo / "scripts" / "check_examples"),
+                               "--sympathy", "/bin/true", str(page)],
+                              capture_output=True, text=True)
+        return done.returncode, done.stdout + done.stderr
+
+    assert links("[ok](../README.md) [web](https://doi.org/10.1063/1.4965031) [a](#top)\n")[0] == 0
+    status, out = links("See [the model](../../shared/MODEL.md).\n")
+    assert status == 2 and "outside the repository" in out
+    status, out = links("[gone](nothere.md)\n")
+    assert status == 2 and "nothere.md: no such file" in out
+    assert links("```text\n[not a link](nothere.md)\n```\n")[0] == 0
