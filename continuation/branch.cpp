@@ -64,6 +64,8 @@ Branch join_branches(Branch backward, Branch forward) {
   joined.options = forward.options;
   joined.start_values = forward.start_values;
   joined.stiffness = backward.stiffness ? backward.stiffness : forward.stiffness;
+  joined.hopf_end = forward.hopf_end ? forward.hopf_end : backward.hopf_end;
+  joined.origin = forward.origin.empty() ? backward.origin : forward.origin;
   // The driver's join: the backward part reversed (indices negated, tangents along the joined
   // branch, each event after the point before it), the start once, the forward part.
   driver::Result<ContinuationPoint, Bifurcation> back, ahead;

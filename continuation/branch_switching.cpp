@@ -274,34 +274,14 @@ Branch Continuation::run_switched(const PeriodicOrbit& base, const Eigen::Vector
   } else {
     back = run_from(behind, -toward, inner, -tau, widened);
   }
-  // Joined: back's points reversed, the event, away's points.
-  Branch joined = std::move(away);
-  std::vector<ContinuationPoint> points;
-  for (auto it = back.points.rbegin(); it != back.points.rend(); ++it) {
-    it->index = joined_index(it->index);
-    points.push_back(std::move(*it));
+  // Joined by the driver's join, numbered from the event (0): each half's points and events one
+  // on, the event first in the forward half (its start, the one point the join keeps once).
+  for (Branch* half : {&away, &back}) {
+    for (auto& p : half->points) ++p.index;
+    for (auto& ev : half->events) ++ev.after_point;
   }
-  points.push_back(std::move(event_point));
-  sign = +1;
-  for (auto& p : joined.points) {
-    p.index = joined_index(p.index);
-    points.push_back(std::move(p));
-  }
-  joined.points = std::move(points);
-  for (auto& ev : joined.events) ev.after_point = joined_after(ev.after_point);
-  sign = -1;
-  for (auto& ev : back.events) {
-    ev.after_point = joined_after(ev.after_point);
-    joined.events.push_back(std::move(ev));
-  }
-  order_events(joined.events);
-  joined.backward_stop = back.stop;
-  joined.stop_reason = "backward: " + back.stop_reason + "; forward: " + joined.stop_reason;
-  joined.rejected += back.rejected;
-  joined.flow += back.flow;
-  joined.across_evaluations += back.across_evaluations;
-  joined.split_evaluations += back.split_evaluations;
-  joined.seconds += back.seconds;
+  away.points.insert(away.points.begin(), std::move(event_point));
+  Branch joined = join_branches(std::move(back), std::move(away));
   return joined;
 }
 

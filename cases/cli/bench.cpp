@@ -14,12 +14,13 @@
 #include <algorithm>
 #include <cmath>
 #include <cstdio>
+#include <ctime>
 #include <filesystem>
 #include <fstream>
 #include <sstream>
+#include <thread>
 #include <tuple>
 
-#include "cases/cli/progress.hpp"
 #include "cases/cli/bench_branch.hpp"
 #include "cases/cli/bench_equations.hpp"
 #include "cases/cli/bench_identical.hpp"
@@ -27,9 +28,11 @@
 #include "cases/cli/bench_study.hpp"
 #include "cases/cli/commands.hpp"
 #include "cases/cli/common.hpp"
+#include "cases/cli/progress.hpp"
 #include "sympathy/continuation/continuation.hpp"
 #include "sympathy/core/assignment.hpp"
 #include "sympathy/core/csv.hpp"
+#include "sympathy/core/output_file.hpp"
 
 namespace sympathy::cli {
 
@@ -276,6 +279,25 @@ std::vector<Scaling> scaling(const std::string& path, const std::string& params,
   return rows;
 }
 
+// Where and how the report was measured: run times mean little without the machine and the day.
+std::string where_measured(const std::vector<std::string>& argv) {
+  std::string cpu = "an unknown processor";
+  std::ifstream info("/proc/cpuinfo");
+  for (std::string line; std::getline(info, line);)
+    if (line.rfind("model name", 0) == 0 && line.find(':') != std::string::npos) {
+      cpu = line.substr(line.find(':') + 2);
+      break;
+    }
+  char day[32] = "an unknown day";
+  const std::time_t now = std::time(nullptr);
+  std::strftime(day, sizeof day, "%Y-%m-%d", std::gmtime(&now));
+  std::string command = "sympathy bench";
+  for (const auto& a : argv) command += " " + a;
+  return "Measured by `" + command + "` (sympathy " SYMPATHY_VERSION ") on " + day + ", on " + cpu +
+         " with " + std::to_string(std::thread::hardware_concurrency()) +
+         " hardware threads, each computation on one core unless stated.";
+}
+
 }  // namespace
 
 int run_bench(const std::vector<std::string>& argv) {
@@ -354,7 +376,8 @@ int run_bench(const std::vector<std::string>& argv) {
        "trivial_multiplier_error", "seconds", "rhs_evaluations", "sensitivity_rhs_evaluations",
        "jacobians", "newton_iterations", "converged", "note", "steps", "points", "cpu_seconds"});
   std::ostringstream md;
-  md << "# sympathy bench: error against run time (row setup)\n\n";
+  md << "# sympathy bench: error against run time (row setup)\n\n"
+     << where_measured(argv) << "\n\n";
   const Setting reference = setting("reference", Method::BDF, 1e-13);
   const Setting check = setting("check", Method::BDF, 1e-12);
   auto emit = [&](const std::string& problem, const Setting& s, const Result& r,
@@ -520,7 +543,7 @@ int run_bench(const std::vector<std::string>& argv) {
   if (want('h')) bench_equations(root, quick, md);
   if (want('i')) bench_study(root, out, quick, md);
   if (want('j')) bench_stiffness(root, out, quick, md);
-  std::ofstream(out + "/bench.md") << md.str();
+  write_file_atomically(out + "/bench.md", md.str());
   std::printf("wrote %s/bench.csv and %s/bench.md; run time %.1f s\n", out.c_str(), out.c_str(),
               clock.seconds());
   return 0;

@@ -81,9 +81,9 @@ std::vector<OptionSpec> fit_options() {
   options.insert(
       options.end(),
       {{"--data", "FILE.csv", false, "the recording: columns t and state names", true},
-       {"--free", "NAME[,NAME...]", true, "parameters to fit (d, s, c, k, M, ...)"},
-       {"--free-initial", "VAR[,VAR...]", true, "initial state values to fit too (th1, vth1, ...)"},
-       {"--locked-pendula", "", false, "pendula fixed to their casings: the platform alone"},
+       {"--free", "NAME[,NAME...]", true, "parameters of the case to fit"},
+       {"--free-initial", "VAR[,VAR...]", true, "initial values of the case's states to fit too"},
+       {"--locked-pendula", "", false, "a metronome case's pendula fixed to their casings: the platform alone"},
        {"--start", "NAME", false, "unrecorded states start from this named start (else 0)"},
        {"--initial", "VAR=VALUE", true, "initial value of an unrecorded state"},
        {"--sigma", "VAR=VALUE", true, "noise level of a column (default: the column's RMS)"},
