@@ -114,6 +114,7 @@ Continuation::Continuation(const OdeSystem& system, int parameter, ContinuationO
   if (parameter < 0 || parameter >= system.parameter_count())
     throw std::invalid_argument("continuation: no parameter with index " +
                                 std::to_string(parameter));
+  requested_ = options_;
   // A forced system's problem is made by each run, with the start's period (the forcing's).
   if (system.autonomous()) {
     problem_ = std::make_unique<ShootingProblem>(system_, options_.orbit.shooting);
@@ -233,22 +234,38 @@ std::optional<ContinuationPoint> Continuation::point_at(
   return make_point(c, tau, a.index, s);
 }
 
-void Continuation::choose_integrator(const PeriodicOrbit& start) {
+void Continuation::begin_run(const PeriodicOrbit& start) {
+  // Each run chooses its integrator for itself, from the options as asked: BDF chosen for an
+  // earlier run's stiff start does not carry over. (The shooting problem does, with the segments
+  // a refinement gave it, until segments follow a measured criterion along the branch: the other
+  // half of a switched branch, AUTO's tor, takes twice the time refining again from one.)
+  options_ = requested_;
+  stiffness_.reset();
   FlowOptions& flow = options_.orbit.shooting.flow;
-  if (!options_.orbit.switch_when_stiff || flow.method == Method::BDF ||
-      !(start.period > 0.0 && std::isfinite(start.period)))
-    return;
-  options_.orbit.switch_when_stiff = false;  // measured once, for every run of this object
-  // The start's own measurement where it carries one (an orbit found with the switch on: the
-  // same period, two plain runs saved), else measured here.
-  stiffness_ = start.stiffness ? start.stiffness
-                               : stiffness_of_guess(system_, flow, start.state0, start.parameters,
-                                                    start.period);
-  if (!stiffness_) return;
-  const FlowOptions chosen = after_stiffness(flow, *stiffness_);
-  if (chosen.method == flow.method) return;
-  flow = chosen;
-  if (system_.autonomous()) {
+  if (options_.orbit.switch_when_stiff && flow.method != Method::BDF && start.period > 0.0 &&
+      std::isfinite(start.period)) {
+    options_.orbit.switch_when_stiff = false;  // measured: the branch's options say what it chose
+    // The start's own measurement where it carries one (an orbit found with the switch on: the
+    // same period, two plain runs saved); else the last run's, where it started from the same
+    // orbit (the two halves of a two-way run); else measured here.
+    const auto same = [](const auto& a, const auto& b) {
+      return a.size() == b.size() && std::equal(a.begin(), a.end(), b.begin());
+    };
+    const bool measured_here = measured_start_.period == start.period &&
+                               same(measured_start_.state0, start.state0) &&
+                               same(measured_start_.parameters, start.parameters);
+    stiffness_ = start.stiffness ? start.stiffness
+                 : measured_here ? measured_stiffness_
+                                 : stiffness_of_guess(system_, flow, start.state0, start.parameters,
+                                                      start.period);
+    if (!start.stiffness && !measured_here) {
+      measured_start_ = start;
+      measured_start_.samples = PeriodSamples{};
+      measured_stiffness_ = stiffness_;
+    }
+    if (stiffness_) flow = after_stiffness(flow, *stiffness_);
+  }
+  if (system_.autonomous() && problem_->method() != flow.method) {
     problem_ = std::make_unique<ShootingProblem>(system_, options_.orbit.shooting);
     problem_->record_samples(true);
   }
@@ -265,7 +282,7 @@ Branch Continuation::run_from(const PeriodicOrbit& start, int direction,
                               const Eigen::VectorXd& initial_tangent,
                               const Eigen::VectorXd& sizes) {
   const Stopwatch started;
-  choose_integrator(start);
+  begin_run(start);
   // A periodically forced system: the period is the forcing's, the start's, fixed along the
   // branch (the continued parameter must not change it); the unknowns are the segment states.
   if (!system_.autonomous()) {
@@ -278,7 +295,7 @@ Branch Continuation::run_from(const PeriodicOrbit& start, int direction,
   branch.parameter_name = system_.parameter_names()[parameter_];
   branch.parameter = parameter_;
   branch.state_names = system_.state_names();
-  branch.options = options_;  // after choose_integrator: the method used
+  branch.options = options_;  // after begin_run: the method used
   branch.start_values = start.parameters;
   problem_->reset_statistics();
   predictions_land_ = false;

@@ -125,6 +125,21 @@ TEST(ExtremeParameters, StiffPlatformRunsBdfByMeasurement) {
   EXPECT_EQ(branch.options.orbit.shooting.flow.sensitivities, Sensitivities::ForwardModule);
   EXPECT_GE(branch.points.size(), 2u);
   for (const auto& p : branch.points) EXPECT_LT(p.orbit.floquet.trivial_error, 1e-8);
+
+  // The choice is each run's, recorded in its branch: one object run from the stiff orbit runs
+  // BDF, then from Table II's orbit Adams again (the first run's choice used to stay for every
+  // later run of the object), then from the stiff one BDF again, measured once for both.
+  co.lower = 1.0;
+  Continuation both(model, model.parameter_index("k"), co);
+  const Branch stiff_first = both.run(orbit, +1);
+  const Branch paper_branch = both.run(paper, +1);
+  const Branch stiff_again = both.run(orbit, -1);
+  for (const Branch* b : {&stiff_first, &paper_branch, &stiff_again})
+    ASSERT_TRUE(b->started() && b->stiffness) << b->stop_reason;
+  EXPECT_EQ(stiff_first.options.orbit.shooting.flow.method, Method::BDF);
+  EXPECT_EQ(paper_branch.options.orbit.shooting.flow.method, Method::Adams);
+  EXPECT_LT(paper_branch.stiffness->indicator, 1.0);
+  EXPECT_EQ(stiff_again.options.orbit.shooting.flow.method, Method::BDF);
 }
 
 // d = 0: the escapement feeds energy each swing and the hinges take none out, so the swing

@@ -111,6 +111,64 @@ TEST(Detection, FoldWhoseMultiplierWasComplexIsTrusted) {
   }
 }
 
+// A locator whose event carries `trivial_error` at the located point and `location` as its
+// outcome, the multiplier there `crossing`.
+Locator locator_with(std::complex<double> crossing, double trivial_error,
+                     LocationOutcome location = LocationOutcome::Located) {
+  return
+      [=](BifurcationType type, int multiplicity, std::complex<double> a, std::complex<double> b) {
+        Bifurcation e = locator_with(crossing)(type, multiplicity, a, b);
+        e.floquet.trivial_error = trivial_error;
+        e.location = location;
+        return e;
+      };
+}
+
+// A fold is located where the tangent's parameter component vanishes; the multipliers do not
+// enter. Its multiplier at +1 meets the trivial one there and is the worst conditioned of all: on
+// AUTO's tor (LP at rn = -0.7288775, T 38.94; issue 33) it reads 1.006 at rtol 5e-12 and 0.9999
+// at 1e-13 (eigenvalue condition 2e4, found independently), and a bracketing point's trivial
+// error was 1.3e-6 where the located point's was 5e-7 (LP at -0.7998992). With a multiplier seen
+// crossing +1 in the step, the fold is trusted on its own point's accuracy; a branch point, which
+// is located on its multiplier, with the same numbers is not.
+TEST(Detection, FoldIsTrustedOnItsTangentNotItsIllConditionedMultiplier) {
+  for (bool fold : {true, false}) {
+    Step s(0.9, 1.1);
+    if (fold) s.b.tangent = Eigen::Vector2d(0.0, -1.0);
+    s.a.orbit.floquet.trivial_error = 1.3e-6;
+    const auto events = detect(s.tracked, s.a, s.b, 1e-6, locator_with(1.006, 5e-7));
+    ASSERT_EQ(events.size(), 1u) << "fold: " << fold;
+    if (fold) {
+      EXPECT_EQ(events[0].type, BifurcationType::Fold);
+      EXPECT_TRUE(events[0].trusted()) << events[0].note;
+    } else {
+      EXPECT_EQ(events[0].type, BifurcationType::BranchPoint);
+      EXPECT_EQ(events[0].trust, EventTrust::CrossingNotResolved) << events[0].note;
+      EXPECT_NE(events[0].note.find("trivial-multiplier error 1.3e-06"), std::string::npos)
+          << events[0].note;
+    }
+  }
+  // The fold's own point still has to be accurate.
+  Step s(0.9, 1.1);
+  s.b.tangent = Eigen::Vector2d(0.0, -1.0);
+  const auto events = detect(s.tracked, s.a, s.b, 1e-6, locator_with(1.0, 4e-6));
+  ASSERT_EQ(events.size(), 1u);
+  EXPECT_EQ(events[0].trust, EventTrust::TrivialErrorTooLarge) << events[0].note;
+}
+
+// An event location could not narrow to its tolerance is trusted only where its best point's
+// multiplier is on the circle: AUTO's tor (issue 33) had a "trusted" BP whose multiplier there
+// was 3e-10, not a crossing at all.
+TEST(Detection, EventNotNarrowedOffTheCircleIsNotTrusted) {
+  const Step s(0.9, 1.1);
+  for (double crossing : {3e-10, 1.0 + 1e-6}) {
+    const auto events = detect(s.tracked, s.a, s.b, 1e-6,
+                               locator_with(crossing, 1e-10, LocationOutcome::NotNarrowed));
+    ASSERT_EQ(events.size(), 1u);
+    EXPECT_EQ(events[0].trusted(), crossing > 0.5) << crossing << ": " << events[0].note;
+  }
+}
+
 // A point at parameter (and arclength) s with the given nontrivial multipliers.
 ContinuationPoint point_with(double s, std::vector<Multiplier> multipliers) {
   ContinuationPoint p;

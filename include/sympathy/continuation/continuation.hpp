@@ -123,15 +123,21 @@ class Continuation {
   // orbits shrank into an equilibrium there (hopf.hpp); nullopt otherwise.
   std::optional<HopfPoint> hopf_end(const Bifurcation& turn) const;
 
-  // Where options_.orbit.switch_when_stiff asks for it: the stiffness at the start (the start's
-  // own measurement where it carries one), and the shooting problem remade with BDF where it is
-  // stiff (once: later runs keep the choice).
-  void choose_integrator(const PeriodicOrbit& start);
+  // At the start of each run: the options as asked (requested_), the stiffness at the start
+  // measured where options_.orbit.switch_when_stiff asks for it (the start's own measurement
+  // where it carries one) and BDF chosen where it is stiff, the shooting problem made for the run.
+  // The choice is the run's, recorded in its branch (options, stiffness).
+  void begin_run(const PeriodicOrbit& start);
 
   const OdeSystem& system_;
   int parameter_;
-  ContinuationOptions options_;
-  std::optional<StiffnessEstimate> stiffness_;  // where it was measured
+  ContinuationOptions requested_;               // as constructed (the defaults filled in)
+  ContinuationOptions options_;                 // this run's: requested_ with its integrator chosen
+  std::optional<StiffnessEstimate> stiffness_;  // where this run measured it
+  // The last start measured and what it gave: the other half of a two-way run from the same
+  // orbit measures nothing again.
+  PeriodicOrbit measured_start_;
+  std::optional<StiffnessEstimate> measured_stiffness_;
   std::unique_ptr<ShootingProblem> problem_;
   std::unique_ptr<BranchSpace> space_;  // made for each run, from its start
   InvariantSubspace subspace_;          // the start's: every point's multipliers labelled by it

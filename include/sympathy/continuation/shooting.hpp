@@ -131,6 +131,7 @@ class ShootingProblem {
   void project_on_subspace(Eigen::VectorXd& direction) const;
 
   int segments() const { return options_.segments; }
+  Method method() const { return options_.flow.method; }
   int dimension() const { return n_; }
   int unknowns() const { return n_ * options_.segments + (autonomous_ ? 1 : 0); }
   bool autonomous() const { return autonomous_; }
