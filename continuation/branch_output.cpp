@@ -82,6 +82,7 @@ nlohmann::json orbit_json(const OdeSystem& system, const PeriodicOrbit& orbit,
   j["residual"] = orbit.residual;
   j["family_dimension"] = orbit.family_dimension;
   j["segments"] = orbit.segments;
+  if (orbit.segment_growth > 0.0) j["segment_growth"] = orbit.segment_growth;
   j["state0"] = as_vector(orbit.state0);
   j["state_names"] = system.state_names();
   if (describer) {
@@ -157,6 +158,8 @@ nlohmann::json branch_json(const Branch& branch, const OrbitDescriber* describer
     q["multipliers"] = multipliers_json(f);
     q["trivial_multiplier_error"] = f.trivial_error;
     q["residual"] = p.orbit.residual;
+    q["segments"] = p.orbit.segments;
+    if (p.orbit.segment_growth > 0.0) q["segment_growth"] = p.orbit.segment_growth;
     q["structural"] = f.structural;
     q["state0"] = as_vector(p.orbit.state0);
     add_description(q, layout, p.description);

@@ -49,6 +49,9 @@ class Continuation::Run {
                                      std::vector<Bifurcation>& events);
   void accept(OrbitNode& b);
   bool refine(OrbitNode& a, const std::string& why);
+  bool resample(OrbitNode& a, int segments);
+  // The most shooting segments a refinement takes a branch to.
+  static constexpr int kMostSegments = 8;
   double parameter(const OrbitNode& p) const { return p.parameter; }
 
   std::optional<HopfPoint> hopf_end;  // where the family ended at a Hopf point
@@ -140,6 +143,30 @@ Correction Continuation::correct_step(const Eigen::VectorXd& from, const Eigen::
   return correct(*problem_, *space_, parameter_, corrector, from, tangent, step, guess, chord);
 }
 
+namespace {
+
+double segment_growth(const std::vector<Eigen::MatrixXd>& transitions,
+                      const Eigen::VectorXd& state_sizes) {
+  // A state that stays at 0 on the orbit has no scale of its own: it gets a small one, so that
+  // its row still counts (its own growth, in which the scale cancels).
+  const double largest = state_sizes.size() ? state_sizes.cwiseAbs().maxCoeff() : 0.0;
+  const Eigen::VectorXd sizes =
+      state_sizes.cwiseAbs().cwiseMax(largest > 0.0 ? 1e-8 * largest : 1.0);
+  double growth = 0.0;
+  for (const auto& M : transitions) {
+    if (M.rows() != sizes.size() || M.cols() != sizes.size()) continue;  // a reduced block
+    // |D^-1 M D|_inf: the largest row sum of |M_ij| s_j / s_i.
+    for (int i = 0; i < M.rows(); ++i) {
+      double row = 0.0;
+      for (int j = 0; j < M.cols(); ++j) row += std::abs(M(i, j)) * sizes[j];
+      growth = std::max(growth, row / sizes[i]);
+    }
+  }
+  return growth;
+}
+
+}  // namespace
+
 ContinuationPoint Continuation::make_point(const Correction& c, const Eigen::VectorXd& tangent,
                                            int index, double step) const {
   const int N = problem_->unknowns(), n = problem_->dimension(), m = problem_->segments();
@@ -156,6 +183,7 @@ ContinuationPoint Continuation::make_point(const Correction& c, const Eigen::Vec
   o.state0 = c.y.head(n);
   o.period = problem_->period(c.y.head(N));
   o.segments = m;
+  if (space_) o.segment_growth = segment_growth(c.evaluation.transitions, space_->sizes().head(n));
   o.residual = c.residual;
   o.family_dimension = family_dimension_;
   o.parameters = c.evaluation.parameters;
@@ -614,12 +642,21 @@ void Continuation::Run::accept(OrbitNode& b) {
 
 bool Continuation::Run::refine(OrbitNode& a, const std::string&) {
   // Where the corrector keeps failing, an orbit whose solutions grow fast along the period (a
-  // canard, strongly unstable orbits: AUTO's fhn and ab) is resolved on twice the segments: the
-  // last point re-sampled on them (each segment's start from one integration), corrected at its
-  // parameter, its Jacobian and tangent recomputed, and the step tried again. Up to 8 segments,
-  // the count recorded in each point (orbit.segments).
+  // canard, strongly unstable orbits: AUTO's fhn and ab) is resolved on twice the segments, up
+  // to kMostSegments, and the step tried again. (More segments on every failure, or wherever a
+  // segment's growth passes a limit, also let branches approaching a homoclinic orbit, AUTO's
+  // pp2 and tor, run on toward infinite period at a growing cost: that needs the approach
+  // recognised and the branch stopped there first.)
   const int m = c_.problem_->segments();
-  if (m >= 8 || !c_.system_.autonomous()) return false;
+  return c_.system_.autonomous() && 2 * m <= kMostSegments && resample(a, 2 * m);
+}
+
+bool Continuation::Run::resample(OrbitNode& a, int segments) {
+  // The point re-sampled on `segments` segments (each segment's start from one integration),
+  // corrected at its parameter, its Jacobian and tangent recomputed; the count recorded in each
+  // point (orbit.segments). False, and nothing changed, where it does not correct.
+  const int m = c_.problem_->segments();
+  if (segments == m) return false;
   std::unique_ptr<ShootingProblem> old_problem = std::move(c_.problem_);
   std::unique_ptr<BranchSpace> old_space = std::move(c_.space_);
   const auto restore = [&] {
@@ -628,7 +665,7 @@ bool Continuation::Run::refine(OrbitNode& a, const std::string&) {
     return false;
   };
   ShootingOptions shooting = c_.options_.orbit.shooting;
-  shooting.segments = 2 * m;
+  shooting.segments = segments;
   try {
     c_.problem_ = std::make_unique<ShootingProblem>(c_.system_, shooting);
     c_.problem_->record_samples(true);

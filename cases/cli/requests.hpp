@@ -63,8 +63,8 @@ BifurcationCurve follow_curve(const CurveRequest& r, const OdeSystem& system, co
 // sympathy study: its options; the run prepared (the study file read, every branch's case, start
 // and outputs checked, its request made: what is checked before any work), its branches computed
 // side by side on run.jobs threads (each as continue computes it, its CSVs streamed; a line per
-// branch to `progress` unless nullptr; `stop` asked between points; the count of branches done
-// and where each running one is on `line`, unless nullptr).
+// branch to `progress` unless nullptr, in the study's order at the end; `stop` asked between
+// points; the count of branches done and where each running one is on `line`, unless nullptr).
 struct StudyRun {
   Study study;
   std::string out, json_path;

@@ -157,11 +157,6 @@ void run_study_branches(StudyRun& run, const std::atomic<bool>* stop, std::FILE*
       std::lock_guard<std::mutex> lock(print);
       ++finished;
       status(i, "");
-      if (!progress) continue;
-      std::fprintf(progress, "  branch %-14s %zu points in %.1f s; %s\n",
-                   study.branches[i].name.c_str(), results[i].points.size(), results[i].seconds,
-                   !errors[i].empty() ? errors[i].c_str() : results[i].stop_reason.c_str());
-      std::fflush(progress);
     }
   };
   for (const std::size_t end : {independent, order.size()}) {
@@ -170,6 +165,14 @@ void run_study_branches(StudyRun& run, const std::atomic<bool>* stop, std::FILE*
       threads.emplace_back(worker, end);
     for (auto& t : threads) t.join();
   }
+  // A line per branch, in the study's order (the same on every run, whichever finished first;
+  // on a terminal the status line showed them as they went).
+  if (!progress) return;
+  for (std::size_t i = 0; i < study.branches.size(); ++i)
+    std::fprintf(progress, "  branch %-14s %zu points in %.1f s; %s\n",
+                 study.branches[i].name.c_str(), results[i].points.size(), results[i].seconds,
+                 !errors[i].empty() ? errors[i].c_str() : results[i].stop_reason.c_str());
+  std::fflush(progress);
 }
 
 int run_study(const std::vector<std::string>& argv) {

@@ -134,6 +134,12 @@ struct PeriodicOrbit {
   FloquetAnalysis floquet;
   double residual = 0.0;  // |Phi_T(z0) - z0|_inf at the converged point
   int segments = 1;
+  // The largest growth of a perturbation over one shooting segment, max_k |D^-1 M_k D|_inf with
+  // M_k the segment's transition matrix and D the state's scales (a continuation point's; 0 where
+  // not measured): what one segment must resolve. The corrector's noise floor is about rtol / 500
+  // times it (AUTO's fhn and ab): Newton stalls above about 1e5 at rtol 5e-12 (fhn's canard, 5e5
+  // to 2e6 on one segment), the measure a segment criterion is to act on.
+  double segment_growth = 0.0;
   int family_dimension = 0;  // > 0: the orbit belongs to a continuum of orbits
   NewtonSummary newton;
   FlowStatistics flow;  // integration work of the whole computation
