@@ -254,20 +254,25 @@ int run_map(const std::vector<std::string>& argv) {
     ok = ok && r.error.empty() && r.branch.started();
     std::printf("%s: %s\n", map.orbits[i].name.c_str(),
                 !r.error.empty() ? r.error.c_str() : r.branch.stop_reason.c_str());
-    std::printf("  curve     from                         points  %-22s run time  codim-2 points\n",
-                "stop");
+    // The stop column as wide as its longest entry ("minimum step / parameter bound": 32).
+    const auto stops_of = [](const BifurcationCurve& curve) {
+      return (curve.backward_stop ? to_string(*curve.backward_stop) + " / " : std::string()) +
+             to_string(curve.stop);
+    };
+    int width = 4;
+    for (const auto& curve : r.curves)
+      width = std::max(width, static_cast<int>(stops_of(curve).size()));
+    std::printf("  curve     from                         points  %-*s run time  codim-2 points\n",
+                width, "stop");
     for (const auto& curve : r.curves) {
       std::string codim2;
       for (const auto& e : curve.events)
         if (e.type.rfind("turn", 0) != 0)
           codim2 += (codim2.empty() ? "" : ", ") + e.type + " at " + format_number(e.first) + ", " +
                     format_number(e.second);
-      const std::string stops =
-          (curve.backward_stop ? to_string(*curve.backward_stop) + " / " : std::string()) +
-          to_string(curve.stop);
-      std::printf("  %-9s %-28s %6zu  %-22s %6.1f s  %s\n", to_string(curve.kind).c_str(),
-                  curve.origin.c_str(), curve.points.size(), stops.c_str(), curve.seconds,
-                  codim2.empty() ? "none" : codim2.c_str());
+      std::printf("  %-9s %-28s %6zu  %-*s %6.1f s  %s\n", to_string(curve.kind).c_str(),
+                  curve.origin.c_str(), curve.points.size(), width, stops_of(curve).c_str(),
+                  curve.seconds, codim2.empty() ? "none" : codim2.c_str());
     }
   }
   j["seconds"] = clock.seconds();
