@@ -621,6 +621,10 @@ Eigen::VectorXd EquationCase::parameter_values(const std::string& params,
 const StartSpec& EquationCase::start(const std::string& name) const {
   for (const auto& s : starts_)
     if (s.name == name) return s;
+  if (starts_.empty())
+    throw InputError("--start " + name + ": " + path_ +
+                     " names no starts (no [starts.NAME] tables): its [states] are the start; "
+                     "expected no --start");
   throw InputError("--start " + name + ": no start '" + name + "' in " + path_ +
                    "; expected one of: " + join(start_names()));
 }

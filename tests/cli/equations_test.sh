@@ -181,4 +181,8 @@ SYMPATHY_CACHE_DIR="$work/signal_cache" interrupted_after 0.5 "$bin" orbit "$wor
 check "SIGINT during a compile exits 6" test $? -eq 6
 check "... saying the compile was stopped" grep -q "was stopped by a signal; nothing of it is kept" "$work/signal.out"
 check "... leaving only the generated source in the cache" test "$(ls "$work/signal_cache" | grep -vc '\.cpp$')" -eq 0
+"$bin" orbit "$src/cases/examples/abc.toml" --start x > /dev/null 2> "$work/nostarts.err"
+check "--start on a file without named starts exits 2" test $? -eq 2
+check "... saying its [states] are the start" \
+  grep -qF "names no starts (no [starts.NAME] tables): its [states] are the start" "$work/nostarts.err"
 exit "$failures"
