@@ -223,10 +223,15 @@ Result<Point, Event> continuation(P& problem, Point start, const Options& o,
       return finish(Stop::PointLimit, "point limit (" + std::to_string(o.max_points) + ") reached");
     if (ds < o.min_step) {
       // The problem may resolve its last point better (an orbit on more shooting segments) and
-      // try again from the initial step before the branch ends here.
+      // try again before the branch ends here: from the step that reached that point, not the
+      // initial one (which on AUTO's tor jumped a period of 1 past a fold and a branch point
+      // 0.004 apart right after the refinement).
       if constexpr (requires { problem.refine(r.points.back(), last_failure); }) {
         if (problem.refine(r.points.back(), last_failure)) {
           ds = o.initial_step;
+          if constexpr (requires { r.points.back().step; })
+            if (r.points.back().step > 0.0)
+              ds = std::clamp(r.points.back().step, 4 * o.min_step, o.initial_step);
           continue;
         }
       }
