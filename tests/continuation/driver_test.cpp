@@ -241,6 +241,15 @@ TEST(Driver, ScreenAndRefinement) {
   EXPECT_EQ(failing.refinements, 1);
   EXPECT_EQ(f.stop, driver::Stop::PointLimit) << f.message;  // went on from the initial step
   EXPECT_DOUBLE_EQ(f.points[1].step, 0.1);
+  // A point reached by a step of 0.02 goes on from that step after its refinement, not from the
+  // initial 0.1 (which on AUTO's tor jumped past a fold and a branch point side by side).
+  ScreenedCircle reached;
+  reached.longest = 1e-9;
+  CirclePoint start = reached.at(0.0);
+  start.step = 0.02;
+  auto h = driver::continuation(reached, start, o);
+  EXPECT_EQ(reached.refinements, 1);
+  EXPECT_DOUBLE_EQ(h.points[1].step, 0.02);
   failing.max_refinements = 0;
   failing.longest = 1e-9;
   auto g = driver::continuation(failing, failing.at(0.0), o);
