@@ -111,16 +111,7 @@ int run_map(const std::vector<std::string>& argv) {
   std::mutex print;
   ProgressLine progress(quiet);
   std::FILE* log = progress.log();
-  // What each orbit is doing, for the status line on a terminal.
-  std::vector<std::string> doing(map.orbits.size());
-  std::size_t finished = 0;
-  const auto status = [&](std::size_t i, std::string what) {  // with `print` held
-    doing[i] = std::move(what);
-    std::string now;
-    for (const auto& d : doing)
-      if (!d.empty()) now += (now.empty() ? "" : "; ") + d;
-    progress.count("map", finished, map.orbits.size(), "orbits", 0, now);
-  };
+  progress.start_jobs("map", map.orbits.size(), "orbits");
   const auto say = [&](const char* format, auto... values) {
     if (quiet) return;
     std::lock_guard<std::mutex> lock(print);
@@ -153,9 +144,8 @@ int run_map(const std::vector<std::string>& argv) {
         request.progress = nullptr;
         if (progress.enabled())
           request.on_point = [&, i](const ContinuationPoint& p) {
-            std::lock_guard<std::mutex> lock(print);
-            status(i, o.name + ": branch, " + map.first.parameter + " = " +
-                          format_number(p.parameter));
+            progress.job(i, o.name + ": branch, " + map.first.parameter + " = " +
+                                format_number(p.parameter));
           };
         apply_accuracy(args.has("--accuracy") ? accuracy(args) : map.accuracy,
                        request.continuation);
@@ -173,10 +163,9 @@ int run_map(const std::vector<std::string>& argv) {
           cb.stop_requested = [stop] { return stop->load(); };
           if (progress.enabled())
             cb.on_point = [&, i](const CurvePoint& p) {
-              std::lock_guard<std::mutex> lock(print);
-              status(i, o.name + ": curves, " + map.first.parameter + " = " +
-                            format_number(p.first) + ", " + map.second.parameter + " = " +
-                            format_number(p.second));
+              progress.job(i, o.name + ": curves, " + map.first.parameter + " = " +
+                                  format_number(p.first) + ", " + map.second.parameter + " = " +
+                                  format_number(p.second));
             };
           r.curves = event_curves(model, r.branch, second, co, cb);
           for (const auto& curve : r.curves)
@@ -184,10 +173,7 @@ int run_map(const std::vector<std::string>& argv) {
                 to_string(curve.kind).c_str(), curve.origin.c_str(), curve.points.size(),
                 curve.seconds, curve.stop_reason.c_str());
           if (map.first.points > 0 && !stop->load()) {
-            {
-              std::lock_guard<std::mutex> lock(print);
-              status(i, o.name + ": the stability grid");
-            }
+            progress.job(i, o.name + ": the stability grid");
             r.grid =
                 stability_grid(model, r.branch, second, map.first.from, map.first.to,
                                map.second.from, map.second.to, map.first.points, map.second.points,
@@ -201,9 +187,7 @@ int run_map(const std::vector<std::string>& argv) {
         r.error = e.what();
       }
       r.seconds = orbit_clock.seconds();
-      std::lock_guard<std::mutex> lock(print);
-      ++finished;
-      status(i, "");
+      progress.finish(i);
     }
   };
   std::vector<std::thread> threads;

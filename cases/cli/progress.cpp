@@ -44,16 +44,50 @@ ProgressLine::~ProgressLine() {
 void ProgressLine::count(const std::string& what, std::size_t done, std::size_t total,
                          const std::string& unit, std::size_t already, const std::string& note) {
   if (!enabled_) return;
+  std::lock_guard<std::mutex> lock(mutex_);
+  jobs_what_ = what;
+  jobs_unit_ = unit;
+  count_locked(done, total, already, note);
+}
+
+void ProgressLine::count_locked(std::size_t done, std::size_t total, std::size_t already,
+                                const std::string& note) {
   const double elapsed = clock_.seconds();
-  std::string text = what + ": " + std::to_string(done) + " of " + std::to_string(total) + " " +
-                     unit + ", " + duration_text(elapsed);
+  std::string text = jobs_what_ + ": " + std::to_string(done) + " of " + std::to_string(total) +
+                     " " + jobs_unit_ + ", " + duration_text(elapsed);
   const std::size_t here = done > already ? done - already : 0;
   if (here > 0 && done < total)
     text += ", about " + duration_text(elapsed / here * (total - done)) + " left";
   if (!note.empty()) text += "; " + note;
-  std::lock_guard<std::mutex> lock(mutex_);
   text_ = std::move(text);
   draw_locked(done == total);
+}
+
+void ProgressLine::start_jobs(const std::string& what, std::size_t total, const std::string& unit) {
+  std::lock_guard<std::mutex> lock(mutex_);
+  jobs_what_ = what;
+  jobs_unit_ = unit;
+  doing_.assign(total, "");
+  finished_ = 0;
+}
+
+void ProgressLine::job(std::size_t i, std::string doing) {
+  if (!enabled_) return;
+  std::lock_guard<std::mutex> lock(mutex_);
+  if (i >= doing_.size()) return;
+  doing_[i] = std::move(doing);
+  std::string now;
+  for (const auto& d : doing_)
+    if (!d.empty()) now += (now.empty() ? "" : "; ") + d;
+  count_locked(finished_, doing_.size(), 0, now);
+}
+
+void ProgressLine::finish(std::size_t i) {
+  {
+    std::lock_guard<std::mutex> lock(mutex_);
+    ++finished_;
+  }
+  job(i, "");
 }
 
 void ProgressLine::position(const std::string& what, const std::string& parameter, double value,

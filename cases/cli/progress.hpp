@@ -8,6 +8,7 @@
 #include <cstdio>
 #include <mutex>
 #include <string>
+#include <vector>
 
 #include "sympathy/core/text.hpp"
 
@@ -29,6 +30,12 @@ class ProgressLine {
   // A continuation's place in its window: "continue: k = 48.2, 61% of 30 to 60, 57 points".
   void position(const std::string& what, const std::string& parameter, double value, double from,
                 double to, int points);
+  // Jobs run side by side (a map's orbits, a study's branches): start_jobs names them and their
+  // count; job(i, what) says what job i is doing, finish(i) that it is done; the line shows the
+  // count done with the time left and what each running job is doing. Thread-safe.
+  void start_jobs(const std::string& what, std::size_t total, const std::string& unit);
+  void job(std::size_t i, std::string doing);
+  void finish(std::size_t i);
   // Any text.
   void show(const std::string& text);
   void clear();
@@ -40,6 +47,8 @@ class ProgressLine {
  private:
   static ssize_t write_log(void* self, const char* data, std::size_t size);
   void draw_locked(bool force);
+  void count_locked(std::size_t done, std::size_t total, std::size_t already,
+                    const std::string& note);
 
   bool enabled_ = false;
   std::mutex mutex_;
@@ -48,6 +57,10 @@ class ProgressLine {
   double last_draw_ = -1.0;
   Stopwatch clock_;
   std::FILE* log_ = nullptr;
+  // The jobs (start_jobs).
+  std::string jobs_what_, jobs_unit_;
+  std::vector<std::string> doing_;
+  std::size_t finished_ = 0;
 };
 
 // Seconds as "41 s", "3 min", "2 h 5 min".

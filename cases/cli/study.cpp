@@ -113,32 +113,22 @@ void run_study_branches(StudyRun& run, const std::atomic<bool>* stop, std::FILE*
   const std::size_t independent = static_cast<std::size_t>(
       std::count_if(study.branches.begin(), study.branches.end(),
                     [](const StudyBranch& b) { return b.parent.empty(); }));
-  std::mutex print;
+  std::mutex queue;  // guards next
   std::size_t next = 0;
-  // Where each running branch is, for the status line on a terminal (with `print` held).
-  std::vector<std::string> doing(study.branches.size());
-  std::size_t finished = 0;
-  const auto status = [&](std::size_t i, std::string what) {
-    if (!line) return;
-    doing[i] = std::move(what);
-    std::string now;
-    for (const auto& d : doing)
-      if (!d.empty()) now += (now.empty() ? "" : "; ") + d;
-    line->count("study", finished, study.branches.size(), "branches", 0, now);
-  };
+  // Where each running branch is, on the status line of a terminal.
+  if (line) line->start_jobs("study", study.branches.size(), "branches");
   if (line && line->enabled())
     for (std::size_t i = 0; i < requests.size(); ++i)
       requests[i].on_point = [&, i, own = requests[i].on_point](const ContinuationPoint& p) {
         if (own) own(p);
-        std::lock_guard<std::mutex> lock(print);
-        status(i, study.branches[i].name + " " + requests[i].parameter + " = " +
-                      format_number(p.parameter));
+        line->job(i, study.branches[i].name + " " + requests[i].parameter + " = " +
+                         format_number(p.parameter));
       };
   auto worker = [&](std::size_t end) {
     for (;;) {
       std::size_t i;
       {
-        std::lock_guard<std::mutex> lock(print);
+        std::lock_guard<std::mutex> lock(queue);
         if (next >= end) return;
         i = order[next++];
       }
@@ -154,9 +144,7 @@ void run_study_branches(StudyRun& run, const std::atomic<bool>* stop, std::FILE*
       } catch (const std::exception& e) {
         errors[i] = e.what();
       }
-      std::lock_guard<std::mutex> lock(print);
-      ++finished;
-      status(i, "");
+      if (line) line->finish(i);
     }
   };
   for (const std::size_t end : {independent, order.size()}) {

@@ -56,6 +56,11 @@ script -qec "$(printf '%q ' "$bin" "${sweep[@]}")" /dev/null > "$work/sweep.out"
 check "a sweep shows its count on a terminal" grep -q 'sweep: 3 of 3 orbits' "$work/sweep.out"
 check "... with the time left while it runs" grep -q 'sweep: 1 of 3 orbits, [0-9]* s, about' "$work/sweep.out"
 
+study=(study "$src/cases/figures/fig08.toml" --out "$work/study")
+script -qec "$(printf '%q ' "$bin" "${study[@]}")" /dev/null > "$work/study.out"
+check "a study shows its branches done on a terminal" grep -q 'study: 2 of 2 branches' "$work/study.out"
+check "... and where a running one is" grep -Eq 'study: [01] of 2 branches, [0-9]+ s[^;]*; [a-z-]+ k = ' "$work/study.out"
+
 # A branch that ends short of its bound for a numerical reason (FitzHugh-Nagumo's family from its
 # Hopf point, whose corrector fails past the canard near a = 0.18): exit code 7, with what it
 # computed written.
