@@ -188,6 +188,9 @@ Branch continue_branch(const OdeSystem& system, const BranchProblem& problem,
   const bool interrupted = callbacks.stop_requested && callbacks.stop_requested();
   if (problem.at && !interrupted && forward.started()) {
     index_sign = -1;
+    // The other way from the same orbit: its stiffness as the forward run measured it (each run
+    // chooses its integrator, and would measure it again).
+    if (!orbit.stiffness) orbit.stiffness = forward.stiffness;
     branch = join_branches(continuation.run(orbit, -toward, inner), std::move(forward));
   } else {
     branch = std::move(forward);

@@ -273,24 +273,11 @@ void Continuation::begin_run(const PeriodicOrbit& start) {
   if (options_.orbit.switch_when_stiff && flow.method != Method::BDF && start.period > 0.0 &&
       std::isfinite(start.period)) {
     options_.orbit.switch_when_stiff = false;  // measured: the branch's options say what it chose
-    // The start's own measurement where it carries one (an orbit found with the switch on: the
-    // same period, two plain runs saved); else the last run's, where it started from the same
-    // orbit (the two halves of a two-way run); else measured here.
-    const auto same = [](const auto& a, const auto& b) {
-      return a.size() == b.size() && std::equal(a.begin(), a.end(), b.begin());
-    };
-    const bool measured_here = measured_start_.period == start.period &&
-                               same(measured_start_.state0, start.state0) &&
-                               same(measured_start_.parameters, start.parameters);
+    // The start's own measurement where it carries one (an orbit found with the switch on, or the
+    // other half of a two-way run: the same period, two plain runs saved), else measured here.
     stiffness_ = start.stiffness ? start.stiffness
-                 : measured_here ? measured_stiffness_
                                  : stiffness_of_guess(system_, flow, start.state0, start.parameters,
                                                       start.period);
-    if (!start.stiffness && !measured_here) {
-      measured_start_ = start;
-      measured_start_.samples = PeriodSamples{};
-      measured_stiffness_ = stiffness_;
-    }
     if (stiffness_) flow = after_stiffness(flow, *stiffness_);
   }
   if (system_.autonomous() && problem_->method() != flow.method) {
@@ -546,7 +533,9 @@ driver::Found<Bifurcation> Continuation::Run::detect(const OrbitNode* before, co
     // and corrected from the Jacobian interpolated between theirs (a's alone where b lies on the
     // bound: its Jacobian is not in a's section's step).
     // The screen's pairing where b is the point it saw (not moved onto the bound since).
-    const bool same = b.parameter == tracked_parameter_ && b.unknowns == tracked_unknowns_;
+    const bool same = b.parameter == tracked_parameter_ &&
+                      b.unknowns.size() == tracked_unknowns_.size() &&
+                      b.unknowns == tracked_unknowns_;
     const TrackedMultipliers tracked = same ? tracked_ : track(before, a, b);
     const Eigen::SparseMatrix<double>* jacobian_b = b.jacobian.rows() ? &b.jacobian : nullptr;
     const Locator locator = [&](BifurcationType type, int multiplicity, std::complex<double> mu_a,

@@ -128,7 +128,7 @@ TEST(ExtremeParameters, StiffPlatformRunsBdfByMeasurement) {
 
   // The choice is each run's, recorded in its branch: one object run from the stiff orbit runs
   // BDF, then from Table II's orbit Adams again (the first run's choice used to stay for every
-  // later run of the object), then from the stiff one BDF again, measured once for both.
+  // later run of the object), then from the stiff one BDF again.
   co.lower = 1.0;
   Continuation both(model, model.parameter_index("k"), co);
   const Branch stiff_first = both.run(orbit, +1);

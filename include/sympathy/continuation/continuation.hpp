@@ -134,10 +134,6 @@ class Continuation {
   ContinuationOptions requested_;               // as constructed (the defaults filled in)
   ContinuationOptions options_;                 // this run's: requested_ with its integrator chosen
   std::optional<StiffnessEstimate> stiffness_;  // where this run measured it
-  // The last start measured and what it gave: the other half of a two-way run from the same
-  // orbit measures nothing again.
-  PeriodicOrbit measured_start_;
-  std::optional<StiffnessEstimate> measured_stiffness_;
   std::unique_ptr<ShootingProblem> problem_;
   std::unique_ptr<BranchSpace> space_;  // made for each run, from its start
   InvariantSubspace subspace_;          // the start's: every point's multipliers labelled by it

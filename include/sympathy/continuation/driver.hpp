@@ -41,7 +41,8 @@
 //       // the problem's own check of a corrected step (an orbit's multipliers moving too far)
 //   bool refine(Point& a, const std::string& why);
 //       // where the step fell below the minimum at a: a resolved better (in place), to try again
-//       // from the initial step; false: the branch ends there
+//       // from the step that reached a (the initial step where a has none); false: the branch
+//       // ends there
 #pragma once
 
 #include <algorithm>
