@@ -109,6 +109,13 @@ def test_update_masks_run_times(tmp_path):
     assert "run time     ... s" in new
 
 
+def test_update_keeps_a_changed_lines_masks(tmp_path):
+    text = "```console\n$ echo 'period 0.577048204146 s (step 17)'\nperiod 0.5771 s (step ...)\n```\n"
+    status, out, new = run(tmp_path, text, "--update")
+    assert status == 1 and "0.5771 -> 0.577048204146" in out
+    assert "period 0.577048204146 s (step ...)" in new
+
+
 def test_links_stay_in_the_repository(tmp_path):
     # A repository of its own: the checker, a README and a page.
     repo = tmp_path / "repo"
