@@ -83,6 +83,7 @@ nlohmann::json orbit_json(const OdeSystem& system, const PeriodicOrbit& orbit,
   j["family_dimension"] = orbit.family_dimension;
   j["segments"] = orbit.segments;
   if (orbit.segment_growth > 0.0) j["segment_growth"] = orbit.segment_growth;
+  if (orbit.monodromy_growth > 0.0) j["monodromy_growth"] = orbit.monodromy_growth;
   j["state0"] = as_vector(orbit.state0);
   j["state_names"] = system.state_names();
   if (describer) {
@@ -160,6 +161,7 @@ nlohmann::json branch_json(const Branch& branch, const OrbitDescriber* describer
     q["residual"] = p.orbit.residual;
     q["segments"] = p.orbit.segments;
     if (p.orbit.segment_growth > 0.0) q["segment_growth"] = p.orbit.segment_growth;
+    if (p.orbit.monodromy_growth > 0.0) q["monodromy_growth"] = p.orbit.monodromy_growth;
     q["structural"] = f.structural;
     q["state0"] = as_vector(p.orbit.state0);
     add_description(q, layout, p.description);

@@ -215,6 +215,7 @@ void Continuation::refine_branch_point(Bifurcation& e, const ContinuationPoint& 
   e.uncertainty = s.uncertainty;
   e.period = p.orbit.period;
   e.floquet = p.orbit.floquet;
+  e.monodromy_growth = p.orbit.monodromy_growth;
   e.state0 = p.orbit.state0;
   e.unknowns = p.unknowns;
   // The old branch's tangent from the step's ends: at the crossing's point, 1e-8 from the branch

@@ -145,24 +145,39 @@ Correction Continuation::correct_step(const Eigen::VectorXd& from, const Eigen::
 
 namespace {
 
-double segment_growth(const std::vector<Eigen::MatrixXd>& transitions,
-                      const Eigen::VectorXd& state_sizes) {
+struct Growth {
+  double segment = 0.0, monodromy = 0.0;
+};
+
+// |D^-1 M D|_inf for each segment's M (the largest) and for their product, the monodromy.
+Growth growth(const std::vector<Eigen::MatrixXd>& transitions, const Eigen::VectorXd& state_sizes) {
   // A state that stays at 0 on the orbit has no scale of its own: it gets a small one, so that
   // its row still counts (its own growth, in which the scale cancels).
   const double largest = state_sizes.size() ? state_sizes.cwiseAbs().maxCoeff() : 0.0;
   const Eigen::VectorXd sizes =
       state_sizes.cwiseAbs().cwiseMax(largest > 0.0 ? 1e-8 * largest : 1.0);
-  double growth = 0.0;
-  for (const auto& M : transitions) {
-    if (M.rows() != sizes.size() || M.cols() != sizes.size()) continue;  // a reduced block
-    // |D^-1 M D|_inf: the largest row sum of |M_ij| s_j / s_i.
+  const auto scaled_norm = [&](const Eigen::MatrixXd& M) {
+    double norm = 0.0;  // the largest row sum of |M_ij| s_j / s_i
     for (int i = 0; i < M.rows(); ++i) {
       double row = 0.0;
       for (int j = 0; j < M.cols(); ++j) row += std::abs(M(i, j)) * sizes[j];
-      growth = std::max(growth, row / sizes[i]);
+      norm = std::max(norm, row / sizes[i]);
     }
+    return norm;
+  };
+  Growth g;
+  Eigen::MatrixXd product;
+  bool whole = true;
+  for (const auto& M : transitions) {
+    if (M.rows() != sizes.size() || M.cols() != sizes.size()) {  // a reduced block
+      whole = false;
+      continue;
+    }
+    g.segment = std::max(g.segment, scaled_norm(M));
+    product = product.size() ? Eigen::MatrixXd(M * product) : M;
   }
-  return growth;
+  if (whole && product.size()) g.monodromy = scaled_norm(product);
+  return g;
 }
 
 }  // namespace
@@ -183,7 +198,11 @@ ContinuationPoint Continuation::make_point(const Correction& c, const Eigen::Vec
   o.state0 = c.y.head(n);
   o.period = problem_->period(c.y.head(N));
   o.segments = m;
-  if (space_) o.segment_growth = segment_growth(c.evaluation.transitions, space_->sizes().head(n));
+  if (space_) {
+    const Growth g = growth(c.evaluation.transitions, space_->sizes().head(n));
+    o.segment_growth = g.segment;
+    o.monodromy_growth = g.monodromy;
+  }
   o.residual = c.residual;
   o.family_dimension = family_dimension_;
   o.parameters = c.evaluation.parameters;
@@ -548,7 +567,7 @@ driver::Found<Bifurcation> Continuation::Run::detect(const OrbitNode* before, co
       c_.refine_branch_point(e, a, b);
       return e;
     };
-    found.events = sympathy::detect(tracked, a, b, options.trust_limit, locator);
+    found.events = sympathy::detect(tracked, a, b, c_.trust_limit(), locator);
     for (const auto& e : found.events) found.unlocated |= !e.located();
   }
   if (!options.user_points.empty()) {  // AUTO's UZ, among the step's events along it

@@ -27,7 +27,7 @@ std::string together_note(BifurcationType type, int multiplicity) {
 }
 
 std::vector<Bifurcation> detect(const TrackedMultipliers& tracked, const ContinuationPoint& a,
-                                const ContinuationPoint& b, double trust_limit,
+                                const ContinuationPoint& b, const TrustLimit& trust,
                                 const Locator& locate) {
   // The parameter's component of the tangents (the last entry).
   const bool fold = a.tangent[a.tangent.size() - 1] * b.tangent[b.tangent.size() - 1] < 0.0;
@@ -173,6 +173,8 @@ std::vector<Bifurcation> detect(const TrackedMultipliers& tracked, const Continu
                              ? e.floquet.trivial_error
                              : std::max({a.orbit.floquet.trivial_error,
                                          b.orbit.floquet.trivial_error, e.floquet.trivial_error});
+    const double trust_limit =
+        on_tangent ? trust.without_multipliers(e.monodromy_growth) : trust.absolute;
     if (worst > trust_limit) {
       if (e.trust == EventTrust::Trusted) e.trust = EventTrust::TrivialErrorTooLarge;
       std::ostringstream msg;

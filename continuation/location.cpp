@@ -76,6 +76,7 @@ Bifurcation locate(const ContinuationPoint& a, const ContinuationPoint& b, Bifur
   }
   e.period = best.orbit.period;
   e.floquet = best.orbit.floquet;
+  e.monodromy_growth = best.orbit.monodromy_growth;
   const driver::End<std::complex<double>> none;
   e.crossing = type == BifurcationType::Fold ? tracked(best, 0.0, none, none) : mu_best;
   if (type != BifurcationType::Fold) {

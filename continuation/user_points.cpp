@@ -4,6 +4,7 @@
 #include <algorithm>
 
 #include "sympathy/continuation/continuation.hpp"
+#include "sympathy/core/csv.hpp"
 
 namespace sympathy {
 
@@ -24,15 +25,19 @@ std::vector<Bifurcation> Continuation::user_points_between(const ContinuationPoi
       e.location = LocationOutcome::Located;
       e.period = at->orbit.period;
       e.floquet = at->orbit.floquet;
+      e.monodromy_growth = at->orbit.monodromy_growth;
       e.state0 = at->orbit.state0;
       e.unknowns = at->unknowns;
       e.tangent = at->tangent;
       e.arclength = at->step;
       e.note = "user point";
-      if (e.floquet.trivial_error > options_.trust_limit) {
+      // Located at its parameter value by the corrector, not by the multipliers.
+      const double limit = trust_limit().without_multipliers(e.monodromy_growth);
+      if (e.floquet.trivial_error > limit) {
         e.trust = EventTrust::TrivialErrorTooLarge;
         e.note = "user point; not trusted: trivial-multiplier error " +
-                 std::to_string(e.floquet.trivial_error) + " above the trust limit";
+                 format_double(e.floquet.trivial_error) + " above the trust limit " +
+                 format_double(limit);
       }
     } else {
       // Kept, with what the points around it say (a step whose own corrector converged, so a

@@ -19,6 +19,8 @@ std::string to_string(Stability s) {
       return "unstable";
     case Stability::Marginal:
       return "marginal";
+    case Stability::Unresolved:
+      return "unresolved";
   }
   return "?";
 }
@@ -146,9 +148,12 @@ void summarize(FloquetAnalysis& a, const FloquetOptions& options) {
     a.max_modulus = std::max(a.max_modulus, m.modulus());
     if (m.modulus() > 1.0 + tol) ++a.unstable_count;
   }
-  a.stability = a.max_modulus < 1.0 - tol   ? Stability::Stable
-                : a.max_modulus > 1.0 + tol ? Stability::Unstable
-                                            : Stability::Marginal;
+  // The verdict holds within the multipliers' error, of which the trivial one's is the measure.
+  const double margin = std::max(tol, a.trivial_error);
+  a.stability = a.max_modulus < 1.0 - margin   ? Stability::Stable
+                : a.max_modulus > 1.0 + margin ? Stability::Unstable
+                : margin > tol                 ? Stability::Unresolved
+                                               : Stability::Marginal;
 }
 
 FloquetAnalysis analyze_floquet(const std::vector<Eigen::MatrixXd>& segments,

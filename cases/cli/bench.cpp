@@ -83,7 +83,7 @@ OrbitOptions orbit_options(const Setting& s) {
   return o;
 }
 
-std::vector<std::complex<double>> nontrivial(const FloquetAnalysis& f) {
+std::vector<std::complex<double>> nontrivial_values(const FloquetAnalysis& f) {
   std::vector<std::complex<double>> v;
   for (const auto& m : f.multipliers)
     if (!m.trivial) v.push_back(m.value);
@@ -114,7 +114,7 @@ Result solve_orbit(const MetronomeModel& model, const PeriodicOrbit& guess,
                                             subspace, orbit_options(s));
     r.converged = orbit.converged();
     r.period = orbit.period;
-    r.multipliers = nontrivial(orbit.floquet);
+    r.multipliers = nontrivial_values(orbit.floquet);
     r.trivial_error = orbit.floquet.trivial_error;
     r.flow = orbit.flow;
     r.iterations = orbit.newton.iterations;

@@ -45,7 +45,7 @@ Locator locator_with(std::complex<double> crossing) {
 
 TEST(Detection, CrossingOnTheCircleIsTrusted) {
   const Step s(0.9, 1.1);
-  const auto events = detect(s.tracked, s.a, s.b, 1e-6, locator_with(1.0 + 1e-9));
+  const auto events = detect(s.tracked, s.a, s.b, TrustLimit{1e-6}, locator_with(1.0 + 1e-9));
   ASSERT_EQ(events.size(), 1u);
   EXPECT_EQ(events[0].type, BifurcationType::BranchPoint);
   EXPECT_TRUE(events[0].trusted()) << events[0].note;
@@ -54,7 +54,7 @@ TEST(Detection, CrossingOnTheCircleIsTrusted) {
 TEST(Detection, CrossingOffTheCircleIsNotTrusted) {
   // A "crossing" paired from 1e-17 at a to 3 at b, the multiplier at the located point 1e-17.
   const Step s(1e-17, 3.0);
-  const auto events = detect(s.tracked, s.a, s.b, 1e-6, locator_with(1e-17));
+  const auto events = detect(s.tracked, s.a, s.b, TrustLimit{1e-6}, locator_with(1e-17));
   ASSERT_EQ(events.size(), 1u);
   EXPECT_EQ(events[0].trust, EventTrust::CrossingNotResolved);
   EXPECT_NE(events[0].note.find("not on the unit circle"), std::string::npos) << events[0].note;
@@ -76,7 +76,7 @@ TEST(Detection, PairMeetingOnTheNegativeAxisIsAPeriodDoubling) {
     y2.value = -0.5524;
     s.tracked.pairs.push_back({x1, y1});
     s.tracked.pairs.push_back({x2, y2});
-    const auto events = detect(s.tracked, s.a, s.b, 1e-6, locator_with(-1.0));
+    const auto events = detect(s.tracked, s.a, s.b, TrustLimit{1e-6}, locator_with(-1.0));
     ASSERT_EQ(events.size(), 1u) << "lower half goes out: " << lower_goes_out;
     EXPECT_EQ(events[0].type, BifurcationType::PeriodDoubling);
     EXPECT_TRUE(events[0].trusted()) << events[0].note;
@@ -100,7 +100,7 @@ TEST(Detection, FoldWhoseMultiplierWasComplexIsTrusted) {
     y2.value = crosses ? std::complex<double>(0.95) : std::complex<double>(0.99, -0.005);
     s.tracked.pairs.push_back({x1, y1});
     s.tracked.pairs.push_back({x2, y2});
-    const auto events = detect(s.tracked, s.a, s.b, 1e-6, locator_with(1.0));
+    const auto events = detect(s.tracked, s.a, s.b, TrustLimit{1e-6}, locator_with(1.0));
     ASSERT_EQ(events.size(), 1u) << "crosses: " << crosses;
     EXPECT_EQ(events[0].type, BifurcationType::Fold);
     if (crosses) {
@@ -136,7 +136,7 @@ TEST(Detection, FoldIsTrustedOnItsTangentNotItsIllConditionedMultiplier) {
     Step s(0.9, 1.1);
     if (fold) s.b.tangent = Eigen::Vector2d(0.0, -1.0);
     s.a.orbit.floquet.trivial_error = 1.3e-6;
-    const auto events = detect(s.tracked, s.a, s.b, 1e-6, locator_with(1.006, 5e-7));
+    const auto events = detect(s.tracked, s.a, s.b, TrustLimit{1e-6}, locator_with(1.006, 5e-7));
     ASSERT_EQ(events.size(), 1u) << "fold: " << fold;
     if (fold) {
       EXPECT_EQ(events[0].type, BifurcationType::Fold);
@@ -151,9 +151,38 @@ TEST(Detection, FoldIsTrustedOnItsTangentNotItsIllConditionedMultiplier) {
   // The fold's own point still has to be accurate.
   Step s(0.9, 1.1);
   s.b.tangent = Eigen::Vector2d(0.0, -1.0);
-  const auto events = detect(s.tracked, s.a, s.b, 1e-6, locator_with(1.0, 4e-6));
+  const auto events = detect(s.tracked, s.a, s.b, TrustLimit{1e-6}, locator_with(1.0, 4e-6));
   ASSERT_EQ(events.size(), 1u);
   EXPECT_EQ(events[0].trust, EventTrust::TrivialErrorTooLarge) << events[0].note;
+}
+
+// A fold's multipliers only show that the monodromy holds nothing but the integration's noise,
+// which grows with |M|: on AUTO's tor the fold at T 49.36 (rn = -0.796909055, found to 1e-10 of
+// an independent shooting) has a trivial error of 6.9e-6 with |M| = 3,267 at rtol 1e-11, against
+// a limit of 1000 rtol |M| = 3.3e-5. The same error is not trusted where |M| is 1 (the limit is
+// then the absolute 1e-6), nor on a branch point, which is located on its multipliers.
+TEST(Detection, FoldIsTrustedAgainstTheMonodromysNoiseFloor) {
+  for (double growth : {1.0, 3267.0}) {
+    for (bool fold : {true, false}) {
+      Step s(0.9, 1.1);
+      if (fold) s.b.tangent = Eigen::Vector2d(0.0, -1.0);
+      const Locator base = locator_with(1.0, 6.9e-6);
+      const Locator locate = [&](BifurcationType t, int k, std::complex<double> a,
+                                 std::complex<double> b) {
+        Bifurcation e = base(t, k, a, b);
+        e.monodromy_growth = growth;
+        return e;
+      };
+      const auto events = detect(s.tracked, s.a, s.b, TrustLimit{1e-6, 1e-11}, locate);
+      ASSERT_EQ(events.size(), 1u);
+      EXPECT_EQ(events[0].trusted(), fold && growth > 1.0)
+          << "fold " << fold << ", |M| " << growth << ": " << events[0].note;
+    }
+  }
+  // At least the absolute limit, at most 100 times it.
+  EXPECT_DOUBLE_EQ((TrustLimit{1e-6, 1e-11}.without_multipliers(3267.0)), 3.267e-5);
+  EXPECT_DOUBLE_EQ((TrustLimit{1e-6, 1e-11}.without_multipliers(10.0)), 1e-6);
+  EXPECT_DOUBLE_EQ((TrustLimit{1e-6, 1e-11}.without_multipliers(1e14)), 1e-4);
 }
 
 // An event location could not narrow to its tolerance is trusted only where its best point's
@@ -162,7 +191,7 @@ TEST(Detection, FoldIsTrustedOnItsTangentNotItsIllConditionedMultiplier) {
 TEST(Detection, EventNotNarrowedOffTheCircleIsNotTrusted) {
   const Step s(0.9, 1.1);
   for (double crossing : {3e-10, 1.0 + 1e-6}) {
-    const auto events = detect(s.tracked, s.a, s.b, 1e-6,
+    const auto events = detect(s.tracked, s.a, s.b, TrustLimit{1e-6},
                                locator_with(crossing, 1e-10, LocationOutcome::NotNarrowed));
     ASSERT_EQ(events.size(), 1u);
     EXPECT_EQ(events[0].trusted(), crossing > 0.5) << crossing << ": " << events[0].note;
@@ -224,7 +253,8 @@ TEST(Detection, PairMatchedWithItsHalvesSwappedIsOneCrossing) {
   // successor looked like a crossing of its own (two NS for one pair).
   const std::complex<double> x(0.9, 0.3), y(1.0, 0.35);
   const Pairs s({{x, std::conj(y)}, {std::conj(x), y}});
-  const auto events = detect(s.tracked, s.a, s.b, 1e-6, locator_with(std::polar(1.0, 0.35)));
+  const auto events =
+      detect(s.tracked, s.a, s.b, TrustLimit{1e-6}, locator_with(std::polar(1.0, 0.35)));
   EXPECT_EQ(types_of(events), std::vector{BifurcationType::NeimarkSacker});
 }
 
@@ -235,7 +265,7 @@ TEST(Detection, PairHiddenByThePairingIsFoundByTheCount) {
   // from 1 to 2, the real crossing explains -1, the pair the other +2.
   const std::complex<double> x(0.5, 0.8), y(0.6, 0.9);
   const Pairs s({{1.5, y}, {x, 0.3}, {std::conj(x), std::conj(y)}});
-  const auto events = detect(s.tracked, s.a, s.b, 1e-6, locator_with(1.0));
+  const auto events = detect(s.tracked, s.a, s.b, TrustLimit{1e-6}, locator_with(1.0));
   auto types = types_of(events);
   std::sort(types.begin(), types.end());
   EXPECT_EQ(types, (std::vector{BifurcationType::BranchPoint, BifurcationType::NeimarkSacker}));
@@ -247,7 +277,7 @@ TEST(Detection, CountTheCrossingsDoNotExplainIsReportedUnresolved) {
   // the pairing shows one real crossing: the count stays at 2, the crossings found explain -1.
   const std::complex<double> x(0.5, 0.8), y(0.6, 0.9);
   const Pairs s({{1.5, y}, {x, 0.3}, {std::conj(x), std::conj(y)}, {1.6, 0.4}});
-  const auto events = detect(s.tracked, s.a, s.b, 1e-6, locator_with(1.0));
+  const auto events = detect(s.tracked, s.a, s.b, TrustLimit{1e-6}, locator_with(1.0));
   const auto unresolved = std::find_if(events.begin(), events.end(), [](const auto& e) {
     return e.trust == EventTrust::CrossingNotResolved;
   });

@@ -67,7 +67,7 @@ double dissipated(const OdeSystem& system, const PeriodicOrbit& orbit) {
   return gamma * sum * orbit.period / intervals / 3.0;
 }
 
-double nontrivial(const FloquetAnalysis& f) {
+double nontrivial_multiplier(const FloquetAnalysis& f) {
   for (const auto& m : f.multipliers)
     if (!m.trivial) return m.value.real();
   return NAN;
@@ -83,7 +83,7 @@ TEST(RotatingOrbit, DrivenPendulumRotationBalancesItsEnergy) {
                           InvariantSubspace(), OrbitOptions());
   ASSERT_TRUE(orbit.converged()) << orbit.newton.reason;
   EXPECT_NEAR(dissipated(system, orbit), kTwoPi * 1.2, kTwoPi * 1.2 * 1e-8);
-  EXPECT_NEAR(nontrivial(orbit.floquet), std::exp(-0.5 * orbit.period), 1e-8);
+  EXPECT_NEAR(nontrivial_multiplier(orbit.floquet), std::exp(-0.5 * orbit.period), 1e-8);
   EXPECT_LT(orbit.floquet.trivial_error, 1e-8);
   EXPECT_LE(std::abs(orbit.state0[0]), std::numbers::pi);  // the transient's angle wrapped
   Flow flow(system, OrbitOptions().shooting.flow);
@@ -120,7 +120,7 @@ TEST(RotatingOrbit, ContinuedInTheTorque) {
   for (const auto& p : branch.points) {
     SCOPED_TRACE("tau = " + std::to_string(p.parameter));
     EXPECT_NEAR(dissipated(system, p.orbit), kTwoPi * p.parameter, kTwoPi * p.parameter * 1e-8);
-    EXPECT_NEAR(nontrivial(p.orbit.floquet), std::exp(-0.5 * p.orbit.period), 1e-8);
+    EXPECT_NEAR(nontrivial_multiplier(p.orbit.floquet), std::exp(-0.5 * p.orbit.period), 1e-8);
   }
   ASSERT_EQ(branch.events.size(), 1u);
   EXPECT_EQ(branch.events[0].type, BifurcationType::UserPoint);

@@ -50,6 +50,26 @@ TEST(Floquet, StabilityVerdicts) {
   EXPECT_NEAR(u.max_modulus, 1.13, 1e-12);
 }
 
+// A verdict holds within the multipliers' error, measured by the trivial one's: with the trivial
+// multiplier at 1 + 1e-3 (an orbit resolved no better than that), 1.0005 and 0.9995 are within the
+// error of the circle (unresolved, not "unstable" or "stable"), 1.01 and 0.98 are not; at 1 + 1e-9
+// the same 1.0005 is unstable.
+TEST(Floquet, VerdictsHoldWithinTheTrivialMultipliersError) {
+  const Eigen::MatrixXd v = random_basis(3, 5);
+  auto verdict = [&](double trivial, double largest) {
+    Eigen::VectorXd mu(3);
+    mu << trivial, largest, 0.3;
+    return analyze_floquet({with_spectrum(mu, v)}, v.col(0)).stability;
+  };
+  EXPECT_EQ(verdict(1.0 + 1e-3, 1.0005), Stability::Unresolved);
+  EXPECT_EQ(verdict(1.0 + 1e-3, 0.9995), Stability::Unresolved);
+  EXPECT_EQ(verdict(1.0 + 1e-3, 1.01), Stability::Unstable);
+  EXPECT_EQ(verdict(1.0 + 1e-3, 0.98), Stability::Stable);
+  EXPECT_EQ(verdict(1.0 + 1e-9, 1.0005), Stability::Unstable);
+  EXPECT_EQ(verdict(1.0 + 1e-9, 1.0 + 5e-7), Stability::Marginal);
+  EXPECT_EQ(to_string(Stability::Unresolved), "unresolved");
+}
+
 // A family's structural multiplier (eigenvector along the family's direction) is marked and
 // left out of the verdict, found by its eigenvector even when another multiplier, crossing 1
 // near a branch point, is nearer to 1 than it.

@@ -80,6 +80,7 @@ struct Bifurcation {
   double bracket = 0.0;  // width of the final bracket in the parameter
   double period = 0.0;
   FloquetAnalysis floquet;              // at the located point
+  double monodromy_growth = 0.0;        // at the located point: PeriodicOrbit's
   std::complex<double> crossing = 0.0;  // the multiplier followed across (LP: nearest to +1)
   Eigen::VectorXd state0;               // orbit at the located point
   Eigen::VectorXd unknowns;

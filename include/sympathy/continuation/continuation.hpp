@@ -28,6 +28,7 @@
 #include "sympathy/continuation/branch.hpp"
 #include "sympathy/continuation/branch_space.hpp"
 #include "sympathy/continuation/corrector.hpp"
+#include "sympathy/continuation/detection.hpp"
 
 namespace sympathy {
 
@@ -101,6 +102,9 @@ class Continuation {
   // The options' user points the step from a to b passed (b at one, or a and b on either side),
   // each as a UserPoint event: the branch's point at the value (point_on_bound), ordered along
   // the step (user_points.cpp).
+  TrustLimit trust_limit() const {
+    return {options_.trust_limit, options_.orbit.shooting.flow.rtol};
+  }
   std::vector<Bifurcation> user_points_between(const ContinuationPoint& a,
                                                const ContinuationPoint& b) const;
 

@@ -140,6 +140,10 @@ struct PeriodicOrbit {
   // times it (AUTO's fhn and ab): Newton stalls above about 1e5 at rtol 5e-12 (fhn's canard, 5e5
   // to 2e6 on one segment), the measure a segment criterion is to act on.
   double segment_growth = 0.0;
+  // The same of the monodromy, |D^-1 M D|_inf: the multipliers' noise floor is about rtol times it
+  // (what events located on the tangent and user points are trusted against; see
+  // `trust_limit_for`).
+  double monodromy_growth = 0.0;
   int family_dimension = 0;  // > 0: the orbit belongs to a continuum of orbits
   NewtonSummary newton;
   FlowStatistics flow;  // integration work of the whole computation

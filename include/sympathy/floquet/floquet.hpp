@@ -22,13 +22,18 @@
 
 namespace sympathy {
 
-enum class Stability { Stable, Unstable, Marginal };
+// Unresolved: the multipliers' own error (the trivial multiplier's, FloquetAnalysis::trivial_error)
+// is above the stability tolerance and the largest other multiplier lies within it of the circle:
+// the verdict would be the noise's (issue 33: AUTO's ab, pp2 and tor near their homoclinic orbits,
+// trivial errors 1e-3 to 18, a verdict on every point).
+enum class Stability { Stable, Unstable, Marginal, Unresolved };
 std::string to_string(Stability s);
 
 struct FloquetOptions {
   // Stable: every multiplier but the trivial and structural ones has |mu| < 1 - tolerance;
-  // unstable: one has |mu| > 1 + tolerance; marginal otherwise. Default well above the
-  // multipliers' measured errors (about 1e-8 at the default integrator settings).
+  // unstable: one has |mu| > 1 + tolerance; marginal otherwise. The tolerance is at least the
+  // trivial multiplier's error (a verdict must hold within the multipliers' error). Default well
+  // above the multipliers' measured errors (about 1e-8 at the default integrator settings).
   double stability_tolerance = 1e-6;
 
   OptionCheck validate() const {
