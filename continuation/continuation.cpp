@@ -11,6 +11,7 @@
 #include "stiffness_choice.hpp"
 #include "sympathy/continuation/detection.hpp"
 #include "sympathy/continuation/driver.hpp"
+#include "sympathy/continuation/homoclinic_approach.hpp"
 #include "sympathy/continuation/hopf.hpp"
 #include "sympathy/continuation/location.hpp"
 #include "sympathy/continuation/multiplier_tracking.hpp"
@@ -61,6 +62,7 @@ class Continuation::Run {
   Continuation& c_;
   int N_;
   std::vector<Eigen::VectorXd> path_;  // the accepted points' (unknowns, parameter), in order
+  std::vector<std::pair<double, double>> periods_;  // the accepted points' (parameter, period)
   // The screen's pairing of the multipliers from a to the b it saw, which detection reuses.
   TrackedMultipliers tracked_;
   Eigen::VectorXd tracked_unknowns_;
@@ -583,6 +585,24 @@ std::optional<driver::Ending> Continuation::Run::ends(const OrbitNode& a, const 
                                                       std::vector<Bifurcation>& events) {
   const auto name = [&] { return c_.system_.parameter_names()[c_.parameter_]; };
   if (path_.empty()) path_.push_back(y_of(a));
+  if (periods_.empty()) periods_.push_back({a.parameter, a.orbit.period});
+  // A family approaching a homoclinic orbit: ended there, b kept (it is as good as any before).
+  // Within 1e-4 of the parameter (relative, at least 1e-4): on AUTO's pp2 the period doubles
+  // from 38 to 76 within it, before the orbits' monodromies grow past what the multipliers
+  // resolve (their trivial error 1e-3 at T 94); fhn's canard grows it 1.6 times.
+  periods_.push_back({b.parameter, b.orbit.period});
+  const auto homoclinic =
+      homoclinic_approach(periods_, 1e-4 * std::max(1.0, std::abs(b.parameter)));
+  periods_.pop_back();
+  if (homoclinic && c_.system_.autonomous()) {
+    char what[256];
+    std::snprintf(what, sizeof what,
+                  "approaching a homoclinic orbit near %s = %.10g: the period grew from %.6g to "
+                  "%.6g while %s moved by %.2g; stopped there",
+                  name().c_str(), homoclinic->parameter, homoclinic->from_period,
+                  homoclinic->to_period, name().c_str(), homoclinic->parameter_spread);
+    return driver::Ending{driver::Stop::Homoclinic, what, true};
+  }
   // A branch that turned back without a multiplier at +1 and now retraces itself: b lies on one
   // of the branch's chords before the turn (driver::on_chord). Stopped there, b not kept.
   if (turn_) {
@@ -634,6 +654,7 @@ Eigen::VectorXd Continuation::Run::y_of(const OrbitNode& p) const {
 
 void Continuation::Run::accept(OrbitNode& b) {
   path_.push_back(y_of(b));
+  periods_.push_back({b.parameter, b.orbit.period});
   c_.jacobian_before_ = std::move(c_.chord_jacobian_);
   c_.chord_jacobian_ = std::move(b.jacobian);
   b.jacobian = Eigen::SparseMatrix<double>();
@@ -661,8 +682,9 @@ bool Continuation::Run::refine(OrbitNode& a, const std::string&) {
 
 bool Continuation::Run::resample(OrbitNode& a, int segments) {
   // The point re-sampled on `segments` segments (each segment's start from one integration),
-  // corrected at its parameter, its Jacobian and tangent recomputed; the count recorded in each
-  // point (orbit.segments). False, and nothing changed, where it does not correct.
+  // corrected on the hyperplane normal to its tangent, its Jacobian and tangent recomputed; the
+  // count recorded in each point (orbit.segments). False, and nothing changed, where it does not
+  // correct.
   const int m = c_.problem_->segments();
   if (segments == m) return false;
   std::unique_ptr<ShootingProblem> old_problem = std::move(c_.problem_);
@@ -688,18 +710,18 @@ bool Continuation::Run::resample(OrbitNode& a, int segments) {
     Eigen::VectorXd y(N + 1);
     y.head(N) = c_.problem_->unknowns_from(a.orbit.state0, a.orbit.parameters, a.orbit.period);
     y[N] = a.parameter;
-    const double w = c_.space_->weights()[N];
-    Eigen::VectorXd along_parameter = Eigen::VectorXd::Zero(N + 1);
-    along_parameter[N] = 1.0 / (w * w);
-    const Correction c = c_.correct_step(y, along_parameter, 0.0, y, nullptr);
-    if (!c.converged) return restore();
-    // The old tangent in the new unknowns, for orientation: the first segment's start, the
-    // period and the parameter mean the same in both.
+    // The old tangent in the new unknowns (the first segment's start, the period and the parameter
+    // mean the same in both; the new segments' starts get 0): the correction stays on the
+    // hyperplane through the point normal to it, as the step's own does. (At a fixed parameter it
+    // failed where the branch is vertical, as on AUTO's fhn canard, where that Jacobian is
+    // singular.) It also orients the new tangent.
     const int n = c_.problem_->dimension(), N_old = N_;
     Eigen::VectorXd along = Eigen::VectorXd::Zero(N + 1);
     along.head(n) = a.tangent.head(n);
     along[N - 1] = a.tangent[N_old - 1];
     along[N] = a.tangent[N_old];
+    const Correction c = c_.correct_step(y, along, 0.0, y, nullptr);
+    if (!c.converged) return restore();
     Eigen::SparseMatrix<double> jacobian = c_.problem_->jacobian(c.evaluation, true);
     const Eigen::VectorXd tau = c_.space_->tangent(jacobian, c.y, along);
     OrbitNode refined;

@@ -20,6 +20,8 @@ std::string to_string(StopReason s) {
       return "turned back";
     case StopReason::HopfPoint:
       return "Hopf point";
+    case StopReason::Homoclinic:
+      return "homoclinic orbit";
     case StopReason::Closed:
       return "closed";
   }

@@ -19,7 +19,7 @@ constexpr int kStoppedShort = 7;       // a branch or curve ended before its bou
                                        // what it computed is written
 
 // What a continuation's stop means for the exit code: the window's edge, the point limit asked
-// for, a Hopf end, a closed curve or a family that turned back are ends (0); the minimum step is
+// for, a Hopf end, a homoclinic end, a closed curve or a family that turned back are ends (0); the minimum step is
 // a numerical failure short of the bound (kStoppedShort).
 constexpr int exit_code(StopReason stop) {
   switch (stop) {
@@ -33,6 +33,7 @@ constexpr int exit_code(StopReason stop) {
     case StopReason::PointLimit:
     case StopReason::TurnedBack:
     case StopReason::HopfPoint:
+    case StopReason::Homoclinic:
     case StopReason::Closed:
       return kDone;
   }

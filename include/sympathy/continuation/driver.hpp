@@ -69,6 +69,8 @@ enum class StopReason {
   TurnedBack,      // an orbit branch turned back without a multiplier at +1 (see
                    // EventTrust::NoCrossingMultiplier): stopped there rather than retrace itself
   HopfPoint,       // an orbit family shrank into an equilibrium at its Hopf point
+  Homoclinic,      // an orbit family's period grows without bound as its parameter converges
+                   // (homoclinic_approach.hpp)
   Closed,          // a curve came back to its start
 };
 std::string to_string(StopReason s);  // "parameter bound", "point limit", ...
