@@ -100,6 +100,29 @@ double BranchSpace::orbit_cosine(const Eigen::VectorXd& u, const Eigen::VectorXd
   return norms > 0.0 ? dot(a, b) / norms : 0.0;
 }
 
+double BranchSpace::turn_cosine(const Eigen::VectorXd& u, const Eigen::VectorXd& v,
+                                const Eigen::VectorXd& at) const {
+  // The orbit is (z_0, T, p); the later segments' starts follow from it. With equal-time
+  // segments they slide along an orbit whose shape changes and turn with the growth inside the
+  // segments (through the spike of AUTO's ab at p2 = 16, growth 1e3-1e4 per segment on 4
+  // segments, the whole tangent turned past the limit at every step: 146 turns, steps down to
+  // 1e-4, the point limit reached at p1 = 0.172 of 0.25), so they are left out, as is the shift
+  // in time along the orbit at z_0.
+  const Eigen::VectorXd phi = time_shift(at);
+  auto orbit_part = [&](const Eigen::VectorXd& x) {
+    Eigen::VectorXd y = x;
+    y.segment(n_, (m_ - 1) * n_).setZero();
+    const auto w2 = weights_.head(n_).array().square();
+    const auto f = phi.head(n_).array();
+    const double ff = (w2 * f * f).sum();
+    if (ff > 0.0) y.head(n_) -= ((w2 * f * x.head(n_).array()).sum() / ff) * phi.head(n_);
+    return y;
+  };
+  const Eigen::VectorXd a = orbit_part(u), b = orbit_part(v);
+  const double norms = std::sqrt(dot(a, a) * dot(b, b));
+  return norms > 0.0 ? dot(a, b) / norms : 0.0;
+}
+
 Eigen::VectorXd BranchSpace::tangent(const Eigen::SparseMatrix<double>& jacobian,
                                      const Eigen::VectorXd& y,
                                      const Eigen::VectorXd& previous) const {

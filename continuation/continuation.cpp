@@ -514,7 +514,7 @@ double Continuation::Run::turn_cosine(const OrbitNode& a, const OrbitNode& b) co
   if (b.jacobian.rows() == 0) return 1.0;  // on the bound already: the run ends there
   Eigen::VectorXd y(N_ + 1);
   y << b.unknowns, b.parameter;
-  return c_.space_->orbit_cosine(b.tangent, a.tangent, y);
+  return c_.space_->turn_cosine(b.tangent, a.tangent, y);
 }
 
 driver::Screen Continuation::Run::screen(const OrbitNode* before, const OrbitNode& a,

@@ -169,6 +169,49 @@ TEST(Continuation, CurvedPredictorAndChordStepsSaveWork) {
   EXPECT_LT(per_point(fast), per_point(plain));  // measured: 1.17 against 2.5
 }
 
+// How far a step turned the branch is measured in the orbit's own unknowns (z_0 without its shift
+// along f, T, p): on two segments, tangents that differ only in the second segment's start, or by
+// a shift along f(z_0), have turned by nothing (cosine 1, where the whole vectors' is 0.5 or
+// less), and a turn in (z_0, T) by an angle alpha has cosine cos(alpha), exactly.
+TEST(Continuation, TurnIsMeasuredInTheOrbitsOwnUnknowns) {
+  NormalForm system(Kind::Fold, -0.05);
+  ShootingOptions shooting;
+  shooting.segments = 2;
+  ShootingProblem problem(system, shooting);
+  BranchSpace space(system, problem, 0, system.default_parameters(), 2.0, 1e-10);
+  const int n = system.dimension();
+  Eigen::VectorXd z = Eigen::VectorXd::Zero(n);
+  z[0] = 1.0;
+  space.reset_scales(z, 2 * kPi, FlowOptions{});
+  const int N = space.unknowns();
+  ASSERT_EQ(N, 2 * n + 1);
+  Eigen::VectorXd y = Eigen::VectorXd::Zero(N + 1);
+  y.head(n) = z;
+  y.segment(n, n) = -z;  // half a turn on
+  y[N - 1] = 2 * kPi;
+  y[N] = -0.05;
+  auto unit = [&](Eigen::VectorXd e) { return Eigen::VectorXd(e / std::sqrt(space.dot(e, e))); };
+  auto basis = [&](int i) {
+    Eigen::VectorXd e = Eigen::VectorXd::Zero(N + 1);
+    e[i] = 1.0;
+    return unit(e);
+  };
+  const Eigen::VectorXd period = basis(N - 1), second = basis(n + 1);
+  Eigen::VectorXd shift = Eigen::VectorXd::Zero(N + 1);
+  shift.head(n) = system.rhs(0.0, z, system.default_parameters());
+  shift = unit(shift);
+  // A change of z_0 across f there.
+  const Eigen::VectorXd radial = unit(basis(0) - space.dot(basis(0), shift) * shift);
+  const Eigen::VectorXd u = unit(radial + period);
+  const Eigen::VectorXd v = unit(radial + period + 2.0 * second + 3.0 * shift);
+  EXPECT_NEAR(space.turn_cosine(u, v, y), 1.0, 1e-12);
+  EXPECT_LT(space.dot(u, v), 0.5);
+  for (double alpha : {0.1, 0.7, 2.0}) {
+    const Eigen::VectorXd w = std::cos(alpha) * radial + std::sin(alpha) * period;
+    EXPECT_NEAR(space.turn_cosine(radial, w + second, y), std::cos(alpha), 1e-12) << alpha;
+  }
+}
+
 // Location's guess inside a step (predict_between) against an exact curve: on a circle of
 // radius R in the branch's scaled norm, a at angle 0 and b at angle h / R, the point whose
 // arclength along a's tangent is s lies at angle asin(s / R). The cubic through a and b with

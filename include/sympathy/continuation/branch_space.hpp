@@ -50,9 +50,14 @@ class BranchSpace {
   // Normal to the flow at z (parameter value v) in the scaled norm: a section normal to the flow
   // there contains the directions in which the orbit's amplitude changes.
   Eigen::VectorXd section_normal(const Eigen::VectorXd& z, double v) const;
-  // Cosine between two tangents with shifts in time along the orbits at `at` left out.
+  // Cosine between two tangents with shifts in time along the orbits at `at` left out (how a
+  // tangent is oriented).
   double orbit_cosine(const Eigen::VectorXd& u, const Eigen::VectorXd& v,
                       const Eigen::VectorXd& at) const;
+  // The same in the orbit's own unknowns, the first segment's start, the period and the
+  // parameter (how far a step turned the branch): the later segments' starts left out.
+  double turn_cosine(const Eigen::VectorXd& u, const Eigen::VectorXd& v,
+                     const Eigen::VectorXd& at) const;
   // The unit tangent from a shooting Jacobian with its parameter column, in the problem's current
   // phase section, oriented along `previous`.
   Eigen::VectorXd tangent(const Eigen::SparseMatrix<double>& jacobian, const Eigen::VectorXd& y,
