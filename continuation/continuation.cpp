@@ -63,6 +63,7 @@ class Continuation::Run {
   int N_;
   std::vector<Eigen::VectorXd> path_;  // the accepted points' (unknowns, parameter), in order
   std::vector<std::pair<double, double>> periods_;  // the accepted points' (parameter, period)
+  std::vector<double> errors_;                      // and their trivial-multiplier errors
   // The screen's pairing of the multipliers from a to the b it saw, which detection reuses.
   TrackedMultipliers tracked_;
   Eigen::VectorXd tracked_unknowns_;
@@ -585,22 +586,33 @@ std::optional<driver::Ending> Continuation::Run::ends(const OrbitNode& a, const 
                                                       std::vector<Bifurcation>& events) {
   const auto name = [&] { return c_.system_.parameter_names()[c_.parameter_]; };
   if (path_.empty()) path_.push_back(y_of(a));
-  if (periods_.empty()) periods_.push_back({a.parameter, a.orbit.period});
+  if (periods_.empty()) {
+    periods_.push_back({a.parameter, a.orbit.period});
+    errors_.push_back(a.orbit.floquet.trivial_error);
+  }
   // A family approaching a homoclinic orbit: ended there, b kept (it is as good as any before).
   // Within 1e-4 of the parameter (relative, at least 1e-4): on AUTO's pp2 the period doubles
   // from 38 to 76 within it, before the orbits' monodromies grow past what the multipliers
   // resolve (their trivial error 1e-3 at T 94); fhn's canard grows it 1.6 times.
+  // Or seen through its orbits, which are no longer resolved while the period grows (AUTO's pen).
   periods_.push_back({b.parameter, b.orbit.period});
+  errors_.push_back(b.orbit.floquet.trivial_error);
   const auto homoclinic =
       homoclinic_approach(periods_, 1e-4 * std::max(1.0, std::abs(b.parameter)));
+  const auto unresolved = homoclinic ? std::nullopt : unresolved_approach(periods_, errors_);
   periods_.pop_back();
-  if (homoclinic && c_.system_.autonomous()) {
-    char what[256];
+  errors_.pop_back();
+  if ((homoclinic || unresolved) && c_.system_.autonomous()) {
+    const HomoclinicApproach& h = homoclinic ? *homoclinic : *unresolved;
+    char what[320];
     std::snprintf(what, sizeof what,
                   "approaching a homoclinic orbit near %s = %.10g: the period grew from %.6g to "
-                  "%.6g while %s moved by %.2g; stopped there",
-                  name().c_str(), homoclinic->parameter, homoclinic->from_period,
-                  homoclinic->to_period, name().c_str(), homoclinic->parameter_spread);
+                  "%.6g while %s moved by %.2g%s; stopped there",
+                  name().c_str(), h.parameter, h.from_period, h.to_period, name().c_str(),
+                  h.parameter_spread,
+                  homoclinic ? ""
+                             : " and the orbits' multipliers were not resolved (trivial-multiplier "
+                               "errors above 1e-2)");
     return driver::Ending{driver::Stop::Homoclinic, what, true};
   }
   // A branch that turned back without a multiplier at +1 and now retraces itself: b lies on one
@@ -655,6 +667,7 @@ Eigen::VectorXd Continuation::Run::y_of(const OrbitNode& p) const {
 void Continuation::Run::accept(OrbitNode& b) {
   path_.push_back(y_of(b));
   periods_.push_back({b.parameter, b.orbit.period});
+  errors_.push_back(b.orbit.floquet.trivial_error);
   c_.jacobian_before_ = std::move(c_.chord_jacobian_);
   c_.chord_jacobian_ = std::move(b.jacobian);
   b.jacobian = Eigen::SparseMatrix<double>();
@@ -708,7 +721,14 @@ bool Continuation::Run::resample(OrbitNode& a, int segments) {
     c_.problem_->set_phase_section(a.section, a.section_normal);
     const int N = c_.problem_->unknowns();
     Eigen::VectorXd y(N + 1);
-    y.head(N) = c_.problem_->unknowns_from(a.orbit.state0, a.orbit.parameters, a.orbit.period);
+    // The new segments' starts from the old ones (each integrated over one new segment at most).
+    const int n_old = c_.problem_->dimension();
+    Eigen::MatrixXd starts(n_old, m);
+    for (int j = 0; j < m; ++j) starts.col(j) = a.unknowns.segment(j * n_old, n_old);
+    y.head(N) =
+        segments % m == 0
+            ? c_.problem_->unknowns_from_starts(starts, a.orbit.parameters, a.orbit.period)
+            : c_.problem_->unknowns_from(a.orbit.state0, a.orbit.parameters, a.orbit.period);
     y[N] = a.parameter;
     // The old tangent in the new unknowns (the first segment's start, the period and the parameter
     // mean the same in both; the new segments' starts get 0): the correction stays on the

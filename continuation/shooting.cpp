@@ -314,13 +314,26 @@ double ShootingProblem::period(const Eigen::VectorXd& x) const {
 
 Eigen::VectorXd ShootingProblem::unknowns_from(const Eigen::VectorXd& z0, const ParameterValues& p,
                                                double period) {
-  const int m = options_.segments;
+  return unknowns_from_starts(Eigen::MatrixXd(z0), p, period);
+}
+
+Eigen::VectorXd ShootingProblem::unknowns_from_starts(const Eigen::MatrixXd& starts,
+                                                      const ParameterValues& p, double period) {
+  const int m = options_.segments, k = static_cast<int>(starts.cols());
+  if (k < 1 || m % k != 0 || starts.rows() != n_)
+    throw std::invalid_argument("unknowns_from_starts: " + std::to_string(k) + " starts for " +
+                                std::to_string(m) + " segments of " + std::to_string(n_) +
+                                " states");
   Eigen::VectorXd x(unknowns());
   const double T = autonomous_ ? period : forced_period_;
-  Eigen::VectorXd z = z0;
+  Eigen::VectorXd z;
   for (int j = 0; j < m; ++j) {
+    // Segment j starts at j T / m: a given state where one is (column j k / m), else the previous
+    // segment's start integrated over one segment.
+    const int i = j * k / m;
+    z = j * k % m == 0 ? Eigen::VectorXd(starts.col(i))
+                       : flow_.advance(z, p, (j - 1) * T / m, j * T / m);
     x.segment(j * n_, n_) = z;
-    if (j + 1 < m) z = flow_.advance(z, p, j * T / m, (j + 1) * T / m);
   }
   if (autonomous_) x[n_ * m] = period;
   winding_.setZero();
@@ -329,7 +342,7 @@ Eigen::VectorXd ShootingProblem::unknowns_from(const Eigen::VectorXd& z0, const 
     // The gain of each angle over the guess's period, to the nearest whole turn: a guess within
     // half a turn of an orbit winds as the orbit does.
     const Eigen::VectorXd end = flow_.advance(z, p, (m - 1) * T / m, T);
-    for (int i : angles) winding_[i] = kTwoPi * std::round((end[i] - z0[i]) / kTwoPi);
+    for (int a : angles) winding_[a] = kTwoPi * std::round((end[a] - starts(a, 0)) / kTwoPi);
   }
   return x;
 }

@@ -71,5 +71,31 @@ TEST(HomoclinicApproach, OnlyWhileThePeriodGrows) {
   EXPECT_FALSE(homoclinic_approach(history, 1e-6));
 }
 
+// Orbits unresolved (errors above 1e-2) while the period grows by a quarter: from T = 40 on a grid
+// of 1, the end comes at T = 50 exactly (at 49, 49 / 40 < 1.25). A resolved point in between starts
+// the stretch again; a period that grew 13% and fell (ab's strongly unstable part) is no end.
+TEST(HomoclinicApproach, UnresolvedOrbitsWhileThePeriodGrows) {
+  std::vector<std::pair<double, double>> history;
+  std::vector<double> errors;
+  std::optional<HomoclinicApproach> found;
+  for (double T = 30.0; T <= 60.0 && !found; T += 1.0) {
+    history.push_back({0.17 + 0.01 * std::exp(-T / 10), T});
+    errors.push_back(T >= 40.0 ? 0.3 : 1e-5);
+    found = unresolved_approach(history, errors);
+  }
+  ASSERT_TRUE(found);
+  EXPECT_DOUBLE_EQ(found->to_period, 50.0);
+  EXPECT_DOUBLE_EQ(found->from_period, 40.0);
+  errors[errors.size() - 5] = 1e-5;  // resolved at T = 46: the stretch is 47 to 50
+  EXPECT_FALSE(unresolved_approach(history, errors));
+  std::vector<std::pair<double, double>> ab;
+  std::vector<double> ab_errors;
+  for (double T : {13.0, 13.5, 14.0, 14.5, 14.7, 14.6, 14.0, 13.0}) {
+    ab.push_back({0.1307, T});
+    ab_errors.push_back(20.0);
+    EXPECT_FALSE(unresolved_approach(ab, ab_errors)) << T;
+  }
+}
+
 }  // namespace
 }  // namespace sympathy

@@ -175,5 +175,33 @@ TEST(SegmentThreads, TheFirstFailingSegmentsErrorIsRethrown) {
   EXPECT_EQ(alone.second, beside.second);
 }
 
+// A refinement's re-sampling (unknowns_from_starts): on the unit circle, 8 segments' starts from
+// the starts of 2 lie at angles 2 pi j / 8 (each integrated over one segment from the one before,
+// from the latest given start on), to the integration's error; the given starts are kept to the
+// bit; starts that do not divide the segments are refused.
+TEST(SegmentThreads, RefinedStartsFromTheCoarseOnes) {
+  const testing::HopfCycle system;
+  const ParameterValues p = system.default_parameters();
+  ShootingOptions o;
+  o.segments = 8;
+  o.flow.rtol = 1e-11;
+  o.flow.atol = 1e-13;
+  const double T = 2.0 * std::numbers::pi;
+  ShootingProblem problem(system, o);
+  Eigen::MatrixXd coarse(2, 2);
+  coarse << 1.0, -1.0, 0.0, 0.0;  // angles 0 and pi
+  const Eigen::VectorXd x = problem.unknowns_from_starts(coarse, p, T);
+  ASSERT_EQ(x.size(), 8 * 2 + 1);
+  for (int j = 0; j < 8; ++j) {
+    const double angle = T * j / 8;
+    EXPECT_NEAR(x[2 * j], std::cos(angle), 1e-9) << j;
+    EXPECT_NEAR(x[2 * j + 1], std::sin(angle), 1e-9) << j;
+  }
+  EXPECT_TRUE(x.segment(8, 2) == coarse.col(1));
+  EXPECT_EQ(x[16], T);
+  EXPECT_THROW(problem.unknowns_from_starts(Eigen::MatrixXd::Zero(2, 3), p, T),
+               std::invalid_argument);
+}
+
 }  // namespace
 }  // namespace sympathy

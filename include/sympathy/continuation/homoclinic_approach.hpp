@@ -27,4 +27,16 @@ struct HomoclinicApproach {
 std::optional<HomoclinicApproach> homoclinic_approach(
     const std::vector<std::pair<double, double>>& history, double tolerance);
 
+// A slower approach, seen through its orbits: `errors` (each point's trivial-multiplier error,
+// beside `history`) above kUnresolved on every point of a trailing stretch over which the period
+// grew by kGrowth, and still growing. Near a homoclinic orbit the monodromy grows as exp(lambda T)
+// and its multipliers are lost first (AUTO's pen, its PD branch: errors above 1e-2 from T 42 on,
+// the parameter still moving 5e-3 relative while T doubles, 565 points in 52 s up to errors of
+// 3e7); strongly unstable orbits that a family passes through have such errors too, but their
+// period does not keep growing (AUTO's ab at p2 = 16: errors of 4 to 62 while T grows 13% and
+// falls again). `parameter_spread` is then the stretch's.
+constexpr double kUnresolved = 1e-2, kGrowth = 1.25;
+std::optional<HomoclinicApproach> unresolved_approach(
+    const std::vector<std::pair<double, double>>& history, const std::vector<double>& errors);
+
 }  // namespace sympathy

@@ -146,6 +146,13 @@ class ShootingProblem {
   // Unknowns from an initial state and period: the segment states by integrating one period.
   // Also sets the winding: what each angle gains over the period, rounded to a multiple of 2 pi.
   Eigen::VectorXd unknowns_from(const Eigen::VectorXd& z0, const ParameterValues& p, double period);
+  // The same from the states at k equal times over the period (the columns of `starts`, k
+  // dividing the segments): each given state kept, the segments' starts between them integrated
+  // from it segment by segment, so that an orbit whose perturbations grow by 1e12 over the period
+  // is re-sampled with errors of one old segment's growth only (AUTO's ab at p2 = 16: from one
+  // integration, no correction on 8 segments). With one start, unknowns_from.
+  Eigen::VectorXd unknowns_from_starts(const Eigen::MatrixXd& starts, const ParameterValues& p,
+                                       double period);
   // What the states gain over one period: 2 pi k on the angles that rotate, 0 elsewhere.
   const Eigen::VectorXd& winding() const { return winding_; }
   void set_winding(const Eigen::VectorXd& winding) { winding_ = winding; }
