@@ -456,15 +456,15 @@ namespace {
 
 // What one shooting segment must resolve, recorded in each point: the largest growth of a
 // perturbation over a segment, |D^-1 M_k D|_inf. On the Hopf cycle with the transverse state
-// w' = (-a + b x) w at a = -2, b = 0, w grows by exp(2 T / m) over each of m equal segments of the
-// period T = 2 pi, exactly, and nothing else grows by more than sqrt(2) (a rotation, the radial
+// w' = (-a + b x) w at a = -1.5, b = 0, w grows by exp(3 T / 2m) over each of m equal segments of
+// the period T = 2 pi, exactly, and nothing else grows by more than sqrt(2) (a rotation, the radial
 // direction contracting); w's row of M_k has nothing else (w = 0 on the cycle), so the scales
-// cancel from it. 2.87e5 on one segment, 535.5 on two.
+// cancel from it. 1.24e4 on one segment, 111 on two; the monodromy's, exp(3 pi), on both.
 TEST(Continuation, PointsRecordTheGrowthOverASegment) {
-  const testing::HopfCycle system(true, -2.0, 0.0);
+  const testing::HopfCycle system(true, -1.5, 0.0);
   const PeriodicOrbit start = circle(system);
   for (int m : {1, 2}) {
-    ContinuationOptions o = options(-2.1, -1.9);
+    ContinuationOptions o = options(-1.6, -1.4);
     o.orbit.shooting.segments = m;
     o.max_points = 2;
     Continuation c(system, system.parameter_index("a"), o);
@@ -473,6 +473,7 @@ TEST(Continuation, PointsRecordTheGrowthOverASegment) {
     for (const auto& p : branch.points) {
       const double exact = std::exp(-p.parameter * 2 * kPi / m);
       EXPECT_NEAR(p.orbit.segment_growth / exact, 1.0, 1e-6) << m << " segments at " << p.parameter;
+      EXPECT_NEAR(p.orbit.monodromy_growth / std::pow(exact, m), 1.0, 1e-6) << m;
       EXPECT_EQ(p.orbit.segments, m);
     }
   }
