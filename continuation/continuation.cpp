@@ -62,8 +62,7 @@ class Continuation::Run {
   Continuation& c_;
   int N_;
   std::vector<Eigen::VectorXd> path_;  // the accepted points' (unknowns, parameter), in order
-  std::vector<std::pair<double, double>> periods_;  // the accepted points' (parameter, period)
-  std::vector<double> errors_;                      // and their trivial-multiplier errors
+  std::vector<PeriodRecord> periods_;  // the accepted points', for homoclinic_approach
   // The screen's pairing of the multipliers from a to the b it saw, which detection reuses.
   TrackedMultipliers tracked_;
   Eigen::VectorXd tracked_unknowns_;
@@ -582,26 +581,29 @@ driver::Found<Bifurcation> Continuation::Run::detect(const OrbitNode* before, co
   return found;
 }
 
+namespace {
+
+PeriodRecord record_of(const OrbitNode& p) {
+  return {p.parameter, p.orbit.period, p.orbit.floquet.trivial_error};
+}
+
+}  // namespace
+
 std::optional<driver::Ending> Continuation::Run::ends(const OrbitNode& a, const OrbitNode& b,
                                                       std::vector<Bifurcation>& events) {
   const auto name = [&] { return c_.system_.parameter_names()[c_.parameter_]; };
   if (path_.empty()) path_.push_back(y_of(a));
-  if (periods_.empty()) {
-    periods_.push_back({a.parameter, a.orbit.period});
-    errors_.push_back(a.orbit.floquet.trivial_error);
-  }
+  if (periods_.empty()) periods_.push_back(record_of(a));
   // A family approaching a homoclinic orbit: ended there, b kept (it is as good as any before).
   // Within 1e-4 of the parameter (relative, at least 1e-4): on AUTO's pp2 the period doubles
   // from 38 to 76 within it, before the orbits' monodromies grow past what the multipliers
   // resolve (their trivial error 1e-3 at T 94); fhn's canard grows it 1.6 times.
   // Or seen through its orbits, which are no longer resolved while the period grows (AUTO's pen).
-  periods_.push_back({b.parameter, b.orbit.period});
-  errors_.push_back(b.orbit.floquet.trivial_error);
+  periods_.push_back(record_of(b));
   const auto homoclinic =
       homoclinic_approach(periods_, 1e-4 * std::max(1.0, std::abs(b.parameter)));
-  const auto unresolved = homoclinic ? std::nullopt : unresolved_approach(periods_, errors_);
+  const auto unresolved = homoclinic ? std::nullopt : unresolved_approach(periods_);
   periods_.pop_back();
-  errors_.pop_back();
   if ((homoclinic || unresolved) && c_.system_.autonomous()) {
     const HomoclinicApproach& h = homoclinic ? *homoclinic : *unresolved;
     char what[320];
@@ -666,8 +668,7 @@ Eigen::VectorXd Continuation::Run::y_of(const OrbitNode& p) const {
 
 void Continuation::Run::accept(OrbitNode& b) {
   path_.push_back(y_of(b));
-  periods_.push_back({b.parameter, b.orbit.period});
-  errors_.push_back(b.orbit.floquet.trivial_error);
+  periods_.push_back(record_of(b));
   c_.jacobian_before_ = std::move(c_.chord_jacobian_);
   c_.chord_jacobian_ = std::move(b.jacobian);
   b.jacobian = Eigen::SparseMatrix<double>();

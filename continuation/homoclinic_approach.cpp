@@ -5,41 +5,38 @@
 
 namespace sympathy {
 
-std::optional<HomoclinicApproach> homoclinic_approach(
-    const std::vector<std::pair<double, double>>& history, double tolerance) {
-  if (history.size() < 3) return std::nullopt;
-  const auto& [p, period] = history.back();
-  if (!(period > history[history.size() - 2].second)) return std::nullopt;  // not growing
-  HomoclinicApproach h;
-  h.parameter = p;
-  h.to_period = period;
-  h.from_period = period;
-  for (auto it = history.rbegin(); it != history.rend(); ++it) {
-    const double spread = std::abs(it->first - p);
-    if (spread > tolerance) break;
-    h.parameter_spread = std::max(h.parameter_spread, spread);
-    h.from_period = std::min(h.from_period, it->second);
+namespace {
+
+// The trailing stretch of points `in_stretch` takes, if the period grew over it by `factor` and
+// still grows at the last point.
+template <class InStretch>
+std::optional<HomoclinicApproach> grown_over_stretch(const std::vector<PeriodRecord>& history,
+                                                     double factor, const InStretch& in_stretch) {
+  const PeriodRecord& last = history.back();
+  if (!(last.period > history[history.size() - 2].period)) return std::nullopt;  // not growing
+  HomoclinicApproach h{last.parameter, last.period, last.period, 0.0};
+  for (auto it = history.rbegin(); it != history.rend() && in_stretch(*it); ++it) {
+    h.from_period = std::min(h.from_period, it->period);
+    h.parameter_spread = std::max(h.parameter_spread, std::abs(it->parameter - last.parameter));
   }
-  if (period >= 2.0 * h.from_period) return h;
+  if (last.period >= factor * h.from_period) return h;
   return std::nullopt;
 }
 
-std::optional<HomoclinicApproach> unresolved_approach(
-    const std::vector<std::pair<double, double>>& history, const std::vector<double>& errors) {
-  if (history.size() < 2 || errors.size() != history.size()) return std::nullopt;
-  const auto& [p, period] = history.back();
-  if (!(period > history[history.size() - 2].second)) return std::nullopt;  // not growing
-  HomoclinicApproach h;
-  h.parameter = p;
-  h.to_period = period;
-  h.from_period = period;
-  for (std::size_t k = history.size(); k-- > 0;) {
-    if (!(errors[k] > kUnresolved)) break;
-    h.from_period = std::min(h.from_period, history[k].second);
-    h.parameter_spread = std::max(h.parameter_spread, std::abs(history[k].first - p));
-  }
-  if (period >= kGrowth * h.from_period) return h;
-  return std::nullopt;
+}  // namespace
+
+std::optional<HomoclinicApproach> homoclinic_approach(const std::vector<PeriodRecord>& history,
+                                                      double tolerance) {
+  if (history.size() < 3) return std::nullopt;
+  const double p = history.back().parameter;
+  return grown_over_stretch(
+      history, 2.0, [&](const PeriodRecord& r) { return std::abs(r.parameter - p) <= tolerance; });
+}
+
+std::optional<HomoclinicApproach> unresolved_approach(const std::vector<PeriodRecord>& history) {
+  if (history.size() < 2) return std::nullopt;
+  return grown_over_stretch(history, kGrowth,
+                            [](const PeriodRecord& r) { return r.trivial_error > kUnresolved; });
 }
 
 }  // namespace sympathy

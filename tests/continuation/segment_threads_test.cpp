@@ -40,6 +40,15 @@ void expect_identical(const ShootingProblem::Evaluation& a, const ShootingProble
       << what;
 }
 
+// Multiple shooting at the accuracy the circle's tests hold it to.
+ShootingOptions on_segments(int segments) {
+  ShootingOptions o;
+  o.segments = segments;
+  o.flow.rtol = 1e-11;
+  o.flow.atol = 1e-13;
+  return o;
+}
+
 // The Hopf normal form's unit circle with a transverse mode (HopfCycle): period 2 pi, multipliers
 // 1, exp(-4 pi) (radial) and exp(-2 pi a) (transverse), exactly. Four segments on three threads:
 // the product of the transitions has those eigenvalues, and every entry of the evaluation is
@@ -47,10 +56,7 @@ void expect_identical(const ShootingProblem::Evaluation& a, const ShootingProble
 TEST(SegmentThreads, FourSegmentsOfTheHopfCycleOnThreeThreads) {
   const testing::HopfCycle system(true, 0.5, 0.7);
   const ParameterValues p = system.default_parameters();
-  ShootingOptions o;
-  o.segments = 4;
-  o.flow.rtol = 1e-11;
-  o.flow.atol = 1e-13;
+  ShootingOptions o = on_segments(4);
   const double T = 2.0 * std::numbers::pi;
   const Eigen::Vector3d z0(1.0, 0.0, 0.0);
 
@@ -182,10 +188,7 @@ TEST(SegmentThreads, TheFirstFailingSegmentsErrorIsRethrown) {
 TEST(SegmentThreads, RefinedStartsFromTheCoarseOnes) {
   const testing::HopfCycle system;
   const ParameterValues p = system.default_parameters();
-  ShootingOptions o;
-  o.segments = 8;
-  o.flow.rtol = 1e-11;
-  o.flow.atol = 1e-13;
+  const ShootingOptions o = on_segments(8);
   const double T = 2.0 * std::numbers::pi;
   ShootingProblem problem(system, o);
   Eigen::MatrixXd coarse(2, 2);
