@@ -31,11 +31,16 @@ Eigen::VectorXd row_scale(const Eigen::SparseMatrix<double>& a) {
 
 // An SVD, not Eigen 3.4's CompleteOrthogonalDecomposition: its solve reads uninitialized
 // workspace on rank-deficient matrices (seen with valgrind), which is the case that matters here.
-Eigen::BDCSVD<Eigen::MatrixXd> scaled_svd(const Eigen::SparseMatrix<double>& scaled,
-                                          double rank_tolerance, bool vectors) {
-  Eigen::BDCSVD<Eigen::MatrixXd> svd(scaled.toDense(),
-                                     vectors ? Eigen::ComputeThinU | Eigen::ComputeThinV : 0);
-  svd.setThreshold(rank_tolerance);
+// One-sided Jacobi, not Eigen 3.4's divide-and-conquer BDCSVD (which it uses from 16 columns):
+// on the whole-state shooting Jacobian of eight identical metronomes (19 columns, a singular
+// value of 1.1e-4 repeated fourteen times) BDCSVD returned a smallest one of 1.0e-7 for one
+// integration tolerance in five, a family that is not there, and multipliers 0.05 off.
+// Jacobi's cost, O(n^3) a few sweeps over, is small beside the sensitivities' integration that
+// made the matrix (n^2 equations over a period).
+Eigen::JacobiSVD<Eigen::MatrixXd> scaled_svd(const Eigen::SparseMatrix<double>& scaled,
+                                             double rank_tolerance, int vectors) {
+  Eigen::JacobiSVD<Eigen::MatrixXd> svd(scaled.toDense(), vectors);
+  if (rank_tolerance > 0.0) svd.setThreshold(rank_tolerance);
   return svd;
 }
 
@@ -44,7 +49,7 @@ Eigen::BDCSVD<Eigen::MatrixXd> scaled_svd(const Eigen::SparseMatrix<double>& sca
 int rank_deficiency(const Eigen::SparseMatrix<double>& a, double rank_tolerance) {
   const Eigen::SparseMatrix<double> columns = a * column_scale(a).asDiagonal();
   const Eigen::SparseMatrix<double> scaled = row_scale(columns).asDiagonal() * columns;
-  const auto svd = scaled_svd(scaled, rank_tolerance, false);
+  const auto svd = scaled_svd(scaled, rank_tolerance, 0);
   return static_cast<int>(std::min(a.rows(), a.cols()) - svd.rank());
 }
 
@@ -52,7 +57,7 @@ Eigen::MatrixXd null_vectors(const Eigen::SparseMatrix<double>& a, int dimension
   const Eigen::VectorXd columns = column_scale(a);
   const Eigen::SparseMatrix<double> partly = a * columns.asDiagonal();
   const Eigen::SparseMatrix<double> scaled = row_scale(partly).asDiagonal() * partly;
-  Eigen::BDCSVD<Eigen::MatrixXd> svd(scaled.toDense(), Eigen::ComputeFullV);
+  const auto svd = scaled_svd(scaled, 0.0, Eigen::ComputeFullV);
   const int n = static_cast<int>(a.cols());
   Eigen::MatrixXd v(n, dimension);
   for (int k = 0; k < dimension; ++k)
@@ -80,7 +85,8 @@ LinearSolution solve_linear(const Eigen::SparseMatrix<double>& a, const Eigen::V
       return s;
     }
   }
-  const auto svd = scaled_svd(scaled, options.rank_tolerance, true);
+  const auto svd =
+      scaled_svd(scaled, options.rank_tolerance, Eigen::ComputeThinU | Eigen::ComputeThinV);
   s.rank_deficiency = n - static_cast<int>(svd.rank());
   s.x = columns.asDiagonal() * svd.solve(rb);  // minimum norm in the column-scaled variables
   return s;
