@@ -1,5 +1,7 @@
 #include "sympathy/continuation/periodic_orbit.hpp"
 
+#include "sympathy/continuation/accuracy.hpp"
+
 #include <cmath>
 #include <limits>
 #include <sstream>
@@ -12,11 +14,10 @@
 
 namespace sympathy {
 
+// The default preset (accuracy.hpp): the same options whether a computation came in through the
+// library, the command line or Python.
 OrbitOptions::OrbitOptions() {
-  shooting.flow.rtol = 1e-11;
-  shooting.flow.atol = 1e-13;
-  transient_flow.rtol = 1e-8;
-  transient_flow.atol = 1e-10;
+  apply_accuracy(Accuracy::Default, *this);
 }
 
 OptionCheck NewtonOptions::validate() const {

@@ -12,6 +12,7 @@
 #include "sympathy/cases/case_file.hpp"
 #include "sympathy/cases/metronome_model.hpp"
 #include "sympathy/cases/names.hpp"
+#include "sympathy/continuation/accuracy.hpp"
 #include "sympathy/continuation/continuation_options.hpp"
 #include "sympathy/continuation/periodic_orbit.hpp"
 #include "sympathy/core/flow.hpp"
@@ -30,10 +31,7 @@ std::vector<OptionSpec> case_options();
 // Integrator options: --rtol, --atol, --method, --sensitivities, --linear-solver.
 std::vector<OptionSpec> integrator_options();
 
-// Accuracy presets of the shooting flow (--accuracy; a study file's `accuracy`), chosen by
-// measurement on the row setup's anti-phase k-branch (the numbers are beside apply_accuracy in
-// common.cpp; bench section (f) repeats them).
-enum class Accuracy { Fast, Default, High };
+// --accuracy (a study or map file's `accuracy`): the engine's presets (accuracy.hpp).
 OptionSpec accuracy_option();
 // --threads of orbit and continue: the shooting segments integrated side by side.
 OptionSpec segment_threads_option();
@@ -44,12 +42,6 @@ int segment_threads(const Arguments& args);
 Accuracy parse_accuracy(const std::string& text, const std::string& where);
 // The preset --accuracy names (Default without it).
 Accuracy accuracy(const Arguments& args);
-// The preset's method, sensitivities and tolerances: the shooting flow's, and for Fast the
-// transient's method too.
-void apply_accuracy(Accuracy accuracy, OrbitOptions& options);
-// ... and a branch's step control: Fast takes coarser steps where the multipliers move (see
-// common.cpp), Default and High the library's.
-void apply_accuracy(Accuracy accuracy, ContinuationOptions& options);
 
 LoadedCase load_case(const Arguments& args);
 // InputError naming the case file and its escapement unless the model is differentiable: the

@@ -23,9 +23,9 @@ struct CorrectorOptions {
   // A quasi-Newton step whose residual is expected above this many tolerances (the guess's, or
   // the last one's times the contraction so far) takes it from a coarse plain run
   // (ShootingProblem::residual, a thousand times looser): the tolerance is about 1e-9 on the row
-  // setup, and a coarse run's error 3e-8 to 4e-8 (at the library's rtol 1e-11), below a tenth of
-  // the 1e-6 it then steers from (tests/cases/orbit_test.cpp). In-phase k-branch at the default
-  // 0.99 -> 0.89 CPU s (medians of five; 266 000 -> 239 000 steps). 0: never.
+  // setup, and a coarse run's error 3e-8 to 1.6e-7 (at BDF rtol 1e-11 and the default preset),
+  // below a fifth of the 1e-6 it then steers from (tests/cases/orbit_test.cpp). In-phase k-branch
+  // at the default 0.99 -> 0.89 CPU s (medians of five; 266 000 -> 239 000 steps). 0: never.
   double coarse_above = 1e3;
   // The guess's residual expected: the first run is coarse only where this is above
   // coarse_above tolerances (a continuation passes its last step's; its own runs, whose guesses
