@@ -18,6 +18,7 @@ namespace sympathy {
 namespace {
 
 using testing::kTwoPi;
+using testing::nontrivial_multiplier;
 
 // theta'' + gamma theta' + sin(theta) = tau, states theta (an angle, if `declared`) and omega.
 // With tau > 1 there is no equilibrium and every motion ends on the rotation. Over its period:
@@ -65,12 +66,6 @@ double dissipated(const OdeSystem& system, const PeriodicOrbit& orbit) {
   });
   const double gamma = system.parameter(orbit.parameters, 0);
   return gamma * sum * orbit.period / intervals / 3.0;
-}
-
-double nontrivial_multiplier(const FloquetAnalysis& f) {
-  for (const auto& m : f.multipliers)
-    if (!m.trivial) return m.value.real();
-  return NAN;
 }
 
 // gamma = 0.5, tau = 1.2: the rotation from a start at rest, found by the transient and Newton.

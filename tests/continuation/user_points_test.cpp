@@ -17,6 +17,7 @@ namespace sympathy {
 namespace {
 
 using testing::kTwoPi;
+using testing::nontrivial_multiplier;
 
 // The Hopf normal form (cases/examples/hopf.toml by hand): for mu > 0 the circle r = sqrt(mu),
 // period 2 pi / w, nontrivial multiplier exp(-4 pi mu / w).
@@ -39,12 +40,6 @@ std::vector<Bifurcation> user_points(const Branch& branch) {
   for (const auto& e : branch.events)
     if (e.type == BifurcationType::UserPoint) found.push_back(e);
   return found;
-}
-
-double nontrivial_multiplier(const FloquetAnalysis& f) {
-  for (const auto& m : f.multipliers)
-    if (!m.trivial) return m.value.real();
-  return NAN;
 }
 
 // mu from 0.25 to 1 with user points 0.3, 0.5 and 1 (the bound: the last point, put on it): each
