@@ -174,7 +174,7 @@ class Case {
                                          {"params", "out", "verbose", "locked_pendula"}));
     const std::vector<double> times = cli::simulation_times(args);
     const cli::LoadedSystem c(line_.path, line_.params, args.assignments("--set"));
-    const cli::BranchSource source =
+    const app::BranchSource source =
         c.source(args.text("--start", ""), args.assignments("--initial"));
     Flow flow(c.system(), cli::simulation_flow_options(args));
     PythonHooks hooks{py::none()};
@@ -215,7 +215,7 @@ class Case {
     if (c.equations() && args.flag("--whole-state"))
       throw InputError("--whole-state: only for a metronome case file");
     const OrbitOptions o = cli::orbit_request(args, !c.system().autonomous());
-    const cli::BranchSource source =
+    const app::BranchSource source =
         c.source(args.text("--start", ""), args.assignments("--initial"), c.start_data());
     PeriodicOrbit orbit;
     {
@@ -233,8 +233,8 @@ class Case {
         command_arguments("continue_branch", line_, kwargs, cli::continue_options(),
                           {"params", "quiet", "verbose", "json"});
     const cli::LoadedSystem c(args);
-    cli::BranchRequest request = cli::continue_request(args, c);
-    const cli::BranchSource source = c.source(request.start, request.initial, request.start_data);
+    app::BranchRequest request = cli::continue_request(args, c);
+    const app::BranchSource source = c.source(request.start, request.initial, request.start_data);
     const ProgressBar shown(progress, request.from, request.to, request.parameter);
     PythonHooks hooks(shown.callback);
     request.progress = nullptr;  // progress goes to the callback, not to stderr
@@ -245,7 +245,7 @@ class Case {
     Branch branch;
     {
       py::gil_scoped_release release;
-      branch = cli::run_branch(source, request, nullptr);
+      branch = app::run_branch(source, request, nullptr);
     }
     hooks.raise_kept();
     return branch_result(branch, c.describer());
@@ -303,7 +303,7 @@ class Case {
                                                   {"params", "quiet", "json"});
     const cli::LoadedSystem c(args);
     cli::CurveRequest request = cli::curve_request(args, c);
-    const cli::BranchSource source = c.source(request.branch.start, request.branch.initial);
+    const app::BranchSource source = c.source(request.branch.start, request.branch.initial);
     PythonHooks hooks(progress);
     request.branch.stop_requested = [&] { return hooks.stop_requested(); };
     CurveCallbacks callbacks;
@@ -322,7 +322,7 @@ class Case {
       py::gil_scoped_release release;
       parent = cli::curve_branch(request, c, source, nullptr);
       if (parent.started() && !hooks.interrupted()) {
-        const Bifurcation& event = cli::find_event(parent, request.event, "--event");
+        const Bifurcation& event = app::find_event(parent, request.event, "--event");
         curve = cli::follow_curve(request, c.system(), parent, event, callbacks);
       } else {
         curve.stop = hooks.interrupted() ? StopReason::Interrupted : StopReason::StartFailed;

@@ -11,12 +11,12 @@
 #include <memory>
 #include <optional>
 
-#include "cases/cli/basins_file.hpp"
+#include "cases/app/basins_file.hpp"
+#include "cases/app/task_run.hpp"
 #include "cases/cli/basins_output.hpp"
 #include "cases/cli/commands.hpp"
 #include "cases/cli/common.hpp"
 #include "cases/cli/progress.hpp"
-#include "cases/cli/task_run.hpp"
 #include "sympathy/cases/basin_study.hpp"
 #include "sympathy/continuation/task_journal.hpp"
 #include "sympathy/continuation/task_runner.hpp"

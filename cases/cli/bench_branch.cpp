@@ -8,7 +8,7 @@
 #include <sstream>
 #include <utility>
 
-#include "cases/cli/branch_run.hpp"
+#include "cases/app/branch_run.hpp"
 
 namespace sympathy::cli {
 

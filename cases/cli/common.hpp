@@ -1,5 +1,5 @@
-// What every subcommand shares: loading a case with its parameter set and --set overrides,
-// integrator options from the command line, and timing.
+// What every subcommand shares: the options that load a case (read by the application layer,
+// app/case_loading.hpp), integrator options from the command line, interrupts and tables.
 #pragma once
 
 #include <atomic>
@@ -7,11 +7,9 @@
 #include <utility>
 #include <vector>
 
+#include "cases/app/case_loading.hpp"
 #include "cases/cli/arguments.hpp"
 #include "cases/cli/exit_codes.hpp"
-#include "sympathy/cases/case_file.hpp"
-#include "sympathy/cases/metronome_model.hpp"
-#include "sympathy/cases/names.hpp"
 #include "sympathy/continuation/accuracy.hpp"
 #include "sympathy/continuation/continuation_options.hpp"
 #include "sympathy/continuation/periodic_orbit.hpp"
@@ -20,11 +18,9 @@
 
 namespace sympathy::cli {
 
-struct LoadedCase {
-  CaseFile file;
-  std::string params;  // the parameter set applied ("" if none)
-  ModelSpec spec;
-};
+// The command line reads its options into the application layer's requests and runs them there.
+using namespace sympathy::app;
+using app::load_case;  // beside the overload that reads the command line
 
 // Options every command that loads a case accepts.
 std::vector<OptionSpec> case_options();
@@ -38,20 +34,11 @@ OptionSpec segment_threads_option();
 // --threads N as given (ShootingOptions::validate checks it: 1 to 256), by default one per core;
 // the shooting uses at most as many as it has segments, and its result does not depend on them.
 int segment_threads(const Arguments& args);
-// Throws InputError "WHERE TEXT: expected fast, default or high" unless TEXT names a preset.
-Accuracy parse_accuracy(const std::string& text, const std::string& where);
 // The preset --accuracy names (Default without it).
 Accuracy accuracy(const Arguments& args);
 
+// The case file of positional 0 with --params and --set.
 LoadedCase load_case(const Arguments& args);
-// InputError naming the case file and its escapement unless the model is differentiable: the
-// impulsive escapement (eq. 2) switches discontinuously, and orbits, branches and equilibria
-// need the flow's sensitivities (`what`: "orbit", "continue", ...). Before any work.
-void require_differentiable(const OdeSystem& system, const std::string& case_path,
-                            const std::string& what);
-// The same for the file at `path`, parameter set `params` ("" for the file's default) and `sets`.
-LoadedCase load_case(const std::string& path, const std::string& params,
-                     const std::vector<Assignment>& sets);
 // The integrator options --rtol, --atol, --method and --sensitivities on top of `defaults` (for
 // orbit and continue: the accuracy preset's); without --linear-solver, defaults.linear_solver (by
 // default Automatic: the flow chooses, see LinearSolver).
@@ -64,11 +51,6 @@ std::string table_number(double v, const char* format);
 // transient takes the shooting's linear solver.
 void shooting_flow_options(const Arguments& args, OrbitOptions& options);
 
-// Throws the InputError of an options problem (the engine's validate()), named as the command
-// line names it ("--step: expected ...", where = "") or as a study file does (where =
-// "FILE: branches[2]." gives "FILE: branches[2].step: expected ...").
-void check_options(const OptionCheck& problem, const std::string& where);
-
 // Installs handlers of SIGINT, SIGTERM and SIGHUP that set the returned flag: a run then stops
 // after its current point or output sample and writes complete files of what it has (exit code
 // kInterrupted). A second signal ends the program at once (exit code 130).
@@ -80,24 +62,5 @@ const std::atomic<bool>* interrupt_flag();
 // compile under way is stopped and removed first, equation_compiler.hpp). Not for the Python
 // module, whose interpreter owns its signals.
 void exit_on_interrupt();
-
-// Throws InputError (prefixed by `where`) unless the model is physically meaningful with
-// `parameter` at every one of `values` (ModelSpec::problems: masses and lengths positive,
-// damping and stiffness non-negative, ...), so that a range reaching out of the domain is refused
-// before any work instead of failing later as an integration error.
-void check_parameter_range(const ModelSpec& spec, const std::string& parameter,
-                           const std::vector<double>& values, const std::string& where);
-
-// Throws InputError when two of `paths` (option, path) name the same file, or one of them names
-// an input (option, path) such as the case file: an output must never replace an input or
-// another output of the same run. Files are compared by device and inode, so a hard or symbolic
-// link to an input is that input. Empty paths are ignored.
-void check_distinct_outputs(const std::vector<std::pair<std::string, std::string>>& outputs,
-                            const std::vector<std::pair<std::string, std::string>>& inputs);
-
-// `files` with `more` appended (for check_distinct_outputs' lists of inputs).
-std::vector<std::pair<std::string, std::string>> with(
-    std::vector<std::pair<std::string, std::string>> files,
-    std::pair<std::string, std::string> more);
 
 }  // namespace sympathy::cli

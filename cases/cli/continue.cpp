@@ -5,10 +5,10 @@
 #include <memory>
 #include <optional>
 
-#include "cases/cli/branch_run.hpp"
+#include "cases/app/branch_run.hpp"
+#include "cases/app/hopf_switch.hpp"
 #include "cases/cli/commands.hpp"
 #include "cases/cli/equations.hpp"
-#include "cases/cli/hopf_switch.hpp"
 #include "cases/cli/loaded_system.hpp"
 #include "cases/cli/progress.hpp"
 #include "cases/cli/report.hpp"

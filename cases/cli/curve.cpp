@@ -6,7 +6,7 @@
 #include <cstdio>
 #include <memory>
 
-#include "cases/cli/branch_run.hpp"
+#include "cases/app/branch_run.hpp"
 #include "cases/cli/commands.hpp"
 #include "cases/cli/loaded_system.hpp"
 #include "cases/cli/progress.hpp"

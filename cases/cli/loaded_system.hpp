@@ -10,7 +10,7 @@
 #include <utility>
 #include <vector>
 
-#include "cases/cli/branch_run.hpp"
+#include "cases/app/branch_run.hpp"
 #include "cases/cli/common.hpp"
 #include "cases/cli/equations.hpp"
 #include "cases/cli/start_data.hpp"

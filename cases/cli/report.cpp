@@ -2,7 +2,9 @@
 
 #include <algorithm>
 #include <cmath>
+#include <complex>
 #include <numbers>
+#include <string>
 
 #include "cases/cli/common.hpp"
 #include "sympathy/continuation/branch_output.hpp"
@@ -159,6 +161,30 @@ int finish_orbit_report(const OdeSystem& system, const PeriodicOrbit& orbit,
     write_file_atomically(*json_path, j.dump(2) + "\n");
   }
   return orbit.converged() ? 0 : 4;
+}
+
+void print_events(std::FILE* out, const Branch& branch) {
+  const auto& events = branch.events;
+  if (events.empty()) {
+    std::fprintf(out, "  no bifurcations on this branch\n");
+    return;
+  }
+  std::fprintf(out, "  %-4s %-20s %-11s %-14s %-28s %s\n", "type", branch.parameter_name.c_str(),
+               "uncertainty", "period (s)", "crossing multiplier", "note");
+  for (const auto& e : events) {
+    const std::complex<double> crossing = e.crossing;
+    char mu[64] = "";  // a user point (UZ) has no crossing multiplier
+    if (e.type != BifurcationType::UserPoint)
+      std::snprintf(mu, sizeof mu, "%.8f%+.8fi", crossing.real(), crossing.imag());
+    std::string note = e.note;
+    if (e.multiplicity > 1 && note.empty()) note = "multiplicity " + std::to_string(e.multiplicity);
+    if (e.symmetry == SymmetryKind::Breaking && !branch.points.empty())
+      note = "breaks " + branch.points.front().orbit.subspace.description() +
+             (note.empty() ? "" : "; " + note);
+    std::fprintf(out, "  %-4s %-20.12g %-11.1e %-14.10f %-28s %s\n",
+                 (to_string(e.type) + (e.trusted() ? "" : "?")).c_str(), e.parameter, e.uncertainty,
+                 e.period, mu, note.c_str());
+  }
 }
 
 }  // namespace sympathy::cli

@@ -11,6 +11,7 @@
 
 #include "sympathy/cases/metronome_describer.hpp"
 #include "sympathy/cases/metronome_model.hpp"
+#include "sympathy/continuation/branch.hpp"
 #include "sympathy/continuation/orbit_describer.hpp"
 #include "sympathy/continuation/periodic_orbit.hpp"
 #include "sympathy/core/ode_system.hpp"
@@ -35,5 +36,9 @@ int finish_orbit_report(const OdeSystem& system, const PeriodicOrbit& orbit,
                         const OrbitDescriber& describer, bool verbose,
                         const std::optional<std::string>& json_path, const std::string& case_path,
                         const std::string& params, const std::string& start, double seconds);
+
+// A branch's events as a table: type (with ? where not trusted), parameter, uncertainty, period,
+// crossing multiplier, note.
+void print_events(std::FILE* out, const Branch& branch);
 
 }  // namespace sympathy::cli

@@ -9,12 +9,12 @@
 #include <string>
 #include <vector>
 
+#include "cases/app/branch_run.hpp"
+#include "cases/app/event_name.hpp"
+#include "cases/app/study_file.hpp"
 #include "cases/cli/arguments.hpp"
-#include "cases/cli/branch_run.hpp"
-#include "cases/cli/event_name.hpp"
 #include "cases/cli/loaded_system.hpp"
 #include "cases/cli/progress.hpp"
-#include "cases/cli/study_file.hpp"
 #include "sympathy/cases/parameter_fit.hpp"
 #include "sympathy/continuation/bifurcation_curve.hpp"
 #include "sympathy/continuation/equilibrium_branch.hpp"

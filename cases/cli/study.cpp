@@ -8,12 +8,13 @@
 #include <mutex>
 #include <thread>
 
-#include "cases/cli/branch_run.hpp"
+#include "cases/app/branch_run.hpp"
+#include "cases/app/study_file.hpp"
 #include "cases/cli/commands.hpp"
 #include "cases/cli/loaded_system.hpp"
 #include "cases/cli/progress.hpp"
+#include "cases/cli/report.hpp"
 #include "cases/cli/requests.hpp"
-#include "cases/cli/study_file.hpp"
 #include "sympathy/continuation/branch_output.hpp"
 
 namespace sympathy::cli {

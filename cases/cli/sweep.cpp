@@ -1,8 +1,8 @@
 // sympathy sweep: one-parameter branches over a grid of a second parameter, or one orbit or one
 // fit (the fit's profile in the swept parameter) at each of its values, as independent tasks
-// (cli/task_run.hpp: threads, or the ranks of an MPI job; a journal that a resumed run does not
-// compute again). The branches are a coarse cross-check of the two-parameter curves (curve, map):
-// each branch's located events at its value of the second parameter. Files, in --out DIR:
+// (cases/app/task_run.hpp: threads, or the ranks of an MPI job; a journal that a resumed run does
+// not compute again). The branches are a coarse cross-check of the two-parameter curves (curve,
+// map): each branch's located events at its value of the second parameter. Files, in --out DIR:
 // sweep_journal.csv (a row per task as it finishes), and at the end, in task order whatever the
 // threads, sweep_events.csv (a row per located event), sweep_orbits.csv (a row per orbit) or
 // sweep_fits.csv (a row per fit), and sweep.json.
@@ -13,13 +13,13 @@
 
 #include <nlohmann/json.hpp>
 
-#include "cases/cli/branch_run.hpp"
+#include "cases/app/branch_run.hpp"
+#include "cases/app/task_run.hpp"
 #include "cases/cli/commands.hpp"
 #include "cases/cli/loaded_system.hpp"
 #include "cases/cli/progress.hpp"
 #include "cases/cli/requests.hpp"
 #include "cases/cli/study_record.hpp"
-#include "cases/cli/task_run.hpp"
 #include "sympathy/continuation/branch_output.hpp"
 #include "sympathy/continuation/periodic_orbit.hpp"
 #include "sympathy/core/csv.hpp"

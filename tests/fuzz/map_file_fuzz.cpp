@@ -1,17 +1,17 @@
-// Fuzz target: the map-file reader (cases/cli/map_file.cpp, as `sympathy map` reads its
+// Fuzz target: the map-file reader (app/map_file.cpp, as `sympathy map` reads its
 // argument). Any input either loads or is refused with an InputError; a crash, a sanitizer
 // report or any other exception is a finding.
 #include <cstddef>
 #include <cstdint>
 
-#include "cases/cli/map_file.hpp"
+#include "cases/app/map_file.hpp"
 #include "sympathy/core/errors.hpp"
 #include "tests/fuzz/fuzz_input.hpp"
 
 extern "C" int LLVMFuzzerTestOneInput(const std::uint8_t* data, std::size_t size) {
   const std::string path = sympathy::fuzz::write_input(data, size, "map.toml");
   try {
-    sympathy::cli::load_map(path);
+    sympathy::app::load_map(path);
   } catch (const sympathy::InputError&) {
     // Bad input refused: the expected outcome.
   }

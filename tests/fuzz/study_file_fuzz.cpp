@@ -1,17 +1,17 @@
-// Fuzz target: the study-file reader (cases/cli/study_file.cpp, as `sympathy study` reads its
+// Fuzz target: the study-file reader (app/study_file.cpp, as `sympathy study` reads its
 // STUDY argument). Any input either loads or is refused with an InputError; a crash, a sanitizer
 // report or any other exception is a finding.
 #include <cstddef>
 #include <cstdint>
 
-#include "cases/cli/study_file.hpp"
+#include "cases/app/study_file.hpp"
 #include "sympathy/core/errors.hpp"
 #include "tests/fuzz/fuzz_input.hpp"
 
 extern "C" int LLVMFuzzerTestOneInput(const std::uint8_t* data, std::size_t size) {
   const std::string path = sympathy::fuzz::write_input(data, size, "study.toml");
   try {
-    sympathy::cli::load_study(path);
+    sympathy::app::load_study(path);
   } catch (const sympathy::InputError&) {
     // Bad input refused: the expected outcome.
   }

@@ -1,4 +1,4 @@
-#include "cases/cli/task_run.hpp"
+#include "cases/app/task_run.hpp"
 
 #include <cmath>
 #include <exception>
@@ -6,7 +6,7 @@
 
 #include "sympathy/core/errors.hpp"
 
-namespace sympathy::cli {
+namespace sympathy::app {
 
 GridAxis parse_grid(const std::string& text, const std::string& option) {
   const auto fail = [&] {
@@ -87,4 +87,4 @@ TaskRunSummary run_journaled(const MpiSession& mpi, std::size_t count, TaskJourn
                         : run_tasks<TaskRow>(count, journal->done(), work, record, run, stop);
 }
 
-}  // namespace sympathy::cli
+}  // namespace sympathy::app

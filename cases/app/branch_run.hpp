@@ -12,14 +12,14 @@
 
 #include <nlohmann/json.hpp>
 
-#include "cases/cli/common.hpp"
-#include "cases/cli/event_name.hpp"
+#include "cases/app/case_loading.hpp"
+#include "cases/app/event_name.hpp"
 #include "sympathy/continuation/branch_run.hpp"
 #include "sympathy/continuation/hopf.hpp"
 #include "sympathy/continuation/orbit_describer.hpp"
 #include "sympathy/continuation/recorded_period.hpp"
 
-namespace sympathy::cli {
+namespace sympathy::app {
 
 struct BranchRequest {
   std::string start;
@@ -84,9 +84,8 @@ Branch run_branch(const BranchSource& source, const BranchRequest& request,
 Branch run_branch(const LoadedCase& c, const MetronomeModel& model, const BranchRequest& request,
                   const std::atomic<bool>* stop);
 
-void print_events(std::FILE* out, const Branch& branch);
 // The engine's branch JSON with the request's start and bounds.
 nlohmann::json branch_json(const Branch& branch, const BranchRequest& request,
                            const OrbitDescriber& describer);
 
-}  // namespace sympathy::cli
+}  // namespace sympathy::app

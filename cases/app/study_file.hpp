@@ -5,9 +5,9 @@
 #include <string>
 #include <vector>
 
-#include "cases/cli/branch_run.hpp"
+#include "cases/app/branch_run.hpp"
 
-namespace sympathy::cli {
+namespace sympathy::app {
 
 struct StudyBranch {
   std::string name;
@@ -35,4 +35,4 @@ struct Study {
 // throws InputError naming the file, the line and the key.
 Study load_study(const std::string& path);
 
-}  // namespace sympathy::cli
+}  // namespace sympathy::app

@@ -1,4 +1,4 @@
-#include "cases/cli/basins_file.hpp"
+#include "cases/app/basins_file.hpp"
 
 #include <toml++/toml.h>
 
@@ -7,7 +7,7 @@
 #include "sympathy/cases/toml_reader.hpp"
 #include "sympathy/core/errors.hpp"
 
-namespace sympathy::cli {
+namespace sympathy::app {
 
 namespace {
 
@@ -130,4 +130,4 @@ BasinsFile load_basins_file(const std::string& path) {
   return f;
 }
 
-}  // namespace sympathy::cli
+}  // namespace sympathy::app

@@ -1,8 +1,8 @@
-#include "cases/cli/json_reader.hpp"
+#include "cases/app/json_reader.hpp"
 
 #include <fstream>
 
-namespace sympathy::cli {
+namespace sympathy::app {
 
 JsonReader::JsonReader(std::string path, std::string written_by)
     : path_(std::move(path)), written_by_(std::move(written_by)) {
@@ -36,4 +36,4 @@ Eigen::VectorXd JsonReader::numbers(const nlohmann::json& j, const std::string& 
   return v;
 }
 
-}  // namespace sympathy::cli
+}  // namespace sympathy::app

@@ -7,10 +7,10 @@
 #include <optional>
 #include <string>
 
-#include "cases/cli/branch_run.hpp"
+#include "cases/app/branch_run.hpp"
 #include "sympathy/continuation/equilibrium_branch.hpp"
 
-namespace sympathy::cli {
+namespace sympathy::app {
 
 // "HB3" -> 3; nullopt when `text` does not start with "HB"; InputError naming `option` for a
 // number that is not a positive integer.
@@ -26,4 +26,4 @@ EquilibriumBranch read_equilibria_json(const std::string& path, const OdeSystem&
 Branch run_hopf_branch(const BranchSource& source, const BranchRequest& request, int ordinal,
                        const ContinuationCallbacks& callbacks);
 
-}  // namespace sympathy::cli
+}  // namespace sympathy::app

@@ -9,7 +9,7 @@
 
 #include "sympathy/core/errors.hpp"
 
-namespace sympathy::cli {
+namespace sympathy::app {
 
 class JsonReader {
  public:
@@ -40,4 +40,4 @@ class JsonReader {
   nlohmann::json root_;
 };
 
-}  // namespace sympathy::cli
+}  // namespace sympathy::app

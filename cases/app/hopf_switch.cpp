@@ -1,11 +1,11 @@
-#include "cases/cli/hopf_switch.hpp"
+#include "cases/app/hopf_switch.hpp"
 
-#include "cases/cli/json_reader.hpp"
+#include "cases/app/json_reader.hpp"
 
 #include "sympathy/continuation/hopf.hpp"
 #include "sympathy/core/csv.hpp"
 
-namespace sympathy::cli {
+namespace sympathy::app {
 
 std::optional<int> parse_hopf_name(const std::string& text, const std::string& option) {
   if (text.rfind("HB", 0) != 0) return std::nullopt;
@@ -139,4 +139,4 @@ Branch run_hopf_branch(const BranchSource& source, const BranchRequest& request,
   return born;
 }
 
-}  // namespace sympathy::cli
+}  // namespace sympathy::app

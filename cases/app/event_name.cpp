@@ -1,10 +1,10 @@
-#include "cases/cli/event_name.hpp"
+#include "cases/app/event_name.hpp"
 
 #include <algorithm>
 
 #include "sympathy/core/errors.hpp"
 
-namespace sympathy::cli {
+namespace sympathy::app {
 
 EventName parse_event_name(const std::string& text, const std::string& option,
                            const std::vector<BifurcationType>& allowed,
@@ -26,4 +26,4 @@ EventName parse_event_name(const std::string& text, const std::string& option,
   return name;
 }
 
-}  // namespace sympathy::cli
+}  // namespace sympathy::app

@@ -1,4 +1,4 @@
-#include "cases/cli/map_file.hpp"
+#include "cases/app/map_file.hpp"
 
 #include <toml++/toml.h>
 
@@ -7,7 +7,7 @@
 
 #include "sympathy/cases/toml_reader.hpp"
 
-namespace sympathy::cli {
+namespace sympathy::app {
 
 namespace {
 
@@ -94,4 +94,4 @@ MapStudy load_map(const std::string& path) {
   return s;
 }
 
-}  // namespace sympathy::cli
+}  // namespace sympathy::app

@@ -8,7 +8,7 @@
 
 #include "sympathy/continuation/branch.hpp"
 
-namespace sympathy::cli {
+namespace sympathy::app {
 
 // The event a name like "BP1" (type, then its 1-based number among the branch's events of that
 // type) picks. parse_event_name checks the name before any work: InputError naming `option`
@@ -27,4 +27,4 @@ EventName parse_event_name(const std::string& text, const std::string& option,
                                "number along the branch (e.g. BP1): only there is a branch "
                                "born");
 
-}  // namespace sympathy::cli
+}  // namespace sympathy::app

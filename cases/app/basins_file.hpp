@@ -9,7 +9,7 @@
 #include "sympathy/cases/basin_study.hpp"
 #include "sympathy/cases/case_file.hpp"
 
-namespace sympathy::cli {
+namespace sympathy::app {
 
 struct BasinsFile {
   std::string path, title, case_path, params;
@@ -27,4 +27,4 @@ bool is_basins_file(const std::string& path);
 // Throws InputError naming the file, the line and the key.
 BasinsFile load_basins_file(const std::string& path);
 
-}  // namespace sympathy::cli
+}  // namespace sympathy::app

@@ -16,7 +16,7 @@
 #include "sympathy/continuation/task_journal.hpp"
 #include "sympathy/continuation/task_runner.hpp"
 
-namespace sympathy::cli {
+namespace sympathy::app {
 
 // "NAME=FROM:TO:COUNT" (COUNT values from FROM to TO) or "NAME=VALUE"; InputError naming
 // `option`.
@@ -37,4 +37,4 @@ TaskRunSummary run_journaled(const MpiSession& mpi, std::size_t count, TaskJourn
                              const TaskRunOptions& run, const std::atomic<bool>* stop,
                              const std::function<void(std::size_t)>& on_recorded = {});
 
-}  // namespace sympathy::cli
+}  // namespace sympathy::app

@@ -7,9 +7,9 @@
 #include <string>
 #include <vector>
 
-#include "cases/cli/common.hpp"
+#include "cases/app/case_loading.hpp"
 
-namespace sympathy::cli {
+namespace sympathy::app {
 
 struct MapAxis {
   std::string parameter;
@@ -34,4 +34,4 @@ struct MapStudy {
 // InputError naming the file, the line and the key.
 MapStudy load_map(const std::string& path);
 
-}  // namespace sympathy::cli
+}  // namespace sympathy::app

@@ -1,11 +1,11 @@
-#include "cases/cli/study_file.hpp"
+#include "cases/app/study_file.hpp"
 
 #include <toml++/toml.h>
 
 #include <algorithm>
 #include <filesystem>
 
-namespace sympathy::cli {
+namespace sympathy::app {
 
 Study load_study(const std::string& path) {
   const toml::table root = read_toml(path, "study file");
@@ -142,4 +142,4 @@ Study load_study(const std::string& path) {
   return s;
 }
 
-}  // namespace sympathy::cli
+}  // namespace sympathy::app

@@ -1,18 +1,18 @@
-#include "cases/cli/branch_run.hpp"
+#include "cases/app/branch_run.hpp"
 
 #include <algorithm>
 #include <fstream>
 #include <map>
 #include <memory>
 
-#include "cases/cli/hopf_switch.hpp"
-#include "cases/cli/json_reader.hpp"
+#include "cases/app/hopf_switch.hpp"
+#include "cases/app/json_reader.hpp"
 #include "sympathy/cases/metronome_describer.hpp"
 #include "sympathy/continuation/branch_output.hpp"
 #include "sympathy/continuation/branch_switching.hpp"
 #include "sympathy/core/csv.hpp"
 
-namespace sympathy::cli {
+namespace sympathy::app {
 
 Branch run_branch(const LoadedCase& c, const MetronomeModel& model, const BranchRequest& request,
                   const std::atomic<bool>* stop) {
@@ -267,30 +267,6 @@ const Bifurcation& find_event(const Branch& branch, const EventName& name,
                    (list.empty() ? std::string("none") : list));
 }
 
-void print_events(std::FILE* out, const Branch& branch) {
-  const auto& events = branch.events;
-  if (events.empty()) {
-    std::fprintf(out, "  no bifurcations on this branch\n");
-    return;
-  }
-  std::fprintf(out, "  %-4s %-20s %-11s %-14s %-28s %s\n", "type", branch.parameter_name.c_str(),
-               "uncertainty", "period (s)", "crossing multiplier", "note");
-  for (const auto& e : events) {
-    const std::complex<double> crossing = e.crossing;
-    char mu[64] = "";  // a user point (UZ) has no crossing multiplier
-    if (e.type != BifurcationType::UserPoint)
-      std::snprintf(mu, sizeof mu, "%.8f%+.8fi", crossing.real(), crossing.imag());
-    std::string note = e.note;
-    if (e.multiplicity > 1 && note.empty()) note = "multiplicity " + std::to_string(e.multiplicity);
-    if (e.symmetry == SymmetryKind::Breaking && !branch.points.empty())
-      note = "breaks " + branch.points.front().orbit.subspace.description() +
-             (note.empty() ? "" : "; " + note);
-    std::fprintf(out, "  %-4s %-20.12g %-11.1e %-14.10f %-28s %s\n",
-                 (to_string(e.type) + (e.trusted() ? "" : "?")).c_str(), e.parameter, e.uncertainty,
-                 e.period, mu, note.c_str());
-  }
-}
-
 nlohmann::json branch_json(const Branch& branch, const BranchRequest& request,
                            const OrbitDescriber& describer) {
   nlohmann::json j = sympathy::branch_json(branch, &describer);
@@ -302,4 +278,4 @@ nlohmann::json branch_json(const Branch& branch, const BranchRequest& request,
   return j;
 }
 
-}  // namespace sympathy::cli
+}  // namespace sympathy::app
