@@ -114,6 +114,7 @@ nlohmann::json hopf_json(const HopfPoint& h) {
   j["eigenvector_re"] = as_vector(h.eigenvector.real());
   j["eigenvector_im"] = as_vector(h.eigenvector.imag());
   if (h.lyapunov) j["lyapunov"] = *h.lyapunov;
+  if (h.c1) j["c1"] = {h.c1->real(), h.c1->imag()};
   j["criticality"] = describe_criticality(h.lyapunov);
   return j;
 }

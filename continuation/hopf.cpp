@@ -1,6 +1,8 @@
 #include "sympathy/continuation/hopf.hpp"
 
 #include <cmath>
+#include <complex>
+#include <numbers>
 #include <stdexcept>
 
 #include "sympathy/continuation/shooting.hpp"
@@ -61,22 +63,28 @@ std::optional<HopfPoint> hopf_point_near(const OdeSystem& system, int parameter,
   return std::nullopt;
 }
 
-std::optional<double> hopf_offset_per_squared_amplitude(const OdeSystem& system, int parameter,
-                                                        const HopfPoint& hopf) {
+std::optional<HopfExpansion> hopf_expansion(const OdeSystem& system, int parameter,
+                                            const HopfPoint& hopf) {
   if (!hopf.lyapunov || *hopf.lyapunov == 0.0) return std::nullopt;
   const double h = 1e-6 * std::max(1.0, std::abs(hopf.parameter));
-  double re[2];
+  std::complex<double> pair[2];
   for (int k = 0; k < 2; ++k) {
     const double p = hopf.parameter + (k ? h : -h);
     const Equilibrium e =
         solve_equilibrium(system, system.with_parameter(hopf.values, parameter, p), hopf.state);
     if (!e.converged) return std::nullopt;
-    re[k] = nearest_eigenvalue(e.eigenvalues, {0.0, hopf.omega}).real();
+    pair[k] = nearest_eigenvalue(e.eigenvalues, {0.0, hopf.omega});
   }
-  const double slope = (re[1] - re[0]) / (2 * h);
-  if (!(std::isfinite(slope) && slope != 0.0)) return std::nullopt;
-  const double k = -hopf.omega * *hopf.lyapunov / (4 * slope);
-  return std::isfinite(k) ? std::optional<double>(k) : std::nullopt;
+  const std::complex<double> slope = (pair[1] - pair[0]) / (2 * h);  // mu' + i omega'
+  if (!(std::isfinite(slope.real()) && std::isfinite(slope.imag()) && slope.real() != 0.0))
+    return std::nullopt;
+  const double re_c1 = hopf.omega * *hopf.lyapunov;
+  HopfExpansion x;
+  x.offset = -re_c1 / (4 * slope.real());
+  // Without c1's imaginary part (a Hopf point read from an older JSON), the period at 2 pi / omega.
+  if (hopf.c1) x.frequency = (hopf.c1->imag() - slope.imag() * re_c1 / slope.real()) / 4;
+  if (!(std::isfinite(x.offset) && std::isfinite(x.frequency))) return std::nullopt;
+  return x;
 }
 
 namespace {
@@ -88,13 +96,13 @@ double start_amplitude(const HopfPoint& hopf, const HopfStartOptions& start) {
 }
 
 // Newton on the orbit of amplitude `amplitude` along Re q (see orbit_from_hopf), from the
-// parameter offset k eps^2 (`offset`: hopf_offset_per_squared_amplitude, computed once per
-// start). With `growth`, also the family's direction there (shooting unknowns and parameter) in
-// which the amplitude grows: d(x, p)/d eps from the same bordered system, its last row's
-// right-hand side |Re q|^2.
+// normal form's parameter and period at that amplitude (`expansion`: hopf_expansion, computed
+// once per start). With `growth`, also the family's direction there (shooting unknowns and
+// parameter) in which the amplitude grows: d(x, p)/d eps from the same bordered system, its last
+// row's right-hand side |Re q|^2.
 PeriodicOrbit orbit_at_amplitude(const OdeSystem& system, int parameter, const HopfPoint& hopf,
                                  const OrbitOptions& options, const HopfStartOptions& start,
-                                 std::optional<double> offset, double amplitude,
+                                 const std::optional<HopfExpansion>& expansion, double amplitude,
                                  Eigen::VectorXd* growth = nullptr) {
   const Eigen::VectorXd qr = hopf.eigenvector.real(), qi = hopf.eigenvector.imag();
   const double eps = amplitude / qr.lpNorm<Eigen::Infinity>();
@@ -103,12 +111,17 @@ PeriodicOrbit orbit_at_amplitude(const OdeSystem& system, int parameter, const H
   const int N = problem.unknowns();
   const Eigen::VectorXd z_ref = hopf.state + eps * qr;
   problem.set_phase_section(z_ref, qi);
-  // Newton starts at the normal form's parameter (to second order in eps), not at p_H, where the
-  // bordered Jacobian has the family's double multiplier 1 nearly in it.
-  double p = hopf.parameter;
-  if (offset) p += *offset * eps * eps;
+  // Newton starts at the normal form's parameter and period (to second order in eps), not at p_H
+  // and 2 pi / omega, where the bordered Jacobian has the family's double multiplier 1 nearly in
+  // it.
+  double p = hopf.parameter, period = hopf.period;
+  if (expansion) {
+    p += expansion->offset * eps * eps;
+    const double frequency = hopf.omega + expansion->frequency * eps * eps;
+    if (frequency > 0.5 * hopf.omega) period = 2 * std::numbers::pi / frequency;
+  }
   ParameterValues values = hopf.values;
-  Eigen::VectorXd x = problem.unknowns_from(z_ref, values, hopf.period);
+  Eigen::VectorXd x = problem.unknowns_from(z_ref, values, period);
   const double tolerance =
       attainable_tolerance(options.newton.residual_tolerance, options.newton.rtol_factor,
                            options.shooting.flow, hopf.state.lpNorm<Eigen::Infinity>());
@@ -159,7 +172,7 @@ PeriodicOrbit orbit_at_amplitude(const OdeSystem& system, int parameter, const H
 // orbit_from_hopf, with the amplitude of the orbit found in `used`.
 PeriodicOrbit first_orbit(const OdeSystem& system, int parameter, const HopfPoint& hopf,
                           const OrbitOptions& options, const HopfStartOptions& start,
-                          std::optional<double> offset, double& used,
+                          const std::optional<HopfExpansion>& expansion, double& used,
                           Eigen::VectorXd* growth = nullptr) {
   if (auto wrong = start.validate()) throw std::invalid_argument("Hopf start: " + wrong->message());
   if (!(hopf.omega > 0.0) || hopf.eigenvector.size() != system.dimension())
@@ -173,7 +186,7 @@ PeriodicOrbit first_orbit(const OdeSystem& system, int parameter, const HopfPoin
     PeriodicOrbit orbit;
     try {
       orbit =
-          orbit_at_amplitude(system, parameter, hopf, options, start, offset, amplitude, growth);
+          orbit_at_amplitude(system, parameter, hopf, options, start, expansion, amplitude, growth);
       used = amplitude;
     } catch (const std::runtime_error& e) {
       failures += (failures.empty() ? "" : "; ") + std::string(e.what());
@@ -189,7 +202,7 @@ PeriodicOrbit first_orbit(const OdeSystem& system, int parameter, const HopfPoin
       if (orbit.family_dimension == 0 || start.amplitude > 0.0) break;
       try {
         Eigen::VectorXd wider_growth;
-        PeriodicOrbit wider = orbit_at_amplitude(system, parameter, hopf, options, start, offset,
+        PeriodicOrbit wider = orbit_at_amplitude(system, parameter, hopf, options, start, expansion,
                                                  larger, &wider_growth);
         orbit = std::move(wider);
         used = larger;
@@ -209,7 +222,7 @@ PeriodicOrbit orbit_from_hopf(const OdeSystem& system, int parameter, const Hopf
                               const OrbitOptions& options, const HopfStartOptions& start) {
   double used = 0.0;
   return first_orbit(system, parameter, hopf, options, start,
-                     hopf_offset_per_squared_amplitude(system, parameter, hopf), used);
+                     hopf_expansion(system, parameter, hopf), used);
 }
 
 Branch continue_from_hopf(const OdeSystem& system, int parameter, const HopfPoint& hopf,
@@ -221,9 +234,9 @@ Branch continue_from_hopf(const OdeSystem& system, int parameter, const HopfPoin
   // Hopf point and ended there after one point.
   double amplitude = 0.0;
   Eigen::VectorXd growth;
-  const auto offset = hopf_offset_per_squared_amplitude(system, parameter, hopf);
+  const auto expansion = hopf_expansion(system, parameter, hopf);
   PeriodicOrbit orbit =
-      first_orbit(system, parameter, hopf, options.orbit, start, offset, amplitude, &growth);
+      first_orbit(system, parameter, hopf, options.orbit, start, expansion, amplitude, &growth);
   double p = system.parameter(orbit.parameters, parameter);
   // A user point between the Hopf point and the first orbit would never be passed (issue 33:
   // AUTO's lrz asks for rho = 24.7263, 0.01 from its Hopf point, where the first orbit lay 0.1
@@ -239,7 +252,7 @@ Branch continue_from_hopf(const OdeSystem& system, int parameter, const HopfPoin
     try {
       Eigen::VectorXd inner_growth;
       PeriodicOrbit inner = orbit_at_amplitude(system, parameter, hopf, options.orbit, start,
-                                               offset, closer, &inner_growth);
+                                               expansion, closer, &inner_growth);
       if (inner.family_dimension == 0) {
         orbit = std::move(inner);
         growth = std::move(inner_growth);

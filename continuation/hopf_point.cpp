@@ -118,8 +118,12 @@ HopfPoint describe_hopf(const OdeSystem& system, const ParameterValues& p, const
   const Eigen::VectorXcd r1 = A.fullPivLu().solve(d.B(q, qbar));
   const Eigen::VectorXcd r2 = shifted.fullPivLu().solve(d.B(q, q));
   const Complex sum = pa.dot(d.C(q, qbar)) - 2.0 * pa.dot(d.B(q, r1)) + pa.dot(d.B(qbar, r2));
+  // c1 = sum / 2 (Kuznetsov's (3.20) is its real part over omega).
   const double l1 = sum.real() / (2.0 * h.omega);
-  if (std::isfinite(l1)) h.lyapunov = l1;
+  if (std::isfinite(l1) && std::isfinite(sum.imag())) {
+    h.lyapunov = l1;
+    h.c1 = 0.5 * sum;
+  }
   return h;
 }
 

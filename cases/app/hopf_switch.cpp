@@ -65,6 +65,10 @@ EquilibriumBranch read_equilibria_json(const std::string& path, const OdeSystem&
         hp.eigenvector = re.cast<std::complex<double>>() +
                          std::complex<double>(0, 1) * im.cast<std::complex<double>>();
         if (h.contains("lyapunov")) hp.lyapunov = h.at("lyapunov").get<double>();
+        if (h.contains("c1")) {
+          const Eigen::VectorXd c1 = numbers(h.at("c1"), where + ".hopf.c1", 2);
+          hp.c1 = std::complex<double>(c1[0], c1[1]);
+        }
         e.hopf = hp;
       }
       b.events.push_back(std::move(e));

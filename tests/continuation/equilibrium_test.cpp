@@ -132,11 +132,63 @@ TEST(EquilibriumBranch, HopfPointWithItsLyapunovCoefficient) {
     // The family mu = -(1 + a) r^2 + r^4, r = |z| = eps / sqrt 2 for the amplitude eps along
     // Re q = (1, 0) / sqrt 2: mu = -(1 + a) eps^2 / 2 to second order, the normal form's
     // -omega l1 eps^2 / (4 mu') with mu' = 1.
-    const auto k = hopf_offset_per_squared_amplitude(system, 0, *hopf[0].hopf);
-    ASSERT_TRUE(k.has_value());
-    EXPECT_NEAR(*k, -(1 + a) / 2, 1e-5) << "a = " << a;
+    // Its frequency does not change with the amplitude (c1 real, omega' = 0).
+    const auto x = hopf_expansion(system, 0, *hopf[0].hopf);
+    ASSERT_TRUE(x.has_value());
+    EXPECT_NEAR(x->offset, -(1 + a) / 2, 1e-5) << "a = " << a;
+    EXPECT_NEAR(x->frequency, 0.0, 1e-5) << "a = " << a;
     EXPECT_EQ(branch.points.front().unstable, 0);
     EXPECT_EQ(branch.points.back().unstable, 2);
+  }
+}
+
+// w' = (mu + i (omega0 + w1 mu)) w + (-1 + i b) |w|^2 w, w = x + i y: the orbits are the circles
+// |w|^2 = mu, turning at omega0 + (w1 + b) mu, exactly. With |q| = 1 (q = (1, -i) / sqrt 2) the
+// orbit of amplitude eps along Re q has |w|^2 = eps^2 / 2: offset 1/2 and frequency
+// (w1 + b) / 2 per eps^2, exactly (the normal form has no higher terms); Kuznetsov's c1 is
+// 2 (-1 + i b). The first orbit of the family then lies at mu = eps^2 / 2 with period
+// 2 pi / (omega0 + (w1 + b) eps^2 / 2), to the orbit's accuracy.
+class TwistedHopf final : public AutoDiffSystem<TwistedHopf> {
+ public:
+  TwistedHopf(double w1, double b) : w1_(w1), b_(b) { set_parameter_layout({{"mu", {0}}}, {-0.1}); }
+  int dimension() const override { return 2; }
+  std::vector<std::string> state_names() const override { return {"x", "y"}; }
+  template <class T, class P>
+  void evaluate(double, const T* z, const P* p, T* dz) const {
+    const P mu = p[0];
+    const P omega = 1.0 + w1_ * mu;
+    const T r2 = z[0] * z[0] + z[1] * z[1];
+    dz[0] = mu * z[0] - omega * z[1] + (-z[0] - b_ * z[1]) * r2;
+    dz[1] = omega * z[0] + mu * z[1] + (b_ * z[0] - z[1]) * r2;
+  }
+
+ private:
+  double w1_, b_;
+};
+
+TEST(EquilibriumBranch, HopfFamilysParameterAndPeriodToSecondOrder) {
+  for (const auto& [w1, b] :
+       {std::pair{0.0, 0.0}, std::pair{0.5, 0.0}, std::pair{0.0, -0.7}, std::pair{0.3, 0.4}}) {
+    TwistedHopf system(w1, b);
+    const auto branch =
+        continue_equilibria(system, problem_of(system, -0.1, 0.1, Eigen::Vector2d(0.01, 0.0)), {});
+    const auto hopf = events_of(branch, EquilibriumEventType::Hopf);
+    ASSERT_EQ(hopf.size(), 1u) << branch.stop_reason;
+    ASSERT_TRUE(hopf[0].hopf && hopf[0].hopf->c1);
+    EXPECT_NEAR(hopf[0].hopf->c1->real(), -2.0, 1e-5);
+    EXPECT_NEAR(hopf[0].hopf->c1->imag(), 2 * b, 1e-5);
+    const auto x = hopf_expansion(system, 0, *hopf[0].hopf);
+    ASSERT_TRUE(x.has_value());
+    EXPECT_NEAR(x->offset, 0.5, 1e-5);
+    EXPECT_NEAR(x->frequency, (w1 + b) / 2, 1e-5) << "w1 " << w1 << ", b " << b;
+    // The first orbit, at amplitude 0.2 along Re q = (1, 0) / sqrt 2: eps = 0.2 sqrt 2.
+    HopfStartOptions start;
+    start.amplitude = 0.2;
+    const PeriodicOrbit orbit = orbit_from_hopf(system, 0, *hopf[0].hopf, OrbitOptions{}, start);
+    ASSERT_TRUE(orbit.converged()) << orbit.newton.reason;
+    const double eps2 = 2 * 0.2 * 0.2;
+    EXPECT_NEAR(system.parameter(orbit.parameters, 0), eps2 / 2, 1e-8);
+    EXPECT_NEAR(orbit.period, 2 * kPi / (1.0 + (w1 + b) * eps2 / 2), 1e-8);
   }
 }
 

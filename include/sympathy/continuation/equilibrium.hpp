@@ -66,6 +66,9 @@ struct HopfPoint {
   // not); positive, subcritical. From second and third derivatives of f by central differences
   // of the exact f_x (relative error about 1e-6); nullopt where they are not finite.
   std::optional<double> lyapunov;
+  // Kuznetsov's c1 in the same normalization (l1 = Re c1 / omega): its imaginary part is how the
+  // frequency changes with the orbits' amplitude. nullopt where l1 is.
+  std::optional<std::complex<double>> c1;
   double uncertainty = 0.0;  // in the parameter
 };
 

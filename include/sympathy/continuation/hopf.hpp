@@ -39,15 +39,21 @@ std::optional<HopfPoint> hopf_point_near(const OdeSystem& system, int parameter,
                                          const ParameterValues& p, const Eigen::VectorXd& guess,
                                          double omega_guess, double step, std::string& why);
 
-// The family's parameter offset per squared amplitude at `hopf` from its normal form: the orbit
-// of amplitude eps along Re q (x - x_H = eps (Re q cos(omega t) - Im q sin(omega t)), |q| = 1)
-// lies at p - p_H = k eps^2 + O(eps^3), k = -omega l1 / (4 d Re(lambda)/dp) (Kuznetsov's w =
-// (eps / 2) e^(i omega t) on w' = (mu(p) + i omega) w + c1 |w|^2 w, l1 = Re c1 / omega). The
-// sign says on which side of p_H the family lies; Newton on the first orbit starts there.
-// d Re(lambda)/dp by central differences of the equilibrium's pair (step 1e-6 relative).
-// nullopt where l1 or d Re(lambda)/dp is unknown or zero.
-std::optional<double> hopf_offset_per_squared_amplitude(const OdeSystem& system, int parameter,
-                                                        const HopfPoint& hopf);
+// The family born at `hopf` to second order in its amplitude, from the normal form: the orbit of
+// amplitude eps along Re q (x - x_H = eps (Re q cos(omega t) - Im q sin(omega t)), |q| = 1) lies
+// at p - p_H = offset eps^2 and turns at the angular frequency omega + frequency eps^2 (each
+// + O(eps^3)). On Kuznetsov's w = (eps / 2) e^(i Omega t), w' = (mu(p) + i omega(p)) w +
+// c1 |w|^2 w: offset = -Re c1 / (4 mu'), frequency = (Im c1 - omega' Re c1 / mu') / 4, with
+// l1 = Re c1 / omega. The offset's sign says on which side of p_H the family lies; Newton on the
+// first orbit starts there, at the period 2 pi / (omega + frequency eps^2). mu' and omega' (the
+// pair's derivatives in p) by central differences of the equilibrium's pair (step 1e-6
+// relative). nullopt where l1 or mu' is unknown or zero; frequency 0 where c1 is unknown.
+struct HopfExpansion {
+  double offset = 0.0;     // (p - p_H) / eps^2
+  double frequency = 0.0;  // (Omega - omega) / eps^2
+};
+std::optional<HopfExpansion> hopf_expansion(const OdeSystem& system, int parameter,
+                                            const HopfPoint& hopf);
 
 // The small orbit of the family born at `hopf` (hopf.values, the continued `parameter`), as
 // above; where Newton fails at the amplitude asked for, retried at a quarter and a sixteenth of
