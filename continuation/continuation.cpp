@@ -570,7 +570,14 @@ driver::Found<Bifurcation> Continuation::Run::detect(const OrbitNode* before, co
       return e;
     };
     found.events = sympathy::detect(tracked, a, b, c_.trust_limit(), locator);
-    for (const auto& e : found.events) found.unlocated |= !e.located();
+    // A fold without a multiplier seen through +1 is tried again on shorter steps too: a fold of
+    // cycles has one there, and a long step may have let it pass out and back (AUTO's tor near
+    // its homoclinic orbit: the largest multiplier 5e5 at T 47.4, 1 at the fold at T 49.36,
+    // 9.5e5 at T 50.9, one step apart). Not where the orbits shrink into an equilibrium: that
+    // turn has none to find, and is the family's end (ends).
+    for (const auto& e : found.events)
+      found.unlocated |=
+          !e.located() || (e.trust == EventTrust::NoCrossingMultiplier && !c_.hopf_end(e));
   }
   if (!options.user_points.empty()) {  // AUTO's UZ, among the step's events along it
     auto passed = c_.user_points_between(a, b);
