@@ -23,7 +23,7 @@
 #include <pybind11/stl.h>
 
 #include "case_dict.hpp"
-#include "cases/cli/loaded_system.hpp"
+#include "cases/cli/case_arguments.hpp"
 #include "cases/cli/requests.hpp"
 #include "python_options.hpp"
 #include "python_results.hpp"
@@ -210,7 +210,7 @@ class Case {
   py::object orbit(const py::kwargs& kwargs) const {
     const cli::Arguments args = command_arguments("orbit", line_, kwargs, cli::orbit_options(),
                                                   {"params", "verbose", "json"});
-    const cli::LoadedSystem c(args);
+    const cli::LoadedSystem c = cli::load_system(args);
     c.require_orbits();
     if (c.equations() && args.flag("--whole-state"))
       throw InputError("--whole-state: only for a metronome case file");
@@ -232,7 +232,7 @@ class Case {
     const cli::Arguments args =
         command_arguments("continue_branch", line_, kwargs, cli::continue_options(),
                           {"params", "quiet", "verbose", "json"});
-    const cli::LoadedSystem c(args);
+    const cli::LoadedSystem c = cli::load_system(args);
     app::BranchRequest request = cli::continue_request(args, c);
     const app::BranchSource source = c.source(request.start, request.initial, request.start_data);
     const ProgressBar shown(progress, request.from, request.to, request.parameter);
@@ -254,7 +254,7 @@ class Case {
   py::object equilibria(const py::object& progress, const py::kwargs& kwargs) const {
     const cli::Arguments args = command_arguments(
         "equilibria", line_, kwargs, cli::equilibria_options(), {"params", "quiet", "json"});
-    const cli::LoadedSystem c(args);
+    const cli::LoadedSystem c = cli::load_system(args);
     const cli::EquilibriaRequest request = cli::equilibria_request(args, c);
     const std::string parameter = c.system().parameter_names()[request.problem.parameter];
     std::unique_ptr<EquilibriumCsvWriter> csv;
@@ -301,7 +301,7 @@ class Case {
   py::object curve(const py::object& progress, const py::kwargs& kwargs) const {
     const cli::Arguments args = command_arguments("curve", line_, kwargs, cli::curve_options(),
                                                   {"params", "quiet", "json"});
-    const cli::LoadedSystem c(args);
+    const cli::LoadedSystem c = cli::load_system(args);
     cli::CurveRequest request = cli::curve_request(args, c);
     const app::BranchSource source = c.source(request.branch.start, request.branch.initial);
     PythonHooks hooks(progress);
@@ -340,7 +340,7 @@ class Case {
   // The case loaded as a call with `kwargs` loads it (the parameter set and --set checked).
   std::shared_ptr<const cli::LoadedSystem> load(const py::kwargs& kwargs) const {
     return std::make_shared<const cli::LoadedSystem>(
-        command_arguments("Case", line_, kwargs, cli::orbit_options(), {}));
+        cli::load_system(command_arguments("Case", line_, kwargs, cli::orbit_options(), {})));
   }
 
   CaseLine line_;

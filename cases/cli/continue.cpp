@@ -7,9 +7,9 @@
 
 #include "cases/app/branch_run.hpp"
 #include "cases/app/hopf_switch.hpp"
+#include "cases/cli/case_arguments.hpp"
 #include "cases/cli/commands.hpp"
 #include "cases/cli/equations.hpp"
-#include "cases/cli/loaded_system.hpp"
 #include "cases/cli/progress.hpp"
 #include "cases/cli/report.hpp"
 #include "cases/cli/requests.hpp"
@@ -86,7 +86,7 @@ std::vector<OptionSpec> continue_options() {
 }
 
 BranchRequest continue_request(const Arguments& args, const LoadedSystem& c) {
-  const ParameterWindow window = c.window(args);
+  const ParameterWindow window = parameter_window(args, c);
   BranchRequest request;
   request.start_data = c.start_data();
   c.require_orbits();
@@ -159,7 +159,7 @@ int run_continue(const std::vector<std::string>& argv) {
   Stopwatch clock;
   // The case: a metronome case file, or an equation case file (its system compiled or from the
   // cache; its start the file's [states] unless --start names one).
-  const LoadedSystem c(args);
+  const LoadedSystem c = load_system(args);
   ProgressLine progress(args.flag("--quiet"));
   BranchRequest request = continue_request(args, c);
   if (request.progress) request.progress = progress.log();

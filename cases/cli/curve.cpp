@@ -7,8 +7,8 @@
 #include <memory>
 
 #include "cases/app/branch_run.hpp"
+#include "cases/cli/case_arguments.hpp"
 #include "cases/cli/commands.hpp"
-#include "cases/cli/loaded_system.hpp"
 #include "cases/cli/progress.hpp"
 #include "cases/cli/requests.hpp"
 #include "cases/cli/start_data.hpp"
@@ -69,7 +69,7 @@ std::vector<OptionSpec> curve_options() {
 
 CurveRequest curve_request(const Arguments& args, const LoadedSystem& c) {
   c.require_autonomous("curve (two-parameter curves)");
-  const ParameterWindow window = c.window(args);
+  const ParameterWindow window = parameter_window(args, c);
   CurveRequest r;
   BranchRequest& request = r.branch;
   request.start_data = c.start_data();
@@ -149,7 +149,7 @@ BifurcationCurve follow_curve(const CurveRequest& r, const OdeSystem& system, co
 int run_curve(const std::vector<std::string>& argv) {
   Arguments args("curve", argv, curve_options(), {"CASE"});
   Stopwatch clock;
-  const LoadedSystem c(args);
+  const LoadedSystem c = load_system(args);
   const CurveRequest r = curve_request(args, c);
   const BranchRequest& request = r.branch;
   const EventName& name = r.event;

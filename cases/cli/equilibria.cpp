@@ -6,9 +6,9 @@
 #include <memory>
 #include <optional>
 
+#include "cases/cli/case_arguments.hpp"
 #include "cases/cli/commands.hpp"
 #include "cases/cli/common.hpp"
-#include "cases/cli/loaded_system.hpp"
 #include "cases/cli/progress.hpp"
 #include "cases/cli/requests.hpp"
 #include "sympathy/continuation/branch_output.hpp"
@@ -81,7 +81,7 @@ EquilibriaRequest equilibria_request(const Arguments& args, const LoadedSystem& 
   c.require_autonomous("equilibria");
   EquilibriaRequest r;
   const OdeSystem& system = c.system();
-  const ParameterWindow window = c.window(args);
+  const ParameterWindow window = parameter_window(args, c);
   if (!c.equations() && !args.has("--start")) throw InputError("--start is required");
   r.start = args.text("--start", "");
   const std::string& parameter = window.parameter;
@@ -117,7 +117,7 @@ EquilibriaRequest equilibria_request(const Arguments& args, const LoadedSystem& 
 int run_equilibria(const std::vector<std::string>& argv) {
   Arguments args("equilibria", argv, equilibria_options(), {"CASE"});
   Stopwatch clock;
-  const LoadedSystem c(args);
+  const LoadedSystem c = load_system(args);
   const OdeSystem& system = c.system();
   const EquilibriaRequest r = equilibria_request(args, c);
   const EquilibriumProblem& problem = r.problem;

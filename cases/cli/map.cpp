@@ -11,8 +11,8 @@
 
 #include "cases/app/branch_run.hpp"
 #include "cases/app/map_file.hpp"
+#include "cases/cli/case_arguments.hpp"
 #include "cases/cli/commands.hpp"
-#include "cases/cli/loaded_system.hpp"
 #include "cases/cli/progress.hpp"
 #include "sympathy/continuation/branch_output.hpp"
 #include "sympathy/continuation/curve_output.hpp"

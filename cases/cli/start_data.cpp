@@ -12,10 +12,7 @@ OptionSpec start_data_option() {
           "writes; its first row the start, its span or first return the period guess)"};
 }
 
-std::optional<RecordedPeriod> start_data(const Arguments& args,
-                                         const std::vector<std::string>& state_names,
-                                         const std::string& system,
-                                         const std::vector<int>& angles) {
+std::optional<std::string> start_data_path(const Arguments& args) {
   const auto path = args.value("--start-data");
   if (!path) return std::nullopt;
   for (const char* other : {"--start", "--initial", "--transient"})
@@ -23,16 +20,16 @@ std::optional<RecordedPeriod> start_data(const Arguments& args,
       throw InputError(std::string(other) + ": not with --start-data " + *path +
                        " (the recording's first row is the start, and Newton starts there "
                        "without a transient); expected one or the other");
-  return read_recorded_period(*path, state_names, system, angles);
+  return *path;
 }
 
-void check_start_data_system(const std::optional<RecordedPeriod>& recorded, const OdeSystem& system,
-                             const std::string& case_path) {
-  if (recorded && !system.autonomous())
-    throw InputError("--start-data " + recorded->path + ": " + case_path +
-                     " uses t (a periodically forced system), whose period is the forcing's, not "
-                     "the recording's; expected an autonomous system (a forced one starts from its "
-                     "[states] or a named start, with its forcing_period)");
+std::optional<RecordedPeriod> start_data(const Arguments& args,
+                                         const std::vector<std::string>& state_names,
+                                         const std::string& system,
+                                         const std::vector<int>& angles) {
+  const auto path = start_data_path(args);
+  if (!path) return std::nullopt;
+  return read_recorded_period(*path, state_names, system, angles);
 }
 
 std::string describe_start_data(const RecordedPeriod& r) {

@@ -18,15 +18,12 @@ OptionSpec start_data_option();
 // The recorded period --start-data names (nullopt without it), checked against the system's
 // state names; InputError for --start, --initial or --transient beside it (the recording's first
 // row is the start, and nothing is integrated before Newton).
+// The path --start-data names (nullopt without it), with the same check of the options beside it.
+std::optional<std::string> start_data_path(const Arguments& args);
 std::optional<RecordedPeriod> start_data(const Arguments& args,
                                          const std::vector<std::string>& state_names,
                                          const std::string& system,
                                          const std::vector<int>& angles = {});
-
-// InputError unless `system` is autonomous: a forced system's period is the forcing's, not the
-// recording's (and an equation case file cannot declare the forcing's period yet).
-void check_start_data_system(const std::optional<RecordedPeriod>& recorded, const OdeSystem& system,
-                             const std::string& case_path);
 
 // "data FILE.csv (N rows over S s; period guess T s: the first return, line L)" for the reports.
 std::string describe_start_data(const RecordedPeriod& recorded);

@@ -10,8 +10,8 @@
 
 #include "cases/app/branch_run.hpp"
 #include "cases/app/study_file.hpp"
+#include "cases/cli/case_arguments.hpp"
 #include "cases/cli/commands.hpp"
-#include "cases/cli/loaded_system.hpp"
 #include "cases/cli/progress.hpp"
 #include "cases/cli/report.hpp"
 #include "cases/cli/requests.hpp"

@@ -15,8 +15,8 @@
 
 #include "cases/app/branch_run.hpp"
 #include "cases/app/task_run.hpp"
+#include "cases/cli/case_arguments.hpp"
 #include "cases/cli/commands.hpp"
-#include "cases/cli/loaded_system.hpp"
 #include "cases/cli/progress.hpp"
 #include "cases/cli/requests.hpp"
 #include "cases/cli/study_record.hpp"
@@ -74,7 +74,7 @@ std::vector<std::vector<std::string>> split_events(const std::string& field) {
 
 Sweep prepare_sweep(const Arguments& args, int ranks) {
   Sweep w;
-  w.c = std::make_unique<LoadedSystem>(args);
+  w.c = std::make_unique<LoadedSystem>(load_system(args));
   w.c->require_orbits();
   if (args.has("--param") && args.has("--data"))
     throw InputError(
@@ -90,7 +90,7 @@ Sweep prepare_sweep(const Arguments& args, int ranks) {
                          ": a branch's option, given without --param (a sweep of orbits or "
                          "fits); expected --param P too, for a branch at each value");
   } else {
-    w.window = w.c->window(args);
+    w.window = parameter_window(args, *w.c);
   }
   if (w.job != Sweep::Job::Fits)
     for (const char* option : {"--free", "--free-initial"})

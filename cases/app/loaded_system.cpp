@@ -1,37 +1,27 @@
-#include "cases/cli/loaded_system.hpp"
+#include "cases/app/loaded_system.hpp"
 
 #include <algorithm>
 
 #include "sympathy/cases/metronome_describer.hpp"
 #include "sympathy/cases/state_describer.hpp"
 
-namespace sympathy::cli {
-
-LoadedSystem::LoadedSystem(const Arguments& args) : sets_(args.assignments("--set")) {
-  if (case_file_kind(args.positional(0)) == "equations") {
-    equations_.emplace(load_equations(args));
-    recorded_ = equations_->start_data;
-    describer_ = std::make_unique<StateDescriber>(*equations_->build.system);
-  } else {
-    metronomes_.emplace(load_case(args));
-    model_ = std::make_unique<MetronomeModel>(metronomes_->spec);
-    require_differentiable(*model_, path(), args.command());
-    describer_ = std::make_unique<MetronomeDescriber>(*model_);
-    recorded_ = cli::start_data(args, model_->state_names(), path());
-  }
-}
+namespace sympathy::app {
 
 LoadedSystem::LoadedSystem(const std::string& path, const std::string& params,
-                           const std::vector<Assignment>& sets)
+                           const std::vector<Assignment>& sets,
+                           const std::optional<std::string>& start_data, const std::string& what)
     : sets_(sets) {
   if (case_file_kind(path) == "equations") {
-    equations_.emplace(load_equations(path, params, sets));
+    equations_.emplace(load_equations(path, params, sets, start_data));
+    recorded_ = equations_->start_data;
     describer_ = std::make_unique<StateDescriber>(*equations_->build.system);
   } else {
     metronomes_.emplace(load_case(path, params, sets));
     model_ = std::make_unique<MetronomeModel>(metronomes_->spec);
-    require_differentiable(*model_, path, "a branch");
+    require_differentiable(*model_, path, what);
     describer_ = std::make_unique<MetronomeDescriber>(*model_);
+    if (start_data)
+      recorded_ = read_recorded_period(*start_data, model_->state_names(), this->path());
   }
 }
 
@@ -71,19 +61,6 @@ std::vector<std::pair<std::string, double>> ParameterWindow::ends() const {
   std::vector<std::pair<std::string, double>> e{{"--from", from}, {"--to", to}};
   if (at) e.push_back({"--at", *at});
   return e;
-}
-
-ParameterWindow LoadedSystem::window(const Arguments& args) const {
-  for (const char* required : {"--param", "--from", "--to"})
-    if (!args.has(required)) throw InputError(std::string(required) + " is required");
-  ParameterWindow w;
-  w.parameter = *args.value("--param");
-  require_parameter("--param", w.parameter);
-  w.from = args.number("--from", 0.0);
-  w.to = args.number("--to", 0.0);
-  if (w.from == w.to) throw InputError("--from and --to: expected different values");
-  if (args.has("--at")) w.at = args.number("--at", 0.0);
-  return w;
 }
 
 double LoadedSystem::value_of(const std::string& parameter) const {
@@ -167,4 +144,4 @@ FitModel LoadedSystem::fit_model() const {
   return metronome_fit_model(metronomes_->file, metronomes_->spec, false);
 }
 
-}  // namespace sympathy::cli
+}  // namespace sympathy::app

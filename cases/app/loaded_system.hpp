@@ -1,7 +1,7 @@
 // A case file of either kind (a metronome case file, an equation case file), loaded for the
-// commands that run the engine on its system (continue, equilibria, curve, study): the system, the
-// describer of its orbits, the parameter values of --params and --set, named starts, and the
-// checks of a parameter's name and range, so that a command is written once for both kinds.
+// requests that run the engine on its system (continue, equilibria, curve, study): the system, the
+// describer of its orbits, the parameter values of its set and overrides, named starts, and the
+// checks of a parameter's name and range, so that a request is written once for both kinds.
 #pragma once
 
 #include <memory>
@@ -11,15 +11,14 @@
 #include <vector>
 
 #include "cases/app/branch_run.hpp"
-#include "cases/cli/common.hpp"
-#include "cases/cli/equations.hpp"
-#include "cases/cli/start_data.hpp"
+#include "cases/app/case_loading.hpp"
+#include "cases/app/equation_loading.hpp"
 #include "sympathy/cases/metronome_model.hpp"
 #include "sympathy/cases/parameter_fit.hpp"
 
-namespace sympathy::cli {
+namespace sympathy::app {
 
-// --param, --from, --to and --at of a command that runs over a window of one parameter.
+// The window of one parameter a request runs over (--param, --from, --to and --at).
 struct ParameterWindow {
   std::string parameter;
   double from = 0.0, to = 0.0;
@@ -30,14 +29,14 @@ struct ParameterWindow {
 
 class LoadedSystem {
  public:
-  // The case file of positional 0 with --params and --set (an equation case file's system
-  // compiled, or from the cache), and --start-data's recorded period if given (read and checked
-  // before anything is compiled).
-  explicit LoadedSystem(const Arguments& args);
   // The case file at `path` with parameter set `params` ("" for the file's default) and `sets` on
-  // top (a study file's branch).
+  // top, and the recorded period at `start_data` if given (read and checked before anything is
+  // compiled). `what` names the computation for the check that the model is differentiable
+  // ("continue", "a branch").
   LoadedSystem(const std::string& path, const std::string& params,
-               const std::vector<Assignment>& sets);
+               const std::vector<Assignment>& sets,
+               const std::optional<std::string>& start_data = std::nullopt,
+               const std::string& what = "a branch");
 
   bool equations() const { return equations_.has_value(); }
   const std::string& path() const;
@@ -52,9 +51,6 @@ class LoadedSystem {
 
   // InputError "OPTION NAME: not a parameter of FILE; expected one of: ..." unless it is one.
   void require_parameter(const std::string& option, const std::string& name) const;
-  // --param (required, one of the case's), --from and --to (required, different) and --at (if
-  // given); InputError naming the option. Their range is check_range's.
-  ParameterWindow window(const Arguments& args) const;
   // The parameter's value in the case (with --params and --set).
   double value_of(const std::string& parameter) const;
   // Every parameter's (name, value) in the file's parameter set `set` (without --set); InputError
@@ -94,4 +90,4 @@ class LoadedSystem {
   std::unique_ptr<OrbitDescriber> describer_;
 };
 
-}  // namespace sympathy::cli
+}  // namespace sympathy::app
