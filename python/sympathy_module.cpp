@@ -406,6 +406,16 @@ PYBIND11_MODULE(sympathy, m) {
       "Periodic orbits, their Floquet multipliers, branches and bifurcations (sympathy's engine). "
       "Keyword arguments are the options of the command of the same name (sympathy continue "
       "--max-step 0.05: max_step=0.05; --from: from_), with its defaults and checks.";
+  // Every result holds NumPy arrays: without NumPy the module says so at import, not after a
+  // computation has run to its end.
+  try {
+    py::module_::import("numpy");
+  } catch (py::error_already_set& e) {
+    throw py::import_error(
+        std::string("sympathy needs NumPy for its results, and it cannot be imported (") +
+        e.what() +
+        "); expected NumPy installed: apt-get install python3-numpy, or pip install numpy");
+  }
   // Bad input (a case file, an option): ValueError, with the program's message (a case dict's
   // key path where a file and line would be).
   static py::exception<InputError> input_error(m, "InputError", PyExc_ValueError);

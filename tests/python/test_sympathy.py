@@ -10,6 +10,7 @@ import os
 import re
 import signal
 import subprocess
+import sys
 import threading
 import time
 import tomllib
@@ -166,6 +167,15 @@ def test_an_exception_in_the_callback_is_raised_after_the_run():
 
     with pytest.raises(RuntimeError, match="enough"):
         sympathy.Case(HOPF).continue_branch(param="mu", from_=0.25, to=1, progress=progress)
+
+
+def test_import_without_numpy_says_so():
+    # A Python without NumPy (None in sys.modules makes its import fail): the import itself
+    # fails, naming NumPy, before any computation.
+    code = "import sys; sys.modules['numpy'] = None; import sympathy"
+    run = subprocess.run([sys.executable, "-c", code], capture_output=True, text=True)
+    assert run.returncode != 0
+    assert "ImportError: sympathy needs NumPy" in run.stderr, run.stderr
 
 
 def test_bad_options_raise_input_error_naming_the_option():
