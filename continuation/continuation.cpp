@@ -59,6 +59,11 @@ class Continuation::Run {
 
  private:
   Eigen::VectorXd y_of(const OrbitNode& p) const;  // (unknowns, parameter)
+  // Continuation::hopf_end of a turn, asked once per located turn: detection asks it to decide
+  // whether to retry the step, ends to end the family there (a secant search on the equilibria
+  // and their Lyapunov coefficient each time).
+  const std::optional<HopfPoint>& hopf_end_of(const Bifurcation& turn);
+  std::optional<std::pair<Eigen::Vector2d, std::optional<HopfPoint>>> hopf_asked_;
   Continuation& c_;
   int N_;
   std::vector<Eigen::VectorXd> path_;  // the accepted points' (unknowns, parameter), in order
@@ -577,7 +582,7 @@ driver::Found<Bifurcation> Continuation::Run::detect(const OrbitNode* before, co
     // turn has none to find, and is the family's end (ends).
     for (const auto& e : found.events)
       found.unlocated |=
-          !e.located() || (e.trust == EventTrust::NoCrossingMultiplier && !c_.hopf_end(e));
+          !e.located() || (e.trust == EventTrust::NoCrossingMultiplier && !hopf_end_of(e));
   }
   if (!options.user_points.empty()) {  // AUTO's UZ, among the step's events along it
     auto passed = c_.user_points_between(a, b);
@@ -646,7 +651,7 @@ std::optional<driver::Ending> Continuation::Run::ends(const OrbitNode& a, const 
   if (turn == events.end()) return std::nullopt;
   // Where the orbits shrink into an equilibrium the branch turns at its Hopf point: that
   // point, located on the equilibria, ends the family (and the turn is no fold to report).
-  if (auto hopf = c_.hopf_end(*turn)) {
+  if (const auto& hopf = hopf_end_of(*turn)) {
     events.erase(turn);
     hopf_end = hopf;
     char omega[96];
@@ -665,6 +670,12 @@ std::optional<driver::Ending> Continuation::Run::ends(const OrbitNode& a, const 
   // stops where it retraces itself (above).
   if (!turn_) turn_ = {path_.size() - 1, turn->parameter};
   return std::nullopt;
+}
+
+const std::optional<HopfPoint>& Continuation::Run::hopf_end_of(const Bifurcation& turn) {
+  const Eigen::Vector2d key(turn.parameter, turn.period);
+  if (!hopf_asked_ || hopf_asked_->first != key) hopf_asked_.emplace(key, c_.hopf_end(turn));
+  return hopf_asked_->second;
 }
 
 Eigen::VectorXd Continuation::Run::y_of(const OrbitNode& p) const {

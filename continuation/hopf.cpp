@@ -117,6 +117,8 @@ PeriodicOrbit orbit_at_amplitude(const OdeSystem& system, int parameter, const H
   double p = hopf.parameter, period = hopf.period;
   if (expansion) {
     p += expansion->offset * eps * eps;
+    // The frequency's correction only where it is a correction: an amplitude so large that it
+    // halves the frequency (or turns it negative) is past where a second-order term says anything.
     const double frequency = hopf.omega + expansion->frequency * eps * eps;
     if (frequency > 0.5 * hopf.omega) period = 2 * std::numbers::pi / frequency;
   }
