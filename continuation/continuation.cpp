@@ -565,16 +565,18 @@ driver::Found<Bifurcation> Continuation::Run::detect(const OrbitNode* before, co
     const TrackedMultipliers tracked = same ? tracked_ : track(before, a, b);
     const Eigen::SparseMatrix<double>* jacobian_b = b.jacobian.rows() ? &b.jacobian : nullptr;
     const Locator locator = [&](BifurcationType type, int multiplicity, std::complex<double> mu_a,
-                                std::complex<double> mu_b) {
+                                std::complex<double> mu_b, bool beside_fold) {
       c_.problem_->set_phase_section(a.section, a.section_normal);
       Bifurcation e = locate(
           a, b, type, multiplicity, mu_a, mu_b, options.location_tolerance,
           0.01 * (options.upper - options.lower),
-          [&](double s, std::string& why) { return c_.point_at(a, s, why, &b, jacobian_b); });
+          [&](double s, std::string& why) { return c_.point_at(a, s, why, &b, jacobian_b); },
+          beside_fold);
       c_.refine_branch_point(e, a, b);
       return e;
     };
-    found.events = sympathy::detect(tracked, a, b, c_.trust_limit(), locator);
+    found.events = sympathy::detect(tracked, a, b, c_.trust_limit(), locator,
+                                    [&](const Bifurcation& turn) { return !!hopf_end_of(turn); });
     // A fold without a multiplier seen through +1 is tried again on shorter steps too: a fold of
     // cycles has one there, and a long step may have let it pass out and back (AUTO's tor near
     // its homoclinic orbit: the largest multiplier 5e5 at T 47.4, 1 at the fold at T 49.36,

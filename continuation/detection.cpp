@@ -28,18 +28,28 @@ std::string together_note(BifurcationType type, int multiplicity) {
 
 std::vector<Bifurcation> detect(const TrackedMultipliers& tracked, const ContinuationPoint& a,
                                 const ContinuationPoint& b, const TrustLimit& trust,
-                                const Locator& locate) {
+                                const Locator& locate, const TurnEnds& turn_ends) {
   // The parameter's component of the tangents (the last entry).
   const bool fold = a.tangent[a.tangent.size() - 1] * b.tangent[b.tangent.size() - 1] < 0.0;
   struct Crossing {
     std::complex<double> a, b;
   };
   std::vector<Crossing> plus, minus, complex;
+  const double floor_a = std::max(trust.absolute, a.orbit.floquet.trivial_error),
+               floor_b = std::max(trust.absolute, b.orbit.floquet.trivial_error);
   {
-    // Every multiplier that can cross is followed (not the trivial one, nor a family's).
+    // Every multiplier that can cross is followed (not the trivial one, nor a family's). One
+    // within its point's noise floor of zero (the multipliers' error, of which the trivial one's
+    // is the measure, and never below the absolute trust limit) is indistinguishable from zero:
+    // following it "across" pairs noise with a multiplier elsewhere (issue 33: on AUTO's tor near
+    // its homoclinic orbit, multipliers of 1e-17 to 1e-45 followed to 1.1 gave 40 junk BP?, PD?
+    // and NS? between T 49 and 88). A true crossing from there passes resolved values first; if
+    // one step jumps over them, the count of multipliers outside the circle changes unexplained,
+    // and the step is refined.
     for (const auto& [mx, my] : tracked.pairs) {
       const auto x = mx.value, y = my.value;
       if ((std::abs(x) - 1.0) * (std::abs(y) - 1.0) >= 0.0) continue;
+      if (std::abs(x) <= floor_a || std::abs(y) <= floor_b) continue;
       if (is_real(x) && is_real(y)) {
         (x.real() > 0 ? plus : minus).push_back({x, y});
       } else if (x.imag() > 0.0 || y.imag() > 0.0) {
@@ -67,27 +77,49 @@ std::vector<Bifurcation> detect(const TrackedMultipliers& tracked, const Continu
     }
     return sign;
   };
-  const auto nearest = [&](double one, bool at_b) {
+  // The multiplier nearest `one` at an end, among those beyond it (or among those not), above
+  // the end's noise floor.
+  const auto nearest = [&](double one, bool at_b, bool beyond) {
     std::complex<double> best = 0.0;
+    double distance = INFINITY;
     for (const auto& [mx, my] : tracked.pairs) {
       const auto mu = (at_b ? my : mx).value;
-      if (std::abs(mu - one) < std::abs(best - one)) best = mu;
+      if (std::abs(mu) <= (at_b ? floor_b : floor_a)) continue;
+      if (beyond != (is_real(mu) && (mu.real() - one) * one > 0.0)) continue;
+      if (std::abs(mu - one) < distance) {
+        distance = std::abs(mu - one);
+        best = mu;
+      }
     }
     return best;
   };
-  // The crossing through `one` made of the multipliers nearest it at the two ends, in place of
-  // the complex crossing that was it.
-  const auto real_crossing = [&](double one) {
-    const auto mu_a = nearest(one, false), mu_b = nearest(one, true);
+  const auto beyond_count = [&](double one, bool at_b) {
+    int n = 0;
+    for (const auto& [mx, my] : tracked.pairs) {
+      const auto mu = (at_b ? my : mx).value;
+      n += is_real(mu) && (mu.real() - one) * one > 0.0;
+    }
+    return n;
+  };
+  // The crossing through `one`, in place of the complex crossing that was it, or of a pairing
+  // with a multiplier below the floor: at the end with more real multipliers beyond `one`, the
+  // one of them nearest it; at the other, the multiplier short of it nearest it (on tor at
+  // nu = -0.7876 the multiplier 38.3 dropped to 0.028 in one step while the pairing followed it to
+  // -2.9e-10: the nearest to +1 at both ends, regardless of side, was 3e-12 and 0.028).
+  const auto real_crossing = [&](double one, std::vector<Crossing>& into) {
+    const bool fewer_at_b = beyond_count(one, true) < beyond_count(one, false);
+    const auto mu_a = nearest(one, false, fewer_at_b), mu_b = nearest(one, true, !fewer_at_b);
+    if (mu_a == 0.0 || mu_b == 0.0) return;  // one end has none above its floor: unexplained
     std::erase_if(complex, [&](const Crossing& c) {
       return std::abs(c.a - mu_a) <= 1e-12 || std::abs(c.b - mu_b) <= 1e-12 ||
              std::abs(c.a - std::conj(mu_a)) <= 1e-12 || std::abs(c.b - std::conj(mu_b)) <= 1e-12;
     });
-    return Crossing{mu_a, mu_b};
+    into.push_back({mu_a, mu_b});
   };
-  if (minus.empty() && sign_at(-1.0, false) != sign_at(-1.0, true))
-    minus.push_back(real_crossing(-1.0));
-  if (plus.empty() && sign_at(1.0, false) != sign_at(1.0, true)) plus.push_back(real_crossing(1.0));
+  const bool through_minus = sign_at(-1.0, false) != sign_at(-1.0, true);
+  const bool through_plus = sign_at(1.0, false) != sign_at(1.0, true);
+  if (minus.empty() && through_minus) real_crossing(-1.0, minus);
+  if (plus.empty() && through_plus) real_crossing(1.0, plus);
   // One complex pair is one crossing: paired across the step with its halves swapped (upper at
   // a with lower at b), each half looked like a crossing of its own.
   for (std::size_t i = 0; i < complex.size(); ++i)
@@ -185,32 +217,55 @@ std::vector<Bifurcation> detect(const TrackedMultipliers& tracked, const Continu
   };
   auto plus_groups = clusters(plus);
   if (fold) {
-    Bifurcation e = locate(BifurcationType::Fold, 1, {}, {});
-    if (plus_groups.empty()) {
+    Bifurcation e = locate(BifurcationType::Fold, 1, {}, {}, false);
+    // The real multiplier nearest +1 at an end, on either side of it.
+    const auto nearest_one = [&](bool at_b) {
+      const auto beyond = nearest(1.0, at_b, true), short_of = nearest(1.0, at_b, false);
+      if (short_of == 0.0) return beyond;  // none (0 stands for none)
+      if (beyond == 0.0) return short_of;
+      return std::abs(beyond - 1.0) < std::abs(short_of - 1.0) ? beyond : short_of;
+    };
+    const auto mu_a = nearest_one(false), mu_b = nearest_one(true);
+    // A fold with a branch point beside it in the same step: the fold's multiplier passed +1 at
+    // both, and is on the same side at the two ends (AUTO's tor near its homoclinic orbit: 1,171
+    // at T 49.29, 18,816 at T 49.61, the fold at T 49.357 and a branch point 0.004 before it).
+    // The fold shows itself at its located point, where its multiplier meets the trivial one at
+    // +1 (a Jordan block: the two split by the square root of the perturbation, so within the
+    // square root of the noise floor's limit). Not at the family's end, where the orbits shrink
+    // into an equilibrium and the critical pair's multipliers meet at +1 too.
+    const bool beside =
+        fold && plus_groups.empty() && !through_plus && is_real(mu_a) && is_real(mu_b) &&
+        mu_a != 0.0 && mu_b != 0.0 && (std::abs(mu_a) - 1.0) * (std::abs(mu_b) - 1.0) > 0.0 &&
+        e.location == LocationOutcome::Located &&
+        std::abs(e.crossing - 1.0) <= std::sqrt(trust.without_multipliers(e.monodromy_growth)) &&
+        !(turn_ends && turn_ends(e));
+    if (plus_groups.empty() && !beside) {
       // A fold of cycles passes a real multiplier through +1; without one the tangent turned
       // where the branch degenerates (an orbit shrinking into an equilibrium turns it back in
       // the scaled norm): not a fold to trust, and the continuation stops there.
       e.note = "no multiplier crossing +1 seen between the bracketing points";
       e.trust = EventTrust::NoCrossingMultiplier;
     }
-    report(e, !plus_groups.empty());
+    if (beside) e.note = "its multiplier at +1 at the located point, a branch point beside it";
+    report(e, !plus_groups.empty() || beside);
     if (!plus_groups.empty()) plus_groups.erase(plus_groups.begin());
+    if (beside) report(locate(BifurcationType::BranchPoint, 1, mu_a, mu_b, true));
   }
   for (const auto& g : plus_groups) {
-    Bifurcation e =
-        locate(BifurcationType::BranchPoint, static_cast<int>(g.size()), g.front().a, g.front().b);
+    Bifurcation e = locate(BifurcationType::BranchPoint, static_cast<int>(g.size()), g.front().a,
+                           g.front().b, false);
     if (g.size() > 1) e.note = together_note(e.type, static_cast<int>(g.size()));
     report(e);
   }
   for (const auto& g : clusters(minus)) {
     Bifurcation e = locate(BifurcationType::PeriodDoubling, static_cast<int>(g.size()), g.front().a,
-                           g.front().b);
+                           g.front().b, false);
     if (g.size() > 1) e.note = together_note(e.type, static_cast<int>(g.size()));
     report(e);
   }
   for (const auto& g : clusters(complex)) {
     Bifurcation e = locate(BifurcationType::NeimarkSacker, static_cast<int>(g.size()), g.front().a,
-                           g.front().b);
+                           g.front().b, false);
     if (g.size() > 1) e.note = together_note(e.type, static_cast<int>(g.size()));
     report(e);
   }

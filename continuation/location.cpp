@@ -12,7 +12,8 @@ namespace sympathy {
 
 Bifurcation locate(const ContinuationPoint& a, const ContinuationPoint& b, BifurcationType type,
                    int multiplicity, std::complex<double> mu_a, std::complex<double> mu_b,
-                   double tolerance, double scale_floor, const PointAt& point_at) {
+                   double tolerance, double scale_floor, const PointAt& point_at,
+                   bool beside_fold) {
   const int N = static_cast<int>(a.unknowns.size());  // the parameter's entry of the tangents
   const double sb = b.step;
   // The multiplier followed across, by continuity: the one nearest the value interpolated
@@ -34,8 +35,11 @@ Bifurcation locate(const ContinuationPoint& a, const ContinuationPoint& b, Bifur
   };
   // The test function: the tangent's parameter component for a fold; |mu| - 1 of the
   // multiplier followed otherwise.
+  const double turn_a = a.tangent[N];
   auto test = [&](const ContinuationPoint& p, std::complex<double> mu) {
-    return type == BifurcationType::Fold ? p.tangent[N] : std::abs(mu) - 1.0;
+    if (type == BifurcationType::Fold) return p.tangent[N];
+    const double across = std::abs(mu) - 1.0;
+    return beside_fold && p.tangent[N] * turn_a < 0.0 ? -across : across;
   };
   Bifurcation e;
   e.type = type;

@@ -33,7 +33,7 @@ struct Step {
 // A locator that places the event and reports `crossing` as the multiplier there.
 Locator locator_with(std::complex<double> crossing) {
   return [crossing](BifurcationType type, int multiplicity, std::complex<double>,
-                    std::complex<double>) {
+                    std::complex<double>, bool) {
     Bifurcation e;
     e.type = type;
     e.multiplicity = multiplicity;
@@ -52,12 +52,87 @@ TEST(Detection, CrossingOnTheCircleIsTrusted) {
 }
 
 TEST(Detection, CrossingOffTheCircleIsNotTrusted) {
-  // A "crossing" paired from 1e-17 at a to 3 at b, the multiplier at the located point 1e-17.
-  const Step s(1e-17, 3.0);
-  const auto events = detect(s.tracked, s.a, s.b, TrustLimit{1e-6}, locator_with(1e-17));
+  // A crossing from 0.5 at a to 3 at b whose located point has its multiplier at 0.5.
+  const Step s(0.5, 3.0);
+  const auto events = detect(s.tracked, s.a, s.b, TrustLimit{1e-6}, locator_with(0.5));
   ASSERT_EQ(events.size(), 1u);
   EXPECT_EQ(events[0].trust, EventTrust::CrossingNotResolved);
   EXPECT_NE(events[0].note.find("not on the unit circle"), std::string::npos) << events[0].note;
+}
+
+// A multiplier within its point's noise floor of zero (the trivial multiplier's error, at least
+// the absolute trust limit) is not followed across: on AUTO's tor near its homoclinic orbit the
+// pairing matched 1,171 at T 49.29 with 1e-22 at T 49.61 and 4e-22 with 18,816, two "crossings"
+// (a BP? out and one in), where the number outside the circle stayed 1 and nothing crossed; 40
+// such junk events between T 49 and 88 before this rule. Paired alone from 1e-17 to 3, the change
+// of the count is reported unresolved, not located (the driver tries the step shorter).
+TEST(Detection, MultiplierBelowTheNoiseFloorIsNotFollowedAcross) {
+  Step s(1171.0, 1e-22);
+  Multiplier x, y;
+  x.value = 4e-22;
+  y.value = 18816.0;
+  s.tracked.pairs.push_back({x, y});
+  int located = 0;
+  const Locator count = [&](BifurcationType t, int k, std::complex<double> a,
+                            std::complex<double> b, bool beside) {
+    ++located;
+    return locator_with(1.0)(t, k, a, b, beside);
+  };
+  EXPECT_TRUE(detect(s.tracked, s.a, s.b, TrustLimit{1e-6}, count).empty());
+  EXPECT_EQ(located, 0);
+
+  const Step alone(1e-17, 3.0);
+  const auto events = detect(alone.tracked, alone.a, alone.b, TrustLimit{1e-6}, count);
+  ASSERT_EQ(events.size(), 1u);
+  EXPECT_EQ(located, 0);
+  EXPECT_EQ(events[0].location, LocationOutcome::NotNarrowed);
+  EXPECT_EQ(events[0].trust, EventTrust::CrossingNotResolved);
+  EXPECT_NE(events[0].note.find("unresolved"), std::string::npos) << events[0].note;
+}
+
+// A fold and a branch point in one step, crossed by the same multiplier: it passes +1 at both and
+// is on the same side at the two ends (AUTO's tor: 1,171 at T 49.29 and 18,816 at T 49.61, the
+// fold at T 49.357 with the multipliers 1.0000093 and 0.9999912 there, trivial error 9.3e-6 with
+// |M| = 3,267 at rtol 5e-12). The fold shows itself at its located point by a second multiplier
+// at +1 (within the square root of the noise floor's limit, 1.6e-5 here); the branch point beside
+// it is located with `beside_fold`. Not where the multiplier at the located turn is far from +1
+// (AUTO's fhn canard: 23), nor at the family's Hopf end.
+TEST(Detection, FoldWithABranchPointBesideItIsLocatedWithIt) {
+  const TrustLimit limit{1e-6, 5e-12};
+  for (const char* variant : {"beside", "far from +1", "Hopf end"}) {
+    const std::string v = variant;
+    Step s(1171.0, 18816.0);
+    s.b.tangent = Eigen::Vector2d(0.0, -1.0);
+    bool asked_beside = false;
+    const Locator locate = [&](BifurcationType t, int k, std::complex<double> a,
+                               std::complex<double> b, bool beside) {
+      Bifurcation e = locator_with(1.0 + 1e-9)(t, k, a, b, beside);
+      e.floquet.trivial_error = 1e-9;
+      if (t == BifurcationType::Fold) {
+        e.crossing = v == "far from +1" ? 23.0 : 0.9999912;
+        e.floquet.trivial_error = 9.3e-6;
+        e.monodromy_growth = 3267.0;
+      } else {
+        asked_beside = beside;
+        EXPECT_EQ(a, 1171.0);
+        EXPECT_EQ(b, 18816.0);
+      }
+      return e;
+    };
+    const TurnEnds hopf_end = [&](const Bifurcation&) { return v == "Hopf end"; };
+    const auto events = detect(s.tracked, s.a, s.b, limit, locate, hopf_end);
+    if (v == "beside") {
+      ASSERT_EQ(events.size(), 2u);
+      EXPECT_EQ(events[0].type, BifurcationType::Fold);
+      EXPECT_TRUE(events[0].trusted()) << events[0].note;
+      EXPECT_EQ(events[1].type, BifurcationType::BranchPoint);
+      EXPECT_TRUE(events[1].trusted()) << events[1].note;
+      EXPECT_TRUE(asked_beside);
+    } else {
+      ASSERT_EQ(events.size(), 1u) << v;
+      EXPECT_EQ(events[0].trust, EventTrust::NoCrossingMultiplier) << v;
+    }
+  }
 }
 
 // A complex pair inside the circle (-0.8313 +- 0.0197i, AUTO's pen at I = 0.17976) that meets on
@@ -115,13 +190,13 @@ TEST(Detection, FoldWhoseMultiplierWasComplexIsTrusted) {
 // outcome, the multiplier there `crossing`.
 Locator locator_with(std::complex<double> crossing, double trivial_error,
                      LocationOutcome location = LocationOutcome::Located) {
-  return
-      [=](BifurcationType type, int multiplicity, std::complex<double> a, std::complex<double> b) {
-        Bifurcation e = locator_with(crossing)(type, multiplicity, a, b);
-        e.floquet.trivial_error = trivial_error;
-        e.location = location;
-        return e;
-      };
+  return [=](BifurcationType type, int multiplicity, std::complex<double> a, std::complex<double> b,
+             bool beside_fold) {
+    Bifurcation e = locator_with(crossing)(type, multiplicity, a, b, beside_fold);
+    e.floquet.trivial_error = trivial_error;
+    e.location = location;
+    return e;
+  };
 }
 
 // A fold is located where the tangent's parameter component vanishes; the multipliers do not
@@ -168,8 +243,8 @@ TEST(Detection, FoldIsTrustedAgainstTheMonodromysNoiseFloor) {
       if (fold) s.b.tangent = Eigen::Vector2d(0.0, -1.0);
       const Locator base = locator_with(1.0, 6.9e-6);
       const Locator locate = [&](BifurcationType t, int k, std::complex<double> a,
-                                 std::complex<double> b) {
-        Bifurcation e = base(t, k, a, b);
+                                 std::complex<double> b, bool beside_fold) {
+        Bifurcation e = base(t, k, a, b, beside_fold);
         e.monodromy_growth = growth;
         return e;
       };
@@ -332,6 +407,31 @@ TEST(Location, ACrossingIsOfTheKindItsMultiplierIsWhereItCrosses) {
   EXPECT_EQ(e.crossing.imag(), 0.0);
   EXPECT_NE(e.note.find("real where it crosses"), std::string::npos) << e.note;
   EXPECT_GT(probes, 0);
+}
+
+// The branch point beside a fold, on an exact branch: along arclength s in [0, 1] the parameter is
+// p = 0.5 - (s - 0.6)^2 (a fold at s = 0.6) and the multiplier mu = 1 + 10 (s - 0.6)(s - 0.3),
+// through +1 at the branch point s = 0.3 and at the fold: 2.8 at a, 3.8 at b, no sign change of
+// |mu| - 1 between them. Times the sign of the tangent's parameter component (relative to a's) it
+// changes sign at s = 0.3 alone: the branch point at p = 0.41, to the tolerance.
+TEST(Location, BranchPointBesideAFoldIsLocatedOnTheProductWithTheTangentsSign) {
+  const auto at = [](double s) {
+    ContinuationPoint p =
+        point_with(s, {labelled(1.0 + 10.0 * (s - 0.6) * (s - 0.3), SymmetryKind::Unlabelled)});
+    p.parameter = 0.5 - (s - 0.6) * (s - 0.6);
+    p.tangent = Eigen::Vector3d(0.0, 0.0, -2.0 * (s - 0.6));
+    return p;
+  };
+  const PointAt probe = [&](double s, std::string&) -> std::optional<ContinuationPoint> {
+    return at(s);
+  };
+  const ContinuationPoint a = at(0.0), b = at(1.0);
+  const Bifurcation e =
+      locate(a, b, BifurcationType::BranchPoint, 1, 2.8, 3.8, 1e-10, 0.01, probe, true);
+  ASSERT_TRUE(e.located()) << e.note;
+  EXPECT_EQ(e.type, BifurcationType::BranchPoint);
+  EXPECT_NEAR(e.parameter, 0.41, 1e-9);
+  EXPECT_NEAR(e.crossing.real(), 1.0, 1e-8);
 }
 
 }  // namespace

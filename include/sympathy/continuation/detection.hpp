@@ -17,9 +17,15 @@
 namespace sympathy {
 
 // Locates one event between a and b, given its type, multiplicity and the multiplier followed
-// across at a and at b (zero for a fold).
-using Locator = std::function<Bifurcation(BifurcationType type, int multiplicity,
-                                          std::complex<double> mu_a, std::complex<double> mu_b)>;
+// across at a and at b (zero for a fold); `beside_fold`: a branch point in a step that holds a fold
+// too, crossed by the fold's own multiplier (location.hpp).
+using Locator =
+    std::function<Bifurcation(BifurcationType type, int multiplicity, std::complex<double> mu_a,
+                              std::complex<double> mu_b, bool beside_fold)>;
+
+// Whether a turn of the tangent with no multiplier seen through +1 is the family's end (its
+// orbits shrinking into an equilibrium at a Hopf point), where nothing is to be located beside it.
+using TurnEnds = std::function<bool(const Bifurcation& turn)>;
 
 // What an event's note says of multipliers that cross together ("3 complex pairs cross
 // together"); empty for one.
@@ -47,6 +53,6 @@ struct TrustLimit {
 // The events between a and b, located, in order along the branch.
 std::vector<Bifurcation> detect(const TrackedMultipliers& tracked, const ContinuationPoint& a,
                                 const ContinuationPoint& b, const TrustLimit& trust,
-                                const Locator& locate);
+                                const Locator& locate, const TurnEnds& turn_ends = nullptr);
 
 }  // namespace sympathy

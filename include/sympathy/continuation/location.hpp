@@ -23,8 +23,13 @@ using PointAt = std::function<std::optional<ContinuationPoint>(double s, std::st
 // `tolerance`: relative, in the parameter (ContinuationOptions::location_tolerance), to the
 // parameter's size but at least `scale_floor` (the continuation passes a hundredth of its range:
 // a point at a parameter value near 0, a Hopf end at mu = 0, needs no 1e-8 of nothing).
+// `beside_fold`: a branch point in a step that holds a fold too, crossed by the multiplier that
+// crosses +1 at the fold: |mu| - 1 changes sign at both, so that it is |mu| - 1 times the sign of
+// the tangent's parameter component (relative to a's) that changes sign at the branch point
+// alone (at the fold both factors vanish; AUTO's branch-point test is such a product).
 Bifurcation locate(const ContinuationPoint& a, const ContinuationPoint& b, BifurcationType type,
                    int multiplicity, std::complex<double> mu_a, std::complex<double> mu_b,
-                   double tolerance, double scale_floor, const PointAt& point_at);
+                   double tolerance, double scale_floor, const PointAt& point_at,
+                   bool beside_fold = false);
 
 }  // namespace sympathy
