@@ -38,6 +38,7 @@ class Circle {
   double longest = 1e9;  // steps longer than this fail in the corrector
   int direction = 1;
   int corrections = 0;
+  double locates_within = 1e9;  // events on longer steps are not located
 
   CirclePoint at(double angle) const {
     CirclePoint c;
@@ -89,6 +90,12 @@ class Circle {
         a, driver::Sample<Tag>{a.tangent[1], 0}, b, driver::Sample<Tag>{b.tangent[1], 0}, b.step,
         test, probe, [&](const Point& p) { return parameter(p); }, o);
     f.events.push_back({a.index, parameter(c.point), c.located()});
+    // An event the problem cannot vouch for on a long step (an orbit's fold whose multiplier a
+    // long step let pass out and back): not located, for the driver to try shorter.
+    if (b.step > locates_within) {
+      f.events.back().located = false;
+      f.unlocated = true;
+    }
     return f;
   }
   std::optional<driver::Ending> ends(const Point&, const Point&, std::vector<Event>&) const {
@@ -132,6 +139,36 @@ TEST(Driver, StopsOnTheWindowsEdgeAndLocatesTheFoldExactly) {
   // Indices count along the branch; each event lies after the point before it.
   for (std::size_t i = 0; i < s.points.size(); ++i) EXPECT_EQ(s.points[i].index, int(i));
   EXPECT_LT(s.events[0].after_point, int(s.points.size()) - 1);
+}
+
+// A step whose event was not located is tried shorter, at most location_retries times; then the
+// step is taken and the event kept, unlocated. On the circle of radius 2 from angle 0 the steps
+// grow 0.1, 0.15, 0.225, 0.3375 (the fold at p = 2 lies 3.14 along): the step across it is longer
+// than 0.12 and is halved until it is not (three retries are enough from at most 0.4), or, with
+// one retry allowed per step, kept unlocated.
+TEST(Driver, StepWithAnUnlocatedEventIsRetriedShorter) {
+  for (int retries : {3, 1, 0}) {
+    Circle circle;
+    circle.locates_within = 0.12;
+    circle.lower = -1.5;  // past the fold at p = 2, down the far side to p = -1.5
+    driver::Options o = options();
+    o.location_retries = retries;
+    auto r = driver::continuation(circle, circle.at(0.0), o);
+    ASSERT_EQ(r.stop, driver::Stop::ParameterBound) << r.message;
+    ASSERT_EQ(r.events.size(), 1u) << retries;
+    const int tried = r.rejected[static_cast<int>(driver::Cause::Location)];
+    if (retries == 3) {
+      EXPECT_TRUE(r.events[0].located);
+      EXPECT_NEAR(r.events[0].parameter, 2.0, 1e-11);
+      EXPECT_GE(tried, 1);
+      EXPECT_LE(tried, 3);
+    } else {
+      // Retried at most once per step (a retry may end short of the fold: the next step tries
+      // again), never with none allowed.
+      EXPECT_FALSE(r.events[0].located) << retries;
+      EXPECT_EQ(tried > 0, retries > 0) << retries;
+    }
+  }
 }
 
 TEST(Driver, StepRuleGrowsToTheMaximumAndRetriesShorterByCause) {
