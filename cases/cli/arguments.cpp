@@ -9,6 +9,67 @@
 
 namespace sympathy::cli {
 
+namespace {
+
+double parse_number(const std::string& option, const std::string& v) {
+  std::size_t used = 0;
+  double x = 0.0;
+  try {
+    x = std::stod(v, &used);
+  } catch (const std::exception&) {
+    used = 0;
+  }
+  if (used == 0 || used != v.size() || !std::isfinite(x))
+    throw InputError(option + " " + v + ": expected a finite number");
+  return x;
+}
+
+int parse_integer(const std::string& option, const std::string& v) {
+  std::size_t used = 0;
+  int x = 0;
+  try {
+    x = std::stoi(v, &used);
+  } catch (const std::exception&) {
+    used = 0;
+  }
+  if (used == 0 || used != v.size()) throw InputError(option + " " + v + ": expected an integer");
+  return x;
+}
+
+std::vector<double> parse_numbers(const std::string& option, const std::string& v) {
+  std::vector<double> out;
+  std::size_t begin = 0;
+  for (;;) {
+    const std::size_t comma = v.find(',', begin);
+    const std::string field =
+        v.substr(begin, comma == std::string::npos ? std::string::npos : comma - begin);
+    std::size_t used = 0;
+    double x = 0.0;
+    try {
+      x = std::stod(field, &used);
+    } catch (const std::exception&) {
+      used = 0;
+    }
+    if (used == 0 || used != field.size() || !std::isfinite(x))
+      throw InputError(option + " " + v + ": '" + field +
+                       "' is not a finite number; expected finite numbers separated by commas "
+                       "(e.g. 0.5,1,1.5)");
+    out.push_back(x);
+    if (comma == std::string::npos) return out;
+    begin = comma + 1;
+  }
+}
+
+// "a, b or c"
+std::string either(const std::vector<std::string>& words) {
+  std::string out;
+  for (std::size_t i = 0; i < words.size(); ++i)
+    out += (i == 0 ? "" : i + 1 == words.size() ? " or " : ", ") + words[i];
+  return out;
+}
+
+}  // namespace
+
 Arguments::Arguments(std::string command, const std::vector<std::string>& args,
                      std::vector<OptionSpec> options, std::vector<std::string> positional_names)
     : command_(std::move(command)),
@@ -34,9 +95,10 @@ Arguments::Arguments(std::string command, const std::vector<std::string>& args,
           throw InputError(name + ": expected a value (" + s.value + ") after it");
         value = args[++i];
       }
-      if (!s.repeatable && has(name))
-        throw InputError(name + ": given twice; expected it at most once");
-      given_.emplace_back(name, value);
+      GivenOption g;
+      g.name = name;
+      g.text = value;
+      add(std::move(g));
     } else {
       if (positional_.size() >= positional_names_.size())
         throw InputError("unexpected argument '" + a + "' for 'sympathy " + command_ + "'\n" +
@@ -44,6 +106,55 @@ Arguments::Arguments(std::string command, const std::vector<std::string>& args,
       positional_.push_back(a);
     }
   }
+  check_complete();
+}
+
+Arguments::Arguments(std::string command, std::vector<std::string> positional,
+                     std::vector<GivenOption> given, std::vector<OptionSpec> options,
+                     std::vector<std::string> positional_names)
+    : command_(std::move(command)),
+      options_(std::move(options)),
+      positional_names_(std::move(positional_names)),
+      positional_(std::move(positional)) {
+  if (positional_.size() > positional_names_.size())
+    throw InputError("unexpected argument '" + positional_.back() + "' for 'sympathy " + command_ +
+                     "'");
+  for (auto& g : given) add(std::move(g));
+  check_complete();
+}
+
+void Arguments::add(GivenOption g) {
+  const OptionSpec& s = spec(g.name);
+  if (!s.repeatable && has(g.name))
+    throw InputError(g.name + ": given twice; expected it at most once");
+  switch (app::kind_of(s)) {
+    case OptionKind::Integer:
+      if (!g.integer) g.integer = parse_integer(g.name, g.text);
+      break;
+    case OptionKind::Number:
+      if (!g.number) g.number = parse_number(g.name, g.text);
+      break;
+    case OptionKind::Numbers:
+      if (!g.numbers) g.numbers = parse_numbers(g.name, g.text);
+      break;
+    case OptionKind::Assignments:
+      if (!g.assignment) g.assignment = parse_assignment(g.text, g.name);
+      break;
+    case OptionKind::Choice: {
+      const auto words = app::choices_of(s);
+      if (std::find(words.begin(), words.end(), g.text) == words.end())
+        throw InputError(g.name + " " + g.text + ": expected " + either(words));
+      break;
+    }
+    case OptionKind::Flag:
+    case OptionKind::Text:
+    case OptionKind::Names:
+      break;
+  }
+  given_.push_back(std::move(g));
+}
+
+void Arguments::check_complete() const {
   if (positional_.size() < positional_names_.size())
     throw InputError("missing " + positional_names_[positional_.size()] + " for 'sympathy " +
                      command_ + "'\n" + synopsis());
@@ -66,21 +177,21 @@ const OptionSpec& Arguments::spec(const std::string& option) const {
 }
 
 bool Arguments::has(const std::string& option) const {
-  for (const auto& [name, value] : given_)
-    if (name == option) return true;
+  for (const auto& g : given_)
+    if (g.name == option) return true;
   return false;
 }
 
 std::optional<std::string> Arguments::value(const std::string& option) const {
-  for (const auto& [name, value] : given_)
-    if (name == option) return value;
+  for (const auto& g : given_)
+    if (g.name == option) return g.text;
   return std::nullopt;
 }
 
 std::vector<std::string> Arguments::values(const std::string& option) const {
   std::vector<std::string> out;
-  for (const auto& [name, value] : given_)
-    if (name == option) out.push_back(value);
+  for (const auto& g : given_)
+    if (g.name == option) out.push_back(g.text);
   return out;
 }
 
@@ -89,64 +200,32 @@ std::string Arguments::text(const std::string& option, const std::string& fallba
   return v ? *v : fallback;
 }
 
+// The typed accessors read what add() stored; an option of another kind (a caller reading a
+// Text option as a number) is parsed here, with the same message.
 double Arguments::number(const std::string& option, double fallback) const {
-  auto v = value(option);
-  if (!v) return fallback;
-  std::size_t used = 0;
-  double x = 0.0;
-  try {
-    x = std::stod(*v, &used);
-  } catch (const std::exception&) {
-    used = 0;
-  }
-  if (used == 0 || used != v->size() || !std::isfinite(x))
-    throw InputError(option + " " + *v + ": expected a finite number");
-  return x;
+  for (const auto& g : given_)
+    if (g.name == option)
+      return g.number ? *g.number : g.integer ? *g.integer : parse_number(option, g.text);
+  return fallback;
 }
 
 int Arguments::integer(const std::string& option, int fallback) const {
-  auto v = value(option);
-  if (!v) return fallback;
-  std::size_t used = 0;
-  int x = 0;
-  try {
-    x = std::stoi(*v, &used);
-  } catch (const std::exception&) {
-    used = 0;
-  }
-  if (used == 0 || used != v->size()) throw InputError(option + " " + *v + ": expected an integer");
-  return x;
+  for (const auto& g : given_)
+    if (g.name == option) return g.integer ? *g.integer : parse_integer(option, g.text);
+  return fallback;
 }
 
 std::vector<double> Arguments::numbers(const std::string& option) const {
-  const auto v = value(option);
-  if (!v) return {};
-  std::vector<double> out;
-  std::size_t begin = 0;
-  for (;;) {
-    const std::size_t comma = v->find(',', begin);
-    const std::string field =
-        v->substr(begin, comma == std::string::npos ? std::string::npos : comma - begin);
-    std::size_t used = 0;
-    double x = 0.0;
-    try {
-      x = std::stod(field, &used);
-    } catch (const std::exception&) {
-      used = 0;
-    }
-    if (used == 0 || used != field.size() || !std::isfinite(x))
-      throw InputError(option + " " + *v + ": '" + field +
-                       "' is not a finite number; expected finite numbers separated by commas "
-                       "(e.g. 0.5,1,1.5)");
-    out.push_back(x);
-    if (comma == std::string::npos) return out;
-    begin = comma + 1;
-  }
+  for (const auto& g : given_)
+    if (g.name == option) return g.numbers ? *g.numbers : parse_numbers(option, g.text);
+  return {};
 }
 
 std::vector<Assignment> Arguments::assignments(const std::string& option) const {
   std::vector<Assignment> out;
-  for (const auto& v : values(option)) out.push_back(parse_assignment(v, option));
+  for (const auto& g : given_)
+    if (g.name == option)
+      out.push_back(g.assignment ? *g.assignment : parse_assignment(g.text, option));
   return out;
 }
 

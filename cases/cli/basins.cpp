@@ -43,38 +43,6 @@ std::string option_of(const std::string& field) {
   return field;
 }
 
-std::vector<OptionSpec> basins_options() {
-  auto options = case_options();
-  options.insert(
-      options.end(),
-      {{"--grid", "NAME=FROM:TO:COUNT", true,
-        "a parameter's grid, COUNT values from FROM to TO (NAME=VALUE: one value); once or twice"},
-       {"--starts", "N", false, "random starts per grid point (default 100)"},
-       {"--angles", "MIN:MAX", false,
-        "the pendula's start angles, uniform in [MIN, MAX] rad (default -0.6:0.6)"},
-       {"--initial", "VAR=VALUE", true,
-        "a state value every start shares (x, vx, ...: the platform moving; default at rest)"},
-       {"--seed", "N", false, "seed of the starts (default 1): task i draws from seed and i alone"},
-       {"--t-end", "SECONDS", false, "length of each simulation (default 100)"},
-       {"--dt", "SECONDS", false, "sampling interval of the classifier (default 0.01)"},
-       {"--window", "SECONDS", false, "the end of a run its class is judged on (default 10)"},
-       {"--phase-tolerance", "RAD", false,
-        "in or anti-phase: within this of 0 or pi; also time to sync (default 0.1)"},
-       {"--lock-tolerance", "RAD", false,
-        "locked: each phase difference within this of its mean over the window (default 0.1)"},
-       {"--threads", "N", false,
-        "simulations run side by side (default: one per core; under mpirun one per rank)"},
-       {"--out", "DIR", false, "where the files go (default out/basins)"},
-       {"--resume", "", false, "continue the journal in DIR: its runs are not computed again"},
-       {"--quiet", "", false, "no progress line on a terminal"},
-       {"--confirm", "", false,
-        "confirm each locked end by Newton to a periodic orbit (its period and stability)"},
-       accuracy_option()});
-  const auto integrator = integrator_options();
-  options.insert(options.end(), integrator.begin(), integrator.end());
-  return options;
-}
-
 void parse_study_options(const Arguments& args, Basins& b);
 
 // The case of a basins study file, with its parameter set and `set` values.

@@ -301,20 +301,7 @@ std::string where_measured(const std::vector<std::string>& argv) {
 }  // namespace
 
 int run_bench(const std::vector<std::string>& argv) {
-  Arguments args(
-      "bench", argv,
-      {{"--out", "DIR", false, "where bench.csv and bench.md go (default out/bench)"},
-       {"--quick", "", false, "fewer tolerances (for a smoke run)"},
-       {"--quiet", "", false, "no progress lines on a terminal"},
-       {"--sections", "LIST", false,
-        "which parts, e.g. abc (default abcdefghij): (a)-(c) error against run time, "
-        "(d) cost of a continuation point, (e) cost against the number of metronomes, "
-        "(f) the anti-phase k-branch per accuracy preset and integrator, with AUTO-07p's "
-        "measured points, (g) identical metronomes in phase, reduced and whole, (h) equation "
-        "case files, generated against hand-written, and their compile time, (i) the Fig. 8 "
-        "study from its file, wall time, (j) the integrator chosen by the measured stiffness "
-        "against each forced"}},
-      {});
+  Arguments args("bench", argv, bench_options(), {});
   Stopwatch clock;
   const std::string out = args.text("--out", "out/bench");
   std::filesystem::create_directories(out);

@@ -17,46 +17,8 @@
 
 namespace sympathy::cli {
 
-std::vector<OptionSpec> case_options() {
-  return {
-      {"--params", "NAME", false, "named parameter set of the case (default: the file's)"},
-      {"--set", "KEY=VALUE", true, "set a parameter of the case to a value"},
-  };
-}
-
-std::vector<OptionSpec> integrator_options() {
-  return {
-      {"--rtol", "R", false,
-       "relative tolerance of the integrator (default: 5e-12 for orbits, branches and curves, the "
-       "--accuracy preset's; 1e-8 for simulations; 1e-9 for fits)"},
-      {"--atol", "A", false,
-       "absolute tolerance of the integrator (default: 5e-14 for orbits, branches and curves, the "
-       "--accuracy preset's; 1e-10 for simulations; 1e-11 for fits)"},
-      {"--method", "bdf|adams|erk", false,
-       "integration method: CVODES's BDF or Adams, or ARKODE's explicit Runge-Kutta "
-       "(Dormand-Prince 5(4); with it the sensitivities are augmented) (default: adams for orbits, "
-       "branches and curves, the --accuracy preset's, switched to bdf where the start measures "
-       "stiff; bdf for simulations and fits; given, it is used whatever the stiffness)"},
-      {"--sensitivities", "forward|augmented", false,
-       "how the monodromy is integrated: CVODES's forward-sensitivity module, or the variational "
-       "equations appended to the state (default: augmented for orbits, branches and curves, the "
-       "--accuracy preset's; forward for fits)"},
-      {"--linear-solver", "dense|klu|structured", false,
-       "linear solver of the BDF Newton iteration (default: structured, sparse plus low rank, for "
-       "more than 3 metronomes; else dense)"},
-  };
-}
-
 LoadedCase load_case(const Arguments& args) {
   return load_case(args.positional(0), args.text("--params", ""), args.assignments("--set"));
-}
-
-OptionSpec accuracy_option() {
-  return {"--accuracy", "fast|default|high", false,
-          "integrator preset: fast = explicit Runge-Kutta at rtol 1e-8 and coarser branch steps, "
-          "located points within 4e-7; default = Adams at rtol 5e-12, located points within "
-          "1e-8; high = tighter (default: default; where a command takes --rtol, --method or "
-          "--sensitivities, they override it)"};
 }
 
 Accuracy accuracy(const Arguments& args) {
@@ -108,12 +70,6 @@ std::string table_number(double v, const char* format) {
   char buffer[64];
   std::snprintf(buffer, sizeof buffer, format, v);
   return buffer;
-}
-
-OptionSpec segment_threads_option() {
-  return {"--threads", "N", false,
-          "threads integrating the shooting segments side by side (default: one per core; the "
-          "result is the same for any number)"};
 }
 
 int segment_threads(const Arguments& args) {

@@ -8,6 +8,7 @@
 #include <vector>
 
 #include "cases/app/case_loading.hpp"
+#include "cases/app/option_table.hpp"
 #include "cases/cli/arguments.hpp"
 #include "cases/cli/exit_codes.hpp"
 #include "sympathy/continuation/accuracy.hpp"
@@ -22,15 +23,6 @@ namespace sympathy::cli {
 using namespace sympathy::app;
 using app::load_case;  // beside the overload that reads the command line
 
-// Options every command that loads a case accepts.
-std::vector<OptionSpec> case_options();
-// Integrator options: --rtol, --atol, --method, --sensitivities, --linear-solver.
-std::vector<OptionSpec> integrator_options();
-
-// --accuracy (a study or map file's `accuracy`): the engine's presets (accuracy.hpp).
-OptionSpec accuracy_option();
-// --threads of orbit and continue: the shooting segments integrated side by side.
-OptionSpec segment_threads_option();
 // --threads N as given (ShootingOptions::validate checks it: 1 to 256), by default one per core;
 // the shooting uses at most as many as it has segments, and its result does not depend on them.
 int segment_threads(const Arguments& args);

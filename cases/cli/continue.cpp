@@ -21,15 +21,6 @@
 
 namespace sympathy::cli {
 
-std::vector<OptionSpec> branch_step_options() {
-  return {{"--segments", "M", false, "shooting segments (default 1)"},
-          {"--step", "DS", false, "initial arclength step, scaled (default 0.02)"},
-          {"--max-step", "DS", false, "largest arclength step, scaled (default 0.1)"},
-          {"--max-points", "N", false, "point limit per direction (default 400)"},
-          {"--transient", "SECONDS", false,
-           "integration before the first Newton (default 60; 0 for a forced system)"}};
-}
-
 ContinuationOptions branch_continuation(const Arguments& args, const OdeSystem& system) {
   ContinuationOptions o;
   // A forced system's start: Newton at once unless a transient is asked for (its period is the
@@ -42,47 +33,6 @@ ContinuationOptions branch_continuation(const Arguments& args, const OdeSystem& 
   apply_accuracy(accuracy(args), o);
   shooting_flow_options(args, o.orbit);
   return o;
-}
-
-std::vector<OptionSpec> continue_options() {
-  auto options = case_options();
-  options.insert(
-      options.end(),
-      {{"--start", "NAME", false,
-        "named start of the case (required for a metronome case file; an equation case file's "
-        "default: its [states])"},
-       {"--param", "P", false, "the continuation parameter, one of the case's", true},
-       {"--from", "A", false, "first parameter value: the branch starts here", true},
-       {"--to", "B", false, "last parameter value", true},
-       {"--at", "V", false, "start at V instead and continue both ways, to A and to B"},
-       {"--initial", "VAR=VALUE", true, "initial state value (on top of --start)"},
-       {"--user-points", "V1,V2,...", false,
-        "report the branch's orbit at each of these values of --param (AUTO's UZ), as events"},
-       {"--csv", "FILE", false, "stream every point to this CSV"},
-       {"--json", "FILE", false, "write the branch and its bifurcations as JSON"},
-       {"--events", "FILE", false, "stream each bifurcation to this CSV as it is located"},
-       {"--switch-at", "EVENT", false,
-        "continue the branch born at this event instead (BP1, PD1, ...: the first BP, ...; "
-        "HB1: the family born at the first Hopf point of the equilibria through the start)"},
-       {"--hopf-amplitude", "A", false,
-        "with --switch-at HBn: the first orbit's amplitude along the critical eigenvector's real "
-        "part, in state units (default: 2% of the state's size, grown where the family is "
-        "nearly vertical, shrunk where Newton fails)"},
-       {"--parent", "FILE", false,
-        "with --switch-at: the parent branch from this JSON (continue --json; for HB, equilibria "
-        "--json) instead of computed"},
-       {"--whole-state", "", false,
-        "no symmetry reduction: integrate every metronome (for comparison)"},
-       {"--quiet", "", false, "no progress lines"},
-       {"--verbose", "", false, "multipliers on each progress line; the full report at the end"}});
-  const auto steps = branch_step_options();
-  options.insert(options.end(), steps.begin(), steps.end());
-  options.push_back(segment_threads_option());
-  const auto integrator = integrator_options();
-  options.insert(options.end(), integrator.begin(), integrator.end());
-  options.push_back(accuracy_option());
-  options.push_back(start_data_option());
-  return options;
 }
 
 BranchRequest continue_request(const Arguments& args, const LoadedSystem& c) {

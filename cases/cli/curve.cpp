@@ -37,36 +37,6 @@ void print_curve_events(std::FILE* out, const BifurcationCurve& curve) {
 
 }  // namespace
 
-std::vector<OptionSpec> curve_options() {
-  auto options = case_options();
-  options.insert(
-      options.end(),
-      {{"--start", "NAME", false,
-        "named start of the case (required for a metronome case file; an equation case file's "
-        "default: its [states])"},
-       {"--param", "P", false, "the branch's parameter, the curve's first", true},
-       {"--from", "A", false, "the branch's first value, one end of the window", true},
-       {"--to", "B", false, "the branch's last value, the window's other end", true},
-       {"--initial", "VAR=VALUE", true, "initial state value (on top of --start)"},
-       {"--transient", "SECONDS", false, "integration before the first Newton (default 60)"},
-       {"--parent", "FILE", false, "the branch from this JSON (continue --json) instead"},
-       {"--event", "EVENT", false, "the event whose curve to follow: LP1, BP1, NS2, ...", true},
-       {"--second", "Q", false, "the second parameter", true},
-       {"--second-from", "A", false, "the window in the second parameter ...", true},
-       {"--second-to", "B", false, "... and its other end", true},
-       {"--step", "DS", false, "initial arclength step, scaled (default 0.01)"},
-       {"--max-step", "DS", false, "largest arclength step, scaled (default 0.05)"},
-       {"--max-points", "N", false, "point limit per direction (default 200)"},
-       {"--csv", "FILE", false, "stream every curve point to this CSV"},
-       {"--json", "FILE", false, "write the curve and its codimension-two points as JSON"},
-       {"--quiet", "", false, "no progress lines"}});
-  const auto integrator = integrator_options();
-  options.insert(options.end(), integrator.begin(), integrator.end());
-  options.push_back(accuracy_option());
-  options.push_back(start_data_option());
-  return options;
-}
-
 CurveRequest curve_request(const Arguments& args, const LoadedSystem& c) {
   c.require_autonomous("curve (two-parameter curves)");
   const ParameterWindow window = parameter_window(args, c);

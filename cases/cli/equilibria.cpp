@@ -55,28 +55,6 @@ void print_equilibrium_events(const EquilibriumBranch& branch) {
 
 }  // namespace
 
-std::vector<OptionSpec> equilibria_options() {
-  auto options = case_options();
-  options.insert(
-      options.end(),
-      {{"--start", "NAME", false,
-        "named start of the case, Newton's first guess (required for a metronome case file; an "
-        "equation case file's default: its [states])"},
-       {"--param", "P", false, "the continuation parameter, one of the case's", true},
-       {"--from", "A", false, "first parameter value: the branch starts here", true},
-       {"--to", "B", false, "last parameter value", true},
-       {"--at", "V", false, "start at V instead and continue both ways, to A and to B"},
-       {"--initial", "VAR=VALUE", true, "initial state value (on top of --start)"},
-       {"--step", "DS", false, "initial arclength step, scaled (default 0.01)"},
-       {"--max-step", "DS", false, "largest arclength step, scaled (default 0.05)"},
-       {"--max-points", "N", false, "point limit per direction (default 1000)"},
-       {"--csv", "FILE", false, "stream every point to this CSV"},
-       {"--json", "FILE", false,
-        "write the branch and its events as JSON (continue --switch-at HB1 --parent reads it)"},
-       {"--quiet", "", false, "no progress lines"}});
-  return options;
-}
-
 EquilibriaRequest equilibria_request(const Arguments& args, const LoadedSystem& c) {
   c.require_autonomous("equilibria");
   EquilibriaRequest r;

@@ -76,35 +76,6 @@ std::string short_number(double v, int digits = 2) {
 
 }  // namespace
 
-std::vector<OptionSpec> fit_options() {
-  auto options = case_options();
-  options.insert(
-      options.end(),
-      {{"--data", "FILE.csv", false, "the recording: columns t and state names", true},
-       {"--free", "NAME[,NAME...]", true, "parameters of the case to fit"},
-       {"--free-initial", "VAR[,VAR...]", true, "initial values of the case's states to fit too"},
-       {"--locked-pendula", "", false,
-        "a metronome case's pendula fixed to their casings: the platform alone"},
-       {"--start", "NAME", false, "unrecorded states start from this named start (else 0)"},
-       {"--initial", "VAR=VALUE", true, "initial value of an unrecorded state"},
-       {"--sigma", "VAR=VALUE", true, "noise level of a column (default: the column's RMS)"},
-       {"--range", "NAME=LO:HI", true, "bounds of a parameter, search box of the global stage"},
-       {"--global", "", false, "a global stage first (NLopt CRS2 over start/10 .. start*10)"},
-       {"--global-method", "crs|direct|isres|mlsl", false, "the global algorithm (default crs)"},
-       {"--global-evaluations", "N", false, "budget of the global stage (default 400)"},
-       {"--seed", "N", false, "NLopt's random seed for the global stage (default 1)"},
-       {"--local", "slsqp|lbfgs|mma|bobyqa|neldermead|lm", false,
-        "local method: Levenberg-Marquardt (default) or NLopt's"},
-       {"--no-polish", "", false, "no Gauss-Newton steps after a local NLopt stage"},
-       {"--max-evaluations", "N", false, "evaluation limit of the local stage (default 200)"},
-       {"--out", "FITTED.toml", false, "write a copy of the case with the fitted values"},
-       {"--json", "FILE", false, "write the fit as JSON"},
-       {"--csv", "FILE", false, "write the fitted model at the data's times (scripts/plot_fit)"}});
-  const auto integrator = integrator_options();
-  options.insert(options.end(), integrator.begin(), integrator.end());
-  return options;
-}
-
 FitSetup fit_setup(const Arguments& args) {
   FitSetup setup;
   // A metronome case file, or an equation case file (its system compiled, or from the cache).

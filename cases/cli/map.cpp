@@ -38,12 +38,7 @@ int index_of(const OdeSystem& system, const std::string& name) {
 }  // namespace
 
 int run_map(const std::vector<std::string>& argv) {
-  Arguments args("map", argv,
-                 {{"--out", "DIR", false, "where the JSON and CSV files go (default out/figures)"},
-                  {"--jobs", "N", false, "orbits computed side by side (default 2)"},
-                  {"--quiet", "", false, "no progress lines"},
-                  accuracy_option()},
-                 {"MAP"});
+  Arguments args("map", argv, map_options(), {"MAP"});
   Stopwatch clock;
   const MapStudy map = load_map(args.positional(0));
   const std::string out = args.text("--out", "out/figures");

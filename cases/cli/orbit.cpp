@@ -18,27 +18,6 @@
 
 namespace sympathy::cli {
 
-std::vector<OptionSpec> orbit_options() {
-  auto options = case_options();
-  options.insert(
-      options.end(),
-      {{"--start", "NAME", false, "named start of the case (required for a metronome case file)"},
-       {"--initial", "VAR=VALUE", true, "initial state value (on top of --start)"},
-       {"--segments", "M", false, "shooting segments (default 1: single shooting)"},
-       segment_threads_option(),
-       {"--transient", "SECONDS", false,
-        "integration before Newton (default 60; 0 for a forced system)"},
-       {"--json", "FILE", false, "write the orbit as JSON"},
-       {"--whole-state", "", false,
-        "no symmetry reduction: integrate every metronome (for comparison)"},
-       {"--verbose", "", false, "the full report: Newton steps, integration work"}});
-  const auto integrator = integrator_options();
-  options.insert(options.end(), integrator.begin(), integrator.end());
-  options.push_back(accuracy_option());
-  options.push_back(start_data_option());
-  return options;
-}
-
 OrbitOptions orbit_request(const Arguments& args, bool forced) {
   OrbitOptions o;
   o.shooting.segments = args.integer("--segments", 1);

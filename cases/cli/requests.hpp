@@ -1,6 +1,6 @@
-// The options of the commands that the Python module (python/) runs too, and what they are read
-// into, with every check of the command line before any work: one table of names and defaults,
-// one reading and one validation for the program and the module.
+// What the options of the commands that the Python module (python/) runs too are read into (their
+// table: cases/app/option_table.hpp), with every check of the command line before any work: one
+// reading and one validation for the program and the module.
 #pragma once
 
 #include <atomic>
@@ -25,24 +25,21 @@
 
 namespace sympathy::cli {
 
-// sympathy orbit: its options, and its --segments, --transient, --accuracy, integrator options and
+// sympathy orbit: its --segments, --transient, --accuracy, integrator options and
 // --whole-state read into the engine's OrbitOptions, checked by their validate(). `forced`: a
 // periodically forced system, whose transient is 0 unless --transient gives one.
-std::vector<OptionSpec> orbit_options();
 OrbitOptions orbit_request(const Arguments& args, bool forced = false);
 
 // What every branch run reads besides its window and start (continue, sweep): --segments, --step,
 // --max-step, --max-points and --transient (0 by default for a forced system), with --accuracy
 // and the integrator's options, into ContinuationOptions; the caller adds its own and validates.
-std::vector<OptionSpec> branch_step_options();
 ContinuationOptions branch_continuation(const Arguments& args, const OdeSystem& system);
 
-// sympathy continue: its options, and the request (the window, the start, the continuation
+// sympathy continue: the request (the window, the start, the continuation
 // options, switching, the outputs), checked against the case `c`.
-std::vector<OptionSpec> continue_options();
 BranchRequest continue_request(const Arguments& args, const LoadedSystem& c);
 
-// sympathy curve: its options; the request (the branch, the event's name, the second parameter,
+// sympathy curve: the request (the branch, the event's name, the second parameter,
 // the engine's CurveOptions, checked against the case `c`); the branch (computed as continue
 // computes it, or read from --parent); and the event's curve (InputError naming --event for an
 // event that has no curve).
@@ -54,14 +51,13 @@ struct CurveRequest {
   CurveOptions options;
   std::string csv_path;  // "" for none
 };
-std::vector<OptionSpec> curve_options();
 CurveRequest curve_request(const Arguments& args, const LoadedSystem& c);
 Branch curve_branch(const CurveRequest& r, const LoadedSystem& c, const BranchSource& source,
                     const std::atomic<bool>* stop);
 BifurcationCurve follow_curve(const CurveRequest& r, const OdeSystem& system, const Branch& parent,
                               const Bifurcation& event, const CurveCallbacks& callbacks);
 
-// sympathy study: its options; the run prepared (the study file read, every branch's case, start
+// sympathy study: the run prepared (the study file read, every branch's case, start
 // and outputs checked, its request made: what is checked before any work), its branches computed
 // side by side on run.jobs threads (each as continue computes it, its CSVs streamed; a line per
 // branch to `progress` unless nullptr, in the study's order at the end; `stop` asked between
@@ -76,12 +72,11 @@ struct StudyRun {
   std::vector<Branch> results;
   std::vector<std::string> errors;  // why a branch has no result ("" where it has)
 };
-std::vector<OptionSpec> study_options();
 StudyRun study_run(const Arguments& args);
 void run_study_branches(StudyRun& run, const std::atomic<bool>* stop, std::FILE* progress,
                         ProgressLine* line = nullptr);
 
-// sympathy equilibria: its options, and the engine's problem and options read from them, checked
+// sympathy equilibria: the engine's problem and options read from them, checked
 // against the case `c` (the problem's and the options' own checks, the range, the outputs).
 struct EquilibriaRequest {
   std::string start;  // "" for an equation case file's [states]
@@ -89,10 +84,9 @@ struct EquilibriaRequest {
   EquilibriumOptions options;
   std::string csv_path;  // "" for none
 };
-std::vector<OptionSpec> equilibria_options();
 EquilibriaRequest equilibria_request(const Arguments& args, const LoadedSystem& c);
 
-// sympathy fit: its options, and the case (a metronome case file, or an equation case file
+// sympathy fit: the case (a metronome case file, or an equation case file
 // compiled; behind pointers: the request's start points into it), the request and the engine's
 // options read from them, every output checked (before any work).
 struct FitSetup {
@@ -104,16 +98,14 @@ struct FitSetup {
   // The fit's model and problem (prepare_fit on the case's kind of model).
   PreparedFit prepare() const;
 };
-std::vector<OptionSpec> fit_options();
 FitSetup fit_setup(const Arguments& args);
 // Comma-separated names of a repeatable option (--free d,s --free c), in order; InputError for an
 // empty name.
 std::vector<std::string> names(const Arguments& args, const std::string& option);
 
-// sympathy simulate: its options, the output times of --t-end and --dt (0, dt, 2 dt, ..., t_end;
+// sympathy simulate: the output times of --t-end and --dt (0, dt, 2 dt, ..., t_end;
 // InputError unless 0 < dt <= t_end) and the integrator options on its defaults (BDF, rtol 1e-8,
 // atol 1e-10).
-std::vector<OptionSpec> simulate_options();
 std::vector<double> simulation_times(const Arguments& args);
 FlowOptions simulation_flow_options(const Arguments& args);
 

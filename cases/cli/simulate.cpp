@@ -16,22 +16,6 @@
 
 namespace sympathy::cli {
 
-std::vector<OptionSpec> simulate_options() {
-  auto options = case_options();
-  options.insert(options.end(),
-                 {{"--start", "NAME", false, "named start of the case (in-phase, ...)"},
-                  {"--initial", "VAR=VALUE", true, "initial state value (on top of --start)"},
-                  {"--t-end", "SECONDS", false, "end time (default 60)"},
-                  {"--dt", "SECONDS", false, "output interval (default 0.01)"},
-                  {"--locked-pendula", "", false,
-                   "pendula fixed to their casings: the platform alone (states x, vx)"},
-                  {"--out", "FILE.csv", false, "write the time series here"},
-                  {"--verbose", "", false, "the full report of the integration's work"}});
-  const auto integrator = integrator_options();
-  options.insert(options.end(), integrator.begin(), integrator.end());
-  return options;
-}
-
 std::vector<double> simulation_times(const Arguments& args) {
   const double t_end = args.number("--t-end", 60.0);
   const double dt = args.number("--dt", 0.01);

@@ -6,12 +6,6 @@
 
 namespace sympathy::cli {
 
-OptionSpec start_data_option() {
-  return {"--start-data", "FILE.csv", false,
-          "start from one recorded period instead (columns t and every state, as simulate --out "
-          "writes; its first row the start, its span or first return the period guess)"};
-}
-
 std::optional<std::string> start_data_path(const Arguments& args) {
   const auto path = args.value("--start-data");
   if (!path) return std::nullopt;

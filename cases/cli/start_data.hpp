@@ -13,8 +13,6 @@
 
 namespace sympathy::cli {
 
-OptionSpec start_data_option();
-
 // The recorded period --start-data names (nullopt without it), checked against the system's
 // state names; InputError for --start, --initial or --transient beside it (the recording's first
 // row is the start, and nothing is integrated before Newton).

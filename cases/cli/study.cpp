@@ -19,13 +19,6 @@
 
 namespace sympathy::cli {
 
-std::vector<OptionSpec> study_options() {
-  return {{"--out", "DIR", false, "where the CSV and JSON files go (default out/figures)"},
-          {"--jobs", "N", false, "branches computed side by side (default 2)"},
-          {"--quiet", "", false, "no progress line on a terminal"},
-          accuracy_option()};
-}
-
 StudyRun study_run(const Arguments& args) {
   StudyRun run;
   run.study = load_study(args.positional(0));

@@ -42,8 +42,8 @@ StudyRecord study_record(const Arguments& args,
   StudyRecord r;
   r.entries.emplace_back("sympathy", SYMPATHY_VERSION);
   std::map<std::string, std::vector<std::string>> options;
-  for (const auto& [name, value] : args.given())
-    if (!ignored.count(name)) options[name].push_back(value);
+  for (const auto& g : args.given())
+    if (!ignored.count(g.name)) options[g.name].push_back(g.text);
   for (const auto& [name, values] : options)
     for (const auto& value : values) r.entries.emplace_back("option " + name, value);
   for (const auto& [what, path] : inputs)

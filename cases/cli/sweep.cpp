@@ -291,35 +291,7 @@ void write_results(const Sweep& w, const TaskRunSummary& summary, const Stopwatc
 }  // namespace
 
 int run_sweep(const std::vector<std::string>& argv) {
-  auto options = case_options();
-  options.insert(
-      options.end(),
-      {{"--start", "NAME", false,
-        "named start of the case (required for a metronome case file; an equation case file's "
-        "default: its [states])"},
-       {"--param", "P", false,
-        "each branch's parameter (without it and --data: an orbit at each value)"},
-       {"--from", "A", false, "each branch's first value (required with --param)"},
-       {"--to", "B", false, "each branch's last value (required with --param)"},
-       {"--at", "V", false, "start each branch at V instead and continue both ways"},
-       {"--over", "NAME=FROM:TO:COUNT", false,
-        "the second parameter's grid: a branch (or an orbit) at each of its COUNT values", true},
-       {"--initial", "VAR=VALUE", true, "initial state value (on top of --start)"},
-       {"--data", "FILE.csv", false,
-        "a fit to this recording at each value (the swept parameter held there), as fit's"},
-       {"--free", "NAME[,NAME...]", true, "with --data: the parameters fitted"},
-       {"--free-initial", "VAR[,VAR...]", true, "with --data: initial values fitted too"},
-       {"--threads", "N", false,
-        "tasks run side by side (default: one per core; under mpirun one per rank)"},
-       {"--out", "DIR", false, "where the files go (default out/sweep)"},
-       {"--resume", "", false, "continue the journal in DIR: its tasks are not computed again"},
-       {"--quiet", "", false, "no progress line on a terminal"},
-       accuracy_option()});
-  const auto steps = branch_step_options();
-  options.insert(options.end(), steps.begin(), steps.end());
-  const auto integrator = integrator_options();
-  options.insert(options.end(), integrator.begin(), integrator.end());
-  Arguments args("sweep", argv, options, {"CASE"});
+  Arguments args("sweep", argv, sweep_options(), {"CASE"});
   Stopwatch clock;
   const MpiSession mpi;
   std::optional<Sweep> w;
