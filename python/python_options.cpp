@@ -1,84 +1,173 @@
 #include "python_options.hpp"
 
 #include <algorithm>
+#include <cstdio>
+
+#include "cases/app/option_table.hpp"
 
 namespace sympathy::python {
 
-std::vector<std::string> CaseLine::arguments() const {
-  std::vector<std::string> a{path};
-  // OPTION=VALUE, one argument: a value that begins with "-" is never read as an option.
-  if (!params.empty()) a.push_back("--params=" + params);
-  for (const auto& s : sets) a.push_back("--set=" + s);
-  return a;
-}
-
 namespace {
 
-// A value as the command line writes it: Python's own repr for numbers (17 significant digits
-// where needed, so that the option reads back as the same double), str() for the rest.
-std::string text_of(const py::handle& value) {
-  if (py::isinstance<py::bool_>(value)) return value.cast<bool>() ? "true" : "false";
-  if (py::isinstance<py::str>(value)) return value.cast<std::string>();
-  if (py::hasattr(value, "__index__"))
-    return py::str(py::int_(py::reinterpret_borrow<py::object>(value)));
-  if (py::isinstance<py::float_>(value) || py::hasattr(value, "__float__"))
-    return py::repr(py::float_(py::reinterpret_borrow<py::object>(value)));
-  return py::str(value);
+// What each command leaves out of its keywords: the parameter set (a Case carries it; `set` adds
+// values on top of the Case's for one call), and what only the program's output needs (it
+// prints; Python gets the result).
+std::vector<std::string> left_out(const std::string& command) {
+  std::vector<std::string> out = {"--params"};
+  const auto add = [&](std::initializer_list<const char*> more) {
+    out.insert(out.end(), more.begin(), more.end());
+  };
+  if (command == "simulate") add({"--out", "--verbose", "--locked-pendula"});
+  if (command == "orbit") add({"--verbose", "--json"});
+  if (command == "continue") add({"--quiet", "--verbose", "--json"});
+  if (command == "equilibria") add({"--quiet", "--json"});
+  if (command == "curve") add({"--quiet", "--json"});
+  if (command == "fit") add({"--out", "--json", "--csv"});
+  return out;
 }
 
-std::string keyword_of(const std::string& option) {
-  std::string k = option.substr(2);
-  std::replace(k.begin(), k.end(), '-', '_');
-  return k;
+std::string kind_name(app::OptionKind k) {
+  switch (k) {
+    case app::OptionKind::Flag:
+      return "flag";
+    case app::OptionKind::Integer:
+      return "integer";
+    case app::OptionKind::Number:
+      return "number";
+    case app::OptionKind::Numbers:
+      return "numbers";
+    case app::OptionKind::Text:
+      return "text";
+    case app::OptionKind::Names:
+      return "names";
+    case app::OptionKind::Assignments:
+      return "assignments";
+    case app::OptionKind::Choice:
+      return "choice";
+  }
+  return "?";
+}
+
+// A number as the message shows it: the shortest text that reads back as the same double.
+std::string number_text(double x) {
+  char buffer[32];
+  for (int digits = 15; digits <= 17; ++digits) {
+    std::snprintf(buffer, sizeof buffer, "%.*g", digits, x);
+    if (std::stod(buffer) == x) break;
+  }
+  return buffer;
 }
 
 }  // namespace
 
-cli::Arguments command_arguments(const std::string& command, const CaseLine& line,
-                                 const py::kwargs& kwargs,
-                                 const std::vector<cli::OptionSpec>& options,
-                                 const std::vector<std::string>& reserved) {
-  std::vector<std::string> argv = line.arguments();
-  for (const auto& [key, value] : kwargs) {
-    std::string name = key.cast<std::string>();
-    // from_: `from` is a Python keyword.
-    if (!name.empty() && name.back() == '_') name.pop_back();
-    std::string option = "--" + name;
-    std::replace(option.begin(), option.end(), '_', '-');
-    const auto spec = std::find_if(options.begin(), options.end(),
-                                   [&](const cli::OptionSpec& s) { return s.name == option; });
-    if (spec == options.end() ||
-        std::find(reserved.begin(), reserved.end(), name) != reserved.end()) {
-      std::string known;
-      for (const auto& s : options) {
-        const std::string k = keyword_of(s.name);
-        if (std::find(reserved.begin(), reserved.end(), k) != reserved.end()) continue;
-        known += (known.empty() ? "" : ", ") + (k == "from" ? std::string("from_") : k);
-      }
-      throw py::type_error(command + "() got an unexpected keyword argument '" +
-                           key.cast<std::string>() + "'; expected one of: " + known);
-    }
-    if (value.is_none()) continue;
-    if (spec->value.empty()) {  // a flag
-      if (!py::isinstance<py::bool_>(value))
-        throw py::type_error(command + "(): " + name + " is a flag; expected True or False");
-      if (value.cast<bool>()) argv.push_back(option);
-      continue;
-    }
-    if (py::isinstance<py::dict>(value)) {
-      for (const auto& [k, v] : value.cast<py::dict>())
-        argv.push_back(option + "=" + py::str(k).cast<std::string>() + "=" + text_of(v));
-      continue;
-    }
-    if (py::isinstance<py::list>(value) || py::isinstance<py::tuple>(value)) {
-      std::string joined;
-      for (const auto& item : value) joined += (joined.empty() ? "" : ",") + text_of(item);
-      argv.push_back(option + "=" + joined);
-      continue;
-    }
-    argv.push_back(option + "=" + text_of(value));
+std::vector<std::string> python_commands() {
+  return {"simulate", "orbit", "continue", "curve", "equilibria", "fit", "study"};
+}
+
+std::vector<app::OptionSpec> python_options(const std::string& command) {
+  std::vector<app::OptionSpec> options = app::command_options(command).options;
+  const auto out = left_out(command);
+  std::erase_if(options, [&](const app::OptionSpec& s) {
+    return std::find(out.begin(), out.end(), s.name) != out.end();
+  });
+  return options;
+}
+
+py::list option_table(const std::string& command) {
+  py::list table;
+  for (const auto& s : python_options(command)) {
+    py::dict d;
+    d["keyword"] = app::keyword_of(s.name);
+    d["option"] = s.name;
+    d["kind"] = kind_name(app::kind_of(s));
+    d["placeholder"] = s.value;
+    d["help"] = s.help;
+    d["repeatable"] = s.repeatable;
+    d["required"] = s.required;
+    d["choices"] = app::choices_of(s);
+    table.append(d);
   }
-  return cli::Arguments(command, argv, options, {"CASE"});
+  return table;
+}
+
+cli::Arguments typed_arguments(const std::string& command, const CaseLine& line,
+                               const py::dict& keywords) {
+  const std::vector<app::OptionSpec> options = python_options(command);
+  std::vector<cli::GivenOption> given;
+  if (!line.params.empty()) {
+    cli::GivenOption g;
+    g.name = "--params";
+    g.text = line.params;
+    given.push_back(std::move(g));
+  }
+  for (const auto& a : line.sets) {
+    cli::GivenOption g;
+    g.name = "--set";
+    g.text = a.key + "=" + number_text(a.value);
+    g.assignment = a;
+    given.push_back(std::move(g));
+  }
+  for (const auto& s : options) {
+    const std::string keyword = app::keyword_of(s.name);
+    if (!keywords.contains(keyword)) continue;
+    const py::object v = keywords[py::str(keyword)];
+    if (v.is_none()) continue;
+    const auto make = [&](std::string text) {
+      cli::GivenOption g;
+      g.name = s.name;
+      g.text = std::move(text);
+      return g;
+    };
+    switch (app::kind_of(s)) {
+      case app::OptionKind::Flag:
+        if (v.cast<bool>()) given.push_back(make(""));
+        break;
+      case app::OptionKind::Integer: {
+        auto g = make(py::str(v).cast<std::string>());
+        g.integer = v.cast<int>();
+        given.push_back(std::move(g));
+        break;
+      }
+      case app::OptionKind::Number: {
+        const double x = v.cast<double>();
+        auto g = make(number_text(x));
+        g.number = x;
+        given.push_back(std::move(g));
+        break;
+      }
+      case app::OptionKind::Numbers: {
+        const auto xs = v.cast<std::vector<double>>();
+        std::string text;
+        for (double x : xs) text += (text.empty() ? "" : ",") + number_text(x);
+        auto g = make(text);
+        g.numbers = xs;
+        given.push_back(std::move(g));
+        break;
+      }
+      case app::OptionKind::Assignments:
+        for (const auto& [key, value] : v.cast<py::dict>()) {
+          Assignment a;
+          a.key = key.cast<std::string>();
+          a.value = value.cast<double>();
+          a.source = s.name + " " + a.key + "=" + number_text(a.value);
+          auto g = make(a.key + "=" + number_text(a.value));
+          g.assignment = a;
+          given.push_back(std::move(g));
+        }
+        break;
+      case app::OptionKind::Text:
+      case app::OptionKind::Names:
+      case app::OptionKind::Choice:
+        given.push_back(make(v.cast<std::string>()));
+        break;
+    }
+  }
+  // The case's options go with the command's (the table's whole list: --params and --set too).
+  return with_keywords(command, [&] {
+    return cli::Arguments(command, {line.path}, std::move(given),
+                          app::command_options(command).options,
+                          app::command_options(command).positional);
+  });
 }
 
 }  // namespace sympathy::python

@@ -135,13 +135,9 @@ class Case {
       line_.path = py::str(py::module_::import("os").attr("fspath")(source)).cast<std::string>();
     }
     line_.params = params.value_or("");
-    if (set)
-      for (const auto& [k, v] : *set)
-        line_.sets.push_back(
-            py::str(k).cast<std::string>() + "=" +
-            py::repr(py::float_(py::reinterpret_borrow<py::object>(v))).cast<std::string>());
+    if (set) add_values(*set);
     try {
-      loaded_ = load(py::kwargs());
+      loaded_ = load();
     } catch (const InputError& e) {
       // Said here, while the dict's file is alive: the message names its key path.
       throw InputError(dict_message(e.what()));
@@ -157,21 +153,19 @@ class Case {
       d[py::str(name)] = loaded_->value_of(name);
     return d;
   }
-  // The same case with more --set values on top.
-  Case with_values(const py::kwargs& values) const {
+  // The same case with more values set on top.
+  Case with_values(const py::dict& values) const {
     Case c = *this;
-    for (const auto& [k, v] : values)
-      c.line_.sets.push_back(
-          py::str(k).cast<std::string>() + "=" +
-          py::repr(py::float_(py::reinterpret_borrow<py::object>(v))).cast<std::string>());
-    c.loaded_ = c.load(py::kwargs());
+    c.add_values(values);
+    c.loaded_ = c.load();
     return c;
   }
 
-  py::object simulate(const py::kwargs& kwargs) const {
-    const cli::Arguments args =
-        cli::Arguments(command_arguments("simulate", line_, kwargs, cli::simulate_options(),
-                                         {"params", "out", "verbose", "locked_pendula"}));
+  py::object simulate(const py::dict& keywords) const {
+    return with_keywords("simulate", [&] { return simulate_with(keywords); });
+  }
+  py::object simulate_with(const py::dict& keywords) const {
+    const cli::Arguments args = typed_arguments("simulate", line_, keywords);
     const std::vector<double> times = cli::simulation_times(args);
     const cli::LoadedSystem c(line_.path, line_.params, args.assignments("--set"));
     const app::BranchSource source =
@@ -207,9 +201,11 @@ class Case {
     return py::module_::import("types").attr("SimpleNamespace")(**fields);
   }
 
-  py::object orbit(const py::kwargs& kwargs) const {
-    const cli::Arguments args = command_arguments("orbit", line_, kwargs, cli::orbit_options(),
-                                                  {"params", "verbose", "json"});
+  py::object orbit(const py::dict& keywords) const {
+    return with_keywords("orbit", [&] { return orbit_with(keywords); });
+  }
+  py::object orbit_with(const py::dict& keywords) const {
+    const cli::Arguments args = typed_arguments("orbit", line_, keywords);
     const cli::LoadedSystem c = cli::load_system(args);
     c.require_orbits();
     if (c.equations() && args.flag("--whole-state"))
@@ -228,10 +224,11 @@ class Case {
     return orbit_result(c.system(), orbit, c.describer());
   }
 
-  py::object continue_branch(const py::object& progress, const py::kwargs& kwargs) const {
-    const cli::Arguments args =
-        command_arguments("continue_branch", line_, kwargs, cli::continue_options(),
-                          {"params", "quiet", "verbose", "json"});
+  py::object continue_branch(const py::dict& keywords, const py::object& progress) const {
+    return with_keywords("continue", [&] { return continue_with(keywords, progress); });
+  }
+  py::object continue_with(const py::dict& keywords, const py::object& progress) const {
+    const cli::Arguments args = typed_arguments("continue", line_, keywords);
     const cli::LoadedSystem c = cli::load_system(args);
     app::BranchRequest request = cli::continue_request(args, c);
     const app::BranchSource source = c.source(request.start, request.initial, request.start_data);
@@ -251,9 +248,11 @@ class Case {
     return branch_result(branch, c.describer());
   }
 
-  py::object equilibria(const py::object& progress, const py::kwargs& kwargs) const {
-    const cli::Arguments args = command_arguments(
-        "equilibria", line_, kwargs, cli::equilibria_options(), {"params", "quiet", "json"});
+  py::object equilibria(const py::dict& keywords, const py::object& progress) const {
+    return with_keywords("equilibria", [&] { return equilibria_with(keywords, progress); });
+  }
+  py::object equilibria_with(const py::dict& keywords, const py::object& progress) const {
+    const cli::Arguments args = typed_arguments("equilibria", line_, keywords);
     const cli::LoadedSystem c = cli::load_system(args);
     const cli::EquilibriaRequest request = cli::equilibria_request(args, c);
     const std::string parameter = c.system().parameter_names()[request.problem.parameter];
@@ -285,9 +284,11 @@ class Case {
     return equilibria_result(branch);
   }
 
-  py::object fit(const py::kwargs& kwargs) const {
-    const cli::Arguments args = command_arguments("fit", line_, kwargs, cli::fit_options(),
-                                                  {"params", "out", "json", "csv"});
+  py::object fit(const py::dict& keywords) const {
+    return with_keywords("fit", [&] { return fit_with(keywords); });
+  }
+  py::object fit_with(const py::dict& keywords) const {
+    const cli::Arguments args = typed_arguments("fit", line_, keywords);
     const cli::FitSetup setup = cli::fit_setup(args);
     const PreparedFit fit = setup.prepare();
     TrajectoryFitResult result;
@@ -298,9 +299,11 @@ class Case {
     return fit_result(*fit.model, fit, result);
   }
 
-  py::object curve(const py::object& progress, const py::kwargs& kwargs) const {
-    const cli::Arguments args = command_arguments("curve", line_, kwargs, cli::curve_options(),
-                                                  {"params", "quiet", "json"});
+  py::object curve(const py::dict& keywords, const py::object& progress) const {
+    return with_keywords("curve", [&] { return curve_with(keywords, progress); });
+  }
+  py::object curve_with(const py::dict& keywords, const py::object& progress) const {
+    const cli::Arguments args = typed_arguments("curve", line_, keywords);
     const cli::LoadedSystem c = cli::load_system(args);
     cli::CurveRequest request = cli::curve_request(args, c);
     const app::BranchSource source = c.source(request.branch.start, request.branch.initial);
@@ -337,10 +340,19 @@ class Case {
   }
 
  private:
-  // The case loaded as a call with `kwargs` loads it (the parameter set and --set checked).
-  std::shared_ptr<const cli::LoadedSystem> load(const py::kwargs& kwargs) const {
-    return std::make_shared<const cli::LoadedSystem>(
-        cli::load_system(command_arguments("Case", line_, kwargs, cli::orbit_options(), {})));
+  // The case loaded as a call loads it (the parameter set and values set checked).
+  std::shared_ptr<const cli::LoadedSystem> load() const {
+    return std::make_shared<const cli::LoadedSystem>(with_keywords(
+        "orbit", [&] { return cli::load_system(typed_arguments("orbit", line_, {})); }));
+  }
+  void add_values(const py::dict& values) {
+    for (const auto& [k, v] : values) {
+      Assignment a;
+      a.key = k.cast<std::string>();
+      a.value = v.cast<double>();
+      a.source = "set " + a.key;
+      line_.sets.push_back(a);
+    }
   }
 
   CaseLine line_;
@@ -352,10 +364,10 @@ class Case {
 // their CSV files written to `out` as the program writes them. The branches run on threads of
 // their own; this one waits, checking for signals every 50 ms (Python runs its handlers on the
 // main thread only, which the branches' own stop checks are not on).
-py::object study(const std::string& path, const py::kwargs& kwargs) {
-  const cli::Arguments args =
-      command_arguments("study", CaseLine{path, "", {}}, kwargs, cli::study_options(), {});
-  cli::StudyRun run = cli::study_run(args);
+py::object study(const std::string& path, const py::dict& keywords) {
+  cli::StudyRun run = with_keywords("study", [&] {
+    return cli::study_run(typed_arguments("study", CaseLine{path, "", {}}, keywords));
+  });
   std::atomic<bool> stop{false}, done{false};
   std::exception_ptr failure;
   PythonHooks hooks{py::none()};
@@ -394,18 +406,14 @@ py::object study(const std::string& path, const py::kwargs& kwargs) {
 
 }  // namespace sympathy::python
 
-PYBIND11_MODULE(sympathy, m) {
+PYBIND11_MODULE(_core, m) {
   namespace py = pybind11;
   using namespace sympathy;
   using sympathy::python::Case;
-  m.def("study", &sympathy::python::study, py::arg("path"),
-        "sympathy study: the branches of a study file (cases/figures/*.toml), side by side "
-        "(jobs=2), their CSV files written to out (default out/figures); a dict of branches by "
-        "name, each as continue_branch returns it, with `error` (why it has none, or '')");
   m.doc() =
-      "Periodic orbits, their Floquet multipliers, branches and bifurcations (sympathy's engine). "
-      "Keyword arguments are the options of the command of the same name (sympathy continue "
-      "--max-step 0.05: max_step=0.05; --from: from_), with its defaults and checks.";
+      "sympathy's engine, for the package sympathy (python/sympathy/__init__.py), which builds its "
+      "functions' signatures from command_options and checks their keywords' types: every call "
+      "here takes a dict of checked keywords.";
   // Every result holds NumPy arrays: without NumPy the module says so at import, not after a
   // computation has run to its end.
   try {
@@ -427,42 +435,23 @@ PYBIND11_MODULE(sympathy, m) {
     }
   });
   py::register_exception<OutputError>(m, "OutputError", PyExc_OSError);
-
-  py::class_<Case>(m, "Case",
-                   "A case file (metronome or equation case file; a path, or a dict of its "
-                   "contents) with a parameter set and values set on top (set={'k': 20.0}).")
+  m.def("commands", &sympathy::python::python_commands);
+  m.def("command_options", &sympathy::python::option_table, py::arg("command"));
+  m.def("study", &sympathy::python::study, py::arg("path"), py::arg("keywords"));
+  py::class_<Case>(m, "Case")
       .def(py::init<const py::object&, const std::optional<std::string>&,
                     const std::optional<py::dict>&>(),
            py::arg("source"), py::arg("params") = py::none(), py::arg("set") = py::none())
       .def_property_readonly("path", &Case::path)
-      .def_property_readonly("params", &Case::params, "the parameter set applied")
-      .def_property_readonly("parameters", &Case::parameters,
-                             "every parameter's value, by name (dict)")
+      .def_property_readonly("params", &Case::params)
+      .def_property_readonly("parameters", &Case::parameters)
       .def_property_readonly("state_names", &Case::state_names)
-      .def("with_values", &Case::with_values,
-           "the same case with these parameter values set on top (k=20.0)")
-      .def("simulate", &Case::simulate,
-           "sympathy simulate: t and states (NumPy arrays) from start= or initial=; options "
-           "t_end, dt, rtol, atol, method, ...")
-      .def("orbit", &Case::orbit,
-           "sympathy orbit: a periodic orbit with its multipliers (complex array), kinds, "
-           "stability and accuracy; options start, initial, segments, transient, accuracy, ...")
-      .def("continue_branch", &Case::continue_branch, py::arg("progress") = py::none(),
-           "sympathy continue: a branch (points as NumPy arrays, events as objects); options "
-           "param, from_, to, at, start, step, max_step, max_points, switch_at, ...; "
-           "progress(point) is called per point (progress=True: a tqdm bar, when tqdm is "
-           "installed); Ctrl-C returns the points so far, stop "
-           "'interrupted'")
-      .def("equilibria", &Case::equilibria, py::arg("progress") = py::none(),
-           "sympathy equilibria: a branch of equilibria (points: value, state, eigenvalues, "
-           "unstable; events LP, BP, HB with omega, period and lyapunov); options param, from_, "
-           "to, at, start, step, max_step, max_points; progress(point) per point")
-      .def("fit", &Case::fit,
-           "sympathy fit: parameters (free=['d', 's']) and initial values (free_initial=['th1']) "
-           "fitted to a recording (data='FILE.csv'): names, values, errors, correlation, rss, "
-           "converged, stop_reason, parameters (the fitted values by name)")
-      .def("curve", &Case::curve, py::arg("progress") = py::none(),
-           "sympathy curve: the two-parameter curve of a branch's event (event='NS1', "
-           "second='c', second_from, second_to; the branch as continue_branch computes it, "
-           "result.branch); progress(point) per curve point");
+      .def("with_values", &Case::with_values, py::arg("values"))
+      .def("simulate", &Case::simulate, py::arg("keywords"))
+      .def("orbit", &Case::orbit, py::arg("keywords"))
+      .def("continue_branch", &Case::continue_branch, py::arg("keywords"),
+           py::arg("progress") = py::none())
+      .def("equilibria", &Case::equilibria, py::arg("keywords"), py::arg("progress") = py::none())
+      .def("fit", &Case::fit, py::arg("keywords"))
+      .def("curve", &Case::curve, py::arg("keywords"), py::arg("progress") = py::none());
 }

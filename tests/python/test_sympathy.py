@@ -180,11 +180,11 @@ def test_import_without_numpy_says_so():
 
 def test_bad_options_raise_input_error_naming_the_option():
     case = sympathy.Case(ROW2)
-    with pytest.raises(sympathy.InputError, match=r"^--step: expected a positive number"):
+    with pytest.raises(sympathy.InputError, match=r"^step: expected a positive number"):
         case.continue_branch(start="anti-phase", param="k", from_=1, to=100, step=-1)
-    with pytest.raises(ValueError, match=r"--param q: not a parameter of .*expected one of"):
+    with pytest.raises(ValueError, match=r"^param q: not a parameter of .*expected one of"):
         case.continue_branch(start="anti-phase", param="q", from_=1, to=100)
-    with pytest.raises(sympathy.InputError, match=r"--start nowhere"):
+    with pytest.raises(sympathy.InputError, match=r"start nowhere"):
         case.orbit(start="nowhere")
     with pytest.raises(TypeError, match=r"unexpected keyword argument 'max_stp'"):
         case.continue_branch(start="anti-phase", param="k", from_=1, to=100, max_stp=0.1)
@@ -233,7 +233,7 @@ def test_curve_equals_the_program():
     assert not printed and all(b < a for a, b in zip(curve.points.first, curve.points.first[1:]))
     branch_points = int(re.search(r"^  the branch: (\d+) points", stdout, re.M).group(1))
     assert len(curve.branch.points.value) == branch_points and curve.branch.events[0].type == "BP"
-    with pytest.raises(sympathy.InputError, match=r"--event NS1: the branch has no such event"):
+    with pytest.raises(sympathy.InputError, match=r"^event NS1: the branch has no such event"):
         sympathy.Case(ROW2).curve(start="anti-phase", param="k", from_=46, to=48, event="NS1",
                                   second="c", second_from=0.0185, second_to=0.021,
                                   accuracy="fast")
@@ -354,3 +354,72 @@ def test_equilibria_equal_the_program():
     assert first.lyapunov < 0  # supercritical
     assert len(seen) == len(branch.points.value) and branch.stop == "parameter bound"
     assert branch.points.eigenvalues.shape == (len(seen), 3)
+
+
+def test_signatures_list_every_keyword_with_its_type_and_default():
+    # Every public function's keywords are the command's options (the one option table): real
+    # signatures for inspect, help() and IDEs; None leaves an option to the command's default,
+    # and a required option has no default.
+    import inspect
+    import pydoc
+    import sympathy._core as core  # type: ignore[import]  # the extension has no stubs
+
+    for name, (command, _, progress) in sympathy._FUNCTIONS.items():
+        for function in (getattr(sympathy, name), getattr(sympathy.Case, name)):
+            sig = inspect.signature(function)
+            keywords = [p for p in sig.parameters.values()
+                        if p.kind == inspect.Parameter.KEYWORD_ONLY]
+            table = core.command_options(command)
+            assert [p.name for p in keywords] == \
+                [o["keyword"] for o in table] + (["progress"] if progress else [])
+            for p, o in zip(keywords, table):
+                assert (p.default is inspect.Parameter.empty) == o["required"], p.name
+            assert o["help"] in function.__doc__
+            assert name in pydoc.render_doc(function)
+    sig = inspect.signature(sympathy.continue_branch)
+    assert sig.parameters["from_"].default is inspect.Parameter.empty  # required
+    assert sig.parameters["max_points"].default is None
+    assert "``max_points`` (int)" in sympathy.continue_branch.__doc__
+    assert "global_" in inspect.signature(sympathy.fit).parameters  # --global
+
+
+def test_wrong_types_raise_type_error_and_bad_values_input_error_naming_the_keyword():
+    case = sympathy.Case(HOPF)
+    window = dict(param="mu", from_=0.25, to=0.3)
+    for bad, expected in [(dict(from_="0.25"), r"from_ must be a float or an int, not str"),
+                          (dict(max_points=1.5), r"max_points must be an int, not float"),
+                          (dict(max_points=True), r"max_points must be an int, not bool"),
+                          (dict(user_points="0.3"), r"user_points must be a sequence of floats"),
+                          (dict(method=1), r"method must be a str, not int"),
+                          (dict(initial=[0.1]), r"initial must be a mapping of str to float")]:
+        with pytest.raises(TypeError, match=expected):
+            case.continue_branch(**{**window, **bad})
+    for bad, expected in [(dict(method="rk4"), r"^method rk4: expected bdf, adams or erk"),
+                          (dict(max_points=0), r"^max_points"),
+                          (dict(step=float("nan")), r"^step nan: expected a finite number"),
+                          (dict(param="q"), r"^param q: not a parameter")]:
+        with pytest.raises(sympathy.InputError, match=expected):
+            case.continue_branch(**{**window, **bad})
+    with pytest.raises(TypeError, match=r"missing a required argument: 'to'"):
+        sympathy.continue_branch(HOPF, param="mu", from_=0.25)
+
+
+def test_module_functions_take_a_path_a_dict_or_a_case_and_values_as_values():
+    # sympathy.orbit(path) is Case(path).orbit(); a number reaches the engine as the float it
+    # is (0.1 + 0.2 is the branch's first value to the last bit), a path object as a path.
+    import pathlib
+    by_path = sympathy.orbit(pathlib.Path(HOPF))
+    by_case = sympathy.Case(HOPF).orbit()
+    assert by_path.period == by_case.period and by_path.stability == by_case.stability
+    start = 0.1 + 0.2
+    branch = sympathy.continue_branch(HOPF, param="mu", from_=start, to=0.35, max_points=3)
+    assert branch.points.value[0] == start
+
+
+def test_type_stubs_are_the_option_tables():
+    # python/sympathy/__init__.pyi is generated from the table (scripts/python_stubs); mypy
+    # checks the tests against it (ctest python.types).
+    import sympathy._options as options
+    with open(os.path.join(SOURCE, "python/sympathy/__init__.pyi")) as f:
+        assert f.read() == options.stub_text(sympathy._FUNCTIONS), \
+            "the stubs differ from the option table: run scripts/python_stubs"

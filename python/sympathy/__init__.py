@@ -1,0 +1,151 @@
+"""Periodic orbits, their Floquet multipliers, branches and bifurcations: sympathy from Python.
+
+A case file of either kind (or a dict of its contents) is a :class:`Case`; the commands
+``simulate``, ``orbit``, ``continue`` (:func:`continue_branch`), ``curve``, ``equilibria``, ``fit``
+and ``study`` are functions of the same names, and methods of a Case, run on the same code as the
+program. Their keywords are the command's options (``max_step=0.05`` for ``--max-step 0.05``;
+``from_`` for ``--from``), typed: ``inspect.signature`` and ``help()`` list them with their types,
+and each is checked before any work (``TypeError`` for a wrong type, :class:`InputError` for a bad
+value, naming the keyword). Results are NumPy arrays and plain objects.
+"""
+
+from __future__ import annotations
+
+import functools
+import inspect
+import os
+from collections.abc import Mapping
+from typing import Any, Optional, Union
+
+from . import _core, _options
+from ._core import InputError, OutputError
+
+# Raised as sympathy.InputError (a ValueError) and sympathy.OutputError (an OSError).
+InputError.__module__ = OutputError.__module__ = __name__
+
+__all__ = ["Case", "InputError", "OutputError", "simulate", "orbit", "continue_branch", "curve",
+           "equilibria", "fit", "study"]
+
+# Each function: the command it runs, what it does (the first line of its docstring), and whether
+# it reports progress.
+_FUNCTIONS = {
+    "simulate": ("simulate", "sympathy simulate: t and states (NumPy arrays) from a start.",
+                 False),
+    "orbit": ("orbit", "sympathy orbit: a periodic orbit with its Floquet multipliers, their "
+              "kinds, its stability and accuracy.", False),
+    "continue_branch": ("continue", "sympathy continue: a branch of periodic orbits, its points "
+                        "as NumPy arrays and its events as objects; Ctrl-C returns the points so "
+                        "far, stop 'interrupted'.", True),
+    "equilibria": ("equilibria", "sympathy equilibria: a branch of equilibria with its LP, BP "
+                   "and HB points.", True),
+    "fit": ("fit", "sympathy fit: parameters and initial values fitted to a recording.", False),
+    "curve": ("curve", "sympathy curve: the two-parameter curve of a branch's event (the branch "
+              "as continue_branch computes it: result.branch).", True),
+}
+
+CaseSource = Union[str, os.PathLike, Mapping[str, Any]]
+
+
+class Case:
+    """A case file (metronome or equation case file; a path, or a dict of its contents) with a
+    parameter set and values set on top (``set={'k': 20.0}``)."""
+
+    def __init__(self, source: CaseSource, params: Optional[str] = None,
+                 set: Optional[Mapping[str, float]] = None) -> None:
+        if params is not None and not isinstance(params, str):
+            raise TypeError(f"Case(): params must be a str, not {type(params).__name__}")
+        values = _options.checked("Case", {"kind": "assignments", "keyword": "set"},
+                                  set) if set is not None else None
+        if not isinstance(source, Mapping):
+            source = os.fspath(source)
+        self._core = _core.Case(source if not isinstance(source, Mapping) else dict(source),
+                                params, values)
+
+    @property
+    def path(self) -> str:
+        """The case file (for a dict, the file written from it)."""
+        return self._core.path
+
+    @property
+    def params(self) -> str:
+        """The parameter set applied."""
+        return self._core.params
+
+    @property
+    def parameters(self) -> dict[str, float]:
+        """Every parameter's value, by name."""
+        return self._core.parameters
+
+    @property
+    def state_names(self) -> list[str]:
+        """The states' names, in the order of the states' arrays."""
+        return self._core.state_names
+
+    def with_values(self, **values: float) -> "Case":
+        """The same case with these parameter values set on top (``k=20.0``)."""
+        checked = _options.checked("with_values", {"kind": "assignments", "keyword": "values"},
+                                   values)
+        c = Case.__new__(Case)
+        c._core = self._core.with_values(checked)
+        return c
+
+    def __repr__(self) -> str:
+        return f"sympathy.Case({self.path!r}, params={self.params!r})"
+
+
+def _as_case(case: Union[Case, CaseSource]) -> Case:
+    return case if isinstance(case, Case) else Case(case)
+
+
+def _function(name: str, method: bool) -> Any:
+    command, summary, progress = _FUNCTIONS[name]
+    first = [inspect.Parameter("self" if method else "case",
+                               inspect.Parameter.POSITIONAL_ONLY,
+                               annotation=Case if method else Union[Case, CaseSource])]
+    sig = _options.signature(command, first, progress, Any)
+    where = f"Case.{name}" if method else name
+
+    def call(*args: Any, **kwargs: Any) -> Any:
+        bound = _options.keywords(where, command, sig, args, kwargs)
+        case = _as_case(bound.arguments["self" if method else "case"])
+        given = _options.engine_keywords(where, command, bound)
+        run = getattr(case._core, name)
+        if progress:
+            return run(given, bound.arguments.get("progress"))
+        return run(given)
+
+    call.__name__ = name
+    call.__qualname__ = where
+    call.__doc__ = _options.docstring(command, summary, progress)
+    call.__signature__ = sig  # type: ignore[attr-defined]
+    call.__module__ = __name__
+    return call
+
+
+for _name in _FUNCTIONS:
+    setattr(Case, _name, _function(_name, method=True))
+    globals()[_name] = _function(_name, method=False)
+
+
+def _study() -> Any:
+    summary = ("sympathy study: the branches of a study file (``cases/figures/*.toml``) side by "
+               "side, their CSV files written to out as the program writes them; a namespace "
+               "with title, parameter and branches (a dict by name, each as continue_branch "
+               "returns it, with error: why it has none, or '').")
+    first = [inspect.Parameter("path", inspect.Parameter.POSITIONAL_ONLY,
+                               annotation=Union[str, os.PathLike])]
+    sig = _options.signature("study", first, False, Any)
+
+    def study(*args: Any, **kwargs: Any) -> Any:
+        bound = _options.keywords("study", "study", sig, args, kwargs)
+        path = os.fspath(bound.arguments["path"])
+        return _core.study(path, _options.engine_keywords("study", "study", bound))
+
+    study.__qualname__ = "study"
+    study.__doc__ = _options.docstring("study", summary, False)
+    study.__signature__ = sig  # type: ignore[attr-defined]
+    return study
+
+
+study = _study()
+del _name
