@@ -47,3 +47,22 @@ if [[ -x "$tmp/prefix/bin/sympathy" ]]; then
   grep -q "$tmp/prefix/include" "$tmp/cache/"*.cpp 2>/dev/null && exit 1  # no paths in the source
   echo "ok: compiled against $tmp/prefix/include"
 fi
+
+# The Python package where `cmake --install` put it (PREFIX/lib/python3.X/dist-packages under a
+# prefix other than /usr): imported from there alone and run on an equation case file.
+init=$(find "$tmp/prefix" -path '*-packages/sympathy/__init__.py' | head -1)
+if [[ -n "$init" ]]; then
+  step "the installed Python package"
+  site=$(dirname "$(dirname "$init")")
+  for f in _options.py __init__.pyi py.typed; do
+    [[ -f "$site/sympathy/$f" ]] || { echo "not installed: sympathy/$f"; exit 1; }
+  done
+  ls "$site"/sympathy/_core*.so > /dev/null || { echo "not installed: sympathy/_core"; exit 1; }
+  (cd "$tmp" && PYTHONPATH="$site" SYMPATHY_INCLUDE_DIR="$tmp/prefix/include" \
+     SYMPATHY_CACHE_DIR="$tmp/cache" /usr/bin/python3 -c "
+import sympathy
+assert sympathy.__file__.startswith('$site'), sympathy.__file__
+orbit = sympathy.orbit('$example/../../cases/examples/hopf.toml')
+assert abs(orbit.period - 6.283185307) < 1e-8, orbit.period
+print('ok: sympathy imported from', '$site', 'period', orbit.period)")
+fi
