@@ -23,6 +23,7 @@ std::vector<std::string> left_out(const std::string& command) {
   if (command == "equilibria") add({"--quiet", "--json"});
   if (command == "curve") add({"--quiet", "--json"});
   if (command == "fit") add({"--out", "--json", "--csv"});
+  if (command == "map") add({"--quiet"});
   return out;
 }
 
@@ -61,7 +62,7 @@ std::string number_text(double x) {
 }  // namespace
 
 std::vector<std::string> python_commands() {
-  return {"simulate", "orbit", "continue", "curve", "equilibria", "fit", "study"};
+  return {"simulate", "orbit", "continue", "curve", "equilibria", "fit", "study", "map"};
 }
 
 std::vector<app::OptionSpec> python_options(const std::string& command) {

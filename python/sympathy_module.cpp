@@ -23,6 +23,7 @@
 #include <pybind11/stl.h>
 
 #include "case_dict.hpp"
+#include "cases/app/map_run.hpp"
 #include "cases/cli/case_arguments.hpp"
 #include "cases/cli/requests.hpp"
 #include "python_options.hpp"
@@ -364,18 +365,19 @@ class Case {
 // their CSV files written to `out` as the program writes them. The branches run on threads of
 // their own; this one waits, checking for signals every 50 ms (Python runs its handlers on the
 // main thread only, which the branches' own stop checks are not on).
-py::object study(const std::string& path, const py::dict& keywords) {
-  cli::StudyRun run = with_keywords("study", [&] {
-    return cli::study_run(typed_arguments("study", CaseLine{path, "", {}}, keywords));
-  });
+// Runs `work(stop)` on a thread of its own while this one waits without the GIL, checking for
+// signals every 50 ms (Python runs its handlers on the main thread only, which the work's own stop
+// checks are not on): Ctrl-C sets `stop`, and the work returns what it has.
+template <class Work>
+void on_worker_thread(Work&& work) {
   std::atomic<bool> stop{false}, done{false};
   std::exception_ptr failure;
   PythonHooks hooks{py::none()};
   {
     py::gil_scoped_release release;
-    std::thread branches([&] {
+    std::thread worker([&] {
       try {
-        cli::run_study_branches(run, &stop, nullptr);
+        work(&stop);
       } catch (...) {
         failure = std::current_exception();
       }
@@ -385,10 +387,18 @@ py::object study(const std::string& path, const py::dict& keywords) {
       std::this_thread::sleep_for(std::chrono::milliseconds(50));
       if (!done && hooks.stop_requested()) stop = true;
     }
-    branches.join();
+    worker.join();
   }
   hooks.raise_kept();
   if (failure) std::rethrow_exception(failure);
+}
+
+py::object study(const std::string& path, const py::dict& keywords) {
+  cli::StudyRun run = with_keywords("study", [&] {
+    return cli::study_run(typed_arguments("study", CaseLine{path, "", {}}, keywords));
+  });
+  on_worker_thread(
+      [&](const std::atomic<bool>* stop) { cli::run_study_branches(run, stop, nullptr); });
   py::dict branches;
   for (std::size_t i = 0; i < run.study.branches.size(); ++i) {
     py::object b = branch_result(run.results[i], run.systems[i]->describer());
@@ -399,6 +409,54 @@ py::object study(const std::string& path, const py::dict& keywords) {
   fields["title"] = run.study.title;
   fields["parameter"] = run.study.parameter;
   fields["branches"] = branches;
+  return py::module_::import("types").attr("SimpleNamespace")(**fields);
+}
+
+// sympathy map: the map file's orbits, their branches, event curves and stability grids, computed
+// side by side as the program computes them, the JSON and CSV files written to `out`.
+py::object map(const std::string& path, const py::dict& keywords) {
+  app::MapRun run = with_keywords("map", [&] {
+    const cli::Arguments args = typed_arguments("map", CaseLine{path, "", {}}, keywords);
+    app::MapRequest request;
+    request.path = path;
+    request.out = args.text("--out", request.out);
+    request.jobs = args.integer("--jobs", request.jobs);
+    if (args.has("--accuracy")) request.accuracy = cli::accuracy(args);
+    return app::prepare_map(request);
+  });
+  const Stopwatch clock;
+  on_worker_thread([&](const std::atomic<bool>* stop) { app::run_map(run, stop, {}); });
+  app::write_map(run, clock.seconds());
+  py::list orbits;
+  for (std::size_t i = 0; i < run.map.orbits.size(); ++i) {
+    const app::MapOrbitResult& r = run.results[i];
+    py::dict o;
+    o["name"] = run.map.orbits[i].name;
+    o["start"] = run.map.orbits[i].start;
+    o["branch"] = branch_result(r.branch, run.system->describer());
+    py::list curves;
+    for (const auto& curve : r.curves) curves.append(curve_result(curve));
+    o["curves"] = curves;
+    if (r.grid.first.empty()) {
+      o["grid"] = py::none();
+    } else {
+      py::dict g;
+      g["first"] = r.grid.first;
+      g["second"] = r.grid.second;
+      g["unstable_count"] = r.grid.unstable_count;
+      o["grid"] = py::module_::import("types").attr("SimpleNamespace")(**g);
+    }
+    o["error"] = r.error;
+    o["seconds"] = r.seconds;
+    orbits.append(py::module_::import("types").attr("SimpleNamespace")(**o));
+  }
+  py::dict fields;
+  fields["name"] = run.map.name;
+  fields["title"] = run.map.title;
+  fields["first"] = run.map.first.parameter;
+  fields["second"] = run.map.second.parameter;
+  fields["json"] = run.json_path;
+  fields["orbits"] = orbits;
   return py::module_::import("types").attr("SimpleNamespace")(**fields);
 }
 
@@ -438,6 +496,7 @@ PYBIND11_MODULE(_core, m) {
   m.def("commands", &sympathy::python::python_commands);
   m.def("command_options", &sympathy::python::option_table, py::arg("command"));
   m.def("study", &sympathy::python::study, py::arg("path"), py::arg("keywords"));
+  m.def("map", &sympathy::python::map, py::arg("path"), py::arg("keywords"));
   py::class_<Case>(m, "Case")
       .def(py::init<const py::object&, const std::optional<std::string>&,
                     const std::optional<py::dict>&>(),

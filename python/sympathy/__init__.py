@@ -23,6 +23,7 @@ from ._core import InputError, OutputError
 # Raised as sympathy.InputError (a ValueError) and sympathy.OutputError (an OSError).
 InputError.__module__ = OutputError.__module__ = __name__
 
+# Not `map`: `from sympathy import *` would hide Python's own (sympathy.map is the command).
 __all__ = ["Case", "InputError", "OutputError", "simulate", "orbit", "continue_branch", "curve",
            "equilibria", "fit", "study"]
 
@@ -127,25 +128,34 @@ for _name in _FUNCTIONS:
     globals()[_name] = _function(_name, method=False)
 
 
-def _study() -> Any:
-    summary = ("sympathy study: the branches of a study file (``cases/figures/*.toml``) side by "
-               "side, their CSV files written to out as the program writes them; a namespace "
-               "with title, parameter and branches (a dict by name, each as continue_branch "
-               "returns it, with error: why it has none, or '').")
+def _file_function(command: str, summary: str) -> Any:
+    """A command whose argument is a file of its own (a study file, a map file)."""
     first = [inspect.Parameter("path", inspect.Parameter.POSITIONAL_ONLY,
                                annotation=Union[str, os.PathLike])]
-    sig = _options.signature("study", first, False, Any)
+    sig = _options.signature(command, first, False, Any)
+    run = getattr(_core, command)
 
-    def study(*args: Any, **kwargs: Any) -> Any:
-        bound = _options.keywords("study", "study", sig, args, kwargs)
+    def call(*args: Any, **kwargs: Any) -> Any:
+        bound = _options.keywords(command, command, sig, args, kwargs)
         path = os.fspath(bound.arguments["path"])
-        return _core.study(path, _options.engine_keywords("study", "study", bound))
+        return run(path, _options.engine_keywords(command, command, bound))
 
-    study.__qualname__ = "study"
-    study.__doc__ = _options.docstring("study", summary, False)
-    study.__signature__ = sig  # type: ignore[attr-defined]
-    return study
+    call.__name__ = call.__qualname__ = command
+    call.__doc__ = _options.docstring(command, summary, False)
+    call.__signature__ = sig  # type: ignore[attr-defined]
+    call.__module__ = __name__
+    return call
 
 
-study = _study()
+study = _file_function("study", (
+    "sympathy study: the branches of a study file (``cases/figures/*.toml``) side by side, their "
+    "CSV files written to out as the program writes them; a namespace with title, parameter and "
+    "branches (a dict by name, each as continue_branch returns it, with error: why it has none, "
+    "or ''). Ctrl-C returns the branches so far."))
+map = _file_function("map", (
+    "sympathy map: where each orbit of a map file (``cases/figures/map_*.toml``) is stable in two "
+    "parameters: its branch, the curve of every event on it in both parameters and its stability "
+    "on a grid, the JSON and CSV files written to out; a namespace with name, title, first, "
+    "second, json (the JSON's path) and orbits (each with name, branch, curves, grid: first, "
+    "second, unstable_count, or None, error). Ctrl-C returns what was computed."))
 del _name

@@ -316,3 +316,11 @@ def study(
     quiet: bool | None = ...,
     accuracy: Literal['fast', 'default', 'high'] | None = ...,
 ) -> Any: ...
+def map(
+    path: str | os.PathLike[str],
+    /,
+    *,
+    out: str | os.PathLike[str] | None = ...,
+    jobs: int | None = ...,
+    accuracy: Literal['fast', 'default', 'high'] | None = ...,
+) -> Any: ...

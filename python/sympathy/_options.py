@@ -284,4 +284,5 @@ def stub_text(functions: dict) -> str:
     for name, (command, _, progress) in functions.items():
         lines += define(name, "case: Case | CaseSource", command, progress, "")
     lines += define("study", "path: str | os.PathLike[str]", "study", False, "")
+    lines += define("map", "path: str | os.PathLike[str]", "map", False, "")
     return "\n".join(lines) + "\n"

@@ -423,3 +423,36 @@ def test_type_stubs_are_the_option_tables():
     with open(os.path.join(SOURCE, "python/sympathy/__init__.pyi")) as f:
         assert f.read() == options.stub_text(sympathy._FUNCTIONS), \
             "the stubs differ from the option table: run scripts/python_stubs"
+
+
+def test_map_equals_the_program(tmp_path):
+    # A small map (the anti-phase orbit near its BP, the BP curve in c, a 3 x 2 stability grid)
+    # by the program and by Python: the same curves, grid and events, to the last digit of the
+    # JSON both write.
+    import json
+    map_file = tmp_path / "map_small.toml"
+    map_file.write_text(
+        f'title = "small"\ncase = "{ROW2}"\nparams = "table2"\n'
+        '[first]\nparameter = "k"\nfrom = 45.0\nto = 49.0\npoints = 3\n'
+        '[second]\nparameter = "c"\nfrom = 0.0185\nto = 0.03\npoints = 2\n'
+        '[[orbits]]\nname = "anti-phase"\nstart = "anti-phase"\n')
+    cli("map", str(map_file), "--out", str(tmp_path / "cli"), "--quiet")
+    result = sympathy.map(map_file, out=tmp_path / "py", jobs=1)
+    assert result.json == str(tmp_path / "py" / "map_small.json")
+    def timeless(j):  # run times differ; nothing else may
+        if isinstance(j, dict):
+            return {k: timeless(v) for k, v in j.items() if k != "seconds"}
+        return [timeless(v) for v in j] if isinstance(j, list) else j
+
+    program = timeless(json.load(open(tmp_path / "cli" / "map_small.json")))
+    python = timeless(json.load(open(result.json)))
+    assert program["orbits"] == python["orbits"]
+    assert [c["kind"] for c in python["orbits"][0]["curves"]] == ["BP"]
+    orbit = result.orbits[0]
+    assert orbit.error == "" and orbit.curves[0].kind == "BP"
+    assert orbit.grid.unstable_count == [[1, 1, 0], [1, 1, 0]]
+    assert [e.type for e in orbit.branch.events] == ["BP"]
+    with pytest.raises(TypeError, match=r"jobs must be an int"):
+        sympathy.map(map_file, jobs="2")
+    with pytest.raises(sympathy.InputError, match=r"^jobs: expected a positive integer"):
+        sympathy.map(map_file, jobs=0)
