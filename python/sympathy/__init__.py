@@ -19,13 +19,14 @@ from typing import Any, Optional, Union
 
 from . import _core, _options
 from ._core import InputError, OutputError
+from ._load import load
 
 # Raised as sympathy.InputError (a ValueError) and sympathy.OutputError (an OSError).
 InputError.__module__ = OutputError.__module__ = __name__
 
 # Not `map`: `from sympathy import *` would hide Python's own (sympathy.map is the command).
 __all__ = ["Case", "InputError", "OutputError", "simulate", "orbit", "continue_branch", "curve",
-           "equilibria", "fit", "study"]
+           "equilibria", "fit", "study", "load"]
 
 # Each function: the command it runs, what it does (the first line of its docstring), and whether
 # it reports progress.

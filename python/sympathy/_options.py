@@ -285,4 +285,5 @@ def stub_text(functions: dict) -> str:
         lines += define(name, "case: Case | CaseSource", command, progress, "")
     lines += define("study", "path: str | os.PathLike[str]", "study", False, "")
     lines += define("map", "path: str | os.PathLike[str]", "map", False, "")
+    lines += ["def load(path: str | os.PathLike[str]) -> Any: ..."]
     return "\n".join(lines) + "\n"

@@ -456,3 +456,32 @@ def test_map_equals_the_program(tmp_path):
         sympathy.map(map_file, jobs="2")
     with pytest.raises(sympathy.InputError, match=r"^jobs: expected a positive integer"):
         sympathy.map(map_file, jobs=0)
+
+
+def test_load_gives_back_what_the_program_wrote(tmp_path):
+    # AUTO's load: the JSON `continue --json`, `orbit --json`, `equilibria --json` write, read
+    # back; its numbers are the ones the functions return for the same request, to the last bit.
+    branch_json, orbit_json, eq_json = (str(tmp_path / f) for f in ("b.json", "o.json", "e.json"))
+    cli("continue", HOPF, "--param", "mu", "--from", "0.25", "--to", "1", "--user-points", "0.5",
+        "--quiet", "--json", branch_json)
+    cli("orbit", HOPF, "--json", orbit_json)
+    cli("equilibria", HOPF, "--param", "mu", "--from", "0", "--to", "0.5", "--quiet",
+        "--json", eq_json)
+    loaded = sympathy.load(branch_json)
+    branch = sympathy.continue_branch(HOPF, param="mu", from_=0.25, to=1, user_points=[0.5])
+    assert loaded.kind == "branch" and loaded.stop == branch.stop
+    assert np.array_equal(loaded.points.value, branch.points.value)
+    assert np.array_equal(loaded.points.period, branch.points.period)
+    assert np.array_equal(loaded.points.multipliers, branch.points.multipliers)
+    assert [(e.type, e.value) for e in loaded.events] == \
+        [(e.type, e.value) for e in branch.events]
+    orbit = sympathy.load(orbit_json)
+    assert orbit.kind == "orbit" and orbit.period == sympathy.orbit(HOPF).period
+    assert np.array_equal(orbit.multipliers, sympathy.orbit(HOPF).multipliers)
+    eq = sympathy.load(eq_json)
+    assert eq.kind == "equilibria"
+    assert np.array_equal(eq.points.value,
+                          sympathy.equilibria(HOPF, param="mu", from_=0, to=0.5).points.value)
+    (tmp_path / "x.json").write_text('{"a": 1}')
+    with pytest.raises(sympathy.InputError, match=r"x.json: expected a JSON the program writes"):
+        sympathy.load(tmp_path / "x.json")

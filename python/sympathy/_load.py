@@ -1,0 +1,109 @@
+"""sympathy.load: any JSON the program writes, read back as the functions return their results.
+
+AUTO's ``load``: an orbit (``orbit --json``), a branch (``continue --json``), a curve
+(``curve --json``), equilibria (``equilibria --json``), a study's or a map's JSON, as one object
+whose ``kind`` says which, with the JSON's keys as attributes: points along a branch or curve as
+NumPy arrays by key (multipliers and eigenvalues complex, one row a point), events as objects,
+a study's branches as a dict by name, a map's orbits as a list.
+"""
+
+from __future__ import annotations
+
+import json
+import os
+from types import SimpleNamespace
+from typing import Any, Union
+
+import numpy as np
+
+from ._core import InputError
+
+# Keys whose values are lists of [re, im] pairs.
+_COMPLEX = ("multipliers", "eigenvalues")
+
+
+def _complex(value: Any) -> Any:
+    a = np.asarray(value, dtype=float)
+    return a[..., 0] + 1j * a[..., 1] if a.ndim >= 1 and a.shape[-1:] == (2,) else a
+
+
+def _array(key: str, values: list) -> Any:
+    """A key's values along the points: an array where they make one, else the list."""
+    try:
+        if key in _COMPLEX:
+            return _complex(values)
+        if all(isinstance(v, dict) for v in values):  # the describer's groups, by label
+            return {k: np.asarray([v[k] for v in values]) for k in values[0]} if values else {}
+        a = np.asarray(values)
+        return a if a.dtype != object else values
+    except (ValueError, TypeError, KeyError):
+        return values
+
+
+def _points(points: list) -> SimpleNamespace:
+    keys = list(points[0].keys()) if points else []
+    return SimpleNamespace(**{k: _array(k, [p.get(k) for p in points]) for k in keys})
+
+
+def _object(j: dict) -> SimpleNamespace:
+    """A JSON object with its events, points, branches and curves converted."""
+    out = {}
+    for k, v in j.items():
+        if k == "points" and isinstance(v, list):
+            out[k] = _points(v)
+        elif k in ("events",) and isinstance(v, list):
+            out[k] = [_object(e) for e in v]
+        elif k in ("branch",) and isinstance(v, dict):
+            out[k] = _object(v)
+        elif k in ("curves", "orbits", "branches") and isinstance(v, list):
+            out[k] = [_object(x) for x in v]
+        elif k in _COMPLEX and isinstance(v, list):
+            out[k] = _complex(v)
+        elif k == "hopf" and isinstance(v, dict):
+            out[k] = SimpleNamespace(**v)
+        else:
+            out[k] = v
+    return SimpleNamespace(**out)
+
+
+def kind_of(j: Any) -> str:
+    """Which JSON of the program's this is ("" for none)."""
+    if not isinstance(j, dict):
+        return ""
+    if "map" in j and "orbits" in j:
+        return "map"
+    if "study" in j and "branches" in j:
+        return "study"
+    if j.get("kind") == "equilibria":
+        return "equilibria"
+    if "points" in j and "first" in j and "second" in j and "kind" in j:
+        return "curve"
+    if "points" in j and "parameter" in j and "events" in j:
+        return "branch"
+    if "multipliers" in j and "period" in j and "state0" in j:
+        return "orbit"
+    return ""
+
+
+def load(path: Union[str, "os.PathLike[str]"]) -> SimpleNamespace:
+    """Any JSON the program writes (orbit, branch, curve, equilibria, study, map) as an object:
+    ``kind`` says which, the JSON's keys are its attributes, points are NumPy arrays by key.
+    ``sympathy.InputError`` naming the file for anything else."""
+    path = os.fspath(path)
+    try:
+        with open(path) as f:
+            j = json.load(f)
+    except OSError as e:
+        raise InputError(f"{path}: cannot be read ({e.strerror})") from None
+    except json.JSONDecodeError as e:
+        raise InputError(f"{path}:{e.lineno}: not JSON ({e.msg})") from None
+    kind = kind_of(j)
+    if not kind:
+        raise InputError(f"{path}: expected a JSON the program writes (an orbit, a branch, a "
+                         "curve, equilibria, a study or a map)")
+    result = _object(j)
+    if kind == "study":  # by name, as sympathy.study returns them
+        result.branches = {b.name: b for b in result.branches}
+    result.kind = kind
+    result.path = path
+    return result
