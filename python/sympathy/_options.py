@@ -80,13 +80,15 @@ def stub_type(option: dict) -> str:
 
 
 def _is_number(v: Any) -> bool:
-    if isinstance(v, bool):
+    if isinstance(v, (bool, str, bytes)):
         return False
     try:
         float(v)
+    except OverflowError:
+        return True  # a number, too large: a bad value, not a wrong type
     except (TypeError, ValueError):
         return False
-    return not isinstance(v, (str, bytes))
+    return True
 
 
 def checked(function: str, option: dict, value: Any) -> Any:
@@ -108,13 +110,19 @@ def checked(function: str, option: dict, value: Any) -> Any:
         if isinstance(value, bool):
             raise wrong()
         try:
-            return operator.index(value)
+            n = operator.index(value)
         except TypeError:
             raise wrong() from None
+        if not -2**31 <= n < 2**31:  # the engine's int
+            raise _core.InputError(f"{keyword} {n}: expected an integer of at most 10 digits")
+        return n
     if kind == "number":
         if not _is_number(value):
             raise wrong()
-        return float(value)
+        try:
+            return float(value)
+        except OverflowError:
+            raise _core.InputError(f"{keyword} {value}: expected a finite number") from None
     if kind == "numbers":
         if _is_number(value):
             return [float(value)]
@@ -123,7 +131,10 @@ def checked(function: str, option: dict, value: Any) -> Any:
         items = list(value)
         if not all(_is_number(x) for x in items):
             raise wrong()
-        return [float(x) for x in items]
+        try:
+            return [float(x) for x in items]
+        except OverflowError:
+            raise _core.InputError(f"{keyword}: expected finite numbers") from None
     if kind in ("text", "path", "choice"):
         if kind == "path" and isinstance(value, os.PathLike):
             return os.fspath(value)
@@ -147,7 +158,10 @@ def checked(function: str, option: dict, value: Any) -> Any:
             if not isinstance(k, str) or not _is_number(v):
                 raise TypeError(f"{function}(): {keyword} must be {_EXPECTED[kind]}; "
                                 f"got {k!r}: {v!r}")
-            out[k] = float(v)
+            try:
+                out[k] = float(v)
+            except OverflowError:
+                raise _core.InputError(f"{keyword} {k}={v}: expected a finite number") from None
         return out
     raise AssertionError(kind)
 

@@ -397,6 +397,8 @@ def test_wrong_types_raise_type_error_and_bad_values_input_error_naming_the_keyw
     for bad, expected in [(dict(method="rk4"), r"^method rk4: expected bdf, adams or erk"),
                           (dict(max_points=0), r"^max_points"),
                           (dict(step=float("nan")), r"^step nan: expected a finite number"),
+                          (dict(step=10**400), r"^step 1000.*: expected a finite number"),
+                          (dict(max_points=2**40), r"^max_points 1099511627776: expected an "),
                           (dict(param="q"), r"^param q: not a parameter")]:
         with pytest.raises(sympathy.InputError, match=expected):
             case.continue_branch(**{**window, **bad})
