@@ -6,7 +6,9 @@ and ``study`` are functions of the same names, and methods of a Case, run on the
 program. Their keywords are the command's options (``max_step=0.05`` for ``--max-step 0.05``;
 ``from_`` for ``--from``), typed: ``inspect.signature`` and ``help()`` list them with their types,
 and each is checked before any work (``TypeError`` for a wrong type, :class:`InputError` for a bad
-value, naming the keyword). Results are NumPy arrays and plain objects.
+value, naming the keyword). Results are objects (:class:`Result`) whose fields are NumPy arrays,
+numbers and strings, with ``to_dict()``, and ``to_dataframe()`` of their points where pandas is
+installed; :func:`load` reads back any JSON the program writes.
 """
 
 from __future__ import annotations
@@ -17,16 +19,17 @@ import os
 from collections.abc import Mapping
 from typing import Any, Optional, Union
 
-from . import _core, _options
+from . import _core, _options, _results
 from ._core import InputError, OutputError
-from ._load import load
+from ._load import load as _load
+from ._results import Points, Result
 
 # Raised as sympathy.InputError (a ValueError) and sympathy.OutputError (an OSError).
 InputError.__module__ = OutputError.__module__ = __name__
 
 # Not `map`: `from sympathy import *` would hide Python's own (sympathy.map is the command).
-__all__ = ["Case", "InputError", "OutputError", "simulate", "orbit", "continue_branch", "curve",
-           "equilibria", "fit", "study", "load"]
+__all__ = ["Case", "InputError", "OutputError", "Result", "Points", "simulate", "orbit",
+           "continue_branch", "curve", "equilibria", "fit", "study", "load"]
 
 # Each function: the command it runs, what it does (the first line of its docstring), and whether
 # it reports progress.
@@ -113,8 +116,8 @@ def _function(name: str, method: bool) -> Any:
         given = _options.engine_keywords(where, command, bound)
         run = getattr(case._core, name)
         if progress:
-            return run(given, bound.arguments.get("progress"))
-        return run(given)
+            return _results.wrap(run(given, bound.arguments.get("progress")))
+        return _results.wrap(run(given))
 
     call.__name__ = name
     call.__qualname__ = where
@@ -139,7 +142,7 @@ def _file_function(command: str, summary: str) -> Any:
     def call(*args: Any, **kwargs: Any) -> Any:
         bound = _options.keywords(command, command, sig, args, kwargs)
         path = os.fspath(bound.arguments["path"])
-        return run(path, _options.engine_keywords(command, command, bound))
+        return _results.wrap(run(path, _options.engine_keywords(command, command, bound)))
 
     call.__name__ = call.__qualname__ = command
     call.__doc__ = _options.docstring(command, summary, False)
@@ -160,3 +163,10 @@ map = _file_function("map", (
     "second, json (the JSON's path) and orbits (each with name, branch, curves, grid: first, "
     "second, unstable_count, or None, error). Ctrl-C returns what was computed."))
 del _name
+
+
+def load(path: Union[str, os.PathLike]) -> Result:
+    return _results.wrap(_load(path))
+
+
+load.__doc__ = _load.__doc__

@@ -12,6 +12,15 @@ _FUNCTIONS: dict[str, tuple[str, str, bool]]
 class InputError(ValueError): ...
 class OutputError(OSError): ...
 
+class Result:
+    def __init__(self, **fields: Any) -> None: ...
+    def __getattr__(self, name: str) -> Any: ...
+    def to_dict(self) -> dict[str, Any]: ...
+    def to_dataframe(self) -> Any: ...
+
+class Points(Result):
+    def columns(self) -> dict[str, Any]: ...
+
 class Case:
     def __init__(
         self,
@@ -42,7 +51,7 @@ class Case:
         method: Literal['bdf', 'adams', 'erk'] | None = ...,
         sensitivities: Literal['forward', 'augmented'] | None = ...,
         linear_solver: Literal['dense', 'klu', 'structured'] | None = ...,
-    ) -> Any: ...
+    ) -> Result: ...
     def orbit(
         self,
         /,
@@ -61,7 +70,7 @@ class Case:
         linear_solver: Literal['dense', 'klu', 'structured'] | None = ...,
         accuracy: Literal['fast', 'default', 'high'] | None = ...,
         start_data: str | os.PathLike[str] | None = ...,
-    ) -> Any: ...
+    ) -> Result: ...
     def continue_branch(
         self,
         /,
@@ -94,7 +103,7 @@ class Case:
         accuracy: Literal['fast', 'default', 'high'] | None = ...,
         start_data: str | os.PathLike[str] | None = ...,
         progress: bool | Callable[[Any], None] | None = ...,
-    ) -> Any: ...
+    ) -> Result: ...
     def equilibria(
         self,
         /,
@@ -111,7 +120,7 @@ class Case:
         max_points: int | None = ...,
         csv: str | os.PathLike[str] | None = ...,
         progress: bool | Callable[[Any], None] | None = ...,
-    ) -> Any: ...
+    ) -> Result: ...
     def fit(
         self,
         /,
@@ -137,7 +146,7 @@ class Case:
         method: Literal['bdf', 'adams', 'erk'] | None = ...,
         sensitivities: Literal['forward', 'augmented'] | None = ...,
         linear_solver: Literal['dense', 'klu', 'structured'] | None = ...,
-    ) -> Any: ...
+    ) -> Result: ...
     def curve(
         self,
         /,
@@ -166,7 +175,7 @@ class Case:
         accuracy: Literal['fast', 'default', 'high'] | None = ...,
         start_data: str | os.PathLike[str] | None = ...,
         progress: bool | Callable[[Any], None] | None = ...,
-    ) -> Any: ...
+    ) -> Result: ...
 
 def simulate(
     case: Case | CaseSource,
@@ -182,7 +191,7 @@ def simulate(
     method: Literal['bdf', 'adams', 'erk'] | None = ...,
     sensitivities: Literal['forward', 'augmented'] | None = ...,
     linear_solver: Literal['dense', 'klu', 'structured'] | None = ...,
-) -> Any: ...
+) -> Result: ...
 def orbit(
     case: Case | CaseSource,
     /,
@@ -201,7 +210,7 @@ def orbit(
     linear_solver: Literal['dense', 'klu', 'structured'] | None = ...,
     accuracy: Literal['fast', 'default', 'high'] | None = ...,
     start_data: str | os.PathLike[str] | None = ...,
-) -> Any: ...
+) -> Result: ...
 def continue_branch(
     case: Case | CaseSource,
     /,
@@ -234,7 +243,7 @@ def continue_branch(
     accuracy: Literal['fast', 'default', 'high'] | None = ...,
     start_data: str | os.PathLike[str] | None = ...,
     progress: bool | Callable[[Any], None] | None = ...,
-) -> Any: ...
+) -> Result: ...
 def equilibria(
     case: Case | CaseSource,
     /,
@@ -251,7 +260,7 @@ def equilibria(
     max_points: int | None = ...,
     csv: str | os.PathLike[str] | None = ...,
     progress: bool | Callable[[Any], None] | None = ...,
-) -> Any: ...
+) -> Result: ...
 def fit(
     case: Case | CaseSource,
     /,
@@ -277,7 +286,7 @@ def fit(
     method: Literal['bdf', 'adams', 'erk'] | None = ...,
     sensitivities: Literal['forward', 'augmented'] | None = ...,
     linear_solver: Literal['dense', 'klu', 'structured'] | None = ...,
-) -> Any: ...
+) -> Result: ...
 def curve(
     case: Case | CaseSource,
     /,
@@ -306,7 +315,7 @@ def curve(
     accuracy: Literal['fast', 'default', 'high'] | None = ...,
     start_data: str | os.PathLike[str] | None = ...,
     progress: bool | Callable[[Any], None] | None = ...,
-) -> Any: ...
+) -> Result: ...
 def study(
     path: str | os.PathLike[str],
     /,
@@ -315,7 +324,7 @@ def study(
     jobs: int | None = ...,
     quiet: bool | None = ...,
     accuracy: Literal['fast', 'default', 'high'] | None = ...,
-) -> Any: ...
+) -> Result: ...
 def map(
     path: str | os.PathLike[str],
     /,
@@ -323,5 +332,5 @@ def map(
     out: str | os.PathLike[str] | None = ...,
     jobs: int | None = ...,
     accuracy: Literal['fast', 'default', 'high'] | None = ...,
-) -> Any: ...
-def load(path: str | os.PathLike[str]) -> Any: ...
+) -> Result: ...
+def load(path: str | os.PathLike[str]) -> Result: ...

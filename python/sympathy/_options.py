@@ -257,7 +257,7 @@ def stub_text(functions: dict) -> str:
         lines = [f"{indent}def {name}(", f"{indent}    {first},", f"{indent}    /,",
                  f"{indent}    *,"]
         lines += [f"{indent}    {k}," for k in keywords(command, progress)]
-        lines.append(f"{indent}) -> Any: ...")
+        lines.append(f"{indent}) -> Result: ...")
         return lines
 
     lines = [
@@ -274,6 +274,15 @@ def stub_text(functions: dict) -> str:
         "",
         "class InputError(ValueError): ...",
         "class OutputError(OSError): ...",
+        "",
+        "class Result:",
+        "    def __init__(self, **fields: Any) -> None: ...",
+        "    def __getattr__(self, name: str) -> Any: ...",
+        "    def to_dict(self) -> dict[str, Any]: ...",
+        "    def to_dataframe(self) -> Any: ...",
+        "",
+        "class Points(Result):",
+        "    def columns(self) -> dict[str, Any]: ...",
         "",
         "class Case:",
         "    def __init__(",
@@ -299,5 +308,5 @@ def stub_text(functions: dict) -> str:
         lines += define(name, "case: Case | CaseSource", command, progress, "")
     lines += define("study", "path: str | os.PathLike[str]", "study", False, "")
     lines += define("map", "path: str | os.PathLike[str]", "map", False, "")
-    lines += ["def load(path: str | os.PathLike[str]) -> Any: ..."]
+    lines += ["def load(path: str | os.PathLike[str]) -> Result: ..."]
     return "\n".join(lines) + "\n"

@@ -487,3 +487,28 @@ def test_load_gives_back_what_the_program_wrote(tmp_path):
     (tmp_path / "x.json").write_text('{"a": 1}')
     with pytest.raises(sympathy.InputError, match=r"x.json: expected a JSON the program writes"):
         sympathy.load(tmp_path / "x.json")
+
+
+def test_results_as_dicts_and_tables():
+    # Every result is a Result: to_dict() gives plain containers (arrays as lists), and a
+    # branch's points are a table: one row a point, a 2-D field's columns as NAME[j], a dict's as
+    # NAME.LABEL (to_dataframe, where pandas is installed).
+    import json
+    branch = sympathy.continue_branch(HOPF, param="mu", from_=0.25, to=0.5)
+    assert isinstance(branch, sympathy.Result) and isinstance(branch.points, sympathy.Points)
+    d = branch.to_dict()
+    assert d["points"]["value"] == branch.points.value.tolist()
+    assert d["events"] == [e.to_dict() for e in branch.events]
+    json.dumps({k: v for k, v in d["points"].items() if k != "multipliers"})
+    columns = branch.points.columns()
+    n = len(branch.points.value)
+    assert all(len(c) == n for c in columns.values())
+    assert "state0[1]" in columns and "amplitudes.x" in columns
+    try:
+        import pandas  # type: ignore[import]  # noqa: F401 (optional)
+    except ImportError:
+        with pytest.raises(ImportError, match="to_dataframe needs pandas"):
+            branch.to_dataframe()
+    else:
+        assert list(branch.to_dataframe()["value"]) == list(branch.points.value)
+    assert isinstance(sympathy.orbit(HOPF), sympathy.Result)
