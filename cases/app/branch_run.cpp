@@ -62,8 +62,8 @@ Branch run_branch(const BranchSource& source, const BranchRequest& request,
     if (request.on_point) request.on_point(p);
     if (request.progress)
       std::fprintf(request.progress,
-                   "  [%4d] %s = %-14.9g T = %.9f s  %-8s max|mu| %.6f  ds %.2g (%d it)\n", p.index,
-                   request.parameter.c_str(), p.parameter, p.orbit.period,
+                   "  [%4d] %s = %-14.9g T = %.9f s  %-10s max|mu| %.6f  ds %.2g (%d it)\n",
+                   p.index, request.parameter.c_str(), p.parameter, p.orbit.period,
                    to_string(p.orbit.floquet.stability).c_str(), p.orbit.floquet.max_modulus,
                    p.step, p.iterations);
     if (request.progress && request.verbose) {
