@@ -13,6 +13,9 @@ namespace {
 // values on top of the Case's for one call), and what only the program's output needs (it
 // prints; Python gets the result).
 std::vector<std::string> left_out(const std::string& command) {
+  // basins' first argument is the case file or a basins study file, not a Case: its --params
+  // and --set are its own keywords.
+  if (command == "basins") return {"--quiet"};
   std::vector<std::string> out = {"--params"};
   const auto add = [&](std::initializer_list<const char*> more) {
     out.insert(out.end(), more.begin(), more.end());
@@ -62,7 +65,7 @@ std::string number_text(double x) {
 }  // namespace
 
 std::vector<std::string> python_commands() {
-  return {"simulate", "orbit", "continue", "curve", "equilibria", "fit", "study", "map"};
+  return {"simulate", "orbit", "continue", "curve", "equilibria", "fit", "study", "map", "basins"};
 }
 
 std::vector<app::OptionSpec> python_options(const std::string& command) {
@@ -157,6 +160,12 @@ cli::Arguments typed_arguments(const std::string& command, const CaseLine& line,
         }
         break;
       case app::OptionKind::Text:
+        if (py::isinstance<py::list>(v)) {  // a repeatable text: one value per item
+          for (const auto& item : v) given.push_back(make(item.cast<std::string>()));
+          break;
+        }
+        given.push_back(make(v.cast<std::string>()));
+        break;
       case app::OptionKind::Names:
       case app::OptionKind::Choice:
         given.push_back(make(v.cast<std::string>()));

@@ -38,7 +38,8 @@ py::list option_table(const std::string& command);
 
 // The arguments of `command` on `line` from the package's checked keywords (a dict: keyword ->
 // value, typed by its kind: bool for a flag, int, float, a list of floats, a dict of floats for
-// KEY=VALUE options, str for the rest). Nothing numeric is read from text. InputError with
+// KEY=VALUE options, a list of str for a repeatable text option, str for the rest). Nothing
+// numeric is read from text. InputError with
 // keywords for options (as with_keywords) on any problem the checks find.
 cli::Arguments typed_arguments(const std::string& command, const CaseLine& line,
                                const py::dict& keywords);

@@ -24,6 +24,7 @@
 
 #include "case_dict.hpp"
 #include "cases/app/map_run.hpp"
+#include "cases/cli/basins_output.hpp"
 #include "cases/cli/case_arguments.hpp"
 #include "cases/cli/requests.hpp"
 #include "python_options.hpp"
@@ -460,6 +461,19 @@ py::object map(const std::string& path, const py::dict& keywords) {
   return py::module_::import("types").attr("SimpleNamespace")(**fields);
 }
 
+// sympathy basins on this machine's threads: the files written as the program writes them;
+// returns the JSON's path and whether Ctrl-C interrupted the runs (the package reads the JSON).
+py::tuple basins(const std::string& path, const py::dict& keywords) {
+  const cli::Arguments args = typed_arguments("basins", CaseLine{path, "", {}}, keywords);
+  cli::BasinsOutcome outcome;
+  with_keywords("basins", [&] {
+    on_worker_thread(
+        [&](const std::atomic<bool>* stop) { outcome = cli::run_basins_here(args, stop); });
+    return 0;
+  });
+  return py::make_tuple(outcome.json_path, outcome.interrupted);
+}
+
 }  // namespace
 
 }  // namespace sympathy::python
@@ -497,6 +511,7 @@ PYBIND11_MODULE(_core, m) {
   m.def("command_options", &sympathy::python::option_table, py::arg("command"));
   m.def("study", &sympathy::python::study, py::arg("path"), py::arg("keywords"));
   m.def("map", &sympathy::python::map, py::arg("path"), py::arg("keywords"));
+  m.def("basins", &sympathy::python::basins, py::arg("path"), py::arg("keywords"));
   py::class_<Case>(m, "Case")
       .def(py::init<const py::object&, const std::optional<std::string>&,
                     const std::optional<py::dict>&>(),

@@ -45,6 +45,17 @@ std::string option_of(const std::string& field) {
 
 void parse_study_options(const Arguments& args, Basins& b);
 
+// Task index -> its run's journal row (nullopt where `stop` interrupted it).
+std::function<std::optional<TaskRow>(std::size_t)> runs_of(const BasinStudy& study,
+                                                           const std::atomic<bool>* stop) {
+  return [&study, stop](std::size_t index) -> std::optional<TaskRow> {
+    const BasinTask task = study.task(index);
+    const auto result = study.run(task, stop);
+    if (!result) return std::nullopt;
+    return row_of(task, *result, study.options().confirm);
+  };
+}
+
 // The case of a basins study file, with its parameter set and `set` values.
 LoadedCase load_case_of(const BasinsFile& f) {
   LoadedCase c{CaseFile::load(f.case_path), "", {}};
@@ -185,6 +196,19 @@ void open_outputs(Basins& b, bool resume) {
 
 }  // namespace
 
+BasinsOutcome run_basins_here(const Arguments& args, const std::atomic<bool>* stop) {
+  Stopwatch clock;
+  Basins b = prepare_basins(args, 1);
+  open_outputs(b, args.flag("--resume"));
+  const BasinStudy& study = *b.study;
+  const MpiSession local;  // not under mpirun: one rank, the runs on threads
+  const auto summary =
+      run_journaled(local, study.tasks(), b.journal.get(), runs_of(study, stop), b.run, stop);
+  b.journal->close();
+  write_results(b, summary, clock, nullptr);
+  return {b.json_path, summary.interrupted};
+}
+
 int run_basins(const std::vector<std::string>& argv) {
   Arguments args("basins", argv, basins_options(), {"CASE|STUDY.toml"});
   Stopwatch clock;
@@ -200,12 +224,7 @@ int run_basins(const std::vector<std::string>& argv) {
     return *exit;
   const BasinStudy& study = *b->study;
   const auto* stop = interrupt_flag();
-  const auto work = [&](std::size_t index) -> std::optional<std::vector<std::string>> {
-    const BasinTask task = study.task(index);
-    const auto result = study.run(task, stop);
-    if (!result) return std::nullopt;
-    return row_of(task, *result, study.options().confirm);
-  };
+  const auto work = runs_of(study, stop);
   if (distributed && mpi.rank() > 0) {
     run_journaled(mpi, study.tasks(), nullptr, work, b->run, stop);
     return 0;

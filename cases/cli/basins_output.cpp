@@ -51,7 +51,8 @@ std::vector<std::string> row_of(const BasinTask& t, const BasinRun& run, bool co
 }
 
 // The final files, in task order, from the journal; the shares printed.
-void write_results(const Basins& b, const TaskRunSummary& summary, const Stopwatch& clock) {
+void write_results(const Basins& b, const TaskRunSummary& summary, const Stopwatch& clock,
+                   std::FILE* report) {
   const BasinStudy& study = *b.study;
   const BasinOptions& o = b.o;
   const TaskJournal& journal = *b.journal;
@@ -118,23 +119,24 @@ void write_results(const Basins& b, const TaskRunSummary& summary, const Stopwat
   write_file_atomically(b.shares_path, share_table);
   write_file_atomically(b.json_path, json.dump(2) + "\n");
 
+  if (!report) return;
   for (std::size_t p = 0; p < study.points(); ++p) {
     const auto values = study.values(p);
     std::string at;
     for (std::size_t a = 0; a < values.size(); ++a)
       at += (a ? ", " : "") + o.grid[a].parameter + " = " + format_number(values[a]);
     const std::size_t runs = shares[p].empty() ? 0 : shares[p].front().proportion.trials;
-    std::fprintf(stderr, "  %s (%zu runs):", at.c_str(), runs);
+    std::fprintf(report, "  %s (%zu runs):", at.c_str(), runs);
     for (const auto& s : shares[p])
       if (s.proportion.count > 0)
-        std::fprintf(stderr, "  %s %.3f [%.3f, %.3f]", s.state.c_str(), s.proportion.share,
+        std::fprintf(report, "  %s %.3f [%.3f, %.3f]", s.state.c_str(), s.proportion.share,
                      s.proportion.lower, s.proportion.upper);
-    std::fprintf(stderr, "\n");
+    std::fprintf(report, "\n");
   }
   if (summary.interrupted)
-    std::fprintf(stderr, "  INTERRUPTED: %zu of %zu runs done; --resume continues the journal\n",
+    std::fprintf(report, "  INTERRUPTED: %zu of %zu runs done; --resume continues the journal\n",
                  journal.rows().size(), study.tasks());
-  std::fprintf(stderr,
+  std::fprintf(report,
                "  wrote %s, %s, %s (journal %s); %zu runs computed in %.2f s, run time %.2f s\n",
                b.runs_path.c_str(), b.shares_path.c_str(), b.json_path.c_str(),
                b.journal_path.c_str(), summary.computed, summary.seconds, clock.seconds());

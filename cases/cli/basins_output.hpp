@@ -3,6 +3,8 @@
 // that they do not depend on the threads or ranks that computed the runs.
 #pragma once
 
+#include <atomic>
+#include <cstdio>
 #include <memory>
 #include <string>
 #include <vector>
@@ -39,8 +41,19 @@ std::vector<std::string> task_fields(const BasinTask& t);
 // A run's journal row (the fields after the task index).
 std::vector<std::string> row_of(const BasinTask& t, const BasinRun& run, bool confirm);
 
-// The final files, in task order, from the journal; the shares printed on stderr with the run
-// time. Throws OutputError.
-void write_results(const Basins& b, const TaskRunSummary& summary, const Stopwatch& clock);
+// The final files, in task order, from the journal; the shares printed on `report` with the
+// run time (nullptr: not printed). Throws OutputError.
+void write_results(const Basins& b, const TaskRunSummary& summary, const Stopwatch& clock,
+                   std::FILE* report = stderr);
+
+// sympathy basins on this machine's threads for Python: the request read from `args` and checked,
+// the outputs opened (the journal resumed with --resume), the runs computed (`stop` asked between
+// them) and the files written as the program writes them, nothing printed. Returns the JSON's
+// path and whether the run was interrupted.
+struct BasinsOutcome {
+  std::string json_path;
+  bool interrupted = false;
+};
+BasinsOutcome run_basins_here(const Arguments& args, const std::atomic<bool>* stop);
 
 }  // namespace sympathy::cli

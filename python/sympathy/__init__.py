@@ -29,7 +29,7 @@ InputError.__module__ = OutputError.__module__ = __name__
 
 # Not `map`: `from sympathy import *` would hide Python's own (sympathy.map is the command).
 __all__ = ["Case", "InputError", "OutputError", "Result", "Points", "simulate", "orbit",
-           "continue_branch", "curve", "equilibria", "fit", "study", "load"]
+           "continue_branch", "curve", "equilibria", "fit", "study", "basins", "load"]
 
 # Each function: the command it runs, what it does (the first line of its docstring), and whether
 # it reports progress.
@@ -133,7 +133,8 @@ for _name in _FUNCTIONS:
 
 
 def _file_function(command: str, summary: str) -> Any:
-    """A command whose argument is a file of its own (a study file, a map file)."""
+    """A command whose argument is a file of its own (a study file, a map file, a case file or
+    basins study file for basins)."""
     first = [inspect.Parameter("path", inspect.Parameter.POSITIONAL_ONLY,
                                annotation=Union[str, os.PathLike])]
     sig = _options.signature(command, first, False, Any)
@@ -142,7 +143,12 @@ def _file_function(command: str, summary: str) -> Any:
     def call(*args: Any, **kwargs: Any) -> Any:
         bound = _options.keywords(command, command, sig, args, kwargs)
         path = os.fspath(bound.arguments["path"])
-        return _results.wrap(run(path, _options.engine_keywords(command, command, bound)))
+        result = run(path, _options.engine_keywords(command, command, bound))
+        if command == "basins":  # its JSON is the result, as load reads it
+            json_path, interrupted = result
+            result = _load(json_path)
+            result.interrupted = interrupted
+        return _results.wrap(result)
 
     call.__name__ = call.__qualname__ = command
     call.__doc__ = _options.docstring(command, summary, False)
@@ -162,6 +168,12 @@ map = _file_function("map", (
     "on a grid, the JSON and CSV files written to out; a namespace with name, title, first, "
     "second, json (the JSON's path) and orbits (each with name, branch, curves, grid: first, "
     "second, unstable_count, or None, error). Ctrl-C returns what was computed."))
+basins = _file_function("basins", (
+    "sympathy basins: how often each synchronized state wins from random starts over a grid of "
+    "one or two parameters, on this machine's threads (under mpirun, use the program), the files "
+    "written to out as the program writes them (a journal that resume=True continues); the JSON "
+    "as load reads it: per grid point its values, runs and each state's share with its 95% "
+    "Wilson interval, and interrupted (Ctrl-C returns what was done)."))
 del _name
 
 

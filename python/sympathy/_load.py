@@ -1,7 +1,8 @@
 """sympathy.load: any JSON the program writes, read back as the functions return their results.
 
 AUTO's ``load``: an orbit (``orbit --json``), a branch (``continue --json``), a curve
-(``curve --json``), equilibria (``equilibria --json``), a study's or a map's JSON, as one object
+(``curve --json``), equilibria (``equilibria --json``), a study's, a map's or basins' JSON, as
+one object
 whose ``kind`` says which, with the JSON's keys as attributes: points along a branch or curve as
 NumPy arrays by key (multipliers and eigenvalues complex, one row a point), events as objects,
 a study's branches as a dict by name, a map's orbits as a list.
@@ -82,7 +83,18 @@ def kind_of(j: Any) -> str:
         return "branch"
     if "multipliers" in j and "period" in j and "state0" in j:
         return "orbit"
+    if "runs_csv" in j and "points" in j and "grid" in j:
+        return "basins"
     return ""
+
+
+def _basins(j: dict) -> SimpleNamespace:
+    """A basins JSON: per grid point its values (a dict by parameter), runs and each state's
+    share (a dict by state: count, share and its 95% Wilson interval lower, upper)."""
+    points = [SimpleNamespace(**{**p, "shares": {state: SimpleNamespace(**v)
+                                                 for state, v in p["shares"].items()}})
+              for p in j["points"]]
+    return SimpleNamespace(**{**j, "points": points})
 
 
 def load(path: Union[str, "os.PathLike[str]"]) -> SimpleNamespace:
@@ -100,8 +112,8 @@ def load(path: Union[str, "os.PathLike[str]"]) -> SimpleNamespace:
     kind = kind_of(j)
     if not kind:
         raise InputError(f"{path}: expected a JSON the program writes (an orbit, a branch, a "
-                         "curve, equilibria, a study or a map)")
-    result = _object(j)
+                         "curve, equilibria, a study, a map or basins)")
+    result = _basins(j) if kind == "basins" else _object(j)
     if kind == "study":  # by name, as sympathy.study returns them
         result.branches = {b.name: b for b in result.branches}
     result.kind = kind

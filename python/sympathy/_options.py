@@ -30,6 +30,7 @@ _ANNOTATION = {
     "text": str,
     "path": Union[str, os.PathLike],
     "names": Union[str, Sequence[str]],
+    "texts": Union[str, Sequence[str]],
     "assignments": Mapping[str, float],
 }
 _STUB_TYPE = {
@@ -40,6 +41,7 @@ _STUB_TYPE = {
     "text": "str",
     "path": "str | os.PathLike[str]",
     "names": "str | Sequence[str]",
+    "texts": "str | Sequence[str]",
     "assignments": "Mapping[str, float]",
 }
 _EXPECTED = {
@@ -50,6 +52,7 @@ _EXPECTED = {
     "text": "a str",
     "path": "a str or a path",
     "names": "a str or a sequence of str",
+    "texts": "a str or a sequence of str",
     "assignments": "a mapping of str to float",
     "choice": "a str",
 }
@@ -60,9 +63,12 @@ _PATHS = ("FILE", "FILE.csv", "FITTED.toml", "DIR")
 
 
 def kind(option: dict) -> str:
-    """The option's kind, a text naming a file or directory as "path"."""
+    """The option's kind, a text naming a file or directory as "path", a repeatable text (given
+    once or more: basins' grid) as "texts"."""
     if option["kind"] == "text" and option["placeholder"] in _PATHS:
         return "path"
+    if option["kind"] == "text" and option["repeatable"]:
+        return "texts"
     return option["kind"]
 
 
@@ -141,6 +147,15 @@ def checked(function: str, option: dict, value: Any) -> Any:
         if not isinstance(value, str):
             raise wrong()
         return value
+    if kind == "texts":  # each item its own value of the repeatable option
+        if isinstance(value, str):
+            return [value]
+        if isinstance(value, (bytes, Mapping)) or not hasattr(value, "__iter__"):
+            raise wrong()
+        items = list(value)
+        if not all(isinstance(x, str) for x in items):
+            raise wrong()
+        return items
     if kind == "names":
         if isinstance(value, str):
             return value
@@ -308,5 +323,6 @@ def stub_text(functions: dict) -> str:
         lines += define(name, "case: Case | CaseSource", command, progress, "")
     lines += define("study", "path: str | os.PathLike[str]", "study", False, "")
     lines += define("map", "path: str | os.PathLike[str]", "map", False, "")
+    lines += define("basins", "path: str | os.PathLike[str]", "basins", False, "")
     lines += ["def load(path: str | os.PathLike[str]) -> Result: ..."]
     return "\n".join(lines) + "\n"

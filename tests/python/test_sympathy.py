@@ -512,3 +512,21 @@ def test_results_as_dicts_and_tables():
     else:
         assert list(branch.to_dataframe()["value"]) == list(branch.points.value)
     assert isinstance(sympathy.orbit(HOPF), sympathy.Result)
+
+
+def test_basins_equal_the_program(tmp_path):
+    # A small basins study (2 grid points, 4 starts each, 30 s runs) by the program and by
+    # Python on its threads: the same runs and shares, the same files; the result is the JSON
+    # as load reads it.
+    cli("basins", ROW2, "--grid", "k=45:55:2", "--starts", "4", "--t-end", "30",
+        "--out", str(tmp_path / "cli"), "--quiet")
+    result = sympathy.basins(ROW2, grid="k=45:55:2", starts=4, t_end=30, out=tmp_path / "py")
+    assert result.kind == "basins" and not result.interrupted and result.complete
+    for name in ("basins_runs.csv", "basins_shares.csv"):
+        assert (tmp_path / "cli" / name).read_text() == (tmp_path / "py" / name).read_text()
+    program = sympathy.load(tmp_path / "cli" / "basins.json")
+    assert [p.values for p in result.points] == [p.values for p in program.points]
+    assert [{s: v.count for s, v in p.shares.items()} for p in result.points] == \
+        [{s: v.count for s, v in p.shares.items()} for p in program.points]
+    with pytest.raises(sympathy.InputError, match=r"^grid: expected one or two parameter grids"):
+        sympathy.basins(ROW2, starts=4, out=tmp_path / "none")
