@@ -13,9 +13,9 @@ namespace {
 // values on top of the Case's for one call), and what only the program's output needs (it
 // prints; Python gets the result).
 std::vector<std::string> left_out(const std::string& command) {
-  // basins' first argument is the case file or a basins study file, not a Case: its --params
-  // and --set are its own keywords.
-  if (command == "basins") return {"--quiet"};
+  // basins' and sweep's first argument is a file (a case file, or a basins study file), not a
+  // Case: their --params and --set are their own keywords.
+  if (command == "basins" || command == "sweep") return {"--quiet"};
   std::vector<std::string> out = {"--params"};
   const auto add = [&](std::initializer_list<const char*> more) {
     out.insert(out.end(), more.begin(), more.end());
@@ -65,7 +65,8 @@ std::string number_text(double x) {
 }  // namespace
 
 std::vector<std::string> python_commands() {
-  return {"simulate", "orbit", "continue", "curve", "equilibria", "fit", "study", "map", "basins"};
+  return {"simulate", "orbit", "continue", "curve",  "equilibria",
+          "fit",      "study", "map",      "basins", "sweep"};
 }
 
 std::vector<app::OptionSpec> python_options(const std::string& command) {

@@ -461,17 +461,27 @@ py::object map(const std::string& path, const py::dict& keywords) {
   return py::module_::import("types").attr("SimpleNamespace")(**fields);
 }
 
-// sympathy basins on this machine's threads: the files written as the program writes them;
-// returns the JSON's path and whether Ctrl-C interrupted the runs (the package reads the JSON).
-py::tuple basins(const std::string& path, const py::dict& keywords) {
-  const cli::Arguments args = typed_arguments("basins", CaseLine{path, "", {}}, keywords);
-  cli::BasinsOutcome outcome;
-  with_keywords("basins", [&] {
-    on_worker_thread(
-        [&](const std::atomic<bool>* stop) { outcome = cli::run_basins_here(args, stop); });
+// sympathy basins and sympathy sweep on this machine's threads: the files written as the program
+// writes them; returns the JSON's path and whether Ctrl-C interrupted the tasks (the package reads
+// the JSON).
+template <class Run>
+py::tuple journaled(const std::string& command, const std::string& path, const py::dict& keywords,
+                    Run run) {
+  const cli::Arguments args = typed_arguments(command, CaseLine{path, "", {}}, keywords);
+  cli::JournaledOutcome outcome;
+  with_keywords(command, [&] {
+    on_worker_thread([&](const std::atomic<bool>* stop) { outcome = run(args, stop); });
     return 0;
   });
   return py::make_tuple(outcome.json_path, outcome.interrupted);
+}
+
+py::tuple basins(const std::string& path, const py::dict& keywords) {
+  return journaled("basins", path, keywords, cli::run_basins_here);
+}
+
+py::tuple sweep(const std::string& path, const py::dict& keywords) {
+  return journaled("sweep", path, keywords, cli::run_sweep_here);
 }
 
 }  // namespace
@@ -512,6 +522,7 @@ PYBIND11_MODULE(_core, m) {
   m.def("study", &sympathy::python::study, py::arg("path"), py::arg("keywords"));
   m.def("map", &sympathy::python::map, py::arg("path"), py::arg("keywords"));
   m.def("basins", &sympathy::python::basins, py::arg("path"), py::arg("keywords"));
+  m.def("sweep", &sympathy::python::sweep, py::arg("path"), py::arg("keywords"));
   py::class_<Case>(m, "Case")
       .def(py::init<const py::object&, const std::optional<std::string>&,
                     const std::optional<py::dict>&>(),

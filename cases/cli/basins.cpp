@@ -196,7 +196,7 @@ void open_outputs(Basins& b, bool resume) {
 
 }  // namespace
 
-BasinsOutcome run_basins_here(const Arguments& args, const std::atomic<bool>* stop) {
+JournaledOutcome run_basins_here(const Arguments& args, const std::atomic<bool>* stop) {
   Stopwatch clock;
   Basins b = prepare_basins(args, 1);
   open_outputs(b, args.flag("--resume"));

@@ -48,12 +48,7 @@ void write_results(const Basins& b, const TaskRunSummary& summary, const Stopwat
 
 // sympathy basins on this machine's threads for Python: the request read from `args` and checked,
 // the outputs opened (the journal resumed with --resume), the runs computed (`stop` asked between
-// them) and the files written as the program writes them, nothing printed. Returns the JSON's
-// path and whether the run was interrupted.
-struct BasinsOutcome {
-  std::string json_path;
-  bool interrupted = false;
-};
-BasinsOutcome run_basins_here(const Arguments& args, const std::atomic<bool>* stop);
+// them) and the files written as the program writes them, nothing printed.
+JournaledOutcome run_basins_here(const Arguments& args, const std::atomic<bool>* stop);
 
 }  // namespace sympathy::cli

@@ -109,4 +109,9 @@ std::vector<std::string> names(const Arguments& args, const std::string& option)
 std::vector<double> simulation_times(const Arguments& args);
 FlowOptions simulation_flow_options(const Arguments& args);
 
+// sympathy sweep on this machine's threads for Python: the request read from `args` and checked,
+// the outputs opened (the journal resumed with --resume), the tasks computed (`stop` asked
+// between points) and the files written as the program writes them, nothing printed.
+JournaledOutcome run_sweep_here(const Arguments& args, const std::atomic<bool>* stop);
+
 }  // namespace sympathy::cli

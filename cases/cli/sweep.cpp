@@ -260,7 +260,9 @@ nlohmann::json fits_json(const Sweep& w) {
   return fits;
 }
 
-void write_results(const Sweep& w, const TaskRunSummary& summary, const Stopwatch& clock) {
+// The JSON; with `report`, the count of done and the files written are said.
+void write_results(const Sweep& w, const TaskRunSummary& summary, const Stopwatch& clock,
+                   bool report = true) {
   nlohmann::json j;
   j["case"] = w.c->path();
   j["params_set"] = w.c->params();
@@ -280,6 +282,7 @@ void write_results(const Sweep& w, const TaskRunSummary& summary, const Stopwatc
             : w.job == Sweep::Job::Fits ? fits_json(w)
                                         : branches_json(w);
   write_file_atomically(w.json_path, j.dump(1) + "\n");
+  if (!report) return;
   std::fprintf(stderr, "  %zu of %zu %s (%zu computed now, on %d %s)%s; run time %.1f s\n",
                w.journal->rows().size(), w.values.size(), kind, summary.computed, summary.threads,
                summary.threads == 1 ? "worker" : "workers",
@@ -288,7 +291,54 @@ void write_results(const Sweep& w, const TaskRunSummary& summary, const Stopwatc
               w.json_path.c_str());
 }
 
+// Task index -> its value's row (an orbit, a fit or a branch from `base` with the swept parameter
+// at the index's value); nullopt where `stop` interrupted a branch.
+std::function<std::optional<TaskRow>(std::size_t)> runs_of(const Sweep& w, BranchSource base,
+                                                           const std::atomic<bool>* stop) {
+  return [&w, base = std::move(base), stop](std::size_t index) -> std::optional<TaskRow> {
+    const OdeSystem& system = w.c->system();
+    const int over = system.parameter_index(w.over.parameter);
+    BranchSource source = base;
+    source.values = system.with_parameter(base.values, over, w.values[index]);
+    if (w.job == Sweep::Job::Fits) {
+      // The prepared problem with the swept value held.
+      TrajectoryFitProblem problem = w.prepared->problem;
+      problem.parameter_values = source.values;
+      const TrajectoryFitResult r = fit_trajectory(*w.prepared->model, problem, w.fit_options);
+      TaskRow row{format_double(w.values[index]), r.converged ? "1" : "0", format_double(r.rss)};
+      for (int k = 0; k < r.values.size(); ++k) row.push_back(format_double(r.values[k]));
+      return row;
+    }
+    if (w.job == Sweep::Job::Orbits) {
+      const PeriodicOrbit o = find_periodic_orbit(system, source.values, source.start_state,
+                                                  source.subspace, w.request.continuation.orbit);
+      const auto& f = o.floquet;
+      return TaskRow{format_double(w.values[index]), o.converged() ? "1" : "0",
+                     format_double(o.period),        to_string(f.stability),
+                     format_double(f.max_modulus),   format_double(f.trivial_error),
+                     format_double(o.residual)};
+    }
+    const Branch b = run_branch(source, w.request, stop);
+    if (b.stop == StopReason::Interrupted) return std::nullopt;
+    return TaskRow{format_double(w.values[index]), std::to_string(b.points.size()),
+                   to_string(b.stop), events_field(b)};
+  };
+}
+
 }  // namespace
+
+JournaledOutcome run_sweep_here(const Arguments& args, const std::atomic<bool>* stop) {
+  Stopwatch clock;
+  Sweep w = prepare_sweep(args, 1);
+  open_outputs(w, args.flag("--resume"));
+  const MpiSession local;  // not under mpirun: one rank, the tasks on threads
+  const auto summary =
+      run_journaled(local, w.values.size(), w.journal.get(),
+                    runs_of(w, w.c->source(w.start, w.request.initial), stop), w.run, stop);
+  w.journal->close();
+  write_results(w, summary, clock, false);
+  return {w.json_path, summary.interrupted};
+}
 
 int run_sweep(const std::vector<std::string>& argv) {
   Arguments args("sweep", argv, sweep_options(), {"CASE"});
@@ -301,35 +351,7 @@ int run_sweep(const std::vector<std::string>& argv) {
       }))
     return *exit;
   const auto* stop = interrupt_flag();
-  const BranchSource base = w->c->source(w->start, w->request.initial);
-  const OdeSystem& system = w->c->system();
-  const int over = system.parameter_index(w->over.parameter);
-  const auto work = [&](std::size_t index) -> std::optional<TaskRow> {
-    BranchSource source = base;
-    source.values = system.with_parameter(base.values, over, w->values[index]);
-    if (w->job == Sweep::Job::Fits) {
-      // The prepared problem with the swept value held.
-      TrajectoryFitProblem problem = w->prepared->problem;
-      problem.parameter_values = source.values;
-      const TrajectoryFitResult r = fit_trajectory(*w->prepared->model, problem, w->fit_options);
-      TaskRow row{format_double(w->values[index]), r.converged ? "1" : "0", format_double(r.rss)};
-      for (int k = 0; k < r.values.size(); ++k) row.push_back(format_double(r.values[k]));
-      return row;
-    }
-    if (w->job == Sweep::Job::Orbits) {
-      const PeriodicOrbit o = find_periodic_orbit(system, source.values, source.start_state,
-                                                  source.subspace, w->request.continuation.orbit);
-      const auto& f = o.floquet;
-      return TaskRow{format_double(w->values[index]), o.converged() ? "1" : "0",
-                     format_double(o.period),         to_string(f.stability),
-                     format_double(f.max_modulus),    format_double(f.trivial_error),
-                     format_double(o.residual)};
-    }
-    const Branch b = run_branch(source, w->request, stop);
-    if (b.stop == StopReason::Interrupted) return std::nullopt;
-    return TaskRow{format_double(w->values[index]), std::to_string(b.points.size()),
-                   to_string(b.stop), events_field(b)};
-  };
+  const auto work = runs_of(*w, w->c->source(w->start, w->request.initial), stop);
   if (mpi.size() > 1 && mpi.rank() > 0) {
     run_journaled(mpi, w->values.size(), nullptr, work, w->run, stop);
     return 0;

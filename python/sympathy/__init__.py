@@ -29,7 +29,7 @@ InputError.__module__ = OutputError.__module__ = __name__
 
 # Not `map`: `from sympathy import *` would hide Python's own (sympathy.map is the command).
 __all__ = ["Case", "InputError", "OutputError", "Result", "Points", "simulate", "orbit",
-           "continue_branch", "curve", "equilibria", "fit", "study", "basins", "load"]
+           "continue_branch", "curve", "equilibria", "fit", "study", "basins", "sweep", "load"]
 
 # Each function: the command it runs, what it does (the first line of its docstring), and whether
 # it reports progress.
@@ -144,7 +144,7 @@ def _file_function(command: str, summary: str) -> Any:
         bound = _options.keywords(command, command, sig, args, kwargs)
         path = os.fspath(bound.arguments["path"])
         result = run(path, _options.engine_keywords(command, command, bound))
-        if command == "basins":  # its JSON is the result, as load reads it
+        if command in ("basins", "sweep"):  # its JSON is the result, as load reads it
             json_path, interrupted = result
             result = _load(json_path)
             result.interrupted = interrupted
@@ -174,6 +174,12 @@ basins = _file_function("basins", (
     "written to out as the program writes them (a journal that resume=True continues); the JSON "
     "as load reads it: per grid point its values, runs and each state's share with its 95% "
     "Wilson interval, and interrupted (Ctrl-C returns what was done)."))
+sweep = _file_function("sweep", (
+    "sympathy sweep: a branch (param=, from_=, to=), an orbit (neither), or a fit (data=) at each "
+    "value of a second parameter (over='NAME=FROM:TO:COUNT'), on this machine's threads (under "
+    "mpirun, use the program), the files written to out as the program writes them (a journal "
+    "that resume=True continues); the JSON as load reads it (kind sweep: branches, orbits or "
+    "fits, one per value), and interrupted (Ctrl-C returns what was done)."))
 del _name
 
 

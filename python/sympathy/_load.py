@@ -1,8 +1,8 @@
 """sympathy.load: any JSON the program writes, read back as the functions return their results.
 
 AUTO's ``load``: an orbit (``orbit --json``), a branch (``continue --json``), a curve
-(``curve --json``), equilibria (``equilibria --json``), a study's, a map's or basins' JSON, as
-one object
+(``curve --json``), equilibria (``equilibria --json``), a study's, a map's, basins' or a sweep's
+JSON, as one object
 whose ``kind`` says which, with the JSON's keys as attributes: points along a branch or curve as
 NumPy arrays by key (multipliers and eigenvalues complex, one row a point), events as objects,
 a study's branches as a dict by name, a map's orbits as a list.
@@ -73,7 +73,7 @@ def kind_of(j: Any) -> str:
         return ""
     if "map" in j and "orbits" in j:
         return "map"
-    if "study" in j and "branches" in j:
+    if "study" in j and "branches" in j and "over" not in j:
         return "study"
     if j.get("kind") == "equilibria":
         return "equilibria"
@@ -85,6 +85,8 @@ def kind_of(j: Any) -> str:
         return "orbit"
     if "runs_csv" in j and "points" in j and "grid" in j:
         return "basins"
+    if "over" in j and "complete" in j and any(k in j for k in ("branches", "orbits", "fits")):
+        return "sweep"
     return ""
 
 
@@ -112,7 +114,7 @@ def load(path: Union[str, "os.PathLike[str]"]) -> SimpleNamespace:
     kind = kind_of(j)
     if not kind:
         raise InputError(f"{path}: expected a JSON the program writes (an orbit, a branch, a "
-                         "curve, equilibria, a study, a map or basins)")
+                         "curve, equilibria, a study, a map, basins or a sweep)")
     result = _basins(j) if kind == "basins" else _object(j)
     if kind == "study":  # by name, as sympathy.study returns them
         result.branches = {b.name: b for b in result.branches}

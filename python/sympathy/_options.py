@@ -324,5 +324,6 @@ def stub_text(functions: dict) -> str:
     lines += define("study", "path: str | os.PathLike[str]", "study", False, "")
     lines += define("map", "path: str | os.PathLike[str]", "map", False, "")
     lines += define("basins", "path: str | os.PathLike[str]", "basins", False, "")
+    lines += define("sweep", "path: str | os.PathLike[str]", "sweep", False, "")
     lines += ["def load(path: str | os.PathLike[str]) -> Result: ..."]
     return "\n".join(lines) + "\n"

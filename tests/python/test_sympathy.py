@@ -530,3 +530,19 @@ def test_basins_equal_the_program(tmp_path):
         [{s: v.count for s, v in p.shares.items()} for p in program.points]
     with pytest.raises(sympathy.InputError, match=r"^grid: expected one or two parameter grids"):
         sympathy.basins(ROW2, starts=4, out=tmp_path / "none")
+
+
+def test_sweep_equals_the_program_and_the_closed_form(tmp_path):
+    # The Hopf normal form's orbit at w = 1, 1.5, 2: period 2 pi / w (closed form, to 1e-9), the
+    # files the same as the program's.
+    cli("sweep", HOPF, "--over", "w=1:2:3", "--out", str(tmp_path / "cli"), "--quiet")
+    result = sympathy.sweep(HOPF, over="w=1:2:3", out=tmp_path / "py")
+    assert result.kind == "sweep" and result.complete and not result.interrupted
+    for o, w in zip(result.orbits, (1.0, 1.5, 2.0)):
+        assert o.value == w and abs(o.period - 2 * math.pi / w) < 1e-9
+    assert (tmp_path / "cli" / "sweep_orbits.csv").read_text() == \
+        (tmp_path / "py" / "sweep_orbits.csv").read_text()
+    with pytest.raises(TypeError, match=r"missing a required argument: 'over'"):
+        sympathy.sweep(HOPF, out=tmp_path / "none")  # type: ignore[call-arg]
+    with pytest.raises(sympathy.InputError, match=r"^over w: expected NAME=FROM:TO:COUNT"):
+        sympathy.sweep(HOPF, over="w", out=tmp_path / "none")
