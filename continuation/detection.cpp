@@ -234,8 +234,8 @@ std::vector<Bifurcation> detect(const TrackedMultipliers& tracked, const Continu
     // square root of the noise floor's limit). Not at the family's end, where the orbits shrink
     // into an equilibrium and the critical pair's multipliers meet at +1 too.
     const bool beside =
-        fold && plus_groups.empty() && !through_plus && is_real(mu_a) && is_real(mu_b) &&
-        mu_a != 0.0 && mu_b != 0.0 && (std::abs(mu_a) - 1.0) * (std::abs(mu_b) - 1.0) > 0.0 &&
+        plus_groups.empty() && !through_plus && is_real(mu_a) && is_real(mu_b) && mu_a != 0.0 &&
+        mu_b != 0.0 && (std::abs(mu_a) - 1.0) * (std::abs(mu_b) - 1.0) > 0.0 &&
         e.location == LocationOutcome::Located &&
         std::abs(e.crossing - 1.0) <= std::sqrt(trust.without_multipliers(e.monodromy_growth)) &&
         !(turn_ends && turn_ends(e));
