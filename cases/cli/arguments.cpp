@@ -11,17 +11,23 @@ namespace sympathy::cli {
 
 namespace {
 
-double parse_number(const std::string& option, const std::string& v) {
+// `text` as a finite number; nullopt unless all of it is one.
+std::optional<double> finite_number(const std::string& text) {
   std::size_t used = 0;
   double x = 0.0;
   try {
-    x = std::stod(v, &used);
+    x = std::stod(text, &used);
   } catch (const std::exception&) {
-    used = 0;
+    return std::nullopt;
   }
-  if (used == 0 || used != v.size() || !std::isfinite(x))
-    throw InputError(option + " " + v + ": expected a finite number");
+  if (used != text.size() || !std::isfinite(x)) return std::nullopt;
   return x;
+}
+
+double parse_number(const std::string& option, const std::string& v) {
+  const auto x = finite_number(v);
+  if (!x) throw InputError(option + " " + v + ": expected a finite number");
+  return *x;
 }
 
 int parse_integer(const std::string& option, const std::string& v) {
@@ -43,18 +49,12 @@ std::vector<double> parse_numbers(const std::string& option, const std::string& 
     const std::size_t comma = v.find(',', begin);
     const std::string field =
         v.substr(begin, comma == std::string::npos ? std::string::npos : comma - begin);
-    std::size_t used = 0;
-    double x = 0.0;
-    try {
-      x = std::stod(field, &used);
-    } catch (const std::exception&) {
-      used = 0;
-    }
-    if (used == 0 || used != field.size() || !std::isfinite(x))
+    const auto x = finite_number(field);
+    if (!x)
       throw InputError(option + " " + v + ": '" + field +
                        "' is not a finite number; expected finite numbers separated by commas "
                        "(e.g. 0.5,1,1.5)");
-    out.push_back(x);
+    out.push_back(*x);
     if (comma == std::string::npos) return out;
     begin = comma + 1;
   }
