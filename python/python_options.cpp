@@ -30,28 +30,6 @@ std::vector<std::string> left_out(const std::string& command) {
   return out;
 }
 
-std::string kind_name(app::OptionKind k) {
-  switch (k) {
-    case app::OptionKind::Flag:
-      return "flag";
-    case app::OptionKind::Integer:
-      return "integer";
-    case app::OptionKind::Number:
-      return "number";
-    case app::OptionKind::Numbers:
-      return "numbers";
-    case app::OptionKind::Text:
-      return "text";
-    case app::OptionKind::Names:
-      return "names";
-    case app::OptionKind::Assignments:
-      return "assignments";
-    case app::OptionKind::Choice:
-      return "choice";
-  }
-  return "?";
-}
-
 // A number as the message shows it: the shortest text that reads back as the same double.
 std::string number_text(double x) {
   char buffer[32];
@@ -84,7 +62,7 @@ py::list option_table(const std::string& command) {
     py::dict d;
     d["keyword"] = app::keyword_of(s.name);
     d["option"] = s.name;
-    d["kind"] = kind_name(app::kind_of(s));
+    d["kind"] = app::to_string(app::kind_of(s));
     d["placeholder"] = s.value;
     d["help"] = s.help;
     d["repeatable"] = s.repeatable;

@@ -43,6 +43,28 @@ std::string describe(OptionKind kind) {
   return "?";
 }
 
+std::string to_string(OptionKind kind) {
+  switch (kind) {
+    case OptionKind::Flag:
+      return "flag";
+    case OptionKind::Integer:
+      return "integer";
+    case OptionKind::Number:
+      return "number";
+    case OptionKind::Numbers:
+      return "numbers";
+    case OptionKind::Text:
+      return "text";
+    case OptionKind::Names:
+      return "names";
+    case OptionKind::Assignments:
+      return "assignments";
+    case OptionKind::Choice:
+      return "choice";
+  }
+  return "?";
+}
+
 std::vector<std::string> choices_of(const OptionSpec& spec) {
   if (kind_of(spec) != OptionKind::Choice) return {};
   std::vector<std::string> out;

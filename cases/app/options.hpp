@@ -28,6 +28,9 @@ enum class OptionKind { Flag, Integer, Number, Numbers, Text, Names, Assignments
 OptionKind kind_of(const OptionSpec& spec);
 // What a value of the kind is, for messages: "an integer", "a number", ...
 std::string describe(OptionKind kind);
+// The kind's name: "flag", "integer", "number", "numbers", "text", "names", "assignments",
+// "choice" (Python's option table).
+std::string to_string(OptionKind kind);
 // The words of a Choice ("bdf|adams|erk": bdf, adams, erk); empty for other kinds.
 std::vector<std::string> choices_of(const OptionSpec& spec);
 // Python's keyword for an option: "--max-points" -> "max_points"; "--from" -> "from_" and

@@ -111,7 +111,7 @@ def _function(name: str, method: bool) -> Any:
     where = f"Case.{name}" if method else name
 
     def call(*args: Any, **kwargs: Any) -> Any:
-        bound = _options.keywords(where, command, sig, args, kwargs)
+        bound = _options.keywords(where, sig, args, kwargs)
         case = _as_case(bound.arguments["self" if method else "case"])
         given = _options.engine_keywords(where, command, bound)
         run = getattr(case._core, name)
@@ -141,7 +141,7 @@ def _file_function(command: str, summary: str) -> Any:
     run = getattr(_core, command)
 
     def call(*args: Any, **kwargs: Any) -> Any:
-        bound = _options.keywords(command, command, sig, args, kwargs)
+        bound = _options.keywords(command, sig, args, kwargs)
         path = os.fspath(bound.arguments["path"])
         result = run(path, _options.engine_keywords(command, command, bound))
         if command in ("basins", "sweep"):  # its JSON is the result, as load reads it

@@ -62,7 +62,7 @@ _EXPECTED = {
 _PATHS = ("FILE", "FILE.csv", "FITTED.toml", "DIR")
 
 
-def kind(option: dict) -> str:
+def python_kind(option: dict) -> str:
     """The option's kind, a text naming a file or directory as "path", a repeatable text (given
     once or more: basins' grid) as "texts"."""
     if option["kind"] == "text" and option["placeholder"] in _PATHS:
@@ -75,14 +75,14 @@ def kind(option: dict) -> str:
 def _annotation(option: dict) -> Any:
     if option["kind"] == "choice":
         return Literal[tuple(option["choices"])]  # type: ignore[misc]
-    return _ANNOTATION[kind(option)]
+    return _ANNOTATION[python_kind(option)]
 
 
 def stub_type(option: dict) -> str:
     """The option's type as the stubs write it."""
     if option["kind"] == "choice":
         return "Literal[" + ", ".join(repr(c) for c in option["choices"]) + "]"
-    return _STUB_TYPE[kind(option)]
+    return _STUB_TYPE[python_kind(option)]
 
 
 def _is_number(v: Any) -> bool:
@@ -101,7 +101,7 @@ def checked(function: str, option: dict, value: Any) -> Any:
     """The value as the engine takes it for the option's kind; TypeError naming the keyword
     for a value of another type."""
     keyword = option["keyword"]
-    kind = globals()["kind"](option) if "placeholder" in option else option["kind"]
+    kind = python_kind(option) if "placeholder" in option else option["kind"]
 
     def wrong() -> TypeError:
         return TypeError(
@@ -225,7 +225,7 @@ def docstring(command: str, summary: str, progress: bool) -> str:
     return "\n".join(lines)
 
 
-def keywords(function: str, command: str, sig: inspect.Signature, args: tuple,
+def keywords(function: str, sig: inspect.Signature, args: tuple,
              kwargs: dict) -> inspect.BoundArguments:
     """The call's arguments bound to `sig` (TypeError as Python raises it for an unknown or
     missing keyword, with the nearest known one), each option's value checked by its kind."""
