@@ -73,18 +73,18 @@ py::list option_table(const std::string& command) {
   return table;
 }
 
-cli::Arguments typed_arguments(const std::string& command, const CaseLine& line,
+app::Arguments typed_arguments(const std::string& command, const CaseLine& line,
                                const py::dict& keywords) {
   const std::vector<app::OptionSpec> options = python_options(command);
-  std::vector<cli::GivenOption> given;
+  std::vector<app::GivenOption> given;
   if (!line.params.empty()) {
-    cli::GivenOption g;
+    app::GivenOption g;
     g.name = "--params";
     g.text = line.params;
     given.push_back(std::move(g));
   }
   for (const auto& a : line.sets) {
-    cli::GivenOption g;
+    app::GivenOption g;
     g.name = "--set";
     g.text = a.key + "=" + number_text(a.value);
     g.assignment = a;
@@ -96,7 +96,7 @@ cli::Arguments typed_arguments(const std::string& command, const CaseLine& line,
     const py::object v = keywords[py::str(keyword)];
     if (v.is_none()) continue;
     const auto make = [&](std::string text) {
-      cli::GivenOption g;
+      app::GivenOption g;
       g.name = s.name;
       g.text = std::move(text);
       return g;
@@ -153,7 +153,7 @@ cli::Arguments typed_arguments(const std::string& command, const CaseLine& line,
   }
   // The case's options go with the command's (the table's whole list: --params and --set too).
   return with_keywords(command, [&] {
-    return cli::Arguments(command, {line.path}, std::move(given),
+    return app::Arguments(command, {line.path}, std::move(given),
                           app::command_options(command).options,
                           app::command_options(command).positional);
   });

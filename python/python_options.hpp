@@ -11,7 +11,7 @@
 #include <pybind11/pybind11.h>
 
 #include "cases/app/options.hpp"
-#include "cases/cli/arguments.hpp"
+#include "cases/app/arguments.hpp"
 #include "sympathy/cases/case_file.hpp"
 
 namespace sympathy::python {
@@ -41,7 +41,7 @@ py::list option_table(const std::string& command);
 // KEY=VALUE options, a list of str for a repeatable text option, str for the rest). Nothing
 // numeric is read from text. InputError with
 // keywords for options (as with_keywords) on any problem the checks find.
-cli::Arguments typed_arguments(const std::string& command, const CaseLine& line,
+app::Arguments typed_arguments(const std::string& command, const CaseLine& line,
                                const py::dict& keywords);
 
 // Runs f(), an InputError's message turned to the command's keywords ("--step" -> "step").

@@ -25,7 +25,7 @@
 #include "case_dict.hpp"
 #include "cases/app/map_run.hpp"
 #include "cases/cli/basins_output.hpp"
-#include "cases/cli/case_arguments.hpp"
+#include "cases/app/case_arguments.hpp"
 #include "cases/cli/requests.hpp"
 #include "python_options.hpp"
 #include "python_results.hpp"
@@ -167,9 +167,9 @@ class Case {
     return with_keywords("simulate", [&] { return simulate_with(keywords); });
   }
   py::object simulate_with(const py::dict& keywords) const {
-    const cli::Arguments args = typed_arguments("simulate", line_, keywords);
+    const app::Arguments args = typed_arguments("simulate", line_, keywords);
     const std::vector<double> times = cli::simulation_times(args);
-    const cli::LoadedSystem c(line_.path, line_.params, args.assignments("--set"));
+    const app::LoadedSystem c(line_.path, line_.params, args.assignments("--set"));
     const app::BranchSource source =
         c.source(args.text("--start", ""), args.assignments("--initial"));
     Flow flow(c.system(), cli::simulation_flow_options(args));
@@ -207,8 +207,8 @@ class Case {
     return with_keywords("orbit", [&] { return orbit_with(keywords); });
   }
   py::object orbit_with(const py::dict& keywords) const {
-    const cli::Arguments args = typed_arguments("orbit", line_, keywords);
-    const cli::LoadedSystem c = cli::load_system(args);
+    const app::Arguments args = typed_arguments("orbit", line_, keywords);
+    const app::LoadedSystem c = app::load_system(args);
     c.require_orbits();
     if (c.equations() && args.flag("--whole-state"))
       throw InputError("--whole-state: only for a metronome case file");
@@ -230,8 +230,8 @@ class Case {
     return with_keywords("continue", [&] { return continue_with(keywords, progress); });
   }
   py::object continue_with(const py::dict& keywords, const py::object& progress) const {
-    const cli::Arguments args = typed_arguments("continue", line_, keywords);
-    const cli::LoadedSystem c = cli::load_system(args);
+    const app::Arguments args = typed_arguments("continue", line_, keywords);
+    const app::LoadedSystem c = app::load_system(args);
     app::BranchRequest request = cli::continue_request(args, c);
     const app::BranchSource source = c.source(request.start, request.initial, request.start_data);
     const ProgressBar shown(progress, request.from, request.to, request.parameter);
@@ -254,8 +254,8 @@ class Case {
     return with_keywords("equilibria", [&] { return equilibria_with(keywords, progress); });
   }
   py::object equilibria_with(const py::dict& keywords, const py::object& progress) const {
-    const cli::Arguments args = typed_arguments("equilibria", line_, keywords);
-    const cli::LoadedSystem c = cli::load_system(args);
+    const app::Arguments args = typed_arguments("equilibria", line_, keywords);
+    const app::LoadedSystem c = app::load_system(args);
     const cli::EquilibriaRequest request = cli::equilibria_request(args, c);
     const std::string parameter = c.system().parameter_names()[request.problem.parameter];
     std::unique_ptr<EquilibriumCsvWriter> csv;
@@ -290,7 +290,7 @@ class Case {
     return with_keywords("fit", [&] { return fit_with(keywords); });
   }
   py::object fit_with(const py::dict& keywords) const {
-    const cli::Arguments args = typed_arguments("fit", line_, keywords);
+    const app::Arguments args = typed_arguments("fit", line_, keywords);
     const cli::FitSetup setup = cli::fit_setup(args);
     const PreparedFit fit = setup.prepare();
     TrajectoryFitResult result;
@@ -305,8 +305,8 @@ class Case {
     return with_keywords("curve", [&] { return curve_with(keywords, progress); });
   }
   py::object curve_with(const py::dict& keywords, const py::object& progress) const {
-    const cli::Arguments args = typed_arguments("curve", line_, keywords);
-    const cli::LoadedSystem c = cli::load_system(args);
+    const app::Arguments args = typed_arguments("curve", line_, keywords);
+    const app::LoadedSystem c = app::load_system(args);
     cli::CurveRequest request = cli::curve_request(args, c);
     const app::BranchSource source = c.source(request.branch.start, request.branch.initial);
     PythonHooks hooks(progress);
@@ -343,9 +343,9 @@ class Case {
 
  private:
   // The case loaded as a call loads it (the parameter set and values set checked).
-  std::shared_ptr<const cli::LoadedSystem> load() const {
-    return std::make_shared<const cli::LoadedSystem>(with_keywords(
-        "orbit", [&] { return cli::load_system(typed_arguments("orbit", line_, {})); }));
+  std::shared_ptr<const app::LoadedSystem> load() const {
+    return std::make_shared<const app::LoadedSystem>(with_keywords(
+        "orbit", [&] { return app::load_system(typed_arguments("orbit", line_, {})); }));
   }
   void add_values(const py::dict& values) {
     for (const auto& [k, v] : values) {
@@ -359,7 +359,7 @@ class Case {
 
   CaseLine line_;
   std::shared_ptr<const std::string> dict_file_;  // a dict's TOML file, removed with the last copy
-  std::shared_ptr<const cli::LoadedSystem> loaded_;
+  std::shared_ptr<const app::LoadedSystem> loaded_;
 };
 
 // sympathy study: the study file's branches side by side, each as continue_branch computes it,
@@ -417,12 +417,12 @@ py::object study(const std::string& path, const py::dict& keywords) {
 // side by side as the program computes them, the JSON and CSV files written to `out`.
 py::object map(const std::string& path, const py::dict& keywords) {
   app::MapRun run = with_keywords("map", [&] {
-    const cli::Arguments args = typed_arguments("map", CaseLine{path, "", {}}, keywords);
+    const app::Arguments args = typed_arguments("map", CaseLine{path, "", {}}, keywords);
     app::MapRequest request;
     request.path = path;
     request.out = args.text("--out", request.out);
     request.jobs = args.integer("--jobs", request.jobs);
-    if (args.has("--accuracy")) request.accuracy = cli::accuracy(args);
+    if (args.has("--accuracy")) request.accuracy = app::accuracy(args);
     return app::prepare_map(request);
   });
   const Stopwatch clock;
@@ -467,7 +467,7 @@ py::object map(const std::string& path, const py::dict& keywords) {
 template <class Run>
 py::tuple journaled(const std::string& command, const std::string& path, const py::dict& keywords,
                     Run run) {
-  const cli::Arguments args = typed_arguments(command, CaseLine{path, "", {}}, keywords);
+  const app::Arguments args = typed_arguments(command, CaseLine{path, "", {}}, keywords);
   cli::JournaledOutcome outcome;
   with_keywords(command, [&] {
     on_worker_thread([&](const std::atomic<bool>* stop) { outcome = run(args, stop); });

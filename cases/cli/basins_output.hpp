@@ -9,8 +9,8 @@
 #include <string>
 #include <vector>
 
+#include "cases/app/study_record.hpp"
 #include "cases/cli/common.hpp"
-#include "cases/cli/study_record.hpp"
 #include "sympathy/cases/basin_study.hpp"
 #include "sympathy/continuation/task_journal.hpp"
 #include "sympathy/continuation/task_runner.hpp"

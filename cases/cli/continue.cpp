@@ -6,14 +6,14 @@
 #include <optional>
 
 #include "cases/app/branch_run.hpp"
+#include "cases/app/case_arguments.hpp"
 #include "cases/app/hopf_switch.hpp"
-#include "cases/cli/case_arguments.hpp"
+#include "cases/app/start_data.hpp"
 #include "cases/cli/commands.hpp"
 #include "cases/cli/equations.hpp"
 #include "cases/cli/progress.hpp"
 #include "cases/cli/report.hpp"
 #include "cases/cli/requests.hpp"
-#include "cases/cli/start_data.hpp"
 #include "sympathy/cases/equation_case.hpp"
 #include "sympathy/cases/state_describer.hpp"
 #include "sympathy/continuation/branch_output.hpp"

@@ -7,11 +7,11 @@
 #include <memory>
 
 #include "cases/app/branch_run.hpp"
-#include "cases/cli/case_arguments.hpp"
+#include "cases/app/case_arguments.hpp"
+#include "cases/app/start_data.hpp"
 #include "cases/cli/commands.hpp"
 #include "cases/cli/progress.hpp"
 #include "cases/cli/requests.hpp"
-#include "cases/cli/start_data.hpp"
 #include "sympathy/continuation/bifurcation_curve.hpp"
 #include "sympathy/continuation/branch_output.hpp"
 #include "sympathy/continuation/curve_output.hpp"

@@ -4,20 +4,15 @@
 
 #include <nlohmann/json.hpp>
 
+#include "cases/app/start_data.hpp"
 #include "cases/cli/common.hpp"
 #include "cases/cli/report.hpp"
 #include "cases/cli/requests.hpp"
-#include "cases/cli/start_data.hpp"
 #include "sympathy/cases/state_describer.hpp"
 #include "sympathy/continuation/branch_output.hpp"
 #include "sympathy/core/output_file.hpp"
 
 namespace sympathy::cli {
-
-LoadedEquations load_equations(const Arguments& args) {
-  return app::load_equations(args.positional(0), args.text("--params", ""),
-                             args.assignments("--set"), start_data_path(args));
-}
 
 int run_orbit_equations(const Arguments& args) {
   Stopwatch clock;

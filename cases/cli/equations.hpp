@@ -9,18 +9,13 @@
 #include <optional>
 
 #include "cases/app/equation_loading.hpp"
-#include "cases/cli/arguments.hpp"
-#include "cases/cli/start_data.hpp"
+#include "cases/app/start_data.hpp"
+#include "cases/cli/common.hpp"
 #include "sympathy/cases/equation_case.hpp"
 #include "sympathy/cases/equation_compiler.hpp"
 
 namespace sympathy::cli {
 
-// The file of positional 0 with --params, --set and --start-data (app::load_equations, which
-// stands beside it).
-using app::load_equations;
-using app::LoadedEquations;
-LoadedEquations load_equations(const Arguments& args);
 // sympathy orbit on an equation case file: the whole state space (no symmetry), amplitudes of
 // every state.
 int run_orbit_equations(const Arguments& args);

@@ -6,7 +6,7 @@
 #include <memory>
 #include <optional>
 
-#include "cases/cli/case_arguments.hpp"
+#include "cases/app/case_arguments.hpp"
 #include "cases/cli/commands.hpp"
 #include "cases/cli/common.hpp"
 #include "cases/cli/progress.hpp"

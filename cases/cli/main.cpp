@@ -5,7 +5,7 @@
 #include <string>
 #include <vector>
 
-#include "cases/cli/arguments.hpp"
+#include "cases/app/arguments.hpp"
 #include "cases/cli/commands.hpp"
 #include "cases/cli/exit_codes.hpp"
 #include "sympathy/core/errors.hpp"
@@ -40,14 +40,14 @@ const Command kCommands[] = {
 };
 
 std::string usage() {
-  const int width = sympathy::cli::help_width();
+  const int width = sympathy::app::help_width();
   std::string u =
       "usage: sympathy COMMAND ARGUMENTS [options]\n"
       "       sympathy --version | --help\n\ncommands:\n";
   for (const auto& c : kCommands) {
     std::string left = std::string("  ") + c.name;
     left.resize(14, ' ');
-    u += left + sympathy::cli::wrap(c.what, 14, width) + "\n";
+    u += left + sympathy::app::wrap(c.what, 14, width) + "\n";
   }
   u += "\n'sympathy COMMAND --help' lists a command's arguments and options.\n";
   return u;
@@ -76,7 +76,7 @@ int main(int argc, char** argv) {
     names.push_back(c.name);
   }
   if (!chosen) {
-    const std::string near = sympathy::cli::did_you_mean(command, names);
+    const std::string near = sympathy::app::did_you_mean(command, names);
     std::fprintf(stderr, "sympathy: unknown command '%s'%s\n%s", command.c_str(),
                  near.empty() ? "" : ("; did you mean '" + near + "'?").c_str(), usage().c_str());
     return 2;
@@ -84,7 +84,7 @@ int main(int argc, char** argv) {
   std::vector<std::string> args(argv + 2, argv + argc);
   try {
     return chosen->run(args);
-  } catch (const sympathy::cli::HelpRequested& help) {
+  } catch (const sympathy::app::HelpRequested& help) {
     std::fputs(help.usage.c_str(), stdout);
     return 0;
   } catch (const sympathy::InputError& e) {

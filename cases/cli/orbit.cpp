@@ -6,12 +6,12 @@
 
 #include <nlohmann/json.hpp>
 
+#include "cases/app/start_data.hpp"
 #include "cases/cli/commands.hpp"
 #include "cases/cli/common.hpp"
 #include "cases/cli/equations.hpp"
 #include "cases/cli/report.hpp"
 #include "cases/cli/requests.hpp"
-#include "cases/cli/start_data.hpp"
 #include "sympathy/continuation/branch_output.hpp"
 #include "sympathy/continuation/periodic_orbit.hpp"
 #include "sympathy/core/output_file.hpp"

@@ -7,7 +7,7 @@
 #include <cstdlib>
 #include <cstring>
 
-#include "cases/cli/arguments.hpp"
+#include "cases/cli/common.hpp"
 
 namespace sympathy::cli {
 

@@ -9,11 +9,11 @@
 #include <string>
 #include <vector>
 
+#include "cases/app/arguments.hpp"
 #include "cases/app/branch_run.hpp"
+#include "cases/app/case_arguments.hpp"
 #include "cases/app/event_name.hpp"
 #include "cases/app/study_file.hpp"
-#include "cases/cli/arguments.hpp"
-#include "cases/cli/case_arguments.hpp"
 #include "cases/cli/common.hpp"
 #include "cases/cli/progress.hpp"
 #include "sympathy/cases/parameter_fit.hpp"

@@ -9,8 +9,8 @@
 #include <thread>
 
 #include "cases/app/branch_run.hpp"
+#include "cases/app/case_arguments.hpp"
 #include "cases/app/study_file.hpp"
-#include "cases/cli/case_arguments.hpp"
 #include "cases/cli/commands.hpp"
 #include "cases/cli/progress.hpp"
 #include "cases/cli/report.hpp"

@@ -14,12 +14,12 @@
 #include <nlohmann/json.hpp>
 
 #include "cases/app/branch_run.hpp"
+#include "cases/app/case_arguments.hpp"
+#include "cases/app/study_record.hpp"
 #include "cases/app/task_run.hpp"
-#include "cases/cli/case_arguments.hpp"
 #include "cases/cli/commands.hpp"
 #include "cases/cli/progress.hpp"
 #include "cases/cli/requests.hpp"
-#include "cases/cli/study_record.hpp"
 #include "sympathy/continuation/branch_output.hpp"
 #include "sympathy/continuation/periodic_orbit.hpp"
 #include "sympathy/core/csv.hpp"

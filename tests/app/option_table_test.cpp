@@ -8,7 +8,7 @@
 #include <algorithm>
 #include <set>
 
-#include "cases/cli/arguments.hpp"
+#include "cases/app/arguments.hpp"
 #include "sympathy/core/errors.hpp"
 
 namespace sympathy {
@@ -75,7 +75,7 @@ TEST(Arguments, ValuesAreReadByTheirKindWhenGiven) {
   const auto options = app::continue_options();
   const auto message = [&](std::vector<std::string> argv) {
     try {
-      cli::Arguments("continue", argv, options, {"CASE"});
+      app::Arguments("continue", argv, options, {"CASE"});
     } catch (const InputError& e) {
       return std::string(e.what());
     }
@@ -94,7 +94,7 @@ TEST(Arguments, ValuesAreReadByTheirKindWhenGiven) {
   EXPECT_EQ(message(with({"--set", "k"})).find("--set"), 0u);
   EXPECT_EQ(message(with({"--step", "1", "--step", "2"})),
             "--step: given twice; expected it at most once");
-  const cli::Arguments args("continue", with({"--user-points", "30,60", "--set", "c=0.5"}), options,
+  const app::Arguments args("continue", with({"--user-points", "30,60", "--set", "c=0.5"}), options,
                             {"CASE"});
   EXPECT_EQ(args.numbers("--user-points"), (std::vector<double>{30, 60}));
   EXPECT_EQ(args.assignments("--set").at(0).value, 0.5);
@@ -106,7 +106,7 @@ TEST(Arguments, TypedValuesAreTakenAsTheyAre) {
   const auto options = app::continue_options();
   const auto given = [](std::string name, std::optional<double> number,
                         std::optional<int> integer = std::nullopt, std::string text = "") {
-    cli::GivenOption g;
+    app::GivenOption g;
     g.name = std::move(name);
     g.number = number;
     g.integer = integer;
@@ -114,7 +114,7 @@ TEST(Arguments, TypedValuesAreTakenAsTheyAre) {
     return g;
   };
   const double from = 0.1 + 0.2;
-  const cli::Arguments args(
+  const app::Arguments args(
       "continue", {"c.toml"},
       {given("--param", std::nullopt, std::nullopt, "k"), given("--from", from), given("--to", 2.0),
        given("--max-points", std::nullopt, 7)},
@@ -122,12 +122,12 @@ TEST(Arguments, TypedValuesAreTakenAsTheyAre) {
   EXPECT_EQ(args.number("--from", 0.0), from);
   EXPECT_EQ(args.integer("--max-points", 0), 7);
   EXPECT_THROW(
-      cli::Arguments("continue", {"c.toml"},
+      app::Arguments("continue", {"c.toml"},
                      {given("--param", std::nullopt, std::nullopt, "k"), given("--from", 1.0)},
                      options, {"CASE"}),
       InputError);  // --to missing
   EXPECT_THROW(
-      cli::Arguments("continue", {"c.toml"},
+      app::Arguments("continue", {"c.toml"},
                      {given("--param", std::nullopt, std::nullopt, "k"), given("--from", 1.0),
                       given("--to", 2.0), given("--method", std::nullopt, std::nullopt, "rk4")},
                      options, {"CASE"}),

@@ -1,4 +1,4 @@
-#include "cases/cli/arguments.hpp"
+#include "cases/app/arguments.hpp"
 
 #include <sys/ioctl.h>
 #include <unistd.h>
@@ -7,7 +7,7 @@
 #include <cmath>
 #include <cstdlib>
 
-namespace sympathy::cli {
+namespace sympathy::app {
 
 namespace {
 
@@ -127,7 +127,7 @@ void Arguments::add(GivenOption g) {
   const OptionSpec& s = spec(g.name);
   if (!s.repeatable && has(g.name))
     throw InputError(g.name + ": given twice; expected it at most once");
-  switch (app::kind_of(s)) {
+  switch (kind_of(s)) {
     case OptionKind::Integer:
       if (!g.integer) g.integer = parse_integer(g.name, g.text);
       break;
@@ -141,7 +141,7 @@ void Arguments::add(GivenOption g) {
       if (!g.assignment) g.assignment = parse_assignment(g.text, g.name);
       break;
     case OptionKind::Choice: {
-      const auto words = app::choices_of(s);
+      const auto words = choices_of(s);
       if (std::find(words.begin(), words.end(), g.text) == words.end())
         throw InputError(g.name + " " + g.text + ": expected " + either(words));
       break;
@@ -333,4 +333,4 @@ std::string wrap(const std::string& text, int indent, int width) {
   return out;
 }
 
-}  // namespace sympathy::cli
+}  // namespace sympathy::app

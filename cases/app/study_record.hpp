@@ -16,9 +16,9 @@
 #include <utility>
 #include <vector>
 
-#include "cases/cli/arguments.hpp"
+#include "cases/app/arguments.hpp"
 
-namespace sympathy::cli {
+namespace sympathy::app {
 
 struct StudyRecord {
   // (what, value) in a canonical order: "sympathy", then options sorted by name (values of a
@@ -39,4 +39,4 @@ StudyRecord study_record(const Arguments& args,
 void check_or_write_study_record(const std::string& journal_path, const StudyRecord& record,
                                  bool resuming);
 
-}  // namespace sympathy::cli
+}  // namespace sympathy::app

@@ -9,15 +9,12 @@
 #include "cases/app/options.hpp"
 #include "sympathy/cases/case_file.hpp"
 
-namespace sympathy::cli {
+namespace sympathy::app {
 
 // Thrown when --help is given: carries the usage text, printed on stdout with exit code 0.
 struct HelpRequested {
   std::string usage;
 };
-
-using app::OptionKind;
-using app::OptionSpec;
 
 // The known name closest to a mistyped one ("contineu": "continue"; "--max-point":
 // "--max-points"): within an edit distance of a third of its length (at least 1), or the only
@@ -31,7 +28,7 @@ int help_width(int fd = 1);
 // text wrapped at width, each line after the first indented by indent spaces.
 std::string wrap(const std::string& text, int indent, int width);
 
-// An option's value as given, read by its kind (app::kind_of) when it was given: the text for
+// An option's value as given, read by its kind (kind_of) when it was given: the text for
 // messages and text options, and the number, integer, numbers or KEY=VALUE pair it holds.
 struct GivenOption {
   std::string name;  // "--max-points"
@@ -88,4 +85,4 @@ class Arguments {
   std::vector<GivenOption> given_;
 };
 
-}  // namespace sympathy::cli
+}  // namespace sympathy::app

@@ -1,10 +1,10 @@
-#include "cases/cli/start_data.hpp"
+#include "cases/app/start_data.hpp"
 
 #include <cstdio>
 
 #include "sympathy/core/errors.hpp"
 
-namespace sympathy::cli {
+namespace sympathy::app {
 
 std::optional<std::string> start_data_path(const Arguments& args) {
   const auto path = args.value("--start-data");
@@ -35,4 +35,4 @@ std::string describe_start_data(const RecordedPeriod& r) {
   return s + ")";
 }
 
-}  // namespace sympathy::cli
+}  // namespace sympathy::app

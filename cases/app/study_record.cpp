@@ -1,4 +1,4 @@
-#include "cases/cli/study_record.hpp"
+#include "cases/app/study_record.hpp"
 
 #include <algorithm>
 #include <filesystem>
@@ -10,7 +10,7 @@
 #include "sympathy/core/errors.hpp"
 #include "sympathy/core/output_file.hpp"
 
-namespace sympathy::cli {
+namespace sympathy::app {
 
 namespace {
 
@@ -109,4 +109,4 @@ void check_or_write_study_record(const std::string& journal_path, const StudyRec
                    "; expected --resume with the same study, or another --out to start anew");
 }
 
-}  // namespace sympathy::cli
+}  // namespace sympathy::app

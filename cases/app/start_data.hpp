@@ -7,11 +7,11 @@
 #include <string>
 #include <vector>
 
-#include "cases/cli/arguments.hpp"
+#include "cases/app/arguments.hpp"
 #include "sympathy/continuation/recorded_period.hpp"
 #include "sympathy/core/ode_system.hpp"
 
-namespace sympathy::cli {
+namespace sympathy::app {
 
 // The recorded period --start-data names (nullopt without it), checked against the system's
 // state names; InputError for --start, --initial or --transient beside it (the recording's first
@@ -26,4 +26,4 @@ std::optional<RecordedPeriod> start_data(const Arguments& args,
 // "data FILE.csv (N rows over S s; period guess T s: the first return, line L)" for the reports.
 std::string describe_start_data(const RecordedPeriod& recorded);
 
-}  // namespace sympathy::cli
+}  // namespace sympathy::app
