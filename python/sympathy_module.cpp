@@ -1,6 +1,6 @@
 // The Python module `sympathy`: a case file (of either kind, or a dict: case_dict.hpp) as a Case,
 // and its simulate, orbit, continue_branch, curve, equilibria and fit, and study: each the command
-// of the same name run on the same code as the program (cases/cli/requests.hpp): keyword
+// of the same name run on the same code as the program (the application layer, cases/app/): keyword
 // arguments are the command's options (python_options.hpp), results the engine's as NumPy arrays
 // and objects (python_results.hpp). Nothing numerical happens here.
 //
@@ -23,10 +23,13 @@
 #include <pybind11/stl.h>
 
 #include "case_dict.hpp"
-#include "cases/app/map_run.hpp"
-#include "cases/cli/basins_output.hpp"
+#include "cases/app/basins_run.hpp"
 #include "cases/app/case_arguments.hpp"
-#include "cases/cli/requests.hpp"
+#include "cases/app/fit_setup.hpp"
+#include "cases/app/map_run.hpp"
+#include "cases/app/requests.hpp"
+#include "cases/app/study_run.hpp"
+#include "cases/app/sweep_run.hpp"
 #include "python_options.hpp"
 #include "python_results.hpp"
 #include "sympathy/continuation/curve_output.hpp"
@@ -168,11 +171,11 @@ class Case {
   }
   py::object simulate_with(const py::dict& keywords) const {
     const app::Arguments args = typed_arguments("simulate", line_, keywords);
-    const std::vector<double> times = cli::simulation_times(args);
+    const std::vector<double> times = app::simulation_times(args);
     const app::LoadedSystem c(line_.path, line_.params, args.assignments("--set"));
     const app::BranchSource source =
         c.source(args.text("--start", ""), args.assignments("--initial"));
-    Flow flow(c.system(), cli::simulation_flow_options(args));
+    Flow flow(c.system(), app::simulation_flow_options(args));
     PythonHooks hooks{py::none()};
     std::vector<double> t;
     std::vector<Eigen::VectorXd> states;
@@ -212,7 +215,7 @@ class Case {
     c.require_orbits();
     if (c.equations() && args.flag("--whole-state"))
       throw InputError("--whole-state: only for a metronome case file");
-    const OrbitOptions o = cli::orbit_request(args, !c.system().autonomous());
+    const OrbitOptions o = app::orbit_request(args, !c.system().autonomous());
     const app::BranchSource source =
         c.source(args.text("--start", ""), args.assignments("--initial"), c.start_data());
     PeriodicOrbit orbit;
@@ -232,7 +235,7 @@ class Case {
   py::object continue_with(const py::dict& keywords, const py::object& progress) const {
     const app::Arguments args = typed_arguments("continue", line_, keywords);
     const app::LoadedSystem c = app::load_system(args);
-    app::BranchRequest request = cli::continue_request(args, c);
+    app::BranchRequest request = app::continue_request(args, c);
     const app::BranchSource source = c.source(request.start, request.initial, request.start_data);
     const ProgressBar shown(progress, request.from, request.to, request.parameter);
     PythonHooks hooks(shown.callback);
@@ -256,7 +259,7 @@ class Case {
   py::object equilibria_with(const py::dict& keywords, const py::object& progress) const {
     const app::Arguments args = typed_arguments("equilibria", line_, keywords);
     const app::LoadedSystem c = app::load_system(args);
-    const cli::EquilibriaRequest request = cli::equilibria_request(args, c);
+    const app::EquilibriaRequest request = app::equilibria_request(args, c);
     const std::string parameter = c.system().parameter_names()[request.problem.parameter];
     std::unique_ptr<EquilibriumCsvWriter> csv;
     if (!request.csv_path.empty())
@@ -291,7 +294,7 @@ class Case {
   }
   py::object fit_with(const py::dict& keywords) const {
     const app::Arguments args = typed_arguments("fit", line_, keywords);
-    const cli::FitSetup setup = cli::fit_setup(args);
+    const app::FitSetup setup = app::fit_setup(args);
     const PreparedFit fit = setup.prepare();
     TrajectoryFitResult result;
     {
@@ -307,7 +310,7 @@ class Case {
   py::object curve_with(const py::dict& keywords, const py::object& progress) const {
     const app::Arguments args = typed_arguments("curve", line_, keywords);
     const app::LoadedSystem c = app::load_system(args);
-    cli::CurveRequest request = cli::curve_request(args, c);
+    app::CurveRequest request = app::curve_request(args, c);
     const app::BranchSource source = c.source(request.branch.start, request.branch.initial);
     PythonHooks hooks(progress);
     request.branch.stop_requested = [&] { return hooks.stop_requested(); };
@@ -325,10 +328,10 @@ class Case {
     BifurcationCurve curve;
     {
       py::gil_scoped_release release;
-      parent = cli::curve_branch(request, c, source, nullptr);
+      parent = app::curve_branch(request, c, source, nullptr);
       if (parent.started() && !hooks.interrupted()) {
         const Bifurcation& event = app::find_event(parent, request.event, "--event");
-        curve = cli::follow_curve(request, c.system(), parent, event, callbacks);
+        curve = app::follow_curve(request, c.system(), parent, event, callbacks);
       } else {
         curve.stop = hooks.interrupted() ? StopReason::Interrupted : StopReason::StartFailed;
         curve.stop_reason = "the branch: " + parent.stop_reason;
@@ -395,11 +398,10 @@ void on_worker_thread(Work&& work) {
 }
 
 py::object study(const std::string& path, const py::dict& keywords) {
-  cli::StudyRun run = with_keywords("study", [&] {
-    return cli::study_run(typed_arguments("study", CaseLine{path, "", {}}, keywords));
+  app::StudyRun run = with_keywords("study", [&] {
+    return app::study_run(typed_arguments("study", CaseLine{path, "", {}}, keywords));
   });
-  on_worker_thread(
-      [&](const std::atomic<bool>* stop) { cli::run_study_branches(run, stop, nullptr); });
+  on_worker_thread([&](const std::atomic<bool>* stop) { app::run_study_branches(run, stop); });
   py::dict branches;
   for (std::size_t i = 0; i < run.study.branches.size(); ++i) {
     py::object b = branch_result(run.results[i], run.systems[i]->describer());
@@ -468,7 +470,7 @@ template <class Run>
 py::tuple journaled(const std::string& command, const std::string& path, const py::dict& keywords,
                     Run run) {
   const app::Arguments args = typed_arguments(command, CaseLine{path, "", {}}, keywords);
-  cli::JournaledOutcome outcome;
+  app::JournaledOutcome outcome;
   with_keywords(command, [&] {
     on_worker_thread([&](const std::atomic<bool>* stop) { outcome = run(args, stop); });
     return 0;
@@ -477,11 +479,11 @@ py::tuple journaled(const std::string& command, const std::string& path, const p
 }
 
 py::tuple basins(const std::string& path, const py::dict& keywords) {
-  return journaled("basins", path, keywords, cli::run_basins_here);
+  return journaled("basins", path, keywords, app::run_basins_here);
 }
 
 py::tuple sweep(const std::string& path, const py::dict& keywords) {
-  return journaled("sweep", path, keywords, cli::run_sweep_here);
+  return journaled("sweep", path, keywords, app::run_sweep_here);
 }
 
 }  // namespace

@@ -78,7 +78,7 @@ MapRun prepare_map(const MapRequest& request) {
   return run;
 }
 
-void run_map(MapRun& run, const std::atomic<bool>* stop, const MapCallbacks& callbacks) {
+void run_map(MapRun& run, const std::atomic<bool>* stop, const JobCallbacks& callbacks) {
   const MapStudy& map = run.map;
   const LoadedSystem& c = *run.system;
   const OdeSystem& model = c.system();

@@ -16,6 +16,7 @@
 #include <nlohmann/json.hpp>
 
 #include "cases/app/branch_run.hpp"
+#include "cases/app/job_callbacks.hpp"
 #include "cases/app/loaded_system.hpp"
 #include "cases/app/map_file.hpp"
 #include "sympathy/continuation/bifurcation_curve.hpp"
@@ -53,17 +54,10 @@ struct MapRun {
 // InputError for --jobs below 1, and for anything prepare_map checks, naming the map file's key.
 MapRun prepare_map(const MapRequest& request);
 
-// Where a map run is, for a progress display: an orbit's job (`what` it is doing), a line of the
-// log (an orbit's branch, curve or grid done), an orbit finished.
-struct MapCallbacks {
-  std::function<void(std::size_t orbit, const std::string& what)> job;
-  std::function<void(const std::string& line)> log;
-  std::function<void(std::size_t orbit)> finished;
-};
-
 // The orbits' branches, curves and grids on request.jobs threads; `stop` (may be null) asked
-// between points. An orbit's failure is its result's `error`.
-void run_map(MapRun& run, const std::atomic<bool>* stop, const MapCallbacks& callbacks);
+// between points; `callbacks`: an orbit's job, a line per branch, curve or grid done. An orbit's
+// failure is its result's `error`.
+void run_map(MapRun& run, const std::atomic<bool>* stop, const JobCallbacks& callbacks);
 
 // Writes the map's JSON (with `seconds`, the run's time) and a CSV per curve into request.out;
 // returns the number of CSV files.

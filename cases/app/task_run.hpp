@@ -37,4 +37,11 @@ TaskRunSummary run_journaled(const MpiSession& mpi, std::size_t count, TaskJourn
                              const TaskRunOptions& run, const std::atomic<bool>* stop,
                              const std::function<void(std::size_t)>& on_recorded = {});
 
+// What a journaled run on this machine's threads (basins, sweep) gives Python: the JSON it wrote
+// and whether it was interrupted.
+struct JournaledOutcome {
+  std::string json_path;
+  bool interrupted = false;
+};
+
 }  // namespace sympathy::app

@@ -9,7 +9,7 @@
 #include <ctime>
 #include <vector>
 
-#include "cases/cli/requests.hpp"
+#include "cases/app/study_run.hpp"
 #include "sympathy/core/csv.hpp"
 #include "sympathy/core/text.hpp"
 
@@ -30,7 +30,7 @@ StudyTiming timed_study(const std::string& path, const std::string& out) {
   const Stopwatch clock;
   const std::clock_t cpu = std::clock();
   StudyRun run = study_run(args);
-  run_study_branches(run, nullptr, nullptr);
+  run_study_branches(run, nullptr);
   StudyTiming t;
   t.wall = clock.seconds();
   t.cpu = static_cast<double>(std::clock() - cpu) / CLOCKS_PER_SEC;

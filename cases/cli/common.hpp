@@ -14,13 +14,6 @@
 
 namespace sympathy::cli {
 
-// What a journaled run on this machine's threads (basins, sweep) gives Python: the JSON it wrote
-// and whether it was interrupted.
-struct JournaledOutcome {
-  std::string json_path;
-  bool interrupted = false;
-};
-
 // The command line reads its options into the application layer's requests and runs them there.
 using namespace sympathy::app;
 

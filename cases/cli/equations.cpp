@@ -4,10 +4,10 @@
 
 #include <nlohmann/json.hpp>
 
+#include "cases/app/requests.hpp"
 #include "cases/app/start_data.hpp"
 #include "cases/cli/common.hpp"
 #include "cases/cli/report.hpp"
-#include "cases/cli/requests.hpp"
 #include "sympathy/cases/state_describer.hpp"
 #include "sympathy/continuation/branch_output.hpp"
 #include "sympathy/core/output_file.hpp"

@@ -7,10 +7,10 @@
 #include <optional>
 
 #include "cases/app/case_arguments.hpp"
+#include "cases/app/requests.hpp"
 #include "cases/cli/commands.hpp"
 #include "cases/cli/common.hpp"
 #include "cases/cli/progress.hpp"
-#include "cases/cli/requests.hpp"
 #include "sympathy/continuation/branch_output.hpp"
 #include "sympathy/continuation/equilibrium_output.hpp"
 
@@ -54,43 +54,6 @@ void print_equilibrium_events(const EquilibriumBranch& branch) {
 }
 
 }  // namespace
-
-EquilibriaRequest equilibria_request(const Arguments& args, const LoadedSystem& c) {
-  c.require_autonomous("equilibria");
-  EquilibriaRequest r;
-  const OdeSystem& system = c.system();
-  const ParameterWindow window = parameter_window(args, c);
-  if (!c.equations() && !args.has("--start")) throw InputError("--start is required");
-  r.start = args.text("--start", "");
-  const std::string& parameter = window.parameter;
-
-  EquilibriumProblem& problem = r.problem;
-  problem.parameter = system.parameter_index(parameter);
-  problem.from = window.from;
-  problem.to = window.to;
-  problem.at = window.at;
-  c.check_range(parameter, window.ends());
-  const BranchSource source = c.source(r.start, args.assignments("--initial"));
-  problem.start_state = source.start_state;
-  problem.values = source.values;
-  if (const std::string wrong = problem.problem_with(system); !wrong.empty())
-    throw InputError("--" + wrong);
-  EquilibriumOptions& o = r.options;
-  o.initial_step = args.number("--step", o.initial_step);
-  o.max_step = args.number("--max-step", o.max_step);
-  o.max_points = args.integer("--max-points", o.max_points);
-  o.lower = std::min(problem.from, problem.to);
-  o.upper = std::max(problem.from, problem.to);
-  check_options(o.validate(), "");
-  r.csv_path = args.text("--csv", "");
-  const std::string& csv_path = r.csv_path;
-  const auto json_path = args.value("--json");
-  if (!csv_path.empty()) check_writable(csv_path, "--csv");
-  if (json_path) check_writable(*json_path, "--json");
-  check_distinct_outputs({{"--csv", csv_path}, {"--json", json_path.value_or("")}}, c.inputs());
-
-  return r;
-}
 
 int run_equilibria(const std::vector<std::string>& argv) {
   Arguments args("equilibria", argv, equilibria_options(), {"CASE"});

@@ -33,7 +33,7 @@ int run_map(const std::vector<std::string>& argv) {
   ProgressLine progress(quiet);
   std::FILE* log = progress.log();
   progress.start_jobs("map", map.orbits.size(), "orbits");
-  MapCallbacks callbacks;
+  JobCallbacks callbacks;
   if (progress.enabled())
     callbacks.job = [&](std::size_t i, const std::string& what) { progress.job(i, what); };
   if (!quiet) callbacks.log = [&](const std::string& line) { std::fputs(line.c_str(), log); };

@@ -6,31 +6,17 @@
 
 #include <nlohmann/json.hpp>
 
+#include "cases/app/requests.hpp"
 #include "cases/app/start_data.hpp"
 #include "cases/cli/commands.hpp"
 #include "cases/cli/common.hpp"
 #include "cases/cli/equations.hpp"
 #include "cases/cli/report.hpp"
-#include "cases/cli/requests.hpp"
 #include "sympathy/continuation/branch_output.hpp"
 #include "sympathy/continuation/periodic_orbit.hpp"
 #include "sympathy/core/output_file.hpp"
 
 namespace sympathy::cli {
-
-OrbitOptions orbit_request(const Arguments& args, bool forced) {
-  OrbitOptions o;
-  o.shooting.segments = args.integer("--segments", 1);
-  o.shooting.threads = segment_threads(args);
-  // A forced system's orbit: Newton from the start at once unless a transient is asked for (its
-  // period is known; a transient would leave an unstable response for whatever attracts).
-  o.transient = args.number("--transient", forced ? 0.0 : o.transient);
-  apply_accuracy(accuracy(args), o);
-  shooting_flow_options(args, o);
-  o.use_symmetry = !args.flag("--whole-state");
-  check_options(o.validate(), "");
-  return o;
-}
 
 int run_orbit(const std::vector<std::string>& argv) {
   Arguments args("orbit", argv, orbit_options(), {"CASE"});

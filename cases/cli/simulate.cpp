@@ -4,36 +4,17 @@
 #include <cstdio>
 #include <memory>
 
+#include "cases/app/requests.hpp"
 #include "cases/cli/commands.hpp"
 #include "cases/cli/common.hpp"
 #include "cases/cli/equations.hpp"
 #include "cases/cli/report.hpp"
-#include "cases/cli/requests.hpp"
 #include "sympathy/cases/equation_case.hpp"
 #include "sympathy/cases/platform_model.hpp"
 #include "sympathy/core/csv.hpp"
 #include "sympathy/core/oscillation.hpp"
 
 namespace sympathy::cli {
-
-std::vector<double> simulation_times(const Arguments& args) {
-  const double t_end = args.number("--t-end", 60.0);
-  const double dt = args.number("--dt", 0.01);
-  if (!(t_end > 0.0)) throw InputError("--t-end: expected a positive number of seconds");
-  if (!(dt > 0.0 && dt <= t_end)) throw InputError("--dt: expected a positive interval <= --t-end");
-  if (t_end / dt > kMaxSamples)
-    throw InputError("--dt " + args.text("--dt", "") + ": " + format_double(t_end / dt) +
-                     " samples over --t-end " + format_double(t_end) +
-                     "; expected at most 1e7 samples (a larger --dt or a shorter --t-end)");
-  return sample_times(t_end, dt);
-}
-
-FlowOptions simulation_flow_options(const Arguments& args) {
-  FlowOptions defaults;
-  defaults.rtol = 1e-8;
-  defaults.atol = 1e-10;
-  return flow_options(args, defaults);
-}
 
 int run_simulate(const std::vector<std::string>& argv) {
   Arguments args("simulate", argv, simulate_options(), {"CASE"});

@@ -1,0 +1,96 @@
+#include "cases/app/requests.hpp"
+
+#include "sympathy/continuation/bifurcation_curve.hpp"
+
+#include <algorithm>
+#include <cmath>
+#include <memory>
+#include <optional>
+
+#include "cases/app/start_data.hpp"
+#include "sympathy/core/csv.hpp"
+#include "sympathy/core/option_check.hpp"
+#include "sympathy/core/output_file.hpp"
+
+namespace sympathy::app {
+
+CurveRequest curve_request(const Arguments& args, const LoadedSystem& c) {
+  c.require_autonomous("curve (two-parameter curves)");
+  const ParameterWindow window = parameter_window(args, c);
+  CurveRequest r;
+  BranchRequest& request = r.branch;
+  request.start_data = c.start_data();
+  if (!c.equations() && !args.has("--start") && !request.start_data)
+    throw InputError("--start is required (or --start-data FILE.csv)");
+  request.start = args.text("--start", "");
+  request.parameter = window.parameter;
+  c.require_parameter("--second", *args.value("--second"));
+  r.second = *args.value("--second");
+  const std::string& second = r.second;
+  if (second == request.parameter)
+    throw InputError("--second " + second + ": expected a parameter other than --param");
+  r.event = parse_event_name(
+      *args.value("--event"), "--event",
+      {BifurcationType::Fold, BifurcationType::BranchPoint, BifurcationType::PeriodDoubling,
+       BifurcationType::NeimarkSacker},
+      "a located bifurcation, LP, BP, PD or NS followed by its number along the branch (e.g. "
+      "BP1)");
+  request.from = window.from;
+  request.to = window.to;
+  request.initial = args.assignments("--initial");
+  request.progress = nullptr;
+  request.parent_path = args.text("--parent", "");
+  auto& o = request.continuation;
+  o.orbit.transient = args.number("--transient", o.orbit.transient);
+  apply_accuracy(accuracy(args), o);
+  shooting_flow_options(args, o.orbit);
+  check_options(o.validate(), "");
+
+  CurveOptions& co = r.options;
+  co.first_lower = std::min(request.from, request.to);
+  co.first_upper = std::max(request.from, request.to);
+  co.second_lower = args.number("--second-from", 0.0);
+  co.second_upper = args.number("--second-to", 0.0);
+  if (co.second_lower > co.second_upper) std::swap(co.second_lower, co.second_upper);
+  if (co.second_lower == co.second_upper)
+    throw InputError("--second-from and --second-to: expected different values");
+  co.initial_step = args.number("--step", co.initial_step);
+  co.max_step = args.number("--max-step", co.max_step);
+  co.max_points = args.integer("--max-points", co.max_points);
+  co.orbit = o.orbit;
+  check_options(co.validate(), "");  // names initial_step --step, ...
+  c.check_range(request.parameter, {{"--from", request.from}, {"--to", request.to}});
+  c.check_range(second, {{"--second-from", co.second_lower}, {"--second-to", co.second_upper}});
+  c.source(request.start, request.initial, request.start_data);  // fails early: the starts
+  // The curve starts at the branch's value of the second parameter: the window must hold it.
+  const double base_second = c.value_of(second);
+  if (base_second < co.second_lower || base_second > co.second_upper)
+    throw InputError("--second-from, --second-to: the window " + format_double(co.second_lower) +
+                     " to " + format_double(co.second_upper) + " does not contain the event (" +
+                     second + " = " + format_double(base_second) + " on the branch)");
+  const auto names = c.system().parameter_names();
+  r.second_index = static_cast<int>(std::find(names.begin(), names.end(), second) - names.begin());
+  r.csv_path = args.text("--csv", "");
+  return r;
+}
+
+Branch curve_branch(const CurveRequest& r, const LoadedSystem& c, const BranchSource& source,
+                    const std::atomic<bool>* stop) {
+  if (r.branch.parent_path.empty()) return run_branch(source, r.branch, stop);
+  Branch parent = read_branch_json(r.branch.parent_path, c.system(), c.subspace(r.branch.start));
+  if (parent.parameter_name != r.branch.parameter)
+    throw InputError("--parent " + r.branch.parent_path + ": a branch in " + parent.parameter_name +
+                     "; expected one in --param " + r.branch.parameter);
+  return parent;
+}
+
+BifurcationCurve follow_curve(const CurveRequest& r, const OdeSystem& system, const Branch& parent,
+                              const Bifurcation& event, const CurveCallbacks& callbacks) {
+  try {
+    return continue_curve(system, parent, event, r.second_index, r.options, callbacks);
+  } catch (const std::invalid_argument& e) {
+    throw InputError("--event " + r.event.text + ": " + e.what());
+  }
+}
+
+}  // namespace sympathy::app

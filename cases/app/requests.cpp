@@ -1,0 +1,169 @@
+#include "cases/app/requests.hpp"
+
+#include <algorithm>
+#include <cmath>
+#include <memory>
+#include <optional>
+
+#include "cases/app/hopf_switch.hpp"
+#include "cases/app/start_data.hpp"
+#include "sympathy/core/csv.hpp"
+#include "sympathy/core/option_check.hpp"
+#include "sympathy/core/output_file.hpp"
+
+namespace sympathy::app {
+
+OrbitOptions orbit_request(const Arguments& args, bool forced) {
+  OrbitOptions o;
+  o.shooting.segments = args.integer("--segments", 1);
+  o.shooting.threads = segment_threads(args);
+  // A forced system's orbit: Newton from the start at once unless a transient is asked for (its
+  // period is known; a transient would leave an unstable response for whatever attracts).
+  o.transient = args.number("--transient", forced ? 0.0 : o.transient);
+  apply_accuracy(accuracy(args), o);
+  shooting_flow_options(args, o);
+  o.use_symmetry = !args.flag("--whole-state");
+  check_options(o.validate(), "");
+  return o;
+}
+
+ContinuationOptions branch_continuation(const Arguments& args, const OdeSystem& system) {
+  ContinuationOptions o;
+  // A forced system's start: Newton at once unless a transient is asked for (its period is the
+  // forcing's; a transient would leave an unstable response for whatever attracts).
+  o.orbit.transient = args.number("--transient", system.autonomous() ? o.orbit.transient : 0.0);
+  o.orbit.shooting.segments = args.integer("--segments", 1);
+  o.initial_step = args.number("--step", o.initial_step);
+  o.max_step = args.number("--max-step", o.max_step);
+  o.max_points = args.integer("--max-points", o.max_points);
+  apply_accuracy(accuracy(args), o);
+  shooting_flow_options(args, o.orbit);
+  return o;
+}
+
+BranchRequest continue_request(const Arguments& args, const LoadedSystem& c) {
+  const ParameterWindow window = parameter_window(args, c);
+  BranchRequest request;
+  request.start_data = c.start_data();
+  c.require_orbits();
+  if (!c.equations() && !args.has("--start") && !request.start_data)
+    throw InputError("--start is required (or --start-data FILE.csv)");
+  request.start = args.text("--start", "");
+  request.parameter = window.parameter;
+  request.from = window.from;
+  request.to = window.to;
+  request.at = window.at;
+  request.initial = args.assignments("--initial");
+  request.csv_path = args.text("--csv", "");
+  request.switch_at = args.text("--switch-at", "");
+  if (!request.switch_at.empty() && !parse_hopf_name(request.switch_at, "--switch-at"))
+    parse_event_name(request.switch_at, "--switch-at",
+                     {BifurcationType::BranchPoint, BifurcationType::PeriodDoubling},
+                     "a branch point or period doubling of the branch, or a Hopf point of the "
+                     "equilibria (BP, PD or HB followed by its number, e.g. BP1 or HB1): only "
+                     "there is a branch born");
+  if (!request.switch_at.empty()) c.require_autonomous("--switch-at (branch switching)");
+  if (args.has("--hopf-amplitude")) {
+    if (request.switch_at.empty() || !parse_hopf_name(request.switch_at, "--switch-at"))
+      throw InputError(
+          "--hopf-amplitude: only with --switch-at HBn (the family born at a Hopf point); "
+          "expected --switch-at HB1, HB2, ... or no --hopf-amplitude");
+    request.hopf_start.amplitude = args.number("--hopf-amplitude", 0.0);
+    if (!(request.hopf_start.amplitude > 0.0))
+      throw InputError("--hopf-amplitude " + format_number(request.hopf_start.amplitude) +
+                       ": expected a positive amplitude (state units)");
+  }
+  request.parent_path = args.text("--parent", "");
+  if (!request.parent_path.empty() && request.switch_at.empty())
+    throw InputError("--parent " + request.parent_path +
+                     ": expected --switch-at EVENT too (the event of the parent to switch at)");
+
+  if (args.flag("--quiet")) request.progress = nullptr;
+  request.verbose = args.flag("--verbose");
+  auto& o = request.continuation;
+  o = branch_continuation(args, c.system());
+  o.orbit.shooting.threads = segment_threads(args);
+  o.user_points = args.numbers("--user-points");
+  for (double v : o.user_points)
+    if (v < std::min(request.from, request.to) || v > std::max(request.from, request.to))
+      throw InputError("--user-points " + format_number(v) + ": outside --from " +
+                       format_number(request.from) + " .. --to " + format_number(request.to) +
+                       "; expected values the branch can reach");
+  o.orbit.use_symmetry = !args.flag("--whole-state");
+  check_options(o.validate(), "");
+  c.check_range(request.parameter, window.ends());
+  // The start (fails early with the list of starts).
+  c.source(request.start, request.initial, request.start_data);
+  const auto json_path = args.value("--json");
+  if (json_path) check_writable(*json_path, "--json");
+  request.events_path = args.text("--events", "");
+  if (!request.csv_path.empty()) check_writable(request.csv_path, "--csv");
+  if (!request.events_path.empty()) check_writable(request.events_path, "--events");
+  auto inputs = c.inputs();
+  inputs.emplace_back("--parent", request.parent_path);
+  inputs.emplace_back("--start-data", args.text("--start-data", ""));
+  check_distinct_outputs({{"--csv", request.csv_path},
+                          {"--events", request.events_path},
+                          {"--json", json_path.value_or("")}},
+                         inputs);
+
+  return request;
+}
+
+EquilibriaRequest equilibria_request(const Arguments& args, const LoadedSystem& c) {
+  c.require_autonomous("equilibria");
+  EquilibriaRequest r;
+  const OdeSystem& system = c.system();
+  const ParameterWindow window = parameter_window(args, c);
+  if (!c.equations() && !args.has("--start")) throw InputError("--start is required");
+  r.start = args.text("--start", "");
+  const std::string& parameter = window.parameter;
+
+  EquilibriumProblem& problem = r.problem;
+  problem.parameter = system.parameter_index(parameter);
+  problem.from = window.from;
+  problem.to = window.to;
+  problem.at = window.at;
+  c.check_range(parameter, window.ends());
+  const BranchSource source = c.source(r.start, args.assignments("--initial"));
+  problem.start_state = source.start_state;
+  problem.values = source.values;
+  if (const std::string wrong = problem.problem_with(system); !wrong.empty())
+    throw InputError("--" + wrong);
+  EquilibriumOptions& o = r.options;
+  o.initial_step = args.number("--step", o.initial_step);
+  o.max_step = args.number("--max-step", o.max_step);
+  o.max_points = args.integer("--max-points", o.max_points);
+  o.lower = std::min(problem.from, problem.to);
+  o.upper = std::max(problem.from, problem.to);
+  check_options(o.validate(), "");
+  r.csv_path = args.text("--csv", "");
+  const std::string& csv_path = r.csv_path;
+  const auto json_path = args.value("--json");
+  if (!csv_path.empty()) check_writable(csv_path, "--csv");
+  if (json_path) check_writable(*json_path, "--json");
+  check_distinct_outputs({{"--csv", csv_path}, {"--json", json_path.value_or("")}}, c.inputs());
+
+  return r;
+}
+
+std::vector<double> simulation_times(const Arguments& args) {
+  const double t_end = args.number("--t-end", 60.0);
+  const double dt = args.number("--dt", 0.01);
+  if (!(t_end > 0.0)) throw InputError("--t-end: expected a positive number of seconds");
+  if (!(dt > 0.0 && dt <= t_end)) throw InputError("--dt: expected a positive interval <= --t-end");
+  if (t_end / dt > kMaxSamples)
+    throw InputError("--dt " + args.text("--dt", "") + ": " + format_double(t_end / dt) +
+                     " samples over --t-end " + format_double(t_end) +
+                     "; expected at most 1e7 samples (a larger --dt or a shorter --t-end)");
+  return sample_times(t_end, dt);
+}
+
+FlowOptions simulation_flow_options(const Arguments& args) {
+  FlowOptions defaults;
+  defaults.rtol = 1e-8;
+  defaults.atol = 1e-10;
+  return flow_options(args, defaults);
+}
+
+}  // namespace sympathy::app
