@@ -27,6 +27,7 @@
 #include "cases/app/case_arguments.hpp"
 #include "cases/app/fit_setup.hpp"
 #include "cases/app/map_run.hpp"
+#include "cases/app/orbit_run.hpp"
 #include "cases/app/requests.hpp"
 #include "cases/app/study_run.hpp"
 #include "cases/app/sweep_run.hpp"
@@ -211,22 +212,12 @@ class Case {
   }
   py::object orbit_with(const py::dict& keywords) const {
     const app::Arguments args = typed_arguments("orbit", line_, keywords);
-    const app::LoadedSystem c = app::load_system(args);
-    c.require_orbits();
-    if (c.equations() && args.flag("--whole-state"))
-      throw InputError("--whole-state: only for a metronome case file");
-    const OrbitOptions o = app::orbit_request(args, !c.system().autonomous());
-    const app::BranchSource source =
-        c.source(args.text("--start", ""), args.assignments("--initial"), c.start_data());
-    PeriodicOrbit orbit;
+    std::optional<app::OrbitRun> run;
     {
       py::gil_scoped_release release;
-      orbit = c.start_data() ? orbit_from_recorded_period(c.system(), source.values,
-                                                          *c.start_data(), source.subspace, o)
-                             : find_periodic_orbit(c.system(), source.values, source.start_state,
-                                                   source.subspace, o);
+      run.emplace(app::run_orbit(args));
     }
-    return orbit_result(c.system(), orbit, c.describer());
+    return orbit_result(run->c->system(), run->orbit, run->c->describer());
   }
 
   py::object continue_branch(const py::dict& keywords, const py::object& progress) const {

@@ -133,6 +133,10 @@ BranchSource LoadedSystem::source(const std::string& start, const std::vector<As
           std::nullopt};
 }
 
+std::vector<std::string> LoadedSystem::start_names() const {
+  return equations_ ? equations_->file.start_names() : metronomes_->file.start_names();
+}
+
 InvariantSubspace LoadedSystem::subspace(const std::string& start) const {
   if (equations_ || start.empty()) return InvariantSubspace();
   return metronomes_->file.invariant_subspace(metronomes_->file.start(start), *model_);

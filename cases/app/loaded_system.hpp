@@ -77,6 +77,10 @@ class LoadedSystem {
   BranchSource source(const std::string& start, const std::vector<Assignment>& initial,
                       const std::optional<RecordedPeriod>& data = std::nullopt) const;
   InvariantSubspace subspace(const std::string& start) const;
+  // The names of the file's starts.
+  std::vector<std::string> start_names() const;
+  // The metronome model of a metronome case file (nullptr for an equation case file).
+  const MetronomeModel* metronome_model() const { return model_.get(); }
   // The model a fit adjusts (parameter_fit.hpp), at the case's values: the metronome model (the
   // pendula free) or the equation case file's system.
   FitModel fit_model() const;

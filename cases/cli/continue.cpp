@@ -11,7 +11,6 @@
 #include "cases/app/requests.hpp"
 #include "cases/app/start_data.hpp"
 #include "cases/cli/commands.hpp"
-#include "cases/cli/equations.hpp"
 #include "cases/cli/progress.hpp"
 #include "cases/cli/report.hpp"
 #include "sympathy/cases/equation_case.hpp"

@@ -11,7 +11,6 @@
 #include "cases/app/fit_setup.hpp"
 #include "cases/cli/commands.hpp"
 #include "cases/cli/common.hpp"
-#include "cases/cli/equations.hpp"
 #include "cases/cli/report.hpp"
 #include "sympathy/cases/case_writer.hpp"
 #include "sympathy/cases/parameter_fit.hpp"

@@ -140,27 +140,12 @@ void print_flow_statistics(std::FILE* out, const FlowStatistics& s) {
                s.switchings);
 }
 
-int finish_orbit_report(const OdeSystem& system, const PeriodicOrbit& orbit,
-                        const OrbitDescriber& describer, bool verbose,
-                        const std::optional<std::string>& json_path, const std::string& case_path,
-                        const std::string& params, const std::string& start, double seconds) {
-  if (verbose) {
-    std::printf("  newton steps");
-    for (double step : orbit.newton.step_norms) std::printf(" %.1e", step);
-    std::printf(" (|dx|_inf; %d halvings; %s linear solves)\n", orbit.newton.halvings,
-                orbit.newton.sparse ? "sparse LU" : "dense SVD");
-    print_flow_statistics(stdout, orbit.flow);
-  }
-  std::printf("  run time     %.3f s\n", seconds);
-  if (json_path) {
-    nlohmann::json j = orbit_json(system, orbit, &describer);
-    j["case"] = case_path;
-    j["params_set"] = params;
-    j["start"] = start;
-    j["seconds"] = seconds;
-    write_file_atomically(*json_path, j.dump(2) + "\n");
-  }
-  return orbit.converged() ? 0 : 4;
+void print_newton_and_flow(std::FILE* out, const PeriodicOrbit& orbit) {
+  std::fprintf(out, "  newton steps");
+  for (double step : orbit.newton.step_norms) std::fprintf(out, " %.1e", step);
+  std::fprintf(out, " (|dx|_inf; %d halvings; %s linear solves)\n", orbit.newton.halvings,
+               orbit.newton.sparse ? "sparse LU" : "dense SVD");
+  print_flow_statistics(out, orbit.flow);
 }
 
 void print_events(std::FILE* out, const Branch& branch) {

@@ -29,13 +29,8 @@ void print_orbit(std::FILE* out, const OdeSystem& model, const PeriodicOrbit& or
 // The full report of a flow's work (--verbose).
 void print_flow_statistics(std::FILE* out, const FlowStatistics& s);
 
-// The end of `orbit`'s report, whatever the kind of case: with `verbose` Newton's steps and the
-// flow's work, the run time, and to `json_path` (if any) the orbit's JSON with the case, its
-// parameter set, the start and the run time. The command's exit code: 0 converged, 4 not.
-int finish_orbit_report(const OdeSystem& system, const PeriodicOrbit& orbit,
-                        const OrbitDescriber& describer, bool verbose,
-                        const std::optional<std::string>& json_path, const std::string& case_path,
-                        const std::string& params, const std::string& start, double seconds);
+// Newton's steps and the flow's work (orbit --verbose).
+void print_newton_and_flow(std::FILE* out, const PeriodicOrbit& orbit);
 
 // A branch's events as a table: type (with ? where not trusted), parameter, uncertainty, period,
 // crossing multiplier, note.

@@ -7,7 +7,6 @@
 #include "cases/app/requests.hpp"
 #include "cases/cli/commands.hpp"
 #include "cases/cli/common.hpp"
-#include "cases/cli/equations.hpp"
 #include "cases/cli/report.hpp"
 #include "sympathy/cases/equation_case.hpp"
 #include "sympathy/cases/platform_model.hpp"

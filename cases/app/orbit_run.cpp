@@ -1,0 +1,66 @@
+#include "cases/app/orbit_run.hpp"
+
+#include "cases/app/case_arguments.hpp"
+#include "cases/app/requests.hpp"
+#include "cases/app/start_data.hpp"
+#include "sympathy/cases/metronome_describer.hpp"
+#include "sympathy/cases/state_describer.hpp"
+#include "sympathy/continuation/branch_output.hpp"
+#include "sympathy/core/output_file.hpp"
+#include "sympathy/core/text.hpp"
+
+namespace sympathy::app {
+
+OrbitRun run_orbit(const Arguments& args) {
+  const Stopwatch clock;
+  OrbitRun run;
+  run.c = std::make_unique<LoadedSystem>(load_system(args));
+  const LoadedSystem& c = *run.c;
+  c.require_orbits();
+  const OdeSystem& system = c.system();
+  const MetronomeModel* metronomes = c.metronome_model();
+  if (!metronomes && args.flag("--whole-state"))
+    throw InputError(
+        "--whole-state: only for a metronome case file (an equation case file's "
+        "orbits are always computed in the whole state space)");
+  const auto& recorded = c.start_data();
+  if (metronomes && !recorded && !args.has("--start"))
+    throw InputError("--start NAME is required (or --start-data FILE.csv); expected one of: " +
+                     join(c.start_names()));
+  // From a recorded period: Newton at once in the whole state space (the data need not lie in a
+  // start's symmetric subspace); a forced system's transient 0 unless --transient gives one.
+  const BranchSource source =
+      c.source(args.text("--start", ""), args.assignments("--initial"), recorded);
+  run.options = orbit_request(args, !system.autonomous());
+  if (const auto path = args.value("--json")) {
+    check_writable(*path, "--json");
+    check_distinct_outputs({{"--json", *path}}, c.inputs());
+  }
+
+  run.orbit = recorded ? orbit_from_recorded_period(system, source.values, *recorded,
+                                                    source.subspace, run.options)
+                       : find_periodic_orbit(system, source.values, source.start_state,
+                                             source.subspace, run.options);
+  run.seconds = clock.seconds();
+  if (metronomes) {
+    const MetronomeDescriber::Report report = MetronomeDescriber(*metronomes).report(run.orbit);
+    run.amplitudes = report.amplitudes;
+    run.phase_differences = report.phase_differences;
+  } else {
+    const StateDescriber::Sizes sizes = StateDescriber(system).sizes(run.orbit);
+    run.amplitudes = sizes.amplitudes;
+    run.rms = sizes.rms;
+  }
+  run.start_name = recorded              ? describe_start_data(*recorded)
+                   : args.has("--start") ? *args.value("--start")
+                                         : "(the file's [states])";
+  run.json = orbit_json(system, run.orbit, &c.describer());
+  run.json["case"] = c.path();
+  run.json["params_set"] = c.params();
+  run.json["start"] = recorded ? "data " + recorded->path : args.text("--start", "");
+  run.json["seconds"] = run.seconds;
+  if (const auto path = args.value("--json")) write_file_atomically(*path, run.json.dump(2) + "\n");
+  return run;
+}
+
+}  // namespace sympathy::app
