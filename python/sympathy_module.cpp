@@ -273,7 +273,7 @@ class Case {
     EquilibriumBranch branch;
     {
       py::gil_scoped_release release;
-      branch = continue_equilibria(c.system(), request.problem, request.options, callbacks);
+      branch = app::run_equilibria(request, c.system(), callbacks);
       if (csv) csv->close();
     }
     hooks.raise_kept();

@@ -1,6 +1,8 @@
 #include "cases/app/requests.hpp"
 
 #include "sympathy/continuation/bifurcation_curve.hpp"
+#include "sympathy/continuation/branch_output.hpp"
+#include "sympathy/continuation/curve_output.hpp"
 
 #include <algorithm>
 #include <cmath>
@@ -71,6 +73,12 @@ CurveRequest curve_request(const Arguments& args, const LoadedSystem& c) {
   const auto names = c.system().parameter_names();
   r.second_index = static_cast<int>(std::find(names.begin(), names.end(), second) - names.begin());
   r.csv_path = args.text("--csv", "");
+  // Every output checked before any work: writable, and none replacing an input or another.
+  r.json_path = args.text("--json", "");
+  if (!r.json_path.empty()) check_writable(r.json_path, "--json");
+  if (!r.csv_path.empty()) check_writable(r.csv_path, "--csv");
+  check_distinct_outputs({{"--csv", r.csv_path}, {"--json", r.json_path}},
+                         with(c.inputs(), {"--parent", request.parent_path}));
   return r;
 }
 
@@ -86,11 +94,34 @@ Branch curve_branch(const CurveRequest& r, const LoadedSystem& c, const BranchSo
 
 BifurcationCurve follow_curve(const CurveRequest& r, const OdeSystem& system, const Branch& parent,
                               const Bifurcation& event, const CurveCallbacks& callbacks) {
+  // Each point streamed to the CSV as it is found, before the caller's hook sees it.
+  std::unique_ptr<CurveCsvWriter> csv;
+  if (!r.csv_path.empty())
+    csv = std::make_unique<CurveCsvWriter>(r.csv_path, system, r.branch.parameter, r.second);
+  CurveCallbacks streamed = callbacks;
+  streamed.on_point = [&](const CurvePoint& p) {
+    if (csv) csv->write(p);
+    if (callbacks.on_point) callbacks.on_point(p);
+  };
   try {
-    return continue_curve(system, parent, event, r.second_index, r.options, callbacks);
+    BifurcationCurve curve =
+        continue_curve(system, parent, event, r.second_index, r.options, streamed);
+    if (csv) csv->close();
+    return curve;
   } catch (const std::invalid_argument& e) {
     throw InputError("--event " + r.event.text + ": " + e.what());
   }
+}
+
+void write_curve_json(const CurveRequest& r, const BifurcationCurve& curve, const LoadedSystem& c,
+                      double seconds) {
+  nlohmann::json j = curve_json(curve);
+  j["case"] = c.path();
+  j["params_set"] = c.params();
+  j["start"] = r.branch.start;
+  j["event"] = r.event.text;
+  j["seconds"] = seconds;
+  write_json(r.json_path, j);
 }
 
 }  // namespace sympathy::app

@@ -7,6 +7,8 @@
 
 #include "cases/app/hopf_switch.hpp"
 #include "cases/app/start_data.hpp"
+#include "sympathy/continuation/branch_output.hpp"
+#include "sympathy/continuation/equilibrium_output.hpp"
 #include "sympathy/core/csv.hpp"
 #include "sympathy/core/option_check.hpp"
 #include "sympathy/core/output_file.hpp"
@@ -139,10 +141,10 @@ EquilibriaRequest equilibria_request(const Arguments& args, const LoadedSystem& 
   check_options(o.validate(), "");
   r.csv_path = args.text("--csv", "");
   const std::string& csv_path = r.csv_path;
-  const auto json_path = args.value("--json");
+  r.json_path = args.text("--json", "");
   if (!csv_path.empty()) check_writable(csv_path, "--csv");
-  if (json_path) check_writable(*json_path, "--json");
-  check_distinct_outputs({{"--csv", csv_path}, {"--json", json_path.value_or("")}}, c.inputs());
+  if (!r.json_path.empty()) check_writable(r.json_path, "--json");
+  check_distinct_outputs({{"--csv", csv_path}, {"--json", r.json_path}}, c.inputs());
 
   return r;
 }
@@ -164,6 +166,44 @@ FlowOptions simulation_flow_options(const Arguments& args) {
   defaults.rtol = 1e-8;
   defaults.atol = 1e-10;
   return flow_options(args, defaults);
+}
+
+void write_branch_json(const std::string& path, const Branch& branch, const BranchRequest& request,
+                       const LoadedSystem& c, double seconds) {
+  nlohmann::json j = branch_json(branch, request, c.describer());
+  j["case"] = c.path();
+  j["params_set"] = c.params();
+  j["seconds"] = seconds;
+  write_json(path, j);
+}
+
+EquilibriumBranch run_equilibria(const EquilibriaRequest& r, const OdeSystem& system,
+                                 const EquilibriumCallbacks& callbacks) {
+  // Each point streamed to the CSV as it is found, before the caller's hook sees it.
+  std::unique_ptr<EquilibriumCsvWriter> csv;
+  if (!r.csv_path.empty())
+    csv = std::make_unique<EquilibriumCsvWriter>(r.csv_path, system,
+                                                 system.parameter_names()[r.problem.parameter]);
+  EquilibriumCallbacks streamed = callbacks;
+  streamed.on_point = [&](const EquilibriumPoint& p) {
+    if (csv) csv->write(p);
+    if (callbacks.on_point) callbacks.on_point(p);
+  };
+  EquilibriumBranch branch = continue_equilibria(system, r.problem, r.options, streamed);
+  if (csv) csv->close();
+  return branch;
+}
+
+void write_equilibria_json(const EquilibriaRequest& r, const EquilibriumBranch& branch,
+                           const LoadedSystem& c, double seconds) {
+  nlohmann::json j = equilibrium_branch_json(branch);
+  j["case"] = c.path();
+  j["params_set"] = c.params();
+  j["start"] = r.start;
+  j["from"] = r.problem.from;
+  j["to"] = r.problem.to;
+  j["seconds"] = seconds;
+  write_json(r.json_path, j);
 }
 
 }  // namespace sympathy::app

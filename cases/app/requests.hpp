@@ -38,6 +38,11 @@ ContinuationOptions branch_continuation(const Arguments& args, const OdeSystem& 
 // options, switching, the outputs), checked against the case `c`.
 BranchRequest continue_request(const Arguments& args, const LoadedSystem& c);
 
+// Writes `branch`'s JSON to `path` as continue --json does: the engine's branch JSON with the
+// request's start and bounds, the case's path and parameter set, and the run time.
+void write_branch_json(const std::string& path, const Branch& branch, const BranchRequest& request,
+                       const LoadedSystem& c, double seconds);
+
 // sympathy curve: the request (the branch, the event's name, the second parameter,
 // the engine's CurveOptions, checked against the case `c`); the branch (computed as continue
 // computes it, or read from --parent); and the event's curve (InputError naming --event for an
@@ -48,13 +53,18 @@ struct CurveRequest {
   std::string second;
   int second_index = -1;
   CurveOptions options;
-  std::string csv_path;  // "" for none
+  std::string csv_path;   // "" for none: each point streamed here by follow_curve
+  std::string json_path;  // "" for none: write_curve_json
 };
 CurveRequest curve_request(const Arguments& args, const LoadedSystem& c);
 Branch curve_branch(const CurveRequest& r, const LoadedSystem& c, const BranchSource& source,
                     const std::atomic<bool>* stop);
 BifurcationCurve follow_curve(const CurveRequest& r, const OdeSystem& system, const Branch& parent,
                               const Bifurcation& event, const CurveCallbacks& callbacks);
+// The curve's JSON to r.json_path, with the case's path and set, the start, the event's name and
+// the run time.
+void write_curve_json(const CurveRequest& r, const BifurcationCurve& curve, const LoadedSystem& c,
+                      double seconds);
 
 // sympathy equilibria: the engine's problem and options read from them, checked
 // against the case `c` (the problem's and the options' own checks, the range, the outputs).
@@ -62,9 +72,17 @@ struct EquilibriaRequest {
   std::string start;  // "" for an equation case file's [states]
   EquilibriumProblem problem;
   EquilibriumOptions options;
-  std::string csv_path;  // "" for none
+  std::string csv_path;   // "" for none: each point streamed here by run_equilibria
+  std::string json_path;  // "" for none: write_equilibria_json
 };
 EquilibriaRequest equilibria_request(const Arguments& args, const LoadedSystem& c);
+// The branch of equilibria (the engine's continue_equilibria), its points streamed to r.csv_path.
+EquilibriumBranch run_equilibria(const EquilibriaRequest& r, const OdeSystem& system,
+                                 const EquilibriumCallbacks& callbacks);
+// The branch's JSON to r.json_path, with the case's path and set, the start, the window and the
+// run time.
+void write_equilibria_json(const EquilibriaRequest& r, const EquilibriumBranch& branch,
+                           const LoadedSystem& c, double seconds);
 
 // sympathy simulate: the output times of --t-end and --dt (0, dt, 2 dt, ..., t_end;
 // InputError unless 0 < dt <= t_end) and the integrator options on its defaults (BDF, rtol 1e-8,

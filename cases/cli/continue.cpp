@@ -13,10 +13,6 @@
 #include "cases/cli/commands.hpp"
 #include "cases/cli/progress.hpp"
 #include "cases/cli/report.hpp"
-#include "sympathy/cases/equation_case.hpp"
-#include "sympathy/cases/state_describer.hpp"
-#include "sympathy/continuation/branch_output.hpp"
-#include "sympathy/core/output_file.hpp"
 
 namespace sympathy::cli {
 
@@ -73,11 +69,7 @@ int run_continue(const std::vector<std::string>& argv) {
   std::printf("  run time %.3f s (%ld integrations, %ld steps%s)\n", clock.seconds(),
               branch.flow.calls, branch.flow.steps, chosen.c_str());
   if (json_path) {
-    nlohmann::json j = branch_json(branch, request, c.describer());
-    j["case"] = c.path();
-    j["params_set"] = c.params();
-    j["seconds"] = clock.seconds();
-    write_json(*json_path, j);
+    write_branch_json(*json_path, branch, request, c, clock.seconds());
   }
   return exit_code_of(branch);
 }

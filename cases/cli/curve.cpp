@@ -12,11 +12,6 @@
 #include "cases/app/start_data.hpp"
 #include "cases/cli/commands.hpp"
 #include "cases/cli/progress.hpp"
-#include "sympathy/continuation/bifurcation_curve.hpp"
-#include "sympathy/continuation/branch_output.hpp"
-#include "sympathy/continuation/curve_output.hpp"
-#include "sympathy/core/csv.hpp"
-#include "sympathy/core/output_file.hpp"
 
 namespace sympathy::cli {
 
@@ -47,12 +42,6 @@ int run_curve(const std::vector<std::string>& argv) {
   const std::string& second = r.second;
   const CurveOptions& curve_options = r.options;
   const BranchSource source = c.source(request.start, request.initial, request.start_data);
-  const auto json_path = args.value("--json");
-  const std::string csv_path = args.text("--csv", "");
-  if (json_path) check_writable(*json_path, "--json");
-  if (!csv_path.empty()) check_writable(csv_path, "--csv");
-  check_distinct_outputs({{"--csv", csv_path}, {"--json", json_path.value_or("")}},
-                         with(c.inputs(), {"--parent", request.parent_path}));
 
   std::printf(
       "sympathy curve %s  params %s  start %s  %s of the %s-branch (%g to %g) in %s "
@@ -81,16 +70,12 @@ int run_curve(const std::vector<std::string>& argv) {
               name.text.c_str(), request.parameter.c_str(), event.parameter);
   std::fflush(stdout);
 
-  std::unique_ptr<CurveCsvWriter> csv;
-  if (!csv_path.empty())
-    csv = std::make_unique<CurveCsvWriter>(csv_path, model, request.parameter, second);
   const bool quiet = args.flag("--quiet");
   ProgressLine progress(quiet);
   std::FILE* log = progress.log();
   int points = 0;
   CurveCallbacks callbacks;
   callbacks.on_point = [&](const CurvePoint& p) {
-    if (csv) csv->write(p);
     if (!quiet) {
       std::fprintf(log, "  [%4d] %s = %-14.9g %s = %-14.9g T = %.9f s  critical %.6f%+.6fi",
                    p.index, request.parameter.c_str(), p.first, second.c_str(), p.second, p.period,
@@ -111,21 +96,12 @@ int run_curve(const std::vector<std::string>& argv) {
   callbacks.stop_requested = [] { return interrupt_flag()->load(); };
   const BifurcationCurve curve = follow_curve(r, model, parent, event, callbacks);
   progress.clear();
-  if (csv) csv->close();
   std::printf("  %zu points; stopped: %s\n", curve.points.size(), curve.stop_reason.c_str());
   std::printf("codimension-two points and turns:\n");
   print_curve_events(stdout, curve);
   std::printf("  run time %.3f s (the curve %.3f s: %d monodromies, %ld steps; noise %.1e)\n",
               clock.seconds(), curve.seconds, curve.evaluations, curve.flow.steps, curve.noise);
-  if (json_path) {
-    nlohmann::json j = curve_json(curve);
-    j["case"] = c.path();
-    j["params_set"] = c.params();
-    j["start"] = request.start;
-    j["event"] = name.text;
-    j["seconds"] = clock.seconds();
-    write_json(*json_path, j);
-  }
+  if (!r.json_path.empty()) write_curve_json(r, curve, c, clock.seconds());
   return exit_code_of(curve);
 }
 

@@ -11,8 +11,6 @@
 #include "cases/cli/commands.hpp"
 #include "cases/cli/common.hpp"
 #include "cases/cli/progress.hpp"
-#include "sympathy/continuation/branch_output.hpp"
-#include "sympathy/continuation/equilibrium_output.hpp"
 
 namespace sympathy::cli {
 
@@ -62,19 +60,14 @@ int run_equilibria(const std::vector<std::string>& argv) {
   const OdeSystem& system = c.system();
   const EquilibriaRequest r = equilibria_request(args, c);
   const EquilibriumProblem& problem = r.problem;
-  const EquilibriumOptions& o = r.options;
   const std::string& start_name = r.start;
   const std::string parameter = system.parameter_names()[problem.parameter];
-  const std::string& csv_path = r.csv_path;
-  const auto json_path = args.value("--json");
   std::printf("sympathy equilibria %s  params %s  start %s  %s from %g to %g\n", c.path().c_str(),
               c.params().empty() ? "(none)" : c.params().c_str(),
               start_name.empty() ? "(the file's [states])" : start_name.c_str(), parameter.c_str(),
               problem.from, problem.to);
   if (c.equations()) std::printf("  %s\n", c.build_note().c_str());
   std::fflush(stdout);
-  std::unique_ptr<EquilibriumCsvWriter> csv;
-  if (!csv_path.empty()) csv = std::make_unique<EquilibriumCsvWriter>(csv_path, system, parameter);
   const bool quiet = args.flag("--quiet");
   ProgressLine progress(quiet);
   std::FILE* log = progress.log();
@@ -82,7 +75,6 @@ int run_equilibria(const std::vector<std::string>& argv) {
   const auto* stop = interrupt_flag();
   EquilibriumCallbacks callbacks;
   callbacks.on_point = [&](const EquilibriumPoint& p) {
-    if (csv) csv->write(p);
     progress.position("equilibria", parameter, p.parameter, problem.from, problem.to, ++points);
     if (!quiet)
       std::fprintf(log, "  [%4d] %s = %-14.9g |x| = %-12.6g %d unstable  ds %.2g (%d it)\n",
@@ -95,9 +87,8 @@ int run_equilibria(const std::vector<std::string>& argv) {
                    parameter.c_str(), e.parameter, e.uncertainty);
   };
   callbacks.stop_requested = [&] { return stop && stop->load(); };
-  const EquilibriumBranch branch = continue_equilibria(system, problem, o, callbacks);
+  const EquilibriumBranch branch = run_equilibria(r, system, callbacks);
   progress.clear();
-  if (csv) csv->close();
   if (!branch.started()) {
     std::printf("  %s\n  run time %.3f s\n", branch.stop_reason.c_str(), clock.seconds());
     return 4;
@@ -110,16 +101,7 @@ int run_equilibria(const std::vector<std::string>& argv) {
   std::printf("bifurcations:\n");
   print_equilibrium_events(branch);
   std::printf("  run time %.3f s\n", clock.seconds());
-  if (json_path) {
-    nlohmann::json j = equilibrium_branch_json(branch);
-    j["case"] = c.path();
-    j["params_set"] = c.params();
-    j["start"] = start_name;
-    j["from"] = problem.from;
-    j["to"] = problem.to;
-    j["seconds"] = clock.seconds();
-    write_json(*json_path, j);
-  }
+  if (!r.json_path.empty()) write_equilibria_json(r, branch, c, clock.seconds());
   return exit_code_of(branch);
 }
 
