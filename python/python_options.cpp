@@ -20,7 +20,7 @@ std::vector<std::string> left_out(const std::string& command) {
   const auto add = [&](std::initializer_list<const char*> more) {
     out.insert(out.end(), more.begin(), more.end());
   };
-  if (command == "simulate") add({"--out", "--verbose", "--locked-pendula"});
+  if (command == "simulate") add({"--out", "--verbose"});
   if (command == "orbit") add({"--verbose", "--json"});
   if (command == "continue") add({"--quiet", "--verbose", "--json"});
   if (command == "equilibria") add({"--quiet", "--json"});

@@ -29,6 +29,7 @@
 #include "cases/app/map_run.hpp"
 #include "cases/app/orbit_run.hpp"
 #include "cases/app/requests.hpp"
+#include "cases/app/simulation_run.hpp"
 #include "cases/app/study_run.hpp"
 #include "cases/app/sweep_run.hpp"
 #include "python_options.hpp"
@@ -172,38 +173,28 @@ class Case {
   }
   py::object simulate_with(const py::dict& keywords) const {
     const app::Arguments args = typed_arguments("simulate", line_, keywords);
-    const std::vector<double> times = app::simulation_times(args);
-    const app::LoadedSystem c(line_.path, line_.params, args.assignments("--set"));
-    const app::BranchSource source =
-        c.source(args.text("--start", ""), args.assignments("--initial"));
-    Flow flow(c.system(), app::simulation_flow_options(args));
+    app::SimulationRun run = app::prepare_simulation(args);
     PythonHooks hooks{py::none()};
     std::vector<double> t;
     std::vector<Eigen::VectorXd> states;
-    std::string failure;
-    bool interrupted = false;
     {
       py::gil_scoped_release release;
-      try {
-        interrupted = flow.sample_until(source.start_state, source.values, 0.0, times,
-                                        [&](double at, const Eigen::VectorXd& z) {
-                                          t.push_back(at);
-                                          states.push_back(z);
-                                          return hooks.stop_requested();
-                                        });
-      } catch (const IntegrationError& e) {
-        failure = e.what();  // what was computed is kept, as the program keeps its rows
-      }
+      app::run_simulation(
+          run, [&] { return hooks.stop_requested(); },
+          [&](double at, const Eigen::VectorXd& z) {
+            t.push_back(at);
+            states.push_back(z);
+          });
     }
     hooks.raise_kept();
     py::dict fields;
     fields["t"] = vector_array(Eigen::Map<const Eigen::VectorXd>(t.data(), t.size()));
-    fields["states"] = matrix_array(states, c.system().dimension());
-    fields["state_names"] = c.system().state_names();
-    fields["stop"] = !failure.empty() ? "integration failed"
-                     : interrupted    ? "interrupted"
-                                      : "end time";
-    fields["failure"] = failure;
+    fields["states"] = matrix_array(states, run.system->dimension());
+    fields["state_names"] = run.system->state_names();
+    fields["stop"] = !run.failure.empty() ? "integration failed"
+                     : run.interrupted    ? "interrupted"
+                                          : "end time";
+    fields["failure"] = run.failure;
     return py::module_::import("types").attr("SimpleNamespace")(**fields);
   }
 

@@ -151,6 +151,24 @@ def test_simulation_interrupted_keeps_its_samples():
     assert 1 < len(run.t) < 1e6 and run.states.shape == (len(run.t), len(run.state_names))
 
 
+def test_simulation_equals_the_programs_csv_also_with_the_pendula_locked(tmp_path):
+    # The same request as the program (app::prepare_simulation): its CSV's samples to the last
+    # digit it writes (17 significant), for the whole model and the platform alone.
+    case = sympathy.Case(ROW2)
+    for locked in (False, True):
+        out = tmp_path / f"run{int(locked)}.csv"
+        flags = ["--locked-pendula"] if locked else []
+        cli("simulate", ROW2, "--start", "anti-phase", "--t-end", "2", "--dt", "0.5",
+            "--out", str(out), *flags)
+        program = np.genfromtxt(out, delimiter=",", names=True)
+        run = case.simulate(start="anti-phase", t_end=2, dt=0.5, locked_pendula=locked)
+        assert list(program.dtype.names) == ["t", *run.state_names]
+        assert np.array_equal(program["t"], run.t)
+        for k, name in enumerate(run.state_names):
+            assert np.array_equal(program[name], run.states[:, k]), name
+    assert "th1" not in run.state_names  # the platform alone
+
+
 def test_progress_true_draws_a_tqdm_bar_over_the_parameter_range(capsys):
     pytest.importorskip("tqdm")
     branch = sympathy.Case(HOPF).continue_branch(param="mu", from_=0.25, to=1, progress=True)
