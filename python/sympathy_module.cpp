@@ -25,7 +25,7 @@
 #include "case_dict.hpp"
 #include "cases/app/basins_run.hpp"
 #include "cases/app/case_arguments.hpp"
-#include "cases/app/fit_setup.hpp"
+#include "cases/app/fit_run.hpp"
 #include "cases/app/map_run.hpp"
 #include "cases/app/orbit_run.hpp"
 #include "cases/app/requests.hpp"
@@ -242,14 +242,9 @@ class Case {
     const app::Arguments args = typed_arguments("equilibria", line_, keywords);
     const app::LoadedSystem c = app::load_system(args);
     const app::EquilibriaRequest request = app::equilibria_request(args, c);
-    const std::string parameter = c.system().parameter_names()[request.problem.parameter];
-    std::unique_ptr<EquilibriumCsvWriter> csv;
-    if (!request.csv_path.empty())
-      csv = std::make_unique<EquilibriumCsvWriter>(request.csv_path, c.system(), parameter);
     PythonHooks hooks(progress);
     EquilibriumCallbacks callbacks;
     callbacks.on_point = [&](const EquilibriumPoint& p) {
-      if (csv) csv->write(p);
       hooks.report([&] {
         py::dict f;
         f["index"] = p.index;
@@ -265,7 +260,6 @@ class Case {
     {
       py::gil_scoped_release release;
       branch = app::run_equilibria(request, c.system(), callbacks);
-      if (csv) csv->close();
     }
     hooks.raise_kept();
     return equilibria_result(branch);
@@ -277,13 +271,12 @@ class Case {
   py::object fit_with(const py::dict& keywords) const {
     const app::Arguments args = typed_arguments("fit", line_, keywords);
     const app::FitSetup setup = app::fit_setup(args);
-    const PreparedFit fit = setup.prepare();
-    TrajectoryFitResult result;
+    std::optional<app::FitRun> run;
     {
       py::gil_scoped_release release;
-      result = fit_trajectory(*fit.model, fit.problem, setup.options);
+      run.emplace(app::run_fit(setup));
     }
-    return fit_result(*fit.model, fit, result);
+    return fit_result(*run->fit.model, run->fit, run->result);
   }
 
   py::object curve(const py::dict& keywords, const py::object& progress) const {
@@ -297,12 +290,7 @@ class Case {
     PythonHooks hooks(progress);
     request.branch.stop_requested = [&] { return hooks.stop_requested(); };
     CurveCallbacks callbacks;
-    std::unique_ptr<CurveCsvWriter> csv;
-    if (!request.csv_path.empty())
-      csv = std::make_unique<CurveCsvWriter>(request.csv_path, c.system(), request.branch.parameter,
-                                             request.second);
     callbacks.on_point = [&](const CurvePoint& p) {
-      if (csv) csv->write(p);
       hooks.report([&] { return curve_point_result(p); });
     };
     callbacks.stop_requested = [&] { return hooks.stop_requested(); };
@@ -318,7 +306,6 @@ class Case {
         curve.stop = hooks.interrupted() ? StopReason::Interrupted : StopReason::StartFailed;
         curve.stop_reason = "the branch: " + parent.stop_reason;
       }
-      if (csv) csv->close();
     }
     hooks.raise_kept();
     py::object result = curve_result(curve);
