@@ -370,7 +370,9 @@ py::object study(const std::string& path, const py::dict& keywords) {
   app::StudyRun run = with_keywords("study", [&] {
     return app::study_run(typed_arguments("study", CaseLine{path, "", {}}, keywords));
   });
+  const Stopwatch clock;
   on_worker_thread([&](const std::atomic<bool>* stop) { app::run_study_branches(run, stop); });
+  app::write_study_json(run, clock.seconds());  // as the program writes it, beside the CSVs
   py::dict branches;
   for (std::size_t i = 0; i < run.study.branches.size(); ++i) {
     py::object b = branch_result(run.results[i], run.systems[i]->describer());

@@ -9,6 +9,7 @@
 #include <thread>
 
 #include "cases/app/start_data.hpp"
+#include "sympathy/continuation/branch_output.hpp"
 #include "sympathy/core/csv.hpp"
 #include "sympathy/core/option_check.hpp"
 #include "sympathy/core/output_file.hpp"
@@ -151,6 +152,28 @@ void run_study_branches(StudyRun& run, const std::atomic<bool>* stop,
                   study.branches[i].name.c_str(), results[i].points.size(), results[i].seconds);
     callbacks.log(line + (!errors[i].empty() ? errors[i] : results[i].stop_reason) + "\n");
   }
+}
+
+void write_study_json(const StudyRun& run, double seconds) {
+  const Study& study = run.study;
+  const LoadedSystem& first = *run.systems.front();
+  nlohmann::json j;
+  j["study"] = study.name;
+  j["title"] = study.title;
+  j["case"] = first.path();
+  j["params_set"] = first.params();
+  j["parameter"] = study.parameter;
+  j["axis"] = study.axis;
+  j["branches"] = nlohmann::json::array();
+  for (std::size_t i = 0; i < study.branches.size(); ++i) {
+    nlohmann::json b = branch_json(run.results[i], run.requests[i], run.systems[i]->describer());
+    b["name"] = study.branches[i].name;
+    b["csv"] = std::filesystem::path(run.requests[i].csv_path).filename().string();
+    if (!run.errors[i].empty()) b["error"] = run.errors[i];
+    j["branches"].push_back(b);
+  }
+  j["seconds"] = seconds;
+  write_json(run.json_path, j);
 }
 
 }  // namespace sympathy::app

@@ -32,5 +32,8 @@ struct StudyRun {
 StudyRun study_run(const Arguments& args);
 void run_study_branches(StudyRun& run, const std::atomic<bool>* stop,
                         const JobCallbacks& callbacks = {});
+// The study's JSON (run.json_path): per branch its JSON (branch_json) with its name, its CSV's
+// file name and its error if any; `seconds` the run's time.
+void write_study_json(const StudyRun& run, double seconds);
 
 }  // namespace sympathy::app

@@ -15,7 +15,6 @@
 #include "cases/cli/commands.hpp"
 #include "cases/cli/progress.hpp"
 #include "cases/cli/report.hpp"
-#include "sympathy/continuation/branch_output.hpp"
 
 namespace sympathy::cli {
 
@@ -28,7 +27,6 @@ int run_study(const std::vector<std::string>& argv) {
   const LoadedSystem& first = *systems.front();
   const auto& results = run.results;
   const auto& errors = run.errors;
-  const auto& requests = run.requests;
   const std::string& json_path = run.json_path;
   std::printf("sympathy study %s: %s\n  case %s  params %s  parameter %s\n", study.path.c_str(),
               study.title.c_str(), first.path().c_str(), first.params().c_str(),
@@ -49,27 +47,13 @@ int run_study(const std::vector<std::string>& argv) {
   run_study_branches(run, interrupt_flag(), callbacks);
   line.clear();
 
-  nlohmann::json j;
-  j["study"] = study.name;
-  j["title"] = study.title;
-  j["case"] = first.path();
-  j["params_set"] = first.params();
-  j["parameter"] = study.parameter;
-  j["axis"] = study.axis;
-  j["branches"] = nlohmann::json::array();
   bool ok = true;
   for (std::size_t i = 0; i < study.branches.size(); ++i) {
-    nlohmann::json b = branch_json(results[i], requests[i], systems[i]->describer());
-    b["name"] = study.branches[i].name;
-    b["csv"] = std::filesystem::path(requests[i].csv_path).filename().string();
-    if (!errors[i].empty()) b["error"] = errors[i];
-    j["branches"].push_back(b);
     ok = ok && errors[i].empty() && results[i].started();
     std::printf("bifurcations on %s:\n", study.branches[i].name.c_str());
     print_events(stdout, results[i]);
   }
-  j["seconds"] = clock.seconds();
-  write_json(json_path, j);
+  write_study_json(run, clock.seconds());
   std::printf("  wrote %s, %zu CSV files of points and %zu of events; run time %.2f s\n",
               json_path.c_str(), study.branches.size(), study.branches.size(), clock.seconds());
   int code = ok ? kDone : kNumericalFailure;

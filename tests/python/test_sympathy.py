@@ -6,6 +6,7 @@ test, or from the closed form of the Hopf normal form (cases/examples/hopf.toml)
 """
 
 import math
+import json
 import os
 import re
 import signal
@@ -292,6 +293,17 @@ def test_study_equals_the_program(tmp_path):
         got = [(e.type + ("" if e.trusted else "?"), "%.12g" % e.value) for e in branch.events]
         assert got == expected and got
         assert (tmp_path / "py" / f"small-{name}.csv").exists()
+    # The study's JSON as the program writes it: equal but for the run times.
+    def without_times(path):
+        data = json.loads(path.read_text())
+        data.pop("seconds")
+        for b in data["branches"]:
+            b.pop("seconds")
+            b["stiffness"].pop("seconds")
+        return data
+
+    assert (without_times(tmp_path / "py" / "small.json") ==
+            without_times(tmp_path / "cli" / "small.json"))
 
 
 def test_study_interrupted_returns_its_branches_so_far(tmp_path):
