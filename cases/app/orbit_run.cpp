@@ -6,6 +6,7 @@
 #include "sympathy/cases/metronome_describer.hpp"
 #include "sympathy/cases/state_describer.hpp"
 #include "sympathy/continuation/branch_output.hpp"
+#include "sympathy/continuation/symmetry_reduction.hpp"
 #include "sympathy/core/output_file.hpp"
 #include "sympathy/core/text.hpp"
 
@@ -60,6 +61,27 @@ OrbitRun run_orbit(const Arguments& args) {
   run.json["start"] = recorded ? "data " + recorded->path : args.text("--start", "");
   run.json["seconds"] = run.seconds;
   if (const auto path = args.value("--json")) write_file_atomically(*path, run.json.dump(2) + "\n");
+  return run;
+}
+
+IntegrationAsRun integration_as_run(const OdeSystem& model, const PeriodicOrbit& orbit,
+                                    const OrbitOptions& options) {
+  IntegrationAsRun run;
+  run.flow = orbit.stiffness ? after_stiffness(options.shooting.flow, *orbit.stiffness)
+                             : options.shooting.flow;
+  // The system integrated: the reduction's where a symmetry reduced the computation.
+  const auto reduction = orbit.reduction.empty()
+                             ? std::nullopt
+                             : symmetry_reduction(model, orbit.parameters, orbit.subspace);
+  const OdeSystem& integrated =
+      reduction ? *reduction->system : static_cast<const OdeSystem&>(model);
+  run.integrated_dimension = integrated.dimension();
+  if (run.flow.method == Method::ERK)
+    run.solver.append(" ").append(to_string(run.flow.explicit_table));
+  else if (run.flow.nonlinear_solver == NonlinearSolver::Newton)
+    run.solver.append(" (")
+        .append(to_string(resolved_linear_solver(integrated, run.flow)))
+        .append(" linear solver)");
   return run;
 }
 

@@ -31,4 +31,15 @@ struct OrbitRun {
 // then the orbit; its JSON written to --json if given. Throws InputError, OutputError.
 OrbitRun run_orbit(const Arguments& args);
 
+// How an orbit was integrated, for a report: the flow's options as run (BDF where the measured
+// stiffness switched to it), what the method ran on (" (dense linear solver)", an explicit
+// table's name), and the number of states integrated (a symmetry reduction's).
+struct IntegrationAsRun {
+  FlowOptions flow;
+  std::string solver;
+  int integrated_dimension = 0;
+};
+IntegrationAsRun integration_as_run(const OdeSystem& model, const PeriodicOrbit& orbit,
+                                    const OrbitOptions& options);
+
 }  // namespace sympathy::app

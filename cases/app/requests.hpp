@@ -14,8 +14,6 @@
 #include "cases/app/case_arguments.hpp"
 #include "cases/app/event_name.hpp"
 #include "cases/app/study_file.hpp"
-#include "cases/cli/common.hpp"
-#include "cases/cli/progress.hpp"
 #include "sympathy/cases/parameter_fit.hpp"
 #include "sympathy/continuation/bifurcation_curve.hpp"
 #include "sympathy/continuation/equilibrium_branch.hpp"

@@ -15,12 +15,6 @@
 #include "cases/cli/commands.hpp"
 #include "cases/cli/common.hpp"
 #include "cases/cli/progress.hpp"
-#include "sympathy/cases/basin_study.hpp"
-#include "sympathy/continuation/task_journal.hpp"
-#include "sympathy/continuation/task_runner.hpp"
-#include "sympathy/core/csv.hpp"
-#include "sympathy/core/output_file.hpp"
-#include "sympathy/core/text.hpp"
 
 namespace sympathy::cli {
 

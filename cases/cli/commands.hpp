@@ -13,9 +13,15 @@ int run_equilibria(const std::vector<std::string>& args);
 int run_curve(const std::vector<std::string>& args);
 int run_map(const std::vector<std::string>& args);
 int run_study(const std::vector<std::string>& args);
-int run_bench(const std::vector<std::string>& args);
 int run_fit(const std::vector<std::string>& args);
 int run_basins(const std::vector<std::string>& args);
 int run_sweep(const std::vector<std::string>& args);
 
 }  // namespace sympathy::cli
+
+namespace sympathy::bench {
+
+// sympathy bench (cases/bench/bench.cpp).
+int run_bench(const std::vector<std::string>& args);
+
+}  // namespace sympathy::bench

@@ -1,7 +1,5 @@
 #include "cases/cli/common.hpp"
 
-#include "sympathy/core/csv.hpp"
-
 #include <sys/stat.h>
 #include <unistd.h>
 

@@ -9,8 +9,8 @@
 
 #include "cases/app/arguments.hpp"
 #include "cases/app/case_arguments.hpp"
+#include "cases/app/exit_codes.hpp"
 #include "cases/app/option_table.hpp"
-#include "cases/cli/exit_codes.hpp"
 
 namespace sympathy::cli {
 

@@ -6,10 +6,9 @@
 #include <vector>
 
 #include "cases/app/arguments.hpp"
+#include "cases/app/errors.hpp"
+#include "cases/app/exit_codes.hpp"
 #include "cases/cli/commands.hpp"
-#include "cases/cli/exit_codes.hpp"
-#include "sympathy/core/errors.hpp"
-#include "sympathy/core/flow.hpp"
 
 namespace {
 
@@ -31,7 +30,7 @@ const Command kCommands[] = {
     {"curve", sympathy::cli::run_curve, "the curve of a branch's bifurcation in two parameters"},
     {"map", sympathy::cli::run_map, "where orbits are stable in two parameters: curves and a grid"},
     {"study", sympathy::cli::run_study, "the branches of a figure (a study file), side by side"},
-    {"bench", sympathy::cli::run_bench,
+    {"bench", sympathy::bench::run_bench,
      "error against run time over integrator settings (the accuracy report)"},
     {"fit", sympathy::cli::run_fit, "parameters fitted to a recorded time series (least squares)"},
     {"basins", sympathy::cli::run_basins,
@@ -89,18 +88,18 @@ int main(int argc, char** argv) {
     return 0;
   } catch (const sympathy::InputError& e) {
     std::fprintf(stderr, "sympathy %s: error: %s\n", command.c_str(), e.what());
-    return sympathy::cli::kBadInput;
+    return sympathy::app::kBadInput;
   } catch (const sympathy::OutputError& e) {
     std::fprintf(stderr, "sympathy %s: output failed: %s\n", command.c_str(), e.what());
-    return sympathy::cli::kOutputFailed;
+    return sympathy::app::kOutputFailed;
   } catch (const sympathy::Interrupted& e) {
     std::fprintf(stderr, "sympathy %s: interrupted: %s\n", command.c_str(), e.what());
-    return sympathy::cli::kInterrupted;
+    return sympathy::app::kInterrupted;
   } catch (const sympathy::IntegrationError& e) {  // NOLINT: reported, not a crash
     std::fprintf(stderr, "sympathy %s: integration failed: %s\n", command.c_str(), e.what());
-    return sympathy::cli::kIntegrationFailed;
+    return sympathy::app::kIntegrationFailed;
   } catch (const std::exception& e) {
     std::fprintf(stderr, "sympathy %s: %s\n", command.c_str(), e.what());
-    return sympathy::cli::kFailure;
+    return sympathy::app::kFailure;
   }
 }

@@ -36,6 +36,10 @@ std::string duration_text(double seconds) {
 
 ProgressLine::ProgressLine(bool quiet) : enabled_(!quiet && terminal()) {}
 
+double ProgressLine::seconds() const {
+  return std::chrono::duration<double>(std::chrono::steady_clock::now() - start_).count();
+}
+
 ProgressLine::~ProgressLine() {
   if (log_) std::fclose(log_);
   clear();
@@ -52,7 +56,7 @@ void ProgressLine::count(const std::string& what, std::size_t done, std::size_t 
 
 void ProgressLine::count_locked(std::size_t done, std::size_t total, std::size_t already,
                                 const std::string& note) {
-  const double elapsed = clock_.seconds();
+  const double elapsed = seconds();
   std::string text = jobs_what_ + ": " + std::to_string(done) + " of " + std::to_string(total) +
                      " " + jobs_unit_ + ", " + duration_text(elapsed);
   const std::size_t here = done > already ? done - already : 0;
@@ -100,7 +104,7 @@ void ProgressLine::position(const std::string& what, const std::string& paramete
             number(to);
   }
   text += ", " + std::to_string(points) + (points == 1 ? " point, " : " points, ") +
-          duration_text(clock_.seconds());
+          duration_text(seconds());
   std::lock_guard<std::mutex> lock(mutex_);
   text_ = std::move(text);
   draw_locked(false);
@@ -122,7 +126,7 @@ void ProgressLine::clear() {
 }
 
 void ProgressLine::draw_locked(bool force) {
-  const double now = clock_.seconds();
+  const double now = seconds();
   if (!force && drawn_ && now - last_draw_ < 0.1) return;
   last_draw_ = now;
   // Cut to the terminal's width: a line that wraps could not be rewritten in place.

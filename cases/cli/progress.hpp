@@ -4,13 +4,12 @@
 // what it would be without it.
 #pragma once
 
+#include <chrono>
 #include <cstddef>
 #include <cstdio>
 #include <mutex>
 #include <string>
 #include <vector>
-
-#include "sympathy/core/text.hpp"
 
 namespace sympathy::cli {
 
@@ -55,7 +54,8 @@ class ProgressLine {
   std::string text_;
   bool drawn_ = false;
   double last_draw_ = -1.0;
-  Stopwatch clock_;
+  std::chrono::steady_clock::time_point start_ = std::chrono::steady_clock::now();
+  double seconds() const;  // since the line was made
   std::FILE* log_ = nullptr;
   // The jobs (start_jobs).
   std::string jobs_what_, jobs_unit_;

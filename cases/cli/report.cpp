@@ -7,9 +7,6 @@
 #include <string>
 
 #include "cases/cli/common.hpp"
-#include "sympathy/continuation/branch_output.hpp"
-#include "sympathy/continuation/symmetry_reduction.hpp"
-#include "sympathy/core/output_file.hpp"
 
 namespace sympathy::cli {
 
@@ -98,33 +95,18 @@ void print_orbit_search(std::FILE* out, const OdeSystem& model, const PeriodicOr
   for (double r : s.residual_norms) std::fprintf(out, " %.1e", r);
   std::fprintf(out, "\n");
   const auto& st = orbit.flow;
-  // The integrator as run: BDF where the measured stiffness switched to it.
-  const FlowOptions flow = orbit.stiffness
-                               ? after_stiffness(options.shooting.flow, *orbit.stiffness)
-                               : options.shooting.flow;
-  // The system integrated: the reduction's where a symmetry reduced the computation.
-  const auto reduction = orbit.reduction.empty()
-                             ? std::nullopt
-                             : symmetry_reduction(model, orbit.parameters, orbit.subspace);
-  const OdeSystem& integrated =
-      reduction ? *reduction->system : static_cast<const OdeSystem&>(model);
-  std::string solver;  // what the method runs on
-  if (flow.method == Method::ERK)
-    solver.append(" ").append(to_string(flow.explicit_table));
-  else if (flow.nonlinear_solver == NonlinearSolver::Newton)
-    solver.append(" (")
-        .append(to_string(resolved_linear_solver(integrated, flow)))
-        .append(" linear solver)");
+  const IntegrationAsRun run = integration_as_run(model, orbit, options);
+  const FlowOptions& flow = run.flow;
   if (!orbit.reduction.empty())
     std::fprintf(out, "  symmetry     %s: %d states integrated instead of %d\n",
-                 orbit.reduction.c_str(), integrated.dimension(), model.dimension());
+                 orbit.reduction.c_str(), run.integrated_dimension, model.dimension());
   std::fprintf(
       out,
       "  work         %d segment%s, %s%s, %s sensitivities, rtol %g: %ld integrations, %ld steps, "
       "%ld rhs and %ld sensitivity-rhs evaluations, %ld Jacobians%s\n",
-      orbit.segments, orbit.segments > 1 ? "s" : "", to_string(flow.method).c_str(), solver.c_str(),
-      to_string(flow.sensitivities).c_str(), flow.rtol, st.calls, st.steps, st.rhs_evaluations,
-      st.variational_evaluations, st.jacobian_evaluations,
+      orbit.segments, orbit.segments > 1 ? "s" : "", to_string(flow.method).c_str(),
+      run.solver.c_str(), to_string(flow.sensitivities).c_str(), flow.rtol, st.calls, st.steps,
+      st.rhs_evaluations, st.variational_evaluations, st.jacobian_evaluations,
       orbit.stiffness ? ("; " + stiffness_note(*orbit.stiffness)).c_str() : "");
 }
 

@@ -1,4 +1,4 @@
-// How orbits are shown to people (the JSON for programs is the engine's: branch_output.hpp).
+// How orbits and events are shown to people (the JSON for programs is the application layer's).
 // Shared by the commands.
 #pragma once
 
@@ -7,14 +7,8 @@
 #include <string>
 #include <vector>
 
-#include <nlohmann/json.hpp>
-
-#include "sympathy/cases/metronome_describer.hpp"
-#include "sympathy/cases/metronome_model.hpp"
-#include "sympathy/continuation/branch.hpp"
-#include "sympathy/continuation/orbit_describer.hpp"
-#include "sympathy/continuation/periodic_orbit.hpp"
-#include "sympathy/core/ode_system.hpp"
+#include "cases/app/branch_run.hpp"
+#include "cases/app/orbit_run.hpp"
 
 namespace sympathy::cli {
 

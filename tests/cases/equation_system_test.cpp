@@ -15,7 +15,7 @@
 
 #include <gtest/gtest.h>
 
-#include "cases/cli/hand_written_systems.hpp"
+#include "cases/bench/hand_written_systems.hpp"
 #include "sympathy/cases/case_file.hpp"
 #include "sympathy/cases/equation_codegen.hpp"
 #include "sympathy/cases/metronome_model.hpp"
@@ -51,7 +51,7 @@ class EquationSystemTest : public ::testing::Test {
 };
 
 // cases/examples/hopf.toml written by hand.
-using cli::HandHopf;
+using bench::HandHopf;
 
 // Right-hand side, Jacobian and df/dp at random points: the same arithmetic in another order
 // (the generated code parenthesizes as the file does), so equal to rounding: 1e-12 absolute on

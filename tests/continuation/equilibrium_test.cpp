@@ -6,7 +6,7 @@
 
 #include <numbers>
 
-#include "cases/cli/hand_written_systems.hpp"
+#include "cases/bench/hand_written_systems.hpp"
 #include "sympathy/continuation/continuation.hpp"
 #include "sympathy/continuation/hopf.hpp"
 #include "tests/support/math.hpp"
@@ -21,8 +21,8 @@ using testing::NormalForm;
 // defaults. Lorenz: the nonzero equilibria x = y = +-sqrt(beta (rho - 1)), z = rho - 1 have a
 // Hopf point at rho = sigma (sigma + beta + 3) / (sigma - beta - 1) with omega^2 =
 // beta (sigma + rho) (the characteristic polynomial with l = i omega).
-using Abc = cli::HandAbc;
-using Lorenz = cli::HandLorenz;
+using Abc = bench::HandAbc;
+using Lorenz = bench::HandLorenz;
 using testing::kPi;
 
 EquilibriumProblem problem_of(const OdeSystem& system, double from, double to,
@@ -327,7 +327,7 @@ TEST(HopfFamily, NearlyVerticalFamilyIsFollowedOutOfTheHopfPoint) {
 // Hopf point mu = 0) the first orbit at the default amplitude 0.02 lies at mu = 4e-4; asked for
 // mu = 1e-5, the family reports it, on its exact circle r = sqrt(mu), period 2 pi.
 TEST(HopfFamily, UserPointNearTheHopfPointIsReported) {
-  const cli::HandHopf system(Eigen::Vector2d(-0.01, 1.0));
+  const bench::HandHopf system(Eigen::Vector2d(-0.01, 1.0));
   const auto branch =
       continue_equilibria(system, problem_of(system, -0.01, 0.01, Eigen::Vector2d(0.0, 0.0)), {});
   const auto hopf = events_of(branch, EquilibriumEventType::Hopf);

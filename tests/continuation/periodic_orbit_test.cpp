@@ -6,14 +6,14 @@
 #include <cmath>
 #include <numbers>
 
-#include "cases/cli/hand_written_systems.hpp"
+#include "cases/bench/hand_written_systems.hpp"
 #include "tests/support/math.hpp"
 #include "tests/support/test_systems.hpp"
 
 namespace sympathy {
 namespace {
 
-using cli::HandHopf;
+using bench::HandHopf;
 using testing::ForcedFloquet;
 using testing::HopfCycle;
 using testing::TwoHopf;

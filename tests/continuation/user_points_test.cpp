@@ -2,7 +2,7 @@
 // for, its orbit there, at the value exactly, on two families known in closed form.
 #include <gtest/gtest.h>
 
-#include "cases/cli/hand_written_systems.hpp"
+#include "cases/bench/hand_written_systems.hpp"
 
 #include <cmath>
 #include <numbers>
@@ -21,7 +21,7 @@ using testing::nontrivial_multiplier;
 
 // The Hopf normal form (cases/examples/hopf.toml by hand): for mu > 0 the circle r = sqrt(mu),
 // period 2 pi / w, nontrivial multiplier exp(-4 pi mu / w).
-using HopfNormalForm = cli::HandHopf;
+using HopfNormalForm = bench::HandHopf;
 
 BranchProblem problem(const OdeSystem& system, double from, double to, Eigen::Vector2d start,
                       std::optional<double> at = std::nullopt) {

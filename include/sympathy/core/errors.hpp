@@ -27,4 +27,15 @@ class Interrupted : public std::runtime_error {
   using std::runtime_error::runtime_error;
 };
 
+// Raised when the integrator fails (step size underflow, too many steps, a failing right-hand
+// side); `time` is where it stopped.
+class IntegrationError : public std::runtime_error {
+ public:
+  IntegrationError(const std::string& what, double t) : std::runtime_error(what), t_(t) {}
+  double time() const { return t_; }
+
+ private:
+  double t_;
+};
+
 }  // namespace sympathy

@@ -55,6 +55,7 @@
 
 #include <Eigen/Dense>
 
+#include "sympathy/core/errors.hpp"
 #include "sympathy/core/ode_system.hpp"
 #include "sympathy/core/option_check.hpp"
 
@@ -139,17 +140,6 @@ struct FlowStatistics {
   long steep_roots = 0;  // level crossings of steep zones (band changes)
   long switchings = 0;   // restarts at switching surfaces
   FlowStatistics& operator+=(const FlowStatistics& other);
-};
-
-// Raised when the integrator fails (step size underflow, too many steps, a failing right-hand
-// side).
-class IntegrationError : public std::runtime_error {
- public:
-  IntegrationError(const std::string& what, double t) : std::runtime_error(what), t_(t) {}
-  double time() const { return t_; }
-
- private:
-  double t_;
 };
 
 struct FlowDerivatives {

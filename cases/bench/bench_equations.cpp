@@ -3,7 +3,7 @@
 // attractor's size, through the virtual OdeSystem interface for both systems; the generated
 // system is compiled in a fresh temporary cache (removed afterwards), so the user's cache is
 // neither used nor written.
-#include "cases/cli/bench_equations.hpp"
+#include "cases/bench/bench_equations.hpp"
 
 #include <algorithm>
 #include <cstdio>
@@ -11,13 +11,15 @@
 #include <random>
 #include <vector>
 
-#include "cases/cli/hand_written_systems.hpp"
+#include "cases/bench/hand_written_systems.hpp"
 #include "sympathy/cases/equation_compiler.hpp"
 #include "sympathy/continuation/periodic_orbit.hpp"
 #include "sympathy/core/autodiff_system.hpp"
 #include "sympathy/core/text.hpp"
 
-namespace sympathy::cli {
+namespace sympathy::bench {
+
+using namespace sympathy::cli;  // the program's options, progress line and interrupts
 
 namespace {
 
@@ -142,4 +144,4 @@ void bench_equations(const std::string& root, bool quick, std::ostream& md) {
   std::fflush(stdout);
 }
 
-}  // namespace sympathy::cli
+}  // namespace sympathy::bench

@@ -21,11 +21,11 @@
 #include <thread>
 #include <tuple>
 
-#include "cases/cli/bench_branch.hpp"
-#include "cases/cli/bench_equations.hpp"
-#include "cases/cli/bench_identical.hpp"
-#include "cases/cli/bench_stiffness.hpp"
-#include "cases/cli/bench_study.hpp"
+#include "cases/bench/bench_branch.hpp"
+#include "cases/bench/bench_equations.hpp"
+#include "cases/bench/bench_identical.hpp"
+#include "cases/bench/bench_stiffness.hpp"
+#include "cases/bench/bench_study.hpp"
 #include "cases/cli/commands.hpp"
 #include "cases/cli/common.hpp"
 #include "cases/cli/progress.hpp"
@@ -34,7 +34,9 @@
 #include "sympathy/core/csv.hpp"
 #include "sympathy/core/output_file.hpp"
 
-namespace sympathy::cli {
+namespace sympathy::bench {
+
+using namespace sympathy::cli;  // the program's options, progress line and interrupts
 
 namespace {
 
@@ -536,4 +538,4 @@ int run_bench(const std::vector<std::string>& argv) {
   return 0;
 }
 
-}  // namespace sympathy::cli
+}  // namespace sympathy::bench

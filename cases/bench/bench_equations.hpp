@@ -4,7 +4,7 @@
 #include <ostream>
 #include <string>
 
-namespace sympathy::cli {
+namespace sympathy::bench {
 
 // The right-hand side and Jacobian of cases/examples/{hopf,lrz,abc}.toml compiled from the file
 // against the same systems written by hand in C++ (time per call, through OdeSystem as the engine
@@ -12,4 +12,4 @@ namespace sympathy::cli {
 // against taking it from the cache. Writes its table to `md`. `root`: where cases/ is.
 void bench_equations(const std::string& root, bool quick, std::ostream& md);
 
-}  // namespace sympathy::cli
+}  // namespace sympathy::bench

@@ -11,7 +11,7 @@
 
 #include "sympathy/core/autodiff_system.hpp"
 
-namespace sympathy::cli {
+namespace sympathy::bench {
 
 // cases/examples/hopf.toml by hand.
 class HandHopf final : public AutoDiffSystem<HandHopf> {
@@ -65,4 +65,4 @@ class HandAbc final : public AutoDiffSystem<HandAbc> {
   }
 };
 
-}  // namespace sympathy::cli
+}  // namespace sympathy::bench

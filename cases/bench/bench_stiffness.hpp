@@ -5,7 +5,7 @@
 #include <ostream>
 #include <string>
 
-namespace sympathy::cli {
+namespace sympathy::bench {
 
 // The row setup's in-phase orbit (cases/row2.toml, as `sympathy orbit --start in-phase` finds
 // it) at four platforms, with the default preset as it runs (the stiffness measured, the method
@@ -14,4 +14,4 @@ namespace sympathy::cli {
 // c = 5000 N s/m). `root`: where cases/ is.
 void bench_stiffness(const std::string& root, const std::string& out, bool quick, std::ostream& md);
 
-}  // namespace sympathy::cli
+}  // namespace sympathy::bench

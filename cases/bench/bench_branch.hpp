@@ -10,10 +10,10 @@
 
 #include "sympathy/core/csv.hpp"
 
-namespace sympathy::cli {
+namespace sympathy::bench {
 
 // Rows go to `csv` (bench.csv's columns) and a table to `md`; `root` is where cases/ and bench/
 // are ("" or the source directory).
 void bench_branch_accuracy(const std::string& root, bool quick, CsvWriter& csv, std::ostream& md);
 
-}  // namespace sympathy::cli
+}  // namespace sympathy::bench

@@ -1,4 +1,4 @@
-#include "cases/cli/bench_branch.hpp"
+#include "cases/bench/bench_branch.hpp"
 
 #include <algorithm>
 #include <cmath>
@@ -10,7 +10,9 @@
 
 #include "cases/app/branch_run.hpp"
 
-namespace sympathy::cli {
+namespace sympathy::bench {
+
+using namespace sympathy::cli;  // the program's options, progress line and interrupts
 
 namespace {
 
@@ -239,4 +241,4 @@ void bench_branch_accuracy(const std::string& root, bool quick, CsvWriter& csv, 
   }
 }
 
-}  // namespace sympathy::cli
+}  // namespace sympathy::bench

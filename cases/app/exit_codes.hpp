@@ -1,11 +1,11 @@
-// The command line's exit codes, one table (docs/reference/exit-codes.md says what each prints).
-// Bad input (2) is told from a numerical outcome (4, 7) so that a script can tell "fix the call"
-// from "the computation did not get there".
+// The program's exit codes, one table (docs/reference/exit-codes.md says what each prints): what
+// a run's outcome means to a script. Bad input (2) is told from a numerical outcome (4, 7) so that
+// a script can tell "fix the call" from "the computation did not get there".
 #pragma once
 
 #include "sympathy/continuation/driver.hpp"
 
-namespace sympathy::cli {
+namespace sympathy::app {
 
 constexpr int kDone = 0;
 constexpr int kFailure = 1;            // anything else (e.g. the compiler failing on a system)
@@ -58,4 +58,4 @@ constexpr int exit_code_of(const Run& run) {
   return code;
 }
 
-}  // namespace sympathy::cli
+}  // namespace sympathy::app

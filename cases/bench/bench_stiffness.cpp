@@ -4,7 +4,7 @@
 // start, BDF above the threshold), with Adams forced (the preset without the switch) and with
 // BDF and the forward-sensitivity module forced (what the switch chooses). The chosen column
 // should be about the faster of the two forced ones plus the measurement's cost.
-#include "cases/cli/bench_stiffness.hpp"
+#include "cases/bench/bench_stiffness.hpp"
 
 #include <algorithm>
 #include <cmath>
@@ -20,7 +20,9 @@
 #include "sympathy/core/csv.hpp"
 #include "sympathy/core/text.hpp"
 
-namespace sympathy::cli {
+namespace sympathy::bench {
+
+using namespace sympathy::cli;  // the program's options, progress line and interrupts
 
 namespace {
 
@@ -113,4 +115,4 @@ void bench_stiffness(const std::string& root, const std::string& out, bool quick
   }
 }
 
-}  // namespace sympathy::cli
+}  // namespace sympathy::bench

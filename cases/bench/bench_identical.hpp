@@ -5,10 +5,10 @@
 #include <ostream>
 #include <string>
 
-namespace sympathy::cli {
+namespace sympathy::bench {
 
 // Runs the section on cases/row2.toml and cases/row/rowN.toml (N = 4, 8, 64; 4 and 8 with
 // `quick`), writes `out`/identical.csv and appends its table to `md`. `root`: where cases/ is.
 void bench_identical(const std::string& root, const std::string& out, bool quick, std::ostream& md);
 
-}  // namespace sympathy::cli
+}  // namespace sympathy::bench

@@ -4,7 +4,7 @@
 // the whole 64-metronome state). The reduction is checked against the whole computation: the
 // largest distance between their multipliers, paired one to one by least distance, beside the
 // whole computation's own accuracy figure (its trivial multiplier's distance from 1).
-#include "cases/cli/bench_identical.hpp"
+#include "cases/bench/bench_identical.hpp"
 
 #include <algorithm>
 #include <cmath>
@@ -19,7 +19,9 @@
 #include "sympathy/core/csv.hpp"
 #include "sympathy/core/text.hpp"
 
-namespace sympathy::cli {
+namespace sympathy::bench {
+
+using namespace sympathy::cli;  // the program's options, progress line and interrupts
 
 namespace {
 
@@ -111,4 +113,4 @@ void bench_identical(const std::string& root, const std::string& out, bool quick
   }
 }
 
-}  // namespace sympathy::cli
+}  // namespace sympathy::bench

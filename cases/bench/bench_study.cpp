@@ -2,7 +2,7 @@
 // two branches run side by side on two cores), so that is what is reported, the median of three
 // runs, beside the CPU time of both threads and each branch's own seconds: the longer branch sets
 // the wall time.
-#include "cases/cli/bench_study.hpp"
+#include "cases/bench/bench_study.hpp"
 
 #include <algorithm>
 #include <cstdio>
@@ -13,7 +13,9 @@
 #include "sympathy/core/csv.hpp"
 #include "sympathy/core/text.hpp"
 
-namespace sympathy::cli {
+namespace sympathy::bench {
+
+using namespace sympathy::cli;  // the program's options, progress line and interrupts
 
 namespace {
 
@@ -91,4 +93,4 @@ void bench_study(const std::string& root, const std::string& out, bool quick, st
   std::fflush(stdout);
 }
 
-}  // namespace sympathy::cli
+}  // namespace sympathy::bench
