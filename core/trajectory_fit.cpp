@@ -75,8 +75,9 @@ ResidualLayout layout(const TrajectoryFitProblem& pb) {
 // The residuals and their Jacobian as functions of the scaled unknowns u.
 class Evaluator {
  public:
-  Evaluator(const OdeSystem& system, const TrajectoryFitProblem& pb, const FlowOptions& flow)
-      : system_(system), pb_(pb), flow_(system, flow), layout_(layout(pb)) {
+  Evaluator(const OdeSystem& system, const TrajectoryFitProblem& pb, const FlowOptions& flow,
+            const std::function<bool()>* stop = nullptr)
+      : system_(system), pb_(pb), flow_(system, flow), layout_(layout(pb)), stop_(stop) {
     for (const auto& f : pb.parameters) {
       parameter_indices_.push_back(f.index);
       start_.push_back(system.parameter(pb.parameter_values, f.index));
@@ -127,6 +128,13 @@ class Evaluator {
     }
     return d;
   }
+
+  // Whether the caller asked the fit to stop (asked before each integration; once true, true).
+  bool stopping() {
+    if (!interrupted_ && stop_ && *stop_ && (*stop_)()) interrupted_ = true;
+    return interrupted_;
+  }
+  bool interrupted() const { return interrupted_; }
 
   // Residuals at u, and the Jacobian if `jacobian` is given. False if the integration failed.
   bool evaluate(const Eigen::VectorXd& u, Eigen::VectorXd& r, Eigen::MatrixXd* jacobian) {
@@ -227,6 +235,8 @@ class Evaluator {
   Eigen::VectorXd scale_;
   int evaluations_ = 0;
   int jacobian_evaluations_ = 0;
+  const std::function<bool()>* stop_ = nullptr;  // the options' stop_requested
+  bool interrupted_ = false;
   double best_rss_ = HUGE_VAL;
   Eigen::VectorXd best_u_;
 };
@@ -295,6 +305,10 @@ LocalOutcome levenberg_marquardt(Evaluator& ev, Eigen::VectorXd u, const Bounds&
       out.converged = true;
       out.reason = std::string("optimal: the Gauss-Newton step left is below ") +
                    format_tolerance(o.offset_tolerance) + " standard errors";
+      break;
+    }
+    if (ev.stopping()) {
+      out.reason = "interrupted";
       break;
     }
     if (ev.evaluations() - first >= o.max_evaluations) {
@@ -400,6 +414,7 @@ struct NloptObjective {
   double reference;
   static double call(const std::vector<double>& x, std::vector<double>& grad, void* data) {
     auto* self = static_cast<NloptObjective*>(data);
+    if (self->ev->stopping()) throw nlopt::forced_stop();  // NLopt ends and rethrows it
     const Eigen::Map<const Eigen::VectorXd> u(x.data(), static_cast<int>(x.size()));
     if (grad.empty()) return self->ev->rss(u, nullptr) / self->reference;
     Eigen::VectorXd g;
@@ -430,13 +445,15 @@ std::pair<Eigen::VectorXd, std::string> run_nlopt(nlopt::opt& opt, Evaluator& ev
     reason = "NLopt: limited by roundoff (at the optimum within integration accuracy)";
     *converged = true;
   } catch (const nlopt::forced_stop&) {
-    reason = "NLopt: forced stop";
+    reason = ev.interrupted() ? "interrupted" : "NLopt: forced stop";
   } catch (const std::runtime_error& e) {
     reason = std::string("NLopt failed: ") + e.what();
   }
-  if (ev.best_rss() == HUGE_VAL)
+  if (ev.best_rss() == HUGE_VAL) {
+    if (ev.interrupted()) return {u0, reason};  // stopped before its first point
     throw IntegrationError("the trajectory could not be integrated at any point the fit tried",
                            0.0);
+  }
   return {ev.best_u(), reason};
 }
 
@@ -498,7 +515,7 @@ TrajectoryFitResult fit_trajectory(const OdeSystem& system, const TrajectoryFitP
   }
 
   TrajectoryFitResult result;
-  Evaluator ev(system, pb, o.flow);
+  Evaluator ev(system, pb, o.flow, &o.stop_requested);
   const int p = ev.unknowns();
   result.unknowns = p;
   result.residuals = ev.rows();
@@ -598,8 +615,10 @@ TrajectoryFitResult fit_trajectory(const OdeSystem& system, const TrajectoryFitP
         opt.set_initial_step(0.1);
       bool converged = false;
       auto [best, reason] = run_nlopt(opt, ev, u, reference, o, o.max_evaluations, &converged);
-      u = best;
-      rss_now = ev.best_rss();
+      if (ev.best_rss() < HUGE_VAL) {  // else interrupted before its first point: u stays
+        u = best;
+        rss_now = ev.best_rss();
+      }
       result.stages.push_back({"local", to_string(o.local), ev.evaluations() - before, rss_before,
                                rss_now, reason, t0.seconds()});
       const Stopwatch t1;
@@ -623,8 +642,9 @@ TrajectoryFitResult fit_trajectory(const OdeSystem& system, const TrajectoryFitP
   // Statistics at the optimum.
   result.values = ev.physical(final.u);
   result.rss = final.r.squaredNorm();
-  result.converged = final.converged;
-  result.stop_reason = final.reason;
+  result.interrupted = ev.interrupted();
+  result.converged = final.converged && !result.interrupted;
+  result.stop_reason = result.interrupted ? "interrupted" : final.reason;
   const int dof = result.residuals - p;
   result.sigma2 = result.rss / dof;
   const Eigen::VectorXd d = ev.chain(final.u);

@@ -417,6 +417,7 @@ py::object fit_result(const OdeSystem& model, const PreparedFit& fit,
   fields["condition"] = result.condition;
   fields["evaluations"] = result.evaluations;
   fields["converged"] = result.converged;
+  fields["interrupted"] = result.interrupted;
   fields["stop_reason"] = result.stop_reason;
   fields["seconds"] = result.seconds;
   fields["parameters"] = parameters;

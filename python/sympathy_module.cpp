@@ -271,11 +271,13 @@ class Case {
   py::object fit_with(const py::dict& keywords) const {
     const app::Arguments args = typed_arguments("fit", line_, keywords);
     const app::FitSetup setup = app::fit_setup(args);
+    PythonHooks hooks{py::none()};
     std::optional<app::FitRun> run;
     {
       py::gil_scoped_release release;
-      run.emplace(app::run_fit(setup));
+      run.emplace(app::run_fit(setup, [&] { return hooks.stop_requested(); }));
     }
+    hooks.raise_kept();
     return fit_result(*run->fit.model, run->fit, run->result);
   }
 

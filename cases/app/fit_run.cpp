@@ -134,9 +134,11 @@ PreparedFit FitSetup::prepare() const {
              : sympathy::prepare_fit(c->file, c->spec, request);
 }
 
-FitRun run_fit(const FitSetup& setup) {
+FitRun run_fit(const FitSetup& setup, std::function<bool()> stop_requested) {
   FitRun run{setup.prepare(), {}};
-  run.result = fit_trajectory(*run.fit.model, run.fit.problem, setup.options);
+  TrajectoryFitOptions options = setup.options;
+  options.stop_requested = std::move(stop_requested);
+  run.result = fit_trajectory(*run.fit.model, run.fit.problem, options);
   return run;
 }
 
@@ -292,6 +294,7 @@ void write_fit_json(const std::string& path, const FitSetup& setup, const FitRun
   j["evaluations"] = r.evaluations;
   j["jacobian_evaluations"] = r.jacobian_evaluations;
   j["converged"] = r.converged;
+  j["interrupted"] = r.interrupted;
   j["stop_reason"] = r.stop_reason;
   j["params"] = parameters_json(*fit.model, r.fitted_parameters);
   j["integrator"] = {{"method", to_string(o.flow.method)},

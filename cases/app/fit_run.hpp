@@ -41,8 +41,9 @@ struct FitRun {
   TrajectoryFitResult result;
   bool determined() const { return result.undetermined.empty(); }
 };
-// The fit (the engine's fit_trajectory on the prepared problem).
-FitRun run_fit(const FitSetup& setup);
+// The fit (the engine's fit_trajectory on the prepared problem); `stop_requested` (may be empty)
+// asked before each integration ends it at the best point so far (TrajectoryFitOptions).
+FitRun run_fit(const FitSetup& setup, std::function<bool()> stop_requested = {});
 
 // The share of the data's variation (scaled columns about their means) the fit explains: 1 -
 // RSS / total; below 0.9 a local minimum is likely.

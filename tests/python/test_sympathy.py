@@ -341,6 +341,25 @@ def test_fit_equals_the_program(tmp_path):
     assert fit.correlation.shape == (3, 3)
 
 
+def test_fit_interrupted_returns_its_best_point_so_far(tmp_path):
+    # A global search of 20000 evaluations (minutes) stopped by SIGINT after 0.5 s: the fit ends
+    # at the best point so far, with its statistics, not converged, and says it was interrupted.
+    single = sympathy.Case(os.path.join(SOURCE, "cases/single.toml"))
+    run = single.simulate(start="swing", t_end=4, dt=0.05)
+    data = tmp_path / "angle.csv"
+    np.savetxt(data, np.column_stack([run.t, run.states[:, run.state_names.index("th1")]]),
+               delimiter=",", header="t,th1", comments="", fmt="%.17g")
+    sender = threading.Timer(0.5, lambda: os.kill(os.getpid(), signal.SIGINT))
+    sender.start()
+    started = time.monotonic()
+    fit = single.fit(data=str(data), free=["d", "s"], set={"d": 2e-6, "s": 5.4e-5},
+                     global_=True, global_evaluations=20000)
+    sender.join()
+    assert fit.interrupted and not fit.converged and fit.stop_reason == "interrupted"
+    assert time.monotonic() - started < 30
+    assert fit.rss <= fit.rss_start and np.all(np.isfinite(fit.values))
+
+
 def test_case_from_a_dict():
     # row2.toml read into a dict is the same case; a wrong key is named by its key path.
     with open(ROW2, "rb") as f:

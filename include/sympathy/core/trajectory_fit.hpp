@@ -24,6 +24,7 @@
 // s^2 = RSS / (N - p), N residuals and p unknowns, in physical units.
 #pragma once
 
+#include <functional>
 #include <limits>
 #include <string>
 #include <vector>
@@ -91,6 +92,9 @@ struct TrajectoryFitOptions {
   // (its length in the metric of the covariance, Bates and Watts' relative offset).
   double offset_tolerance = 1e-3;
   double rank_tolerance = 1e-8;  // relative singular value below which a direction is lost
+  // Asked before each integration (may be empty): true ends the fit at the best point so far,
+  // with its statistics there, not converged, stop reason "interrupted" (Python's Ctrl-C).
+  std::function<bool()> stop_requested;
 };
 
 // One stage of the fit: what ran, how long, what it achieved and why it stopped.
@@ -105,8 +109,9 @@ struct FitStage {
 };
 
 struct TrajectoryFitResult {
-  Eigen::VectorXd start;   // unknowns in physical units: the free parameters, then the free
-  Eigen::VectorXd values;  // initial components; at the start and fitted
+  bool interrupted = false;  // ended by options.stop_requested
+  Eigen::VectorXd start;     // unknowns in physical units: the free parameters, then the free
+  Eigen::VectorXd values;    // initial components; at the start and fitted
   ParameterValues fitted_parameters;  // the problem's parameter values with the fitted ones set
   Eigen::VectorXd errors;  // standard errors (infinite where the data do not determine it)
   Eigen::MatrixXd covariance;
