@@ -60,10 +60,17 @@ class PythonHooks {
   // The callback with the point `make` gives (made with the GIL held).
   template <typename Make>
   void report(Make make) {
-    if (progress_.is_none() || error_) return;
+    if (progress_.is_none()) return;
+    call([&] { progress_(make()); });
+  }
+
+  // Python code (`f`) run with the GIL held, its exception kept.
+  template <typename F>
+  void call(F f) {
+    if (error_) return;
     py::gil_scoped_acquire gil;
     try {
-      progress_(make());
+      f();
     } catch (py::error_already_set& e) {
       keep(std::move(e));
     }
@@ -340,14 +347,69 @@ class Case {
 // their CSV files written to `out` as the program writes them. The branches run on threads of
 // their own; this one waits, checking for signals every 50 ms (Python runs its handlers on the
 // main thread only, which the branches' own stop checks are not on).
+// How many of a run's jobs are done (a study's branches, a map's orbits, basins' runs, a sweep's
+// tasks), set from the jobs' threads; `total` once known.
+struct JobCount {
+  std::atomic<std::size_t> done{0}, total{0};
+};
+
+// progress=True: a tqdm bar over the jobs (when tqdm is installed; without it a warning and no
+// bar); a callable: called with (done, total) as jobs finish; None: nothing. Called on the calling
+// thread only, with the GIL.
+class JobsProgress {
+ public:
+  JobsProgress(const py::object& progress, const std::string& what, const std::string& unit)
+      : what_(what), unit_(unit) {
+    if (progress.is_none()) return;
+    if (!py::isinstance<py::bool_>(progress)) {
+      callback_ = progress;
+      return;
+    }
+    if (!progress.cast<bool>()) return;
+    try {
+      tqdm_ = py::module_::import("tqdm").attr("tqdm");
+    } catch (py::error_already_set&) {
+      PyErr_WarnEx(PyExc_UserWarning, "progress=True: tqdm is not installed; no progress bar", 1);
+    }
+  }
+  ~JobsProgress() {
+    if (!bar_.is_none()) bar_.attr("close")();
+  }
+  bool wanted() const { return !callback_.is_none() || !tqdm_.is_none(); }
+  void report(std::size_t done, std::size_t total) {
+    if (done == reported_ && total == total_) return;
+    if (!callback_.is_none()) {
+      callback_(done, total);
+    } else if (!tqdm_.is_none() && total > 0) {
+      if (bar_.is_none())
+        bar_ = tqdm_(py::arg("total") = total, py::arg("unit") = unit_, py::arg("desc") = what_);
+      bar_.attr("update")(done - reported_);
+    }
+    reported_ = done;
+    total_ = total;
+  }
+
+ private:
+  std::string what_, unit_;
+  py::object callback_ = py::none(), tqdm_ = py::none(), bar_ = py::none();
+  std::size_t reported_ = 0, total_ = 0;
+};
+
 // Runs `work(stop)` on a thread of its own while this one waits without the GIL, checking for
 // signals every 50 ms (Python runs its handlers on the main thread only, which the work's own stop
-// checks are not on): Ctrl-C sets `stop`, and the work returns what it has.
+// checks are not on): Ctrl-C sets `stop`, and the work returns what it has. With `progress`, the
+// count of jobs done in `count` is reported from this thread as it changes.
 template <class Work>
-void on_worker_thread(Work&& work) {
+void on_worker_thread(Work&& work, JobsProgress* progress = nullptr, JobCount* count = nullptr) {
   std::atomic<bool> stop{false}, done{false};
   std::exception_ptr failure;
   PythonHooks hooks{py::none()};
+  // A callback that raises stops the work (KeyboardInterrupt as Ctrl-C; anything else is raised
+  // once the work has returned).
+  const auto report = [&] {
+    if (progress && count && progress->wanted())
+      hooks.call([&] { progress->report(count->done, count->total); });
+  };
   {
     py::gil_scoped_release release;
     std::thread worker([&] {
@@ -361,19 +423,28 @@ void on_worker_thread(Work&& work) {
     while (!done) {
       std::this_thread::sleep_for(std::chrono::milliseconds(50));
       if (!done && hooks.stop_requested()) stop = true;
+      report();
     }
     worker.join();
+    report();
   }
   hooks.raise_kept();
   if (failure) std::rethrow_exception(failure);
 }
 
-py::object study(const std::string& path, const py::dict& keywords) {
+py::object study(const std::string& path, const py::dict& keywords, const py::object& progress) {
   app::StudyRun run = with_keywords("study", [&] {
     return app::study_run(typed_arguments("study", CaseLine{path, "", {}}, keywords));
   });
   const Stopwatch clock;
-  on_worker_thread([&](const std::atomic<bool>* stop) { app::run_study_branches(run, stop); });
+  JobsProgress shown(progress, "study", "branches");
+  JobCount count;
+  count.total = run.study.branches.size();
+  app::JobCallbacks callbacks;
+  callbacks.finished = [&](std::size_t) { ++count.done; };
+  on_worker_thread(
+      [&](const std::atomic<bool>* stop) { app::run_study_branches(run, stop, callbacks); }, &shown,
+      &count);
   app::write_study_json(run, clock.seconds());  // as the program writes it, beside the CSVs
   py::dict branches;
   for (std::size_t i = 0; i < run.study.branches.size(); ++i) {
@@ -390,7 +461,7 @@ py::object study(const std::string& path, const py::dict& keywords) {
 
 // sympathy map: the map file's orbits, their branches, event curves and stability grids, computed
 // side by side as the program computes them, the JSON and CSV files written to `out`.
-py::object map(const std::string& path, const py::dict& keywords) {
+py::object map(const std::string& path, const py::dict& keywords, const py::object& progress) {
   app::MapRun run = with_keywords("map", [&] {
     const app::Arguments args = typed_arguments("map", CaseLine{path, "", {}}, keywords);
     app::MapRequest request;
@@ -401,7 +472,13 @@ py::object map(const std::string& path, const py::dict& keywords) {
     return app::prepare_map(request);
   });
   const Stopwatch clock;
-  on_worker_thread([&](const std::atomic<bool>* stop) { app::run_map(run, stop, {}); });
+  JobsProgress shown(progress, "map", "orbits");
+  JobCount count;
+  count.total = run.map.orbits.size();
+  app::JobCallbacks callbacks;
+  callbacks.finished = [&](std::size_t) { ++count.done; };
+  on_worker_thread([&](const std::atomic<bool>* stop) { app::run_map(run, stop, callbacks); },
+                   &shown, &count);
   app::write_map(run, clock.seconds());
   py::list orbits;
   for (std::size_t i = 0; i < run.map.orbits.size(); ++i) {
@@ -440,23 +517,30 @@ py::object map(const std::string& path, const py::dict& keywords) {
 // writes them; returns the JSON's path and whether Ctrl-C interrupted the tasks (the package reads
 // the JSON).
 template <class Run>
-py::tuple journaled(const std::string& command, const std::string& path, const py::dict& keywords,
-                    Run run) {
+py::tuple journaled(const std::string& command, const std::string& unit, const std::string& path,
+                    const py::dict& keywords, const py::object& progress, Run run) {
   const app::Arguments args = typed_arguments(command, CaseLine{path, "", {}}, keywords);
   app::JournaledOutcome outcome;
+  JobsProgress shown(progress, command, unit);
+  JobCount count;
+  const auto recorded = [&](std::size_t done, std::size_t total) {
+    count.total = total;
+    count.done = done;
+  };
   with_keywords(command, [&] {
-    on_worker_thread([&](const std::atomic<bool>* stop) { outcome = run(args, stop); });
+    on_worker_thread([&](const std::atomic<bool>* stop) { outcome = run(args, stop, recorded); },
+                     &shown, &count);
     return 0;
   });
   return py::make_tuple(outcome.json_path, outcome.interrupted);
 }
 
-py::tuple basins(const std::string& path, const py::dict& keywords) {
-  return journaled("basins", path, keywords, app::run_basins_here);
+py::tuple basins(const std::string& path, const py::dict& keywords, const py::object& progress) {
+  return journaled("basins", "runs", path, keywords, progress, app::run_basins_here);
 }
 
-py::tuple sweep(const std::string& path, const py::dict& keywords) {
-  return journaled("sweep", path, keywords, app::run_sweep_here);
+py::tuple sweep(const std::string& path, const py::dict& keywords, const py::object& progress) {
+  return journaled("sweep", "tasks", path, keywords, progress, app::run_sweep_here);
 }
 
 }  // namespace
@@ -494,10 +578,14 @@ PYBIND11_MODULE(_core, m) {
   py::register_exception<OutputError>(m, "OutputError", PyExc_OSError);
   m.def("commands", &sympathy::python::python_commands);
   m.def("command_options", &sympathy::python::option_table, py::arg("command"));
-  m.def("study", &sympathy::python::study, py::arg("path"), py::arg("keywords"));
-  m.def("map", &sympathy::python::map, py::arg("path"), py::arg("keywords"));
-  m.def("basins", &sympathy::python::basins, py::arg("path"), py::arg("keywords"));
-  m.def("sweep", &sympathy::python::sweep, py::arg("path"), py::arg("keywords"));
+  m.def("study", &sympathy::python::study, py::arg("path"), py::arg("keywords"),
+        py::arg("progress") = py::none());
+  m.def("map", &sympathy::python::map, py::arg("path"), py::arg("keywords"),
+        py::arg("progress") = py::none());
+  m.def("basins", &sympathy::python::basins, py::arg("path"), py::arg("keywords"),
+        py::arg("progress") = py::none());
+  m.def("sweep", &sympathy::python::sweep, py::arg("path"), py::arg("keywords"),
+        py::arg("progress") = py::none());
   py::class_<Case>(m, "Case")
       .def(py::init<const py::object&, const std::optional<std::string>&,
                     const std::optional<py::dict>&>(),

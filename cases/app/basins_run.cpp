@@ -296,13 +296,16 @@ void open_basins_outputs(Basins& b, bool resume) {
   }
 }
 
-JournaledOutcome run_basins_here(const Arguments& args, const std::atomic<bool>* stop) {
+JournaledOutcome run_basins_here(const Arguments& args, const std::atomic<bool>* stop,
+                                 const std::function<void(std::size_t, std::size_t)>& on_recorded) {
   Basins b = prepare_basins(args, 1);
   open_basins_outputs(b, args.flag("--resume"));
   const BasinStudy& study = *b.study;
   const MpiSession local;  // not under mpirun: one rank, the runs on threads
-  const auto summary =
-      run_journaled(local, study.tasks(), b.journal.get(), basins_tasks(study, stop), b.run, stop);
+  const auto summary = run_journaled(local, study.tasks(), b.journal.get(),
+                                     basins_tasks(study, stop), b.run, stop, [&](std::size_t done) {
+                                       if (on_recorded) on_recorded(done, study.tasks());
+                                     });
   b.journal->close();
   write_basins(b);
   return {b.json_path, summary.interrupted};

@@ -67,6 +67,8 @@ std::vector<std::vector<BasinShare>> write_basins(const Basins& b);
 // The basins study on this machine's threads (Python's): the request read from `args` and checked,
 // the outputs opened (the journal resumed with --resume), the runs computed (`stop` asked between
 // them) and the files written as the program writes them, nothing printed.
-JournaledOutcome run_basins_here(const Arguments& args, const std::atomic<bool>* stop);
+JournaledOutcome run_basins_here(
+    const Arguments& args, const std::atomic<bool>* stop,
+    const std::function<void(std::size_t done, std::size_t total)>& on_recorded = {});
 
 }  // namespace sympathy::app

@@ -293,12 +293,15 @@ std::function<std::optional<TaskRow>(std::size_t)> sweep_tasks(const Sweep& w,
   };
 }
 
-JournaledOutcome run_sweep_here(const Arguments& args, const std::atomic<bool>* stop) {
+JournaledOutcome run_sweep_here(const Arguments& args, const std::atomic<bool>* stop,
+                                const std::function<void(std::size_t, std::size_t)>& on_recorded) {
   Sweep w = prepare_sweep(args, 1);
   open_sweep_outputs(w, args.flag("--resume"));
   const MpiSession local;  // not under mpirun: one rank, the tasks on threads
-  const auto summary =
-      run_journaled(local, w.values.size(), w.journal.get(), sweep_tasks(w, stop), w.run, stop);
+  const auto summary = run_journaled(local, w.values.size(), w.journal.get(), sweep_tasks(w, stop),
+                                     w.run, stop, [&](std::size_t done) {
+                                       if (on_recorded) on_recorded(done, w.values.size());
+                                     });
   w.journal->close();
   write_sweep(w);
   return {w.json_path, summary.interrupted};

@@ -66,6 +66,8 @@ std::string sweep_unit(const Sweep& w);
 // The sweep on this machine's threads (Python's): prepared, its outputs opened (the journal
 // resumed with --resume), the tasks computed (`stop` asked between points), the files written as
 // the program writes them; nothing printed.
-JournaledOutcome run_sweep_here(const Arguments& args, const std::atomic<bool>* stop);
+JournaledOutcome run_sweep_here(
+    const Arguments& args, const std::atomic<bool>* stop,
+    const std::function<void(std::size_t done, std::size_t total)>& on_recorded = {});
 
 }  // namespace sympathy::app

@@ -137,13 +137,14 @@ def _file_function(command: str, summary: str) -> Any:
     basins study file for basins)."""
     first = [inspect.Parameter("path", inspect.Parameter.POSITIONAL_ONLY,
                                annotation=Union[str, os.PathLike])]
-    sig = _options.signature(command, first, False, Any)
+    sig = _options.signature(command, first, True, Any, jobs=True)
     run = getattr(_core, command)
 
     def call(*args: Any, **kwargs: Any) -> Any:
         bound = _options.keywords(command, sig, args, kwargs)
         path = os.fspath(bound.arguments["path"])
-        result = run(path, _options.engine_keywords(command, command, bound))
+        result = run(path, _options.engine_keywords(command, command, bound),
+                     bound.arguments.get("progress"))
         if command in ("basins", "sweep"):  # its JSON is the result, as load reads it
             json_path, interrupted = result
             result = _load(json_path)
@@ -151,7 +152,7 @@ def _file_function(command: str, summary: str) -> Any:
         return _results.wrap(result)
 
     call.__name__ = call.__qualname__ = command
-    call.__doc__ = _options.docstring(command, summary, False)
+    call.__doc__ = _options.docstring(command, summary, True, jobs=True)
     call.__signature__ = sig  # type: ignore[attr-defined]
     call.__module__ = __name__
     return call

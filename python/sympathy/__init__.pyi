@@ -326,6 +326,7 @@ def study(
     jobs: int | None = ...,
     quiet: bool | None = ...,
     accuracy: Literal['fast', 'default', 'high'] | None = ...,
+    progress: bool | Callable[[int, int], None] | None = ...,
 ) -> Result: ...
 def map(
     path: str | os.PathLike[str],
@@ -334,6 +335,7 @@ def map(
     out: str | os.PathLike[str] | None = ...,
     jobs: int | None = ...,
     accuracy: Literal['fast', 'default', 'high'] | None = ...,
+    progress: bool | Callable[[int, int], None] | None = ...,
 ) -> Result: ...
 def basins(
     path: str | os.PathLike[str],
@@ -361,6 +363,7 @@ def basins(
     method: Literal['bdf', 'adams', 'erk'] | None = ...,
     sensitivities: Literal['forward', 'augmented'] | None = ...,
     linear_solver: Literal['dense', 'klu', 'structured'] | None = ...,
+    progress: bool | Callable[[int, int], None] | None = ...,
 ) -> Result: ...
 def sweep(
     path: str | os.PathLike[str],
@@ -392,5 +395,6 @@ def sweep(
     method: Literal['bdf', 'adams', 'erk'] | None = ...,
     sensitivities: Literal['forward', 'augmented'] | None = ...,
     linear_solver: Literal['dense', 'klu', 'structured'] | None = ...,
+    progress: bool | Callable[[int, int], None] | None = ...,
 ) -> Result: ...
 def load(path: str | os.PathLike[str]) -> Result: ...

@@ -190,10 +190,18 @@ def finite(function: str, keyword: str, value: Any) -> None:
             raise _core.InputError(f"{keyword} {x}: expected a finite number")
 
 
+# What a progress callable is called with: each point as it is found (a branch, equilibria, a
+# curve), or the count of jobs done and their total (a study's branches, a map's orbits, basins'
+# runs, a sweep's tasks).
+POINT_PROGRESS = "bool | Callable[[Any], None] | None"
+JOBS_PROGRESS = "bool | Callable[[int, int], None] | None"
+
+
 def signature(command: str, first: list[inspect.Parameter], progress: bool,
-              returns: Any) -> inspect.Signature:
+              returns: Any, jobs: bool = False) -> inspect.Signature:
     """The signature of a function of `command`: `first`, then every option as a keyword-only
-    argument (required ones without a default), then progress where the command has one."""
+    argument (required ones without a default), then progress where the command has one (`jobs`:
+    called with the jobs done and their total)."""
     params = list(first)
     for o in _core.command_options(command):
         default = inspect.Parameter.empty if o["required"] else None
@@ -201,13 +209,14 @@ def signature(command: str, first: list[inspect.Parameter], progress: bool,
         params.append(inspect.Parameter(o["keyword"], inspect.Parameter.KEYWORD_ONLY,
                                         default=default, annotation=annotation))
     if progress:
+        callback = Callable[[int, int], None] if jobs else Callable[[Any], None]
         params.append(inspect.Parameter(
             "progress", inspect.Parameter.KEYWORD_ONLY, default=None,
-            annotation=Union[bool, Callable[[Any], None], None]))
+            annotation=Union[bool, callback, None]))
     return inspect.Signature(params, return_annotation=returns)
 
 
-def docstring(command: str, summary: str, progress: bool) -> str:
+def docstring(command: str, summary: str, progress: bool, jobs: bool = False) -> str:
     """The summary, then each keyword with its help (the program's --help text)."""
     lines = [summary, "", "Keyword arguments (the options of ``sympathy " + command + "``):", ""]
     for o in _core.command_options(command):
@@ -218,7 +227,10 @@ def docstring(command: str, summary: str, progress: bool) -> str:
             extra.append("repeatable")
         tail = f" ({', '.join(extra)})" if extra else ""
         lines.append(f"- ``{o['keyword']}`` ({stub_type(o)}): {o['help']}{tail}")
-    if progress:
+    if progress and jobs:
+        lines.append("- ``progress`` (callable or bool): called with (done, total) as jobs "
+                     "finish (True: a tqdm bar, when tqdm is installed)")
+    elif progress:
         lines.append("- ``progress`` (callable or bool): called with each point as it is found "
                      "(True: a tqdm bar, when tqdm is installed)")
     lines += ["", "None (the default) leaves an option to the command's default."]
@@ -258,17 +270,17 @@ def stub_text(functions: dict) -> str:
     """The package's type stubs (python/sympathy/__init__.pyi), from the option table:
     `functions` maps each function's name to (command, summary, progress)."""
 
-    def keywords(command: str, progress: bool) -> list[str]:
+    def keywords(command: str, progress: str) -> list[str]:
         out = []
         for o in _core.command_options(command):
             t = stub_type(o)
             out.append(f"{o['keyword']}: {t}" if o["required"]
                        else f"{o['keyword']}: {t} | None = ...")
         if progress:
-            out.append("progress: bool | Callable[[Any], None] | None = ...")
+            out.append(f"progress: {progress} = ...")
         return out
 
-    def define(name: str, first: str, command: str, progress: bool, indent: str) -> list[str]:
+    def define(name: str, first: str, command: str, progress: str, indent: str) -> list[str]:
         lines = [f"{indent}def {name}(", f"{indent}    {first},", f"{indent}    /,",
                  f"{indent}    *,"]
         lines += [f"{indent}    {k}," for k in keywords(command, progress)]
@@ -317,13 +329,12 @@ def stub_text(functions: dict) -> str:
         "    def with_values(self, **values: float) -> Case: ...",
     ]
     for name, (command, _, progress) in functions.items():
-        lines += define(name, "self", command, progress, "    ")
+        lines += define(name, "self", command, POINT_PROGRESS if progress else "", "    ")
     lines.append("")
     for name, (command, _, progress) in functions.items():
-        lines += define(name, "case: Case | CaseSource", command, progress, "")
-    lines += define("study", "path: str | os.PathLike[str]", "study", False, "")
-    lines += define("map", "path: str | os.PathLike[str]", "map", False, "")
-    lines += define("basins", "path: str | os.PathLike[str]", "basins", False, "")
-    lines += define("sweep", "path: str | os.PathLike[str]", "sweep", False, "")
+        lines += define(name, "case: Case | CaseSource", command,
+                        POINT_PROGRESS if progress else "", "")
+    for command in ("study", "map", "basins", "sweep"):
+        lines += define(command, "path: str | os.PathLike[str]", command, JOBS_PROGRESS, "")
     lines += ["def load(path: str | os.PathLike[str]) -> Result: ..."]
     return "\n".join(lines) + "\n"

@@ -581,6 +581,21 @@ def test_basins_equal_the_program(tmp_path):
         sympathy.basins(ROW2, starts=4, out=tmp_path / "none")
 
 
+def test_jobs_report_progress_as_counts_and_as_a_tqdm_bar(tmp_path, capsys):
+    # A study's branches, basins' runs: the callable hears (done, total) as jobs finish, from the
+    # calling thread, ending at the total; progress=True draws a tqdm bar over the jobs.
+    study = tmp_path / "small.toml"
+    study.write_text(SMALL_STUDY.format(case=ROW2))
+    heard = []
+    sympathy.study(str(study), out=str(tmp_path), accuracy="fast",
+                   progress=lambda done, total: heard.append((done, total)))
+    assert heard[-1] == (2, 2) and all(t == 2 for _, t in heard)
+    assert [d for d, _ in heard] == sorted(d for d, _ in heard)
+    pytest.importorskip("tqdm")
+    sympathy.basins(ROW2, grid="k=45:55:2", starts=2, t_end=20, out=tmp_path / "b", progress=True)
+    assert "basins: 100%" in capsys.readouterr().err
+
+
 def test_sweep_equals_the_program_and_the_closed_form(tmp_path):
     # The Hopf normal form's orbit at w = 1, 1.5, 2: period 2 pi / w (closed form, to 1e-9), the
     # files the same as the program's.
