@@ -307,6 +307,7 @@ def stub_text(functions: dict) -> str:
         "    def __getattr__(self, name: str) -> Any: ...",
         "    def to_dict(self) -> dict[str, Any]: ...",
         "    def to_dataframe(self) -> Any: ...",
+        "    def plot(self, ax: Any = ..., out: Any = ..., **options: Any) -> Any: ...",
         "",
         "class Points(Result):",
         "    def columns(self) -> dict[str, Any]: ...",

@@ -42,6 +42,16 @@ class Result(SimpleNamespace):
                          if np.isscalar(v)}).to_dataframe()
 
 
+    def plot(self, ax: Any = None, out: Any = None, **options: Any) -> Any:
+        """The result's figure (a branch of orbits or equilibria, a curve, a simulation) by
+        ``sympathy.plot.draw``: on `ax` or a new figure of a journal column's size, written to
+        `out` if given (PDF, SVG or PNG by its extension); returns the axes. Options: ``y`` for
+        a branch (a state's name, "period", "frequency", "phase:th2"), ``states`` for a
+        simulation."""
+        from . import plot
+        return plot.draw(self, ax, out, **options)
+
+
 class Points(Result):
     """A branch's or curve's points: each field an array along them (a row a point)."""
 

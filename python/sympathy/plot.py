@@ -1,0 +1,296 @@
+"""Figures of sympathy's results, for any system: one module that ``Result.plot()`` and the
+plotting scripts call. A branch of orbits or equilibria is drawn stable solid black and unstable
+dashed grey, the style changing at the located event (not at the last point computed before it);
+its events are marked and named, their labels placed so that no two overlap; a two-parameter
+curve is drawn in its two parameters with its codimension-two points; a simulation's states
+against time. Sizes are those of a journal's column (3.4 inches wide, 8-point text); ``save``
+writes PDF, SVG or PNG by the file's extension.
+
+    >>> import sympathy, sympathy.plot
+    >>> branch = sympathy.continue_branch("cases/row2.toml", start="in-phase", param="k",
+    ...                                   from_=1, to=100)
+    >>> ax = branch.plot()                       # on a new figure
+    >>> sympathy.plot.save(ax.figure, "in_phase.pdf")
+"""
+
+from __future__ import annotations
+
+import math
+from typing import Any, Callable, Optional, Union
+
+import numpy as np
+
+COLUMN = (3.4, 2.4)  # inches: a journal's column
+STABLE = dict(color="black", lw=1.4, ls="-")
+UNSTABLE = dict(color="0.55", lw=1.2, ls="--")
+EVENT_COLOR = "tab:red"
+MARKERS = {"LP": "s", "BP": "o", "PD": "^", "NS": "D", "HB": "*", "UZ": "x", "TR": "v",
+           "CP": "P", "BT": "X", "GH": "h"}
+# Units of the metronome model's parameters, for axis labels (an equation case file's have none).
+UNITS = {"M": "kg", "c": "N s/m", "k": "N/m", "kappa": "N m/rad", "d": "N m s", "s": "N m",
+         "mp": "kg", "mb": "kg", "lp": "m", "lb": "m"}
+# State names drawn as mathematics: th2 -> theta_2, vx -> v_x.
+_GREEK = {"th": r"\theta", "ph": r"\phi", "om": r"\omega"}
+
+
+def math_name(name: str) -> str:
+    """A state's or parameter's name as mathtext where it reads as one (th2: theta_2)."""
+    for short, symbol in _GREEK.items():
+        if name.startswith(short) and name[len(short):].isdigit():
+            return f"${symbol}_{{{name[len(short):]}}}$"
+    if len(name) == 2 and name[0] == "v" and name[1].isalpha():
+        return f"$v_{{{name[1]}}}$"
+    if len(name) > 1 and name[0].isalpha() and name[1:].isdigit():
+        return f"${name[0]}_{{{name[1:]}}}$"
+    return name
+
+
+def axis_label(name: str) -> str:
+    unit = UNITS.get(name.rstrip("0123456789"))
+    return f"{math_name(name)} ({unit})" if unit else math_name(name)
+
+
+def new_axes(ax: Any = None) -> Any:
+    """`ax`, or the axes of a new figure of a column's size with 8-point text."""
+    if ax is not None:
+        return ax
+    import matplotlib.pyplot as plt  # type: ignore[import]
+    with plt.rc_context({"font.size": 8, "axes.titlesize": 8, "legend.fontsize": 7}):
+        fig, ax = plt.subplots(figsize=COLUMN, layout="constrained")
+    return ax
+
+
+def save(fig: Any, path: str, dpi: int = 300) -> None:
+    """The figure to `path`, its format by the extension (.pdf, .svg, .png; PNG at `dpi`)."""
+    import os
+    ext = os.path.splitext(str(path))[1].lower()
+    if ext not in (".pdf", ".svg", ".png"):
+        raise ValueError(f"{path}: expected a .pdf, .svg or .png file")
+    fig.savefig(path, dpi=dpi if ext == ".png" else None)
+
+
+# What to draw on the vertical axis of a branch: a state's amplitude ("x"), "period",
+# "frequency", or a phase difference to the first angle ("phase:th2", |th2 - th1| in rad).
+YAxis = Union[str, Callable[[Any], np.ndarray], None]
+
+
+def _by_name(field: Any, names: list[str]) -> dict[str, np.ndarray]:
+    """A per-state field as a dict by name: the functions' results give one; a JSON read back
+    (sympathy.load) an array whose columns are the first of `names` in order."""
+    if isinstance(field, dict):
+        return field
+    a = np.asarray(field, dtype=float)
+    return {name: a[:, j] for j, name in enumerate(names[:a.shape[1]])}
+
+
+def _vertical(result: Any, y: YAxis) -> tuple[np.ndarray, str]:
+    p = result.points
+    names = list(getattr(result, "state_names", []))
+    if callable(y):
+        return np.asarray(y(p), dtype=float), ""
+    if y in ("period", "frequency"):
+        values = np.asarray(getattr(p, y), dtype=float)
+        return values, "period" if y == "period" else "frequency"
+    if y is not None and y.startswith("phase:"):
+        state = y.split(":", 1)[1]
+        # A metronome model's phase differences: of th2, th3, ... to th1.
+        others = [n for n in names if n.startswith("th") and n != "th1"]
+        phases = _by_name(p.phase_differences, others)
+        return np.abs(np.asarray(phases[state], dtype=float)), \
+            f"|{math_name(state)} $-$ {math_name('th1')}| (rad)"
+    if hasattr(p, "amplitudes"):  # orbits: a state's amplitude, by default the first's
+        amplitudes = _by_name(p.amplitudes, names)
+        state = y or next(iter(amplitudes))
+        return np.asarray(amplitudes[state], dtype=float), f"amplitude of {math_name(state)}"
+    # Equilibria: a state's value, by default the first's.
+    state = y or names[0]
+    return np.asarray(p.state, dtype=float)[:, names.index(state)], math_name(state)
+
+
+def _stable(result: Any) -> np.ndarray:
+    p = result.points
+    if hasattr(p, "stable"):
+        return np.asarray(p.stable, dtype=bool)
+    return np.asarray(p.unstable) == 0  # equilibria: no eigenvalue in the right half plane
+
+
+def _at(x: np.ndarray, y: np.ndarray, i: int, value: float) -> float:
+    """y where the parameter is `value` between points i and i + 1 (linear)."""
+    if i + 1 >= len(x) or x[i + 1] == x[i]:
+        return float(y[min(i, len(y) - 1)])
+    f = min(max((value - x[i]) / (x[i + 1] - x[i]), 0.0), 1.0)
+    return float(y[i] + f * (y[i + 1] - y[i]))
+
+
+def stability_runs(result: Any, y: YAxis = None) -> list[tuple[bool, np.ndarray, np.ndarray]]:
+    """The branch as runs of one stability: (stable, x, y) each. Where stability changes between
+    two points, both runs end at the first event located between them (an unlocated change: half
+    way)."""
+    x = np.asarray(result.points.value, dtype=float)
+    yy, _ = _vertical(result, y)
+    stable = _stable(result)
+    between: dict[int, float] = {}
+    for e in sorted(result.events, key=lambda e: e.value):
+        if e.type != "UZ":
+            between.setdefault(int(e.after_point), float(e.value))
+    runs = []
+    xs, ys = [x[0]], [yy[0]]
+    for i in range(len(x) - 1):
+        if stable[i + 1] == stable[i]:
+            xs.append(x[i + 1])
+            ys.append(yy[i + 1])
+            continue
+        at = between.get(i, 0.5 * (x[i] + x[i + 1]))
+        y_at = _at(x, yy, i, at)
+        xs.append(at)
+        ys.append(y_at)
+        runs.append((bool(stable[i]), np.asarray(xs), np.asarray(ys)))
+        xs, ys = [at, x[i + 1]], [y_at, yy[i + 1]]
+    runs.append((bool(stable[-1]), np.asarray(xs), np.asarray(ys)))
+    return runs
+
+
+def place_labels(ax: Any, labels: list) -> None:
+    """Moves annotations (in the order given) until no two overlap and each lies inside the axes:
+    each tries offsets above and below its point, nearer first."""
+    fig = ax.figure
+    # Extents are known once drawn (the layout done); the layout is then kept, so that the places
+    # found hold in the file.
+    fig.canvas.draw()
+    if hasattr(fig, "set_layout_engine"):
+        fig.set_layout_engine("none")
+    renderer = fig.canvas.get_renderer()
+    inside = ax.get_window_extent(renderer)
+    placed: list = []
+    for label in labels:
+        x0, y0 = label.xyann
+        height = label.get_window_extent(renderer).height * 72.0 / fig.dpi + 1.0
+        choice = None
+        for k in range(0, 24):
+            step = (k + 1) // 2 * (1 if k % 2 == 0 else -1)
+            for dx in (x0, -x0 - label.get_window_extent(renderer).width * 72.0 / fig.dpi):
+                label.xyann = (dx, y0 + step * height)
+                box = label.get_window_extent(renderer)
+                if any(box.overlaps(other) for other in placed):
+                    continue
+                if box.x0 < inside.x0 or box.x1 > inside.x1 or box.y0 < inside.y0 or \
+                        box.y1 > inside.y1:
+                    continue
+                choice = box
+                break
+            if choice is not None:
+                break
+        if choice is None:  # nowhere free: where it was, still drawn
+            label.xyann = (x0, y0)
+            choice = label.get_window_extent(renderer)
+        placed.append(choice)
+        if label.xyann != (x0, y0):  # moved away from its marker: a thin leader line to it
+            ax.annotate("", label.xy, textcoords="offset points", xytext=label.xyann,
+                        gid="leader", arrowprops=dict(arrowstyle="-", lw=0.4,
+                                                      color=label.get_color(), shrinkA=0,
+                                                      shrinkB=2))
+
+
+def _events(ax: Any, events: list, where: Callable[[Any], tuple[float, float]],
+            value: Callable[[Any], float] = lambda e: e.value) -> list:
+    """Each event marked (its type's marker) and named with its parameter's `value`; returns the
+    labels, for place_labels."""
+    labels = []
+    drawn: set = set()
+    for e in sorted(events, key=value):
+        x, y = where(e)
+        kind = e.type
+        ax.plot([x], [y], marker=MARKERS.get(kind, "x"), color=EVENT_COLOR, ms=4, ls="none",
+                zorder=5, label=None if kind in drawn else kind, gid=f"event {kind}")
+        drawn.add(kind)
+        trusted = getattr(e, "trusted", True)
+        labels.append(ax.annotate(f"{kind}{'' if trusted else '?'} {value(e):.5g}", (x, y),
+                                  textcoords="offset points", xytext=(3, 3), fontsize=6.5,
+                                  color=EVENT_COLOR, gid="event label"))
+    return labels
+
+
+def branch(result: Any, ax: Any = None, y: YAxis = None, label: Optional[str] = None) -> Any:
+    """A branch of periodic orbits or of equilibria: stable solid, unstable dashed, the style
+    changing at the located events, the events marked and named. `y`: a state's amplitude (or for
+    equilibria its value) by name, "period", "frequency", "phase:th2", or a function of the
+    points. Returns the axes."""
+    ax = new_axes(ax)
+    x = np.asarray(result.points.value, dtype=float)
+    yy, y_label = _vertical(result, y)
+    seen: set = set()
+    for stable, xs, ys in stability_runs(result, y):
+        name = "stable" if stable else "unstable"
+        ax.plot(xs, ys, **(STABLE if stable else UNSTABLE), gid=name,
+                label=None if name in seen else name)
+        seen.add(name)
+    if label:
+        ax.annotate(label, (x[-1], yy[-1]), textcoords="offset points", xytext=(3, 0), fontsize=7)
+    labels = _events(ax, [e for e in result.events],
+                     lambda e: (e.value, _at(x, yy, int(e.after_point), e.value)))
+    ax.set_xlabel(axis_label(result.parameter))
+    ax.set_ylabel(y_label)
+    ax.legend(loc="best")
+    place_labels(ax, labels)
+    return ax
+
+
+def curve(result: Any, ax: Any = None) -> Any:
+    """A two-parameter curve (a fold, branch point, period doubling or Neimark-Sacker curve) in
+    its two parameters, its codimension-two points marked. Returns the axes."""
+    ax = new_axes(ax)
+    p = result.points
+    first, second = np.asarray(p.first, dtype=float), np.asarray(p.second, dtype=float)
+    ax.plot(first, second, color="black", lw=1.4, gid="curve", label=f"{result.kind} curve")
+    labels = _events(ax, list(result.events), lambda e: (float(e.first), float(e.second)),
+                     lambda e: float(e.first))
+    ax.set_xlabel(axis_label(result.first_name))
+    ax.set_ylabel(axis_label(result.second_name))
+    ax.legend(loc="best")
+    place_labels(ax, labels)
+    return ax
+
+
+def simulation(result: Any, ax: Any = None, states: Optional[list[str]] = None) -> Any:
+    """A simulation's states against time (`states`: by name, by default every one)."""
+    ax = new_axes(ax)
+    names = list(result.state_names)
+    for name in states or names:
+        ax.plot(result.t, np.asarray(result.states)[:, names.index(name)], lw=0.8,
+                label=math_name(name))
+    ax.set_xlabel("t (s)")
+    ax.legend(loc="best", ncol=2)
+    return ax
+
+
+def kind_of(result: Any) -> str:
+    """What a result is, for `draw`: "branch", "equilibria", "curve" or "simulation"."""
+    kind = getattr(result, "kind", "")
+    if kind in ("branch", "equilibria", "curve"):
+        return kind
+    if hasattr(result, "t") and hasattr(result, "states"):
+        return "simulation"
+    points = getattr(result, "points", None)
+    if points is not None and hasattr(points, "first") and hasattr(points, "second"):
+        return "curve"
+    if points is not None and hasattr(points, "eigenvalues"):
+        return "equilibria"
+    if points is not None and hasattr(points, "value"):
+        return "branch"
+    raise TypeError("plot: expected a branch, equilibria, a curve or a simulation")
+
+
+def draw(result: Any, ax: Any = None, out: Optional[str] = None, **options: Any) -> Any:
+    """The figure of any result of a branch, equilibria, a curve or a simulation (from a function
+    or from ``sympathy.load``), on `ax` or a new figure; written to `out` if given (by its
+    extension). Returns the axes."""
+    kind = kind_of(result)
+    if kind in ("branch", "equilibria"):
+        ax = branch(result, ax, **options)
+    elif kind == "curve":
+        ax = curve(result, ax, **options)
+    else:
+        ax = simulation(result, ax, **options)
+    if out:
+        save(ax.figure, out)
+    return ax

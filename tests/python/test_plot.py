@@ -1,0 +1,107 @@
+"""The plotting module (sympathy.plot) checked by what it drew, not only that a file exists: the
+stability changes at the located events (the lines' data), no two event labels overlapping and
+all inside the axes (matplotlib's extents), and the formats by extension."""
+
+import os
+import subprocess
+
+import matplotlib  # type: ignore[import]
+
+matplotlib.use("Agg")
+
+import numpy as np  # noqa: E402
+import pytest  # noqa: E402
+
+import sympathy  # noqa: E402
+import sympathy.plot  # noqa: E402
+
+SOURCE = os.environ.get("SYMPATHY_SOURCE_DIR", os.path.join(os.path.dirname(__file__), "../.."))
+ROW2 = os.path.join(SOURCE, "cases/row2.toml")
+ABC = os.path.join(SOURCE, "cases/examples/abc.toml")
+
+
+def runs(ax):
+    """(stable, x, y) of each line the branch was drawn with, in order."""
+    return [(line.get_gid() == "stable", np.asarray(line.get_xdata()), np.asarray(line.get_ydata()))
+            for line in ax.get_lines() if line.get_gid() in ("stable", "unstable")]
+
+
+def labels_apart(ax):
+    ax.figure.canvas.draw()
+    renderer = ax.figure.canvas.get_renderer()
+    inside = ax.get_window_extent(renderer)
+    boxes = [t.get_window_extent(renderer) for t in ax.texts if t.get_gid() == "event label"]
+    for i, a in enumerate(boxes):
+        assert inside.x0 <= a.x0 and a.x1 <= inside.x1 and inside.y0 <= a.y0 and a.y1 <= inside.y1
+        for b in boxes[i + 1:]:
+            assert not a.overlaps(b), (a, b)
+    return len(boxes)
+
+
+@pytest.fixture(scope="module")
+def in_phase():
+    # Fig. 8's in-phase branch: stable up to its NS pair at k = 84.93 and 85.01 (two events
+    # between the same two computed points, 0.08 apart on a range of 99).
+    return sympathy.continue_branch(ROW2, start="in-phase", param="k", from_=1, to=100,
+                                    accuracy="fast")
+
+
+def test_stability_changes_at_the_located_event_not_at_a_computed_point(in_phase):
+    ax = in_phase.plot(y="phase:th2")
+    drawn = runs(ax)
+    assert [s for s, _, _ in drawn] == [True, False]
+    first_ns = min(e.value for e in in_phase.events if e.type == "NS")
+    # The stable run ends, and the unstable one starts, exactly at the NS point's k.
+    assert drawn[0][1][-1] == first_ns and drawn[1][1][0] == first_ns
+    assert not np.any(np.isclose(in_phase.points.value, first_ns, rtol=0, atol=1e-3))
+    # Every point of the branch is on the lines (nothing dropped): the runs' x are the points'
+    # plus the event's, twice.
+    xs = np.concatenate([x for _, x, _ in drawn])
+    assert len(xs) == len(in_phase.points.value) + 2
+
+
+def test_close_event_labels_do_not_overlap_and_stay_inside(in_phase):
+    ax = sympathy.plot.draw(in_phase, y="phase:th2")
+    assert labels_apart(ax) == 2
+    # The anti-phase branch's three events, the equilibria's too.
+    anti = sympathy.continue_branch(ROW2, start="anti-phase", param="k", from_=1, to=100,
+                                    accuracy="fast")
+    assert labels_apart(anti.plot(y="phase:th2")) == len(anti.events) >= 3
+    eq = sympathy.equilibria(ABC, param="p1", from_=0, to=0.4)
+    ax = eq.plot()
+    assert labels_apart(ax) == len(eq.events)
+    for stable, x, _ in runs(ax):
+        pass  # drawn; its stability changes are at its events (below)
+    changes = [x[-1] for _, x, _ in runs(ax)[:-1]]
+    assert all(any(e.value == c for e in eq.events) for c in changes)
+
+
+def test_formats_by_extension_and_loaded_results(in_phase, tmp_path):
+    for ext, magic in ((".pdf", b"%PDF"), (".svg", b"<?xml"), (".png", b"\x89PNG")):
+        out = tmp_path / f"branch{ext}"
+        in_phase.plot(out=str(out))
+        assert out.read_bytes().startswith(magic)
+    with pytest.raises(ValueError, match="expected a .pdf, .svg or .png file"):
+        in_phase.plot(out=str(tmp_path / "branch.jpg"))
+    # A result read back from the program's JSON draws the same lines.
+    cli = os.environ.get("SYMPATHY_CLI", os.path.join(SOURCE, "build/cases/sympathy"))
+    subprocess.run([cli, "continue", ROW2, "--start", "in-phase", "--param", "k", "--from", "1",
+                    "--to", "100", "--accuracy", "fast", "--json", str(tmp_path / "in.json")],
+                   check=True, capture_output=True)
+    loaded = runs(sympathy.load(tmp_path / "in.json").plot(y="phase:th2"))
+    computed = runs(in_phase.plot(y="phase:th2"))
+    assert len(loaded) == len(computed)
+    for (s1, x1, y1), (s2, x2, y2) in zip(loaded, computed):
+        assert s1 == s2 and np.array_equal(x1, x2) and np.array_equal(y1, y2)
+    run = sympathy.Case(ROW2).simulate(start="anti-phase", t_end=2)
+    ax = run.plot(states=["th1", "th2"])
+    assert [line.get_label() for line in ax.get_lines()] == [r"$\theta_{1}$", r"$\theta_{2}$"]
+
+
+def test_curve_in_its_two_parameters():
+    curve = sympathy.curve(ROW2, start="anti-phase", param="k", from_=44, to=50, event="BP1",
+                           second="c", second_from=0.0, second_to=0.5, accuracy="fast")
+    ax = curve.plot()
+    line = next(line for line in ax.get_lines() if line.get_gid() == "curve")
+    assert np.array_equal(line.get_xdata(), curve.points.first)
+    assert ax.get_xlabel() == "k (N/m)" and ax.get_ylabel() == "c (N s/m)"
