@@ -13,13 +13,16 @@
 
 #include <nlohmann/json.hpp>
 
+#include "cases/app/basins_run.hpp"
 #include "cases/app/case_arguments.hpp"
 #include "cases/app/fit_run.hpp"
+#include "cases/app/map_run.hpp"
 #include "cases/app/option_table.hpp"
 #include "cases/app/orbit_run.hpp"
 #include "cases/app/requests.hpp"
 #include "cases/app/simulation_run.hpp"
 #include "cases/app/study_run.hpp"
+#include "cases/app/sweep_run.hpp"
 
 namespace sympathy {
 namespace {
@@ -39,6 +42,11 @@ app::GivenOption text(const std::string& name, const std::string& value = "") {
 app::GivenOption number(const std::string& name, double value) {
   app::GivenOption g = text(name, std::to_string(value));
   g.number = value;
+  return g;
+}
+app::GivenOption integer(const std::string& name, int value) {
+  app::GivenOption g = text(name, std::to_string(value));
+  g.integer = value;
   return g;
 }
 app::GivenOption assignment(const std::string& name, const std::string& key, double value) {
@@ -221,6 +229,60 @@ TEST_F(Requests, StudyIsTheProgramsToTheLastDigit) {
   EXPECT_EQ(library, program_json);
   EXPECT_EQ(file_text(path("library/small-anti-phase.csv")),
             file_text(path("program/small-anti-phase.csv")));
+}
+
+TEST_F(Requests, MapIsTheProgramsToTheLastDigit) {
+  std::ofstream(path("small_map.toml"))
+      << "title = \"small\"\ncase = \"" + kRow2 +
+             "\"\nparams = \"table2\"\n\n[first]\nparameter = \"k\"\nfrom = 40.0\nto = 55.0\n"
+             "points = 4\n\n[second]\nparameter = \"c\"\nfrom = 0.0\nto = 0.05\npoints = 3\n\n"
+             "[[orbits]]\nname = \"anti-phase\"\nstart = \"anti-phase\"\n";
+  app::MapRequest request;
+  request.path = path("small_map.toml");
+  request.out = path("library");
+  request.accuracy = Accuracy::Fast;
+  app::MapRun run = app::prepare_map(request);
+  app::run_map(run, nullptr, {});
+  ASSERT_TRUE(run.results.front().error.empty()) << run.results.front().error;
+  app::write_map(run, 0.0);
+  ASSERT_EQ(
+      program({"map", path("small_map.toml"), "--out", path("program"), "--accuracy", "fast"}), 0)
+      << file_text(path("program.log"));
+  EXPECT_EQ(without_times(path("library/small_map.json")),
+            without_times(path("program/small_map.json")));
+}
+
+TEST_F(Requests, BasinsAndSweepAreTheProgramsToTheLastDigit) {
+  // Basins: 2 grid points, 3 starts each, 20 s runs.
+  const auto basins =
+      app::run_basins_here(typed("basins", kRow2,
+                                 {text("--grid", "k=45:55:2"), integer("--starts", 3),
+                                  number("--t-end", 20), text("--out", path("library"))}),
+                           nullptr);
+  ASSERT_FALSE(basins.interrupted);
+  ASSERT_EQ(program({"basins", kRow2, "--grid", "k=45:55:2", "--starts", "3", "--t-end", "20",
+                     "--out", path("program"), "--quiet"}),
+            0)
+      << file_text(path("program.log"));
+  for (const char* file : {"basins_runs.csv", "basins_shares.csv"})
+    EXPECT_EQ(file_text(path("library/") + file), file_text(path("program/") + file)) << file;
+  EXPECT_EQ(without_times(path("library/basins.json")), without_times(path("program/basins.json")));
+
+  // Sweep: the anti-phase orbit at three damping values.
+  const auto sweep =
+      app::run_sweep_here(typed("sweep", kRow2,
+                                {text("--start", "anti-phase"), text("--over", "c=0:0.1:3"),
+                                 text("--out", path("sweep_library"))}),
+                          nullptr);
+  ASSERT_FALSE(sweep.interrupted);
+  ASSERT_EQ(program({"sweep", kRow2, "--start", "anti-phase", "--over", "c=0:0.1:3", "--out",
+                     path("sweep_program"), "--quiet"}),
+            0)
+      << file_text(path("program.log"));
+  EXPECT_EQ(file_text(path("sweep_library/sweep_orbits.csv")),
+            file_text(path("sweep_program/sweep_orbits.csv")));
+  EXPECT_EQ(without_times(path("sweep_library/sweep.json")),
+            without_times(path("sweep_program/sweep.json")));
 }
 
 }  // namespace
