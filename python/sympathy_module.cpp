@@ -455,6 +455,7 @@ py::object study(const std::string& path, const py::dict& keywords, const py::ob
   py::dict fields;
   fields["title"] = run.study.title;
   fields["parameter"] = run.study.parameter;
+  fields["axis"] = run.study.axis;
   fields["branches"] = branches;
   return py::module_::import("types").attr("SimpleNamespace")(**fields);
 }

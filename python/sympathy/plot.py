@@ -55,9 +55,18 @@ def new_axes(ax: Any = None) -> Any:
     if ax is not None:
         return ax
     import matplotlib.pyplot as plt  # type: ignore[import]
-    with plt.rc_context({"font.size": 8, "axes.titlesize": 8, "legend.fontsize": 7}):
-        fig, ax = plt.subplots(figsize=COLUMN, layout="constrained")
+    fig, ax = plt.subplots(figsize=COLUMN, layout="constrained")
     return ax
+
+
+def _finish(ax: Any, legend: bool = True, **legend_options: Any) -> None:
+    """A journal column's text sizes (8 pt, the legend 7 pt), whatever matplotlib's defaults."""
+    ax.title.set_fontsize(8)
+    ax.xaxis.label.set_fontsize(8)
+    ax.yaxis.label.set_fontsize(8)
+    ax.tick_params(labelsize=8)
+    if legend:
+        ax.legend(fontsize=7, **legend_options)
 
 
 def save(fig: Any, path: str, dpi: int = 300) -> None:
@@ -114,6 +123,16 @@ def _stable(result: Any) -> np.ndarray:
     return np.asarray(p.unstable) == 0  # equilibria: no eigenvalue in the right half plane
 
 
+def _position(result: Any) -> Callable[[Any], int]:
+    """An event's place in the points' arrays: after the point whose index is its after_point
+    (indices are negative on the backward part of a two-way run)."""
+    indices = getattr(result.points, "index", None)
+    if indices is None:
+        return lambda e: int(e.after_point)
+    where = {int(i): k for k, i in enumerate(np.asarray(indices))}
+    return lambda e: where.get(int(e.after_point), int(e.after_point))
+
+
 def _at(x: np.ndarray, y: np.ndarray, i: int, value: float) -> float:
     """y where the parameter is `value` between points i and i + 1 (linear)."""
     if i + 1 >= len(x) or x[i + 1] == x[i]:
@@ -130,9 +149,10 @@ def stability_runs(result: Any, y: YAxis = None) -> list[tuple[bool, np.ndarray,
     yy, _ = _vertical(result, y)
     stable = _stable(result)
     between: dict[int, float] = {}
+    position = _position(result)
     for e in sorted(result.events, key=lambda e: e.value):
         if e.type != "UZ":
-            between.setdefault(int(e.after_point), float(e.value))
+            between.setdefault(position(e), float(e.value))
     runs = []
     xs, ys = [x[0]], [yy[0]]
     for i in range(len(x) - 1):
@@ -150,9 +170,10 @@ def stability_runs(result: Any, y: YAxis = None) -> list[tuple[bool, np.ndarray,
     return runs
 
 
-def place_labels(ax: Any, labels: list) -> None:
-    """Moves annotations (in the order given) until no two overlap and each lies inside the axes:
-    each tries offsets above and below its point, nearer first."""
+def place_labels(ax: Any, labels: list, within: Any = None) -> None:
+    """Moves annotations (in the order given) until no two overlap and each lies inside the axes
+    (or the figure, `within="figure"`): each tries offsets above and below its point and on its
+    left, nearer first. Labels placed by an earlier call on the same axes are kept clear of."""
     fig = ax.figure
     # Extents are known once drawn (the layout done); the layout is then kept, so that the places
     # found hold in the file.
@@ -160,30 +181,42 @@ def place_labels(ax: Any, labels: list) -> None:
     if hasattr(fig, "set_layout_engine"):
         fig.set_layout_engine("none")
     renderer = fig.canvas.get_renderer()
-    inside = ax.get_window_extent(renderer)
-    placed: list = []
+    inside = fig.bbox if within == "figure" else ax.get_window_extent(renderer)
+    placed: list = [t.get_window_extent(renderer) for t in ax.texts
+                    if getattr(t, "_sympathy_placed", False)]
+    # The events' markers too: a label does not cover another event.
+    from matplotlib.transforms import Bbox  # type: ignore[import]
+    for line in ax.get_lines():
+        if str(line.get_gid()).startswith("event "):
+            r = line.get_markersize() * fig.dpi / 72.0 / 2.0
+            for px, py in ax.transData.transform(np.column_stack([line.get_xdata(),
+                                                                  line.get_ydata()])):
+                placed.append(Bbox([[px - r, py - r], [px + r, py + r]]))
     for label in labels:
         x0, y0 = label.xyann
         height = label.get_window_extent(renderer).height * 72.0 / fig.dpi + 1.0
+        width = label.get_window_extent(renderer).width * 72.0 / fig.dpi
+        # Places nearer first: up or down a label's height at a time, or on the marker's left
+        # (as far as a label's width).
+        candidates = sorted(((side, step) for side in (0, 1) for step in range(-8, 9)),
+                            key=lambda c: abs(c[1]) * height + c[0] * (width + 6.0) +
+                            (0.5 if c[1] < 0 else 0.0))
         choice = None
-        for k in range(0, 24):
-            step = (k + 1) // 2 * (1 if k % 2 == 0 else -1)
-            for dx in (x0, -x0 - label.get_window_extent(renderer).width * 72.0 / fig.dpi):
-                label.xyann = (dx, y0 + step * height)
-                box = label.get_window_extent(renderer)
-                if any(box.overlaps(other) for other in placed):
-                    continue
-                if box.x0 < inside.x0 or box.x1 > inside.x1 or box.y0 < inside.y0 or \
-                        box.y1 > inside.y1:
-                    continue
-                choice = box
-                break
-            if choice is not None:
-                break
+        for side, step in candidates:
+            label.xyann = (x0 if side == 0 else -x0 - width, y0 + step * height)
+            box = label.get_window_extent(renderer)
+            if any(box.overlaps(other) for other in placed):
+                continue
+            if box.x0 < inside.x0 or box.x1 > inside.x1 or box.y0 < inside.y0 or \
+                    box.y1 > inside.y1:
+                continue
+            choice = box
+            break
         if choice is None:  # nowhere free: where it was, still drawn
             label.xyann = (x0, y0)
             choice = label.get_window_extent(renderer)
         placed.append(choice)
+        label._sympathy_placed = True
         if label.xyann != (x0, y0):  # moved away from its marker: a thin leader line to it
             ax.annotate("", label.xy, textcoords="offset points", xytext=label.xyann,
                         gid="leader", arrowprops=dict(arrowstyle="-", lw=0.4,
@@ -192,11 +225,12 @@ def place_labels(ax: Any, labels: list) -> None:
 
 
 def _events(ax: Any, events: list, where: Callable[[Any], tuple[float, float]],
-            value: Callable[[Any], float] = lambda e: e.value) -> list:
-    """Each event marked (its type's marker) and named with its parameter's `value`; returns the
-    labels, for place_labels."""
+            value: Callable[[Any], float] = lambda e: e.value,
+            seen: Optional[set] = None) -> list:
+    """Each event marked (its type's marker) and named with its parameter's `value` (a legend
+    entry per type once: `seen`); returns the labels, for place_labels."""
     labels = []
-    drawn: set = set()
+    drawn: set = seen if seen is not None else set()
     for e in sorted(events, key=value):
         x, y = where(e)
         kind = e.type
@@ -210,27 +244,68 @@ def _events(ax: Any, events: list, where: Callable[[Any], tuple[float, float]],
     return labels
 
 
+def _draw_branch(ax: Any, result: Any, y: YAxis, label: Optional[str], seen: set) -> list:
+    """The branch's runs and events on `ax` (legend entries once per kind: `seen`); returns its
+    event labels, placed by the caller."""
+    x = np.asarray(result.points.value, dtype=float)
+    yy, _ = _vertical(result, y)
+    for stable, xs, ys in stability_runs(result, y):
+        name = "stable" if stable else "unstable"
+        ax.plot(xs, ys, **(STABLE if stable else UNSTABLE), gid=name,
+                label=None if name in seen else name)
+        seen.add(name)
+    position = _position(result)
+    labels = _events(ax, list(result.events),
+                     lambda e: (e.value, _at(x, yy, position(e), e.value)), seen=seen)
+    if label:  # the branch's name at its end (placed first, outside the axes if need be)
+        tag = ax.annotate(label, (x[-1], yy[-1]), textcoords="offset points", xytext=(3, 0),
+                           fontsize=7, gid="branch label")
+        tag._sympathy_name = True
+        labels.insert(0, tag)
+    return labels
+
+
 def branch(result: Any, ax: Any = None, y: YAxis = None, label: Optional[str] = None) -> Any:
     """A branch of periodic orbits or of equilibria: stable solid, unstable dashed, the style
     changing at the located events, the events marked and named. `y`: a state's amplitude (or for
     equilibria its value) by name, "period", "frequency", "phase:th2", or a function of the
     points. Returns the axes."""
     ax = new_axes(ax)
-    x = np.asarray(result.points.value, dtype=float)
-    yy, y_label = _vertical(result, y)
-    seen: set = set()
-    for stable, xs, ys in stability_runs(result, y):
-        name = "stable" if stable else "unstable"
-        ax.plot(xs, ys, **(STABLE if stable else UNSTABLE), gid=name,
-                label=None if name in seen else name)
-        seen.add(name)
-    if label:
-        ax.annotate(label, (x[-1], yy[-1]), textcoords="offset points", xytext=(3, 0), fontsize=7)
-    labels = _events(ax, [e for e in result.events],
-                     lambda e: (e.value, _at(x, yy, int(e.after_point), e.value)))
+    labels = _draw_branch(ax, result, y, label, set())
     ax.set_xlabel(axis_label(result.parameter))
-    ax.set_ylabel(y_label)
-    ax.legend(loc="best")
+    ax.set_ylabel(_vertical(result, y)[1])
+    _finish(ax, loc="best")
+    place_labels(ax, labels)
+    return ax
+
+
+def study(result: Any, ax: Any = None) -> Any:
+    """A study's branches on one diagram, as the paper draws its Figs. 6-9, 12 and 18-20: the
+    phase difference |th2 - th1| (0 in phase, pi in anti-phase) or the frequency against the
+    study's parameter, each branch named at its end, every event label placed apart from all
+    the others. Returns the axes."""
+    ax = new_axes(ax)
+    y = "frequency" if getattr(result, "axis", "phase") == "frequency" else "phase:th2"
+    seen: set = set()
+    labels: list = []
+    for name, b in result.branches.items():
+        if getattr(b, "error", "") or len(getattr(b.points, "value", [])) == 0:
+            continue
+        labels += _draw_branch(ax, b, y, name, seen)
+    names = [t for t in labels if getattr(t, "_sympathy_name", False)]
+    labels = [t for t in labels if not getattr(t, "_sympathy_name", False)]
+    ax.set_xlabel(axis_label(result.parameter))
+    if y == "frequency":
+        ax.set_ylabel("frequency (Hz)")
+    else:
+        ax.set_ylabel(r"$|\theta_2 - \theta_1|$ (rad)")
+        ax.set_yticks([0, math.pi / 2, math.pi], ["0", r"$\pi/2$", r"$\pi$"])
+        ax.set_ylim(-0.4, math.pi + 0.4)
+    if getattr(result, "title", ""):
+        import textwrap
+        ax.set_title(textwrap.fill(result.title, 50))
+    _finish(ax, loc="best")
+    place_labels(ax, names, within="figure")
     place_labels(ax, labels)
     return ax
 
@@ -246,7 +321,7 @@ def curve(result: Any, ax: Any = None) -> Any:
                      lambda e: float(e.first))
     ax.set_xlabel(axis_label(result.first_name))
     ax.set_ylabel(axis_label(result.second_name))
-    ax.legend(loc="best")
+    _finish(ax, loc="best")
     place_labels(ax, labels)
     return ax
 
@@ -259,15 +334,17 @@ def simulation(result: Any, ax: Any = None, states: Optional[list[str]] = None) 
         ax.plot(result.t, np.asarray(result.states)[:, names.index(name)], lw=0.8,
                 label=math_name(name))
     ax.set_xlabel("t (s)")
-    ax.legend(loc="best", ncol=2)
+    _finish(ax, loc="best", ncol=2)
     return ax
 
 
 def kind_of(result: Any) -> str:
-    """What a result is, for `draw`: "branch", "equilibria", "curve" or "simulation"."""
+    """What a result is, for `draw`: "branch", "equilibria", "curve", "study" or "simulation"."""
     kind = getattr(result, "kind", "")
-    if kind in ("branch", "equilibria", "curve"):
+    if kind in ("branch", "equilibria", "curve", "study"):
         return kind
+    if hasattr(result, "branches") and hasattr(result, "parameter"):
+        return "study"
     if hasattr(result, "t") and hasattr(result, "states"):
         return "simulation"
     points = getattr(result, "points", None)
@@ -281,11 +358,13 @@ def kind_of(result: Any) -> str:
 
 
 def draw(result: Any, ax: Any = None, out: Optional[str] = None, **options: Any) -> Any:
-    """The figure of any result of a branch, equilibria, a curve or a simulation (from a function
-    or from ``sympathy.load``), on `ax` or a new figure; written to `out` if given (by its
+    """The figure of a branch, equilibria, a curve, a study or a simulation (a function's result
+    or one read by ``sympathy.load``), on `ax` or a new figure; written to `out` if given (by its
     extension). Returns the axes."""
     kind = kind_of(result)
-    if kind in ("branch", "equilibria"):
+    if kind == "study":
+        ax = study(result, ax, **options)
+    elif kind in ("branch", "equilibria"):
         ax = branch(result, ax, **options)
     elif kind == "curve":
         ax = curve(result, ax, **options)

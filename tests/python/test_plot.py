@@ -105,3 +105,37 @@ def test_curve_in_its_two_parameters():
     line = next(line for line in ax.get_lines() if line.get_gid() == "curve")
     assert np.array_equal(line.get_xdata(), curve.points.first)
     assert ax.get_xlabel() == "k (N/m)" and ax.get_ylabel() == "c (N s/m)"
+
+
+def test_study_diagram_of_a_two_way_branch(tmp_path):
+    # A branch found at k = 48 and followed both ways (its points' indices negative on the
+    # backward part, events placed after them): each marker on its branch's line, the stability
+    # changing at the events, every label apart.
+    study = tmp_path / "two_way.toml"
+    study.write_text(f"""title = "two ways"
+case = "{ROW2}"
+params = "table2"
+parameter = "k"
+axis = "frequency"
+
+[[branches]]
+name = "anti-phase"
+start = "anti-phase"
+from = 30.0
+to = 70.0
+at = 48.0
+""")
+    result = sympathy.study(str(study), out=str(tmp_path), accuracy="fast")
+    branch = result.branches["anti-phase"]
+    assert min(branch.points.index) < 0 and len(branch.events) >= 3
+    ax = result.plot()
+    assert labels_apart(ax) == len(branch.events)
+    x = np.asarray(branch.points.value)
+    f = np.asarray(branch.points.frequency)
+    order = np.argsort(x)
+    for line in ax.get_lines():
+        if str(line.get_gid()).startswith("event "):
+            for mx, my in zip(line.get_xdata(), line.get_ydata()):
+                assert abs(my - np.interp(mx, x[order], f[order])) < 1e-3
+    ends = [xs[-1] for _, xs, _ in runs(ax)[:-1]]
+    assert all(any(e.value == end for e in branch.events) for end in ends)
