@@ -139,3 +139,24 @@ at = 48.0
                 assert abs(my - np.interp(mx, x[order], f[order])) < 1e-3
     ends = [xs[-1] for _, xs, _ in runs(ax)[:-1]]
     assert all(any(e.value == end for e in branch.events) for end in ends)
+
+
+def test_the_plot_script_draws_an_equation_case_files_branch(tmp_path):
+    # scripts/plot on the program's JSON of abc's family born at HB1 (an equation case file):
+    # a vector file, drawn by the same module (its two folds at AUTO's p1 = 0.211903 and 0.213697).
+    cli = os.environ.get("SYMPATHY_CLI", os.path.join(SOURCE, "build/cases/sympathy"))
+    subprocess.run([cli, "continue", ABC, "--param", "p1", "--from", "0.2", "--to", "0.25",
+                    "--switch-at", "HB1", "--json", str(tmp_path / "family.json")],
+                   check=True, capture_output=True)
+    env = dict(os.environ, SYMPATHY_BUILD_DIR=os.path.dirname(os.path.dirname(
+        os.path.dirname(sympathy.__file__))))
+    run = subprocess.run([os.path.join(SOURCE, "scripts/plot"), str(tmp_path / "family.json"),
+                          "--y", "u1", "--out", str(tmp_path / "family.svg")],
+                         check=True, capture_output=True, text=True, env=env)
+    assert run.stdout.strip().endswith("family.svg")
+    assert (tmp_path / "family.svg").read_text().lstrip().startswith("<?xml")
+    ax = sympathy.load(tmp_path / "family.json").plot(y="u1")
+    folds = sorted(round(e.value, 6) for e in sympathy.load(tmp_path / "family.json").events
+                   if e.type == "LP")
+    assert folds == [0.211903, 0.213697]
+    assert labels_apart(ax) >= 2
