@@ -102,36 +102,57 @@ class PythonHooks {
 // progress=True: a tqdm bar over the continued parameter's range (advanced by how far each point
 // moved along it), when tqdm is installed; without it a warning, once, and no bar. Anything else
 // is the callback itself (None: none).
-struct ProgressBar {
-  py::object callback = py::none();
-  py::object bar = py::none();
-  ProgressBar(const py::object& progress, double from, double to, const std::string& parameter) {
-    if (!py::isinstance<py::bool_>(progress)) {
-      callback = progress;
+class ProgressBar {
+ public:
+  // Over a parameter's range: advanced by how far each point (its `value`) moved along it.
+  ProgressBar(const py::object& progress, const std::string& what, double from, double to,
+              const std::string& parameter) {
+    if (!open(progress, py::arg("total") = std::abs(to - from), py::arg("unit") = parameter,
+              py::arg("desc") = what + " " + parameter,
+              py::arg("bar_format") =
+                  "{desc}: {percentage:3.0f}%|{bar}| {n:.4g}/{total:.4g} [{elapsed}]"))
       return;
-    }
-    if (!progress.cast<bool>()) return;
-    try {
-      bar = py::module_::import("tqdm").attr("tqdm")(
-          py::arg("total") = std::abs(to - from), py::arg("unit") = parameter,
-          py::arg("desc") = "continue " + parameter,
-          py::arg("bar_format") =
-              "{desc}: {percentage:3.0f}%|{bar}| {n:.4g}/{total:.4g} [{elapsed}]");
-    } catch (py::error_already_set&) {
-      PyErr_WarnEx(PyExc_UserWarning, "progress=True: tqdm is not installed; no progress bar", 1);
-      return;
-    }
     auto last = std::make_shared<double>(from);
-    py::object b = bar;
+    py::object b = bar_;
     callback = py::cpp_function([b, last](const py::object& point) {
       const double value = point.attr("value").cast<double>();
       b.attr("update")(std::abs(value - *last));
       *last = value;
     });
   }
-  ~ProgressBar() {
-    if (!bar.is_none()) bar.attr("close")();
+  // A count of points (a curve, whose length is not known before): one per point.
+  ProgressBar(const py::object& progress, const std::string& what) {
+    if (!open(progress, py::arg("unit") = "points", py::arg("desc") = what)) return;
+    py::object b = bar_;
+    callback = py::cpp_function([b](const py::object&) { b.attr("update")(1); });
   }
+  ~ProgressBar() {
+    if (!bar_.is_none()) bar_.attr("close")();
+  }
+  ProgressBar(const ProgressBar&) = delete;
+  ProgressBar& operator=(const ProgressBar&) = delete;
+
+  py::object callback = py::none();  // what the engine's points are reported to
+
+ private:
+  // A callable is the callback itself; True a tqdm bar made with `args` (false if none is made:
+  // without tqdm, a warning).
+  template <typename... Args>
+  bool open(const py::object& progress, Args&&... args) {
+    if (!py::isinstance<py::bool_>(progress)) {
+      callback = progress;
+      return false;
+    }
+    if (!progress.cast<bool>()) return false;
+    try {
+      bar_ = py::module_::import("tqdm").attr("tqdm")(std::forward<Args>(args)...);
+    } catch (py::error_already_set&) {
+      PyErr_WarnEx(PyExc_UserWarning, "progress=True: tqdm is not installed; no progress bar", 1);
+      return false;
+    }
+    return true;
+  }
+  py::object bar_ = py::none();
 };
 
 // A case file with its parameter set and --set values. Each call loads it again with the call's
@@ -226,7 +247,7 @@ class Case {
     const app::LoadedSystem c = app::load_system(args);
     app::BranchRequest request = app::continue_request(args, c);
     const app::BranchSource source = c.source(request.start, request.initial, request.start_data);
-    const ProgressBar shown(progress, request.from, request.to, request.parameter);
+    const ProgressBar shown(progress, "continue", request.from, request.to, request.parameter);
     PythonHooks hooks(shown.callback);
     request.progress = nullptr;  // progress goes to the callback, not to stderr
     request.on_point = [&](const ContinuationPoint& p) {
@@ -249,7 +270,9 @@ class Case {
     const app::Arguments args = typed_arguments("equilibria", line_, keywords);
     const app::LoadedSystem c = app::load_system(args);
     const app::EquilibriaRequest request = app::equilibria_request(args, c);
-    PythonHooks hooks(progress);
+    const ProgressBar shown(progress, "equilibria", request.problem.from, request.problem.to,
+                            c.system().parameter_names()[request.problem.parameter]);
+    PythonHooks hooks(shown.callback);
     EquilibriumCallbacks callbacks;
     callbacks.on_point = [&](const EquilibriumPoint& p) {
       hooks.report([&] {
@@ -296,7 +319,8 @@ class Case {
     const app::LoadedSystem c = app::load_system(args);
     app::CurveRequest request = app::curve_request(args, c);
     const app::BranchSource source = c.source(request.branch.start, request.branch.initial);
-    PythonHooks hooks(progress);
+    const ProgressBar shown(progress, "curve " + request.event.text);
+    PythonHooks hooks(shown.callback);
     request.branch.stop_requested = [&] { return hooks.stop_requested(); };
     CurveCallbacks callbacks;
     callbacks.on_point = [&](const CurvePoint& p) {

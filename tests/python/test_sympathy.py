@@ -581,6 +581,19 @@ def test_basins_equal_the_program(tmp_path):
         sympathy.basins(ROW2, starts=4, out=tmp_path / "none")
 
 
+def test_equilibria_and_curve_draw_a_tqdm_bar(capsys):
+    # progress=True on every function that takes it (True was called as a callback here, a
+    # TypeError, before): equilibria over the parameter's range, a curve over its points.
+    pytest.importorskip("tqdm")
+    abc = os.path.join(SOURCE, "cases/examples/abc.toml")
+    sympathy.equilibria(abc, param="p1", from_=0, to=0.4, progress=True)
+    assert "equilibria p1: 100%" in capsys.readouterr().err
+    curve = sympathy.curve(ROW2, start="anti-phase", param="k", from_=44, to=50, event="BP1",
+                           second="c", second_from=0.0185, second_to=0.02, accuracy="fast",
+                           progress=True)
+    assert f"curveBP1:{len(curve.points.first)}points" in capsys.readouterr().err.replace(" ", "")
+
+
 def test_jobs_report_progress_as_counts_and_as_a_tqdm_bar(tmp_path, capsys):
     # A study's branches, basins' runs: the callable hears (done, total) as jobs finish, from the
     # calling thread, ending at the total; progress=True draws a tqdm bar over the jobs.
