@@ -10,8 +10,8 @@
 
 #include <pybind11/pybind11.h>
 
-#include "cases/app/options.hpp"
 #include "cases/app/arguments.hpp"
+#include "cases/app/options.hpp"
 #include "sympathy/cases/case_file.hpp"
 
 namespace sympathy::python {

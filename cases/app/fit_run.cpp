@@ -142,6 +142,13 @@ FitRun run_fit(const FitSetup& setup, std::function<bool()> stop_requested) {
   return run;
 }
 
+Eigen::VectorXd FitRun::fitted_initial_state() const {
+  Eigen::VectorXd z0 = fit.problem.initial_state;
+  for (std::size_t l = 0; l < fit.problem.initial.size(); ++l)
+    z0[fit.problem.initial[l].component] = result.values[parameter_count() + static_cast<int>(l)];
+  return z0;
+}
+
 double explained_variation(const FitRun& run) {
   const Recording& rec = run.fit.recording;
   double total = 0.0;
@@ -155,20 +162,15 @@ double explained_variation(const FitRun& run) {
 
 void write_fitted_series(const std::string& path, const FitSetup& setup, const FitRun& run) {
   const PreparedFit& fit = run.fit;
-  const TrajectoryFitResult& r = run.result;
   const Recording& rec = fit.recording;
-  const int np = static_cast<int>(fit.problem.parameters.size());
-  const TrajectoryFitOptions& o = setup.options;
   const auto states = fit.model->state_names();
   std::vector<std::string> header{"t"};
   header.insert(header.end(), states.begin(), states.end());
   CsvWriter csv(path, header);
-  Eigen::VectorXd z0 = fit.problem.initial_state;
-  for (std::size_t l = 0; l < fit.problem.initial.size(); ++l)
-    z0[fit.problem.initial[l].component] = r.values[np + static_cast<int>(l)];
-  Flow flow(*fit.model, o.flow);
+  const Eigen::VectorXd z0 = run.fitted_initial_state();
+  Flow flow(*fit.model, setup.options.flow);
   std::vector<double> row(states.size() + 1);
-  flow.sample(z0, r.fitted_parameters, rec.times.front(), rec.times,
+  flow.sample(z0, run.result.fitted_parameters, rec.times.front(), rec.times,
               [&](double t, const Eigen::VectorXd& z) {
                 row[0] = t;
                 for (int i = 0; i < z.size(); ++i) row[i + 1] = z[i];
@@ -181,7 +183,7 @@ std::vector<std::string> write_fitted_case(const std::string& path, const FitSet
   const PreparedFit& fit = run.fit;
   const TrajectoryFitResult& r = run.result;
   const Recording& rec = fit.recording;
-  const int np = static_cast<int>(fit.problem.parameters.size());
+  const int np = run.parameter_count();
   const auto& metronomes = setup.c;
   const std::string& case_path = setup.case_path;
   const FitRequest& request = setup.request;
@@ -217,7 +219,7 @@ void write_fit_json(const std::string& path, const FitSetup& setup, const FitRun
   const PreparedFit& fit = run.fit;
   const TrajectoryFitResult& r = run.result;
   const Recording& rec = fit.recording;
-  const int np = static_cast<int>(fit.problem.parameters.size());
+  const int np = run.parameter_count();
   const TrajectoryFitOptions& o = setup.options;
   const auto states = fit.model->state_names();
   nlohmann::json j;

@@ -40,6 +40,11 @@ struct FitRun {
   PreparedFit fit;
   TrajectoryFitResult result;
   bool determined() const { return result.undetermined.empty(); }
+  // The free parameters' count (the unknowns after them are initial states).
+  int parameter_count() const { return static_cast<int>(fit.problem.parameters.size()); }
+  // The start of the fitted trajectory: the problem's initial state with the fitted initial
+  // values set.
+  Eigen::VectorXd fitted_initial_state() const;
 };
 // The fit (the engine's fit_trajectory on the prepared problem); `stop_requested` (may be empty)
 // asked before each integration ends it at the best point so far (TrajectoryFitOptions).
