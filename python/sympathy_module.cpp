@@ -535,6 +535,8 @@ py::object map(const std::string& path, const py::dict& keywords, const py::obje
   fields["second"] = run.map.second.parameter;
   fields["json"] = run.json_path;
   fields["orbits"] = orbits;
+  // The case's parameter sets marked (as the JSON has them: name, first, second, in_plane, ...).
+  fields["marks"] = py::module_::import("json").attr("loads")(run.marks.dump());
   return py::module_::import("types").attr("SimpleNamespace")(**fields);
 }
 

@@ -184,6 +184,8 @@ def place_labels(ax: Any, labels: list, within: Any = None) -> None:
     inside = fig.bbox if within == "figure" else ax.get_window_extent(renderer)
     placed: list = [t.get_window_extent(renderer) for t in ax.texts
                     if getattr(t, "_sympathy_placed", False)]
+    if ax.get_legend() is not None:
+        placed.append(ax.get_legend().get_window_extent(renderer))
     # The events' markers too: a label does not cover another event.
     from matplotlib.transforms import Bbox  # type: ignore[import]
     for line in ax.get_lines():
@@ -338,11 +340,178 @@ def simulation(result: Any, ax: Any = None, states: Optional[list[str]] = None) 
     return ax
 
 
+def _field(obj: Any, key: str, default: Any = None) -> Any:
+    """A field of a result read back from JSON (a dict) or returned by a function (attributes)."""
+    if isinstance(obj, dict):
+        return obj.get(key, default)
+    return getattr(obj, key, default)
+
+
+CURVE_COLORS = {"BP": "tab:blue", "NS": "tab:purple", "LP": "black", "PD": "tab:orange"}
+STABLE_SHADE, UNSTABLE_SHADE = "#c8e6c9", "#f4c7c3"
+
+
+def _edges(values: Any) -> np.ndarray:
+    """Cell edges midway between grid values (the grid's points at the cells' centres)."""
+    v = np.asarray(values, dtype=float)
+    if len(v) == 1:
+        return np.array([v[0] - 0.5, v[0] + 0.5])
+    mids = 0.5 * (v[1:] + v[:-1])
+    return np.concatenate([[2 * v[0] - mids[0]], mids, [2 * v[-1] - mids[-1]]])
+
+
+def _stability(orbit: Any) -> Optional[np.ndarray]:
+    """1 stable, 0 unstable, NaN where no orbit was found, on the orbit's grid (rows: second)."""
+    grid = _field(orbit, "grid")
+    if not grid:
+        return None
+    count = np.asarray(_field(grid, "unstable_count"), dtype=float)
+    return np.where(count < 0, np.nan, (count == 0).astype(float))
+
+
+def _map_curves(ax: Any, orbit: Any, drawn: set) -> list:
+    """The orbit's event curves (an NS curve dotted where it is a neutral saddle: its pair is
+    real, no bifurcation), their codimension-two points marked; returns the points' labels."""
+    labels = []
+    for curve in _field(orbit, "curves", []):
+        points = curve.points
+        first = np.asarray(points.first, dtype=float)
+        second = np.asarray(points.second, dtype=float)
+        if len(first) == 0:
+            continue
+        kind = curve.kind
+        color = CURVE_COLORS.get(kind, "0.4")
+        saddle = np.asarray(getattr(points, "neutral_saddle", np.zeros(len(first))), dtype=bool)
+        start = 0
+        for i in range(1, len(first) + 1):
+            if i < len(first) and saddle[i] == saddle[start]:
+                continue
+            name = f"{kind}: neutral saddle" if saddle[start] else f"{kind} curve"
+            ax.plot(first[start:i + 1], second[start:i + 1], color=color, lw=1.3,
+                    ls=":" if saddle[start] else "-", gid=f"curve {kind}",
+                    label=None if name in drawn else name)
+            drawn.add(name)
+            start = i
+        for e in curve.events:
+            if str(e.type).startswith("turn"):
+                continue
+            ax.plot([e.first], [e.second], marker="o", ms=3.5, color=color, mfc="white",
+                    ls="none", zorder=5, gid=f"event {e.type}")
+            labels.append(ax.annotate(str(e.type), (e.first, e.second),
+                                      textcoords="offset points", xytext=(3, 3), fontsize=6.5,
+                                      color=color, gid="event label"))
+    return labels
+
+
+def _marks(ax: Any, marks: list, window: Optional[tuple] = None) -> list:
+    """The case's parameter sets starred; hollow, with what differs, off the map's plane; those
+    outside the map's `window` ((x0, x1), (y0, y1)) left out."""
+    labels = []
+    for m in marks or []:
+        inside = _field(m, "in_plane", True)
+        x, y = _field(m, "first"), _field(m, "second")
+        if window and not (min(window[0]) <= x <= max(window[0]) and
+                           min(window[1]) <= y <= max(window[1])):
+            continue
+        ax.plot([x], [y], marker="*", ms=7, color="black", mfc="black" if inside else "white",
+                ls="none", zorder=6, gid="event mark")
+        text = _field(m, "name") if inside else f"{_field(m, 'name')} ({_field(m, 'off_plane')})"
+        labels.append(ax.annotate(text, (x, y), textcoords="offset points", xytext=(4, 3),
+                                  fontsize=6.5, gid="event label"))
+    return labels
+
+
+def stability_map(result: Any, ax: Any = None) -> Any:
+    """A stability map (``sympathy map``): per orbit a panel, shaded where it is stable, unstable
+    or not found on its grid, with the event curves that bound those regions (a legend entry per
+    curve kind) and their codimension-two points, the case's parameter sets starred; with two or
+    more orbits, a last panel of where only one of the first two, both or neither is stable.
+    Returns the first panel's axes."""
+    import matplotlib.pyplot as plt  # type: ignore[import]
+    from matplotlib.colors import ListedColormap  # type: ignore[import]
+    from matplotlib.patches import Patch  # type: ignore[import]
+
+    orbits = list(result.orbits)
+    first, second = _field(result, "first"), _field(result, "second")
+    first_name = first if isinstance(first, str) else _field(first, "parameter")
+    second_name = second if isinstance(second, str) else _field(second, "parameter")
+    panels = len(orbits) + (1 if len(orbits) > 1 else 0)
+    if ax is None:
+        fig, axes = plt.subplots(1, panels, figsize=(min(7.0, 3.4 * panels), 2.8), sharey=True,
+                                 squeeze=False, layout="constrained")
+        axes = list(axes[0])
+    else:
+        axes = [ax]
+        orbits = orbits[:1]
+    shade = ListedColormap([UNSTABLE_SHADE, STABLE_SHADE])
+    stabilities = []
+    for panel, orbit in zip(axes, orbits):
+        stable = _stability(orbit)
+        stabilities.append(stable)
+        grid = _field(orbit, "grid")
+        if stable is not None:
+            panel.pcolormesh(_edges(_field(grid, "first")), _edges(_field(grid, "second")),
+                             stable, cmap=shade, vmin=0, vmax=1, shading="flat")
+        drawn: set = set()
+        window = None
+        if grid:
+            window = ((_field(grid, "first")[0], _field(grid, "first")[-1]),
+                      (_field(grid, "second")[0], _field(grid, "second")[-1]))
+        labels = _map_curves(panel, orbit, drawn) + _marks(panel, _field(result, "marks", []),
+                                                           window)
+        if grid:  # the map's window: the grid's first and last values
+            panel.set_xlim(_field(grid, "first")[0], _field(grid, "first")[-1])
+            panel.set_ylim(_field(grid, "second")[0], _field(grid, "second")[-1])
+        panel.set_title(_field(orbit, "name"))
+        panel.set_xlabel(axis_label(first_name))
+        handles = [Patch(color=STABLE_SHADE, label="stable"),
+                   Patch(color=UNSTABLE_SHADE, label="unstable"),
+                   Patch(facecolor="white", edgecolor="0.7", label="no orbit")]
+        handles += [h for h in panel.get_legend_handles_labels()[0]]
+        # Below the panel: inside it would cover the curves.
+        _finish(panel, handles=handles, loc="upper center", bbox_to_anchor=(0.5, -0.3), ncol=2,
+                frameon=False)
+        panel._sympathy_labels = labels
+    if len(axes) > len(orbits) and all(s is not None for s in stabilities[:2]):
+        panel = axes[-1]
+        a, b = stabilities[0], stabilities[1]
+        assert a is not None and b is not None
+        both = np.where(np.isnan(a) | np.isnan(b), np.nan, a + 2 * b)
+        colors = ["#e0e0e0", "#bbdefb", "#ffe0b2", STABLE_SHADE]
+        grid = _field(orbits[0], "grid")
+        panel.pcolormesh(_edges(_field(grid, "first")), _edges(_field(grid, "second")), both,
+                         cmap=ListedColormap(colors), vmin=-0.5, vmax=3.5, shading="flat")
+        drawn = set()
+        labels = []
+        for orbit in orbits[:2]:
+            labels += _map_curves(panel, orbit, drawn)
+        names = [_field(o, "name") for o in orbits[:2]]
+        panel.set_title("stable: " + " / ".join(names))
+        panel.set_xlabel(axis_label(first_name))
+        _finish(panel, handles=[Patch(color=colors[3], label="both"),
+                                Patch(color=colors[1], label=f"only {names[0]}"),
+                                Patch(color=colors[2], label=f"only {names[1]}"),
+                                Patch(color=colors[0], label="neither")], loc="upper center",
+                bbox_to_anchor=(0.5, -0.3), ncol=2, frameon=False)
+        panel._sympathy_labels = labels
+    axes[0].set_ylabel(axis_label(second_name))
+    axes[0].yaxis.label.set_fontsize(8)
+    if _field(result, "title"):
+        import textwrap
+        axes[0].figure.suptitle(textwrap.fill(_field(result, "title"), 90), fontsize=8)
+    for panel in axes:
+        place_labels(panel, getattr(panel, "_sympathy_labels", []))
+    return axes[0]
+
+
 def kind_of(result: Any) -> str:
-    """What a result is, for `draw`: "branch", "equilibria", "curve", "study" or "simulation"."""
+    """What a result is, for `draw`: "branch", "equilibria", "curve", "study", "map" or
+    "simulation"."""
     kind = getattr(result, "kind", "")
-    if kind in ("branch", "equilibria", "curve", "study"):
+    if kind in ("branch", "equilibria", "curve", "study", "map"):
         return kind
+    if hasattr(result, "orbits") and hasattr(result, "first"):
+        return "map"
     if hasattr(result, "branches") and hasattr(result, "parameter"):
         return "study"
     if hasattr(result, "t") and hasattr(result, "states"):
@@ -364,6 +533,8 @@ def draw(result: Any, ax: Any = None, out: Optional[str] = None, **options: Any)
     kind = kind_of(result)
     if kind == "study":
         ax = study(result, ax, **options)
+    elif kind == "map":
+        ax = stability_map(result, ax, **options)
     elif kind in ("branch", "equilibria"):
         ax = branch(result, ax, **options)
     elif kind == "curve":

@@ -160,3 +160,37 @@ def test_the_plot_script_draws_an_equation_case_files_branch(tmp_path):
                    if e.type == "LP")
     assert folds == [0.211903, 0.213697]
     assert labels_apart(ax) >= 2
+
+
+def test_stability_map_has_a_legend_entry_per_curve_kind_and_labels_apart(tmp_path):
+    # A small map of the anti-phase orbit in k and c (its BP and two NS curves): each curve
+    # kind in the legend, the codimension-two and mark labels apart, the shading from its grid.
+    (tmp_path / "small.toml").write_text(f"""title = "small"
+case = "{ROW2}"
+params = "table2"
+marks = ["table2"]
+
+[first]
+parameter = "k"
+from = 10.0
+to = 60.0
+points = 6
+
+[second]
+parameter = "c"
+from = 0.0
+to = 0.05
+points = 4
+
+[[orbits]]
+name = "anti-phase"
+start = "anti-phase"
+""")
+    result = sympathy.map(tmp_path / "small.toml", out=str(tmp_path), accuracy="fast")
+    for m in (result, sympathy.load(tmp_path / "small.json")):
+        ax = m.plot()
+        legend = [t.get_text() for t in ax.get_legend().get_texts()]
+        kinds = {c.kind for c in m.orbits[0].curves}
+        assert kinds == {"BP", "NS"} and all(f"{k} curve" in legend for k in kinds)
+        assert labels_apart(ax) == 1  # table2's star
+        assert len(ax.collections) == 1  # the shading
