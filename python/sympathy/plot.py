@@ -1,9 +1,9 @@
 """Figures of sympathy's results, for any system: one module that ``Result.plot()`` and the
 plotting scripts call. A branch of orbits or equilibria is drawn stable solid black and unstable
 dashed grey, the style changing at the located event (not at the last point computed before it);
-its events are marked and named, their labels placed so that no two overlap; a two-parameter
-curve is drawn in its two parameters with its codimension-two points; a simulation's states
-against time. Sizes are those of a journal's column (3.4 inches wide, 8-point text); ``save``
+its events are marked and named, their labels placed so that no two overlap; a study's branches
+on one diagram; a two-parameter curve in its two parameters with its codimension-two points; a
+stability map's regions, curves and parameter sets; a simulation's states against time. Sizes are those of a journal's column (3.4 inches wide, 8-point text); ``save``
 writes PDF, SVG or PNG by the file's extension.
 
     >>> import sympathy, sympathy.plot
@@ -283,9 +283,9 @@ def branch(result: Any, ax: Any = None, y: YAxis = None, label: Optional[str] = 
 
 def study(result: Any, ax: Any = None) -> Any:
     """A study's branches on one diagram, as the paper draws its Figs. 6-9, 12 and 18-20: the
-    phase difference |th2 - th1| (0 in phase, pi in anti-phase) or the frequency against the
-    study's parameter, each branch named at its end, every event label placed apart from all
-    the others. Returns the axes."""
+    absolute phase difference of th2 to th1 (0 in phase, pi in anti-phase) or the frequency
+    against the study's parameter, each branch named at its end, every event label placed apart
+    from all the others. Returns the axes."""
     ax = new_axes(ax)
     y = "frequency" if getattr(result, "axis", "phase") == "frequency" else "phase:th2"
     seen: set = set()
