@@ -3,7 +3,8 @@ plotting scripts call. A branch of orbits or equilibria is drawn stable solid bl
 dashed grey, the style changing at the located event (not at the last point computed before it);
 its events are marked and named, their labels placed so that no two overlap; a study's branches
 on one diagram; a two-parameter curve in its two parameters with its codimension-two points; a
-stability map's regions, curves and parameter sets; a simulation's states against time. Sizes are those of a journal's column (3.4 inches wide, 8-point text); ``save``
+stability map's regions, curves and parameter sets; basins' shares over one parameter; a
+simulation's states against time. Sizes are those of a journal's column (3.4 inches wide, 8-point text); ``save``
 writes PDF, SVG or PNG by the file's extension.
 
     >>> import sympathy, sympathy.plot
@@ -504,11 +505,55 @@ def stability_map(result: Any, ax: Any = None) -> Any:
     return axes[0]
 
 
+STATE_COLORS = {"in-phase": "tab:blue", "anti-phase": "tab:red", "in-in": "tab:blue",
+                "anti-anti": "tab:red", "in-anti": "tab:purple",
+                "not-synchronized": "tab:orange", "stopped": "0.3", "undetermined": "0.6",
+                "failed": "black"}
+
+
+def basins(result: Any, ax: Any = None) -> Any:
+    """Basins of attraction over one parameter (``sympathy basins`` on a 1-D grid): each state's
+    share of the runs at each grid point with its 95% Wilson interval; the states side by side
+    (a small offset each, so that none hides another), error bars only where the state won a
+    run, states that never won left out. Returns the axes."""
+    ax = new_axes(ax)
+    grid = list(_field(result, "grid"))
+    if len(grid) != 1:
+        raise ValueError("plot: basins over one parameter (scripts/plot_basins draws two)")
+    parameter = _field(grid[0], "parameter")
+    points = [p for p in result.points if _field(p, "runs", 0)]
+    states: list = []
+    for p in points:
+        for state, share in _field(p, "shares").items():
+            if _field(share, "count", 0) > 0 and state not in states:
+                states.append(state)
+    xs = np.array([_field(p, "values")[parameter] for p in points], dtype=float)
+    step = np.min(np.diff(np.unique(xs))) if len(np.unique(xs)) > 1 else 1.0
+    others = iter(["tab:green", "tab:brown", "tab:pink", "tab:olive", "tab:cyan", "tab:gray"])
+    for n, state in enumerate(states):
+        color = STATE_COLORS.get(state) or next(others, "0.4")
+        dx = (n - (len(states) - 1) / 2) * 0.06 * step
+        shares = [_field(p, "shares").get(state) for p in points]
+        y = np.array([_field(q, "share", 0.0) if q is not None else 0.0 for q in shares])
+        ax.plot(xs + dx, y, color=color, lw=1.0, marker="o", ms=3, label=state, gid=state)
+        won = [i for i, q in enumerate(shares) if q is not None and _field(q, "count", 0) > 0]
+        if won:
+            lower = np.array([y[i] - _field(shares[i], "lower") for i in won])
+            upper = np.array([_field(shares[i], "upper") - y[i] for i in won])
+            ax.errorbar(xs[won] + dx, y[won], yerr=[lower, upper], fmt="none", color=color,
+                        capsize=2, lw=0.8, gid=f"interval {state}")
+    ax.set_ylim(-0.05, 1.05)
+    ax.set_xlabel(axis_label(parameter))
+    ax.set_ylabel("share of runs (95% interval)")
+    _finish(ax, loc="best")
+    return ax
+
+
 def kind_of(result: Any) -> str:
-    """What a result is, for `draw`: "branch", "equilibria", "curve", "study", "map" or
-    "simulation"."""
+    """What a result is, for `draw`: "branch", "equilibria", "curve", "study", "map", "basins"
+    or "simulation"."""
     kind = getattr(result, "kind", "")
-    if kind in ("branch", "equilibria", "curve", "study", "map"):
+    if kind in ("branch", "equilibria", "curve", "study", "map", "basins"):
         return kind
     if hasattr(result, "orbits") and hasattr(result, "first"):
         return "map"
@@ -535,6 +580,8 @@ def draw(result: Any, ax: Any = None, out: Optional[str] = None, **options: Any)
         ax = study(result, ax, **options)
     elif kind == "map":
         ax = stability_map(result, ax, **options)
+    elif kind == "basins":
+        ax = basins(result, ax, **options)
     elif kind in ("branch", "equilibria"):
         ax = branch(result, ax, **options)
     elif kind == "curve":

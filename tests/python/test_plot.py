@@ -194,3 +194,21 @@ start = "anti-phase"
         assert kinds == {"BP", "NS"} and all(f"{k} curve" in legend for k in kinds)
         assert labels_apart(ax) == 1  # table2's star
         assert len(ax.collections) == 1  # the shading
+
+
+def test_basins_shares_side_by_side_with_intervals_where_won(tmp_path):
+    # Two grid points, 4 starts each: one line per state that won a run, offset so that none
+    # hides another; an interval only at the points where the state won.
+    result = sympathy.basins(ROW2, grid="k=45:55:2", starts=4, t_end=20, out=tmp_path)
+    ax = result.plot()
+    won = {s for p in result.points for s, share in p.shares.items() if share.count > 0}
+    lines = {line.get_gid(): line for line in ax.get_lines() if line.get_gid() in won}
+    assert set(lines) == won
+    offsets = {name: line.get_xdata()[0] - 45.0 for name, line in lines.items()}
+    assert len(set(np.round(list(offsets.values()), 9))) == len(won)
+    for name in won:
+        intervals = [c for c in ax.containers if c.lines[2] and
+                     c.lines[2][0].get_gid() == f"interval {name}"]
+        counts = [p.shares[name].count for p in result.points if name in p.shares]
+        assert sum(len(c.lines[2][0].get_segments()) for c in intervals) == \
+            sum(1 for n in counts if n > 0)
