@@ -329,16 +329,68 @@ def curve(result: Any, ax: Any = None) -> Any:
     return ax
 
 
-def simulation(result: Any, ax: Any = None, states: Optional[list[str]] = None) -> Any:
-    """A simulation's states against time (`states`: by name, by default every one)."""
-    ax = new_axes(ax)
+def oscillation_phase(t: Any, x: Any) -> np.ndarray:
+    """The phase (rad, unwrapped) of an oscillating signal at the times `t`: 2 pi k at its k-th
+    upward zero crossing (linear between samples), linear in time between crossings; NaN before
+    the first and after the last."""
+    t = np.asarray(t, dtype=float)
+    x = np.asarray(x, dtype=float)
+    up = np.nonzero((x[:-1] < 0.0) & (x[1:] >= 0.0))[0]
+    crossings = t[up] - x[up] * (t[up + 1] - t[up]) / (x[up + 1] - x[up])
+    if len(crossings) < 2:
+        return np.full(len(t), np.nan)
+    phase = np.interp(t, crossings, 2.0 * np.pi * np.arange(len(crossings)))
+    phase[(t < crossings[0]) | (t > crossings[-1])] = np.nan
+    return phase
+
+
+def phase_differences(result: Any) -> dict[str, np.ndarray]:
+    """Each angle's phase minus the first angle's (th2 - th1, ...), wrapped to [-pi/2, 3 pi/2),
+    over a simulation's times: 0 in phase, pi in anti-phase (no jump where it wanders about pi;
+    the paper's Figs. 3 and 5)."""
     names = list(result.state_names)
+    angles = [n for n in names if n.startswith("th") and n[2:].isdigit()]
+    if len(angles) < 2:
+        return {}
+    states = np.asarray(result.states)
+    phases = {n: oscillation_phase(result.t, states[:, names.index(n)]) for n in angles}
+    reference = phases[angles[0]]
+    out = {}
+    for n in angles[1:]:
+        d = phases[n] - reference
+        out[n] = np.mod(d + 0.5 * np.pi, 2.0 * np.pi) - 0.5 * np.pi
+    return out
+
+
+def simulation(result: Any, ax: Any = None, states: Optional[list[str]] = None,
+               phases: Optional[bool] = None) -> Any:
+    """A simulation's states against time (`states`: by name, by default every one); with
+    `phases` (by default where there are two angles or more and no `ax` is given) a second panel
+    below of each angle's phase difference to the first, where a slide from anti-phase to in-phase
+    shows even when the angles' band does not. Returns the top axes."""
+    names = list(result.state_names)
+    differences = phase_differences(result) if phases is not False and ax is None else {}
+    if ax is None and differences:
+        import matplotlib.pyplot as plt  # type: ignore[import]
+        fig, (ax, below) = plt.subplots(2, 1, figsize=(COLUMN[0], 1.5 * COLUMN[1]), sharex=True,
+                                        layout="constrained", height_ratios=[3, 2])
+        for n, d in differences.items():
+            below.plot(result.t, d, lw=0.8, label=f"{math_name(n)} $-$ {math_name('th1')}",
+                       gid=f"phase {n}")
+        below.set_ylabel("phase difference")
+        below.set_yticks([0, np.pi], ["0", r"$\pi$"])
+        below.set_ylim(-0.5 * np.pi, 1.5 * np.pi)
+        below.set_xlabel("t (s)")
+        _finish(below, loc="best")
+    ax = new_axes(ax)
     for name in states or names:
         ax.plot(result.t, np.asarray(result.states)[:, names.index(name)], lw=0.8,
                 label=math_name(name))
-    ax.set_xlabel("t (s)")
+    if not differences:
+        ax.set_xlabel("t (s)")
     _finish(ax, loc="best", ncol=2)
     return ax
+
 
 
 def _field(obj: Any, key: str, default: Any = None) -> Any:

@@ -212,3 +212,22 @@ def test_basins_shares_side_by_side_with_intervals_where_won(tmp_path):
         counts = [p.shares[name].count for p in result.points if name in p.shares]
         assert sum(len(c.lines[2][0].get_segments()) for c in intervals) == \
             sum(1 for n in counts if n > 0)
+
+
+def test_phase_difference_is_the_exact_lag_and_is_drawn_below_the_angles():
+    # x1 = sin(2 pi f t), x2 = sin(2 pi f t - lag): th2 - th1 is -lag, wrapped into
+    # [-pi/2, 3 pi/2) (2 pi - lag for lag = 2.0); zero crossings interpolated linearly with 200
+    # samples a period are exact to 1e-4 rad for a sine.
+    f, lag = 1.7, 2.0
+    t = np.arange(0.0, 10.0, 1.0 / (200 * f))
+    run = sympathy.Result(t=t, state_names=["th1", "th2"],
+                          states=np.column_stack([np.sin(2 * np.pi * f * t),
+                                                  np.sin(2 * np.pi * f * t - lag)]))
+    d = sympathy.plot.phase_differences(run)["th2"]
+    inside = ~np.isnan(d)
+    assert inside.sum() > 0.8 * len(t)
+    assert np.max(np.abs(d[inside] - (2 * np.pi - lag))) < 1e-4
+    ax = run.plot()
+    below = [a for a in ax.figure.axes if a is not ax][0]
+    line = next(line for line in below.get_lines() if line.get_gid() == "phase th2")
+    assert np.array_equal(line.get_ydata(), d, equal_nan=True)
