@@ -393,6 +393,56 @@ def simulation(result: Any, ax: Any = None, states: Optional[list[str]] = None,
 
 
 
+def time_series(result: Any, t_from: float = 0.0, title: str = "") -> Any:
+    """A metronome case's simulation in the layout of the paper's Figs. 3 and 5, with the phase
+    difference between them: the pendulum angles on top, each angle's phase difference to th1
+    below them (where the slide from anti-phase to in-phase shows), the platform's displacement
+    (mm) at the bottom; from `t_from` on. Returns the top axes."""
+    import matplotlib.pyplot as plt  # type: ignore[import]
+    names = list(result.state_names)
+    states = np.asarray(result.states)
+    t = np.asarray(result.t, dtype=float)
+    angles = [n for n in names if n.startswith("th") and n[2:].isdigit()]
+    platform = [n for n in names if n in ("x", "y")]
+    differences = phase_differences(result)
+    rows = [r for r in ("angles", "phases", "platform")
+            if (r == "angles" and angles) or (r == "phases" and differences)
+            or (r == "platform" and platform)]
+    if not rows:
+        return simulation(result)
+    heights = {"angles": 3, "phases": 2, "platform": 2}
+    fig, axes = plt.subplots(len(rows), 1, figsize=(7.0, 0.9 * sum(heights[r] for r in rows)),
+                             sharex=True, layout="constrained",
+                             height_ratios=[heights[r] for r in rows], squeeze=False)
+    keep = t >= t_from
+    for ax, row in zip(axes[:, 0], rows):
+        if row == "angles":
+            for n in angles:
+                ax.plot(t[keep], states[keep, names.index(n)], lw=0.6, label=math_name(n))
+            ax.set_ylabel("angle (rad)")
+            _finish(ax, loc="upper right", ncol=len(angles))
+        elif row == "phases":
+            for n, d in differences.items():
+                ax.plot(t[keep], d[keep], lw=0.9, label=f"{math_name(n)} $-$ {math_name('th1')}",
+                        gid=f"phase {n}")
+            ax.set_yticks([0, np.pi], ["0", r"$\pi$"])
+            ax.set_ylim(-0.5 * np.pi, 1.5 * np.pi)
+            ax.set_ylabel("phase difference")
+            _finish(ax, loc="upper right", ncol=len(differences))
+        else:
+            for n in platform:
+                ax.plot(t[keep], 1e3 * states[keep, names.index(n)], lw=0.6,
+                        label=math_name(n))
+            ax.set_ylabel("platform (mm)")
+            _finish(ax, legend=len(platform) > 1, loc="upper right")
+        ax.grid(alpha=0.3)
+    axes[-1, 0].set_xlabel("t (s)")
+    axes[-1, 0].xaxis.label.set_fontsize(8)
+    if title:
+        axes[0, 0].set_title(title, fontsize=8)
+    return axes[0, 0]
+
+
 def _field(obj: Any, key: str, default: Any = None) -> Any:
     """A field of a result read back from JSON (a dict) or returned by a function (attributes)."""
     if isinstance(obj, dict):

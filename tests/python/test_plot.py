@@ -231,3 +231,19 @@ def test_phase_difference_is_the_exact_lag_and_is_drawn_below_the_angles():
     below = [a for a in ax.figure.axes if a is not ax][0]
     line = next(line for line in below.get_lines() if line.get_gid() == "phase th2")
     assert np.array_equal(line.get_ydata(), d, equal_nan=True)
+
+
+def test_time_series_layout_of_the_paper_with_the_phase_difference():
+    # The row setup from close to anti-phase (the Simulation guide's run, 60 s here): three
+    # panels, angles, th2 - th1 and the platform in mm; the phase panel's data are
+    # phase_differences', which start at anti-phase (pi, within 0.1) and end in phase (0).
+    run = sympathy.Case(ROW2).simulate(start="anti-phase", initial={"th2": -0.25}, t_end=60)
+    ax = sympathy.plot.time_series(run)
+    axes = ax.figure.axes
+    assert len(axes) == 3
+    assert [a.get_ylabel() for a in axes] == ["angle (rad)", "phase difference", "platform (mm)"]
+    d = sympathy.plot.phase_differences(run)["th2"]
+    line = next(line for line in axes[1].get_lines() if line.get_gid() == "phase th2")
+    assert np.array_equal(line.get_ydata(), d, equal_nan=True)
+    inside = d[~np.isnan(d)]
+    assert abs(inside[0] - np.pi) < 0.1 and abs(inside[-1]) < 0.3
