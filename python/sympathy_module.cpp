@@ -481,6 +481,14 @@ py::object study(const std::string& path, const py::dict& keywords, const py::ob
   fields["parameter"] = run.study.parameter;
   fields["axis"] = run.study.axis;
   fields["branches"] = branches;
+  py::list marks;
+  for (const auto& [set, value] : run.marks) {
+    py::dict m;
+    m["name"] = set;
+    m["value"] = value;
+    marks.append(m);
+  }
+  fields["marks"] = marks;
   return py::module_::import("types").attr("SimpleNamespace")(**fields);
 }
 

@@ -10,7 +10,8 @@ namespace sympathy::app {
 Study load_study(const std::string& path) {
   const toml::table root = read_toml(path, "study file");
   const TomlReader in(path);
-  in.only(root, "", {"title", "case", "params", "parameter", "axis", "accuracy", "branches"});
+  in.only(root, "",
+          {"title", "case", "params", "parameter", "axis", "accuracy", "branches", "marks"});
   Study s;
   s.path = path;
   s.name = std::filesystem::path(path).stem().string();
@@ -25,6 +26,10 @@ Study load_study(const std::string& path) {
   if (root.get("params")) s.params = in.string(*root.get("params"), "params");
   s.parameter = in.string(required("parameter"), "parameter");
   s.axis = root.get("axis") ? in.string(*root.get("axis"), "axis") : "phase";
+  if (const toml::node* n = root.get("marks")) {
+    if (!n->is_array()) in.fail(*n, "marks", "a list of the case's parameter sets");
+    for (const auto& m : *n->as_array()) s.marks.push_back(in.string(m, "marks"));
+  }
   if (s.axis != "phase" && s.axis != "frequency")
     in.fail(*root.get("axis"), "axis", "\"phase\" or \"frequency\"");
   // The integrator preset of every branch (apply_accuracy); `sympathy study --accuracy` overrides

@@ -29,6 +29,9 @@ struct Study {
   std::string path, name, title, case_path, params, parameter, axis;
   Accuracy accuracy = Accuracy::Default;  // the file's `accuracy`, applied to every branch
   std::vector<StudyBranch> branches;
+  // Parameter sets of the case whose value of `parameter` the figure marks (the paper's Fig. 9:
+  // the platform's stiffness before and after the fit, Tables II and III).
+  std::vector<std::string> marks;
 };
 
 // Reads and checks a study file (its keys, types and each branch's options; not yet its case);

@@ -53,6 +53,15 @@ StudyRun study_run(const Arguments& args) {
     systems.push_back(std::move(c));
   }
   const LoadedSystem& first = *systems.front();
+  for (const auto& set : study.marks) {
+    const auto values = first.set_values(set);  // throws naming the set if the case has none
+    const auto it = std::find_if(values.begin(), values.end(),
+                                 [&](const auto& v) { return v.first == study.parameter; });
+    if (it == values.end())
+      throw InputError(study.path + ": marks: parameter set '" + set + "' gives no value of " +
+                       study.parameter);
+    run.marks.emplace_back(set, it->second);
+  }
 
   // Every output named before any work: one CSV per branch (two branches of one name would
   // write one file from two threads) and the JSON, none replacing an input or another.
@@ -172,6 +181,9 @@ void write_study_json(const StudyRun& run, double seconds) {
     if (!run.errors[i].empty()) b["error"] = run.errors[i];
     j["branches"].push_back(b);
   }
+  j["marks"] = nlohmann::json::array();
+  for (const auto& [set, value] : run.marks)
+    j["marks"].push_back({{"name", set}, {"value", value}});
   j["seconds"] = seconds;
   write_json(run.json_path, j);
 }

@@ -4,6 +4,7 @@
 #include <atomic>
 #include <memory>
 #include <string>
+#include <utility>
 #include <vector>
 
 #include "cases/app/arguments.hpp"
@@ -28,6 +29,9 @@ struct StudyRun {
   std::vector<BranchRequest> requests;
   std::vector<Branch> results;
   std::vector<std::string> errors;  // why a branch has no result ("" where it has)
+  // The marked parameter sets' values of the study's parameter: (set, value), checked before
+  // any work.
+  std::vector<std::pair<std::string, double>> marks;
 };
 StudyRun study_run(const Arguments& args);
 void run_study_branches(StudyRun& run, const std::atomic<bool>* stop,

@@ -297,6 +297,14 @@ def study(result: Any, ax: Any = None) -> Any:
         labels += _draw_branch(ax, b, y, name, seen)
     names = [t for t in labels if getattr(t, "_sympathy_name", False)]
     labels = [t for t in labels if not getattr(t, "_sympathy_name", False)]
+    # The marked parameter sets (the paper's Fig. 9: the stiffness before and after the fit):
+    # vertical dash-dotted lines, named at the top.
+    for m in getattr(result, "marks", None) or []:
+        name, value = _field(m, "name"), float(_field(m, "value"))
+        ax.axvline(value, color="0.3", lw=0.8, ls="-.", gid=f"mark {name}")
+        names.append(ax.annotate(f"{name}: {value:.4g}", (value, 1.0),
+                                 xycoords=("data", "axes fraction"), textcoords="offset points",
+                                 xytext=(2, -9), fontsize=6.5, gid="mark label"))
     ax.set_xlabel(axis_label(result.parameter))
     if y == "frequency":
         ax.set_ylabel("frequency (Hz)")

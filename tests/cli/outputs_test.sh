@@ -90,6 +90,17 @@ sed -i 's/"rough"/"fast"/' "$work/accuracy.toml"
 check "a study with accuracy = \"fast\" runs (exit 0)" test $? -eq 0
 "$bin" study "$work/accuracy.toml" --out "$work" --accuracy medium > /dev/null 2> "$work/err"
 check "study --accuracy medium exits 2" grep -q -- "--accuracy medium: expected fast, default or high" "$work/err"
+# A study's marks: parameter sets of the case, their value of the study's parameter in the JSON
+# (Table II's k = 14.7467 and Table III's 47.0899 N/m, cases/row2.toml); an unknown set refused
+# before any work, naming it.
+printf 'case = "%s"\nparameter = "k"\naccuracy = "fast"\nmarks = ["table2", "table3"]\n[[branches]]\nname = "a"\nstart = "anti-phase"\nfrom = 1.0\nto = 2.0\n' "$row2" > "$work/marks.toml"
+"$bin" study "$work/marks.toml" --out "$work" > /dev/null 2> "$work/err"
+check "a study with marks runs (exit 0)" test $? -eq 0
+check "... its JSON holds each mark's value of k" test "$(/usr/bin/python3 -c "import json,sys; j=json.load(open(sys.argv[1])); print([(m['name'], m['value']) for m in j['marks']])" "$work/marks.json")" = "[('table2', 14.7467), ('table3', 47.0899)]"
+sed -i 's/"table3"/"table9"/' "$work/marks.toml"
+"$bin" study "$work/marks.toml" --out "$work" > /dev/null 2> "$work/err"
+check "a study marking an unknown parameter set exits 2" test $? -eq 2
+check "... naming the set" grep -q "table9" "$work/err"
 
 # SIGTERM and SIGHUP stop a run after its current point or sample: complete, valid files, exit 6.
 rm -f "$work/term.csv" "$work/term.json" "$work/term-events.csv"
