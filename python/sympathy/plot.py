@@ -146,8 +146,11 @@ def stability_runs(result: Any, y: YAxis = None) -> list[tuple[bool, np.ndarray,
     """The branch as runs of one stability: (stable, x, y) each. Where stability changes between
     two points, both runs end at the first event located between them (an unlocated change: half
     way)."""
-    x = np.asarray(result.points.value, dtype=float)
-    yy, _ = _vertical(result, y)
+    return _runs(result, np.asarray(result.points.value, dtype=float), _vertical(result, y)[0])
+
+
+def _runs(result: Any, x: np.ndarray, yy: np.ndarray) -> list[tuple[bool, np.ndarray, np.ndarray]]:
+    """stability_runs on the branch's parameter values `x` and vertical values `yy`."""
     stable = _stable(result)
     between: dict[int, float] = {}
     position = _position(result)
@@ -171,10 +174,11 @@ def stability_runs(result: Any, y: YAxis = None) -> list[tuple[bool, np.ndarray,
     return runs
 
 
-def place_labels(ax: Any, labels: list, within: Any = None) -> None:
-    """Moves annotations (in the order given) until no two overlap and each lies inside the axes
-    (or the figure, `within="figure"`): each tries offsets above and below its point and on its
-    left, nearer first. Labels placed by an earlier call on the same axes are kept clear of."""
+def place_labels(ax: Any, labels: list, within: Any = None, clear_of: Any = ()) -> list:
+    """Moves annotations (in the order given) until no two overlap, none covers an event's
+    marker, the legend or a box of `clear_of`, and each lies inside the axes (or the figure,
+    `within="figure"`): each tries offsets above and below its point and on its left, nearer
+    first. Returns the boxes the labels took (for a later call's `clear_of`)."""
     fig = ax.figure
     # Extents are known once drawn (the layout done); the layout is then kept, so that the places
     # found hold in the file.
@@ -183,8 +187,8 @@ def place_labels(ax: Any, labels: list, within: Any = None) -> None:
         fig.set_layout_engine("none")
     renderer = fig.canvas.get_renderer()
     inside = fig.bbox if within == "figure" else ax.get_window_extent(renderer)
-    placed: list = [t.get_window_extent(renderer) for t in ax.texts
-                    if getattr(t, "_sympathy_placed", False)]
+    placed: list = list(clear_of)
+    taken: list = []
     if ax.get_legend() is not None:
         placed.append(ax.get_legend().get_window_extent(renderer))
     # The events' markers too: a label does not cover another event.
@@ -219,12 +223,13 @@ def place_labels(ax: Any, labels: list, within: Any = None) -> None:
             label.xyann = (x0, y0)
             choice = label.get_window_extent(renderer)
         placed.append(choice)
-        label._sympathy_placed = True
+        taken.append(choice)
         if label.xyann != (x0, y0):  # moved away from its marker: a thin leader line to it
             ax.annotate("", label.xy, textcoords="offset points", xytext=label.xyann,
                         gid="leader", arrowprops=dict(arrowstyle="-", lw=0.4,
                                                       color=label.get_color(), shrinkA=0,
                                                       shrinkB=2))
+    return taken
 
 
 def _events(ax: Any, events: list, where: Callable[[Any], tuple[float, float]],
@@ -247,12 +252,13 @@ def _events(ax: Any, events: list, where: Callable[[Any], tuple[float, float]],
     return labels
 
 
-def _draw_branch(ax: Any, result: Any, y: YAxis, label: Optional[str], seen: set) -> list:
+def _draw_branch(ax: Any, result: Any, y: YAxis, label: Optional[str],
+                 seen: set) -> tuple[list, Any]:
     """The branch's runs and events on `ax` (legend entries once per kind: `seen`); returns its
-    event labels, placed by the caller."""
+    event labels and its name's label at its end (None without `label`), placed by the caller."""
     x = np.asarray(result.points.value, dtype=float)
     yy, _ = _vertical(result, y)
-    for stable, xs, ys in stability_runs(result, y):
+    for stable, xs, ys in _runs(result, x, yy):
         name = "stable" if stable else "unstable"
         ax.plot(xs, ys, **(STABLE if stable else UNSTABLE), gid=name,
                 label=None if name in seen else name)
@@ -260,12 +266,11 @@ def _draw_branch(ax: Any, result: Any, y: YAxis, label: Optional[str], seen: set
     position = _position(result)
     labels = _events(ax, list(result.events),
                      lambda e: (e.value, _at(x, yy, position(e), e.value)), seen=seen)
+    tag = None
     if label:  # the branch's name at its end (placed first, outside the axes if need be)
         tag = ax.annotate(label, (x[-1], yy[-1]), textcoords="offset points", xytext=(3, 0),
-                           fontsize=7, gid="branch label")
-        tag._sympathy_name = True
-        labels.insert(0, tag)
-    return labels
+                          fontsize=7, gid="branch label")
+    return labels, tag
 
 
 def branch(result: Any, ax: Any = None, y: YAxis = None, label: Optional[str] = None) -> Any:
@@ -274,11 +279,11 @@ def branch(result: Any, ax: Any = None, y: YAxis = None, label: Optional[str] = 
     equilibria its value) by name, "period", "frequency", "phase:th2", or a function of the
     points. Returns the axes."""
     ax = new_axes(ax)
-    labels = _draw_branch(ax, result, y, label, set())
+    labels, tag = _draw_branch(ax, result, y, label, set())
     ax.set_xlabel(axis_label(result.parameter))
     ax.set_ylabel(_vertical(result, y)[1])
     _finish(ax, loc="best")
-    place_labels(ax, labels)
+    place_labels(ax, labels, clear_of=place_labels(ax, [tag] if tag else [], within="figure"))
     return ax
 
 
@@ -291,12 +296,13 @@ def study(result: Any, ax: Any = None) -> Any:
     y = "frequency" if getattr(result, "axis", "phase") == "frequency" else "phase:th2"
     seen: set = set()
     labels: list = []
+    names: list = []  # the branches' names and the marks', placed first
     for name, b in result.branches.items():
         if getattr(b, "error", "") or len(getattr(b.points, "value", [])) == 0:
             continue
-        labels += _draw_branch(ax, b, y, name, seen)
-    names = [t for t in labels if getattr(t, "_sympathy_name", False)]
-    labels = [t for t in labels if not getattr(t, "_sympathy_name", False)]
+        events, tag = _draw_branch(ax, b, y, name, seen)
+        labels += events
+        names.append(tag)
     # The marked parameter sets (the paper's Fig. 9: the stiffness before and after the fit):
     # vertical dash-dotted lines, named at the top.
     for m in getattr(result, "marks", None) or []:
@@ -316,8 +322,7 @@ def study(result: Any, ax: Any = None) -> Any:
         import textwrap
         ax.set_title(textwrap.fill(result.title, 50))
     _finish(ax, loc="best")
-    place_labels(ax, names, within="figure")
-    place_labels(ax, labels)
+    place_labels(ax, labels, clear_of=place_labels(ax, names, within="figure"))
     return ax
 
 
@@ -556,6 +561,7 @@ def stability_map(result: Any, ax: Any = None) -> Any:
         orbits = orbits[:1]
     shade = ListedColormap([UNSTABLE_SHADE, STABLE_SHADE])
     stabilities = []
+    to_place: list = []  # (panel, its labels), placed once every panel is drawn
     for panel, orbit in zip(axes, orbits):
         stable = _stability(orbit)
         stabilities.append(stable)
@@ -582,7 +588,7 @@ def stability_map(result: Any, ax: Any = None) -> Any:
         # Below the panel: inside it would cover the curves.
         _finish(panel, handles=handles, loc="upper center", bbox_to_anchor=(0.5, -0.3), ncol=2,
                 frameon=False)
-        panel._sympathy_labels = labels
+        to_place.append((panel, labels))
     if len(axes) > len(orbits) and all(s is not None for s in stabilities[:2]):
         panel = axes[-1]
         a, b = stabilities[0], stabilities[1]
@@ -604,14 +610,14 @@ def stability_map(result: Any, ax: Any = None) -> Any:
                                 Patch(color=colors[2], label=f"only {names[1]}"),
                                 Patch(color=colors[0], label="neither")], loc="upper center",
                 bbox_to_anchor=(0.5, -0.3), ncol=2, frameon=False)
-        panel._sympathy_labels = labels
+        to_place.append((panel, labels))
     axes[0].set_ylabel(axis_label(second_name))
     axes[0].yaxis.label.set_fontsize(8)
     if _field(result, "title"):
         import textwrap
         axes[0].figure.suptitle(textwrap.fill(_field(result, "title"), 90), fontsize=8)
-    for panel in axes:
-        place_labels(panel, getattr(panel, "_sympathy_labels", []))
+    for panel, labels in to_place:
+        place_labels(panel, labels)
     return axes[0]
 
 
