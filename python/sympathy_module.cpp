@@ -99,6 +99,18 @@ class PythonHooks {
   std::optional<py::error_already_set> error_;
 };
 
+// tqdm's bar class where progress=True asks for one: None (after a warning) where tqdm is not
+// installed, or where `progress` is not True (a callable, False, None).
+py::object tqdm_if_asked(const py::object& progress) {
+  if (!py::isinstance<py::bool_>(progress) || !progress.cast<bool>()) return py::none();
+  try {
+    return py::module_::import("tqdm").attr("tqdm");
+  } catch (py::error_already_set&) {
+    PyErr_WarnEx(PyExc_UserWarning, "progress=True: tqdm is not installed; no progress bar", 1);
+    return py::none();
+  }
+}
+
 // progress=True: a tqdm bar over the continued parameter's range (advanced by how far each point
 // moved along it), when tqdm is installed; without it a warning, once, and no bar. Anything else
 // is the callback itself (None: none).
@@ -143,13 +155,9 @@ class ProgressBar {
       callback = progress;
       return false;
     }
-    if (!progress.cast<bool>()) return false;
-    try {
-      bar_ = py::module_::import("tqdm").attr("tqdm")(std::forward<Args>(args)...);
-    } catch (py::error_already_set&) {
-      PyErr_WarnEx(PyExc_UserWarning, "progress=True: tqdm is not installed; no progress bar", 1);
-      return false;
-    }
+    const py::object tqdm = tqdm_if_asked(progress);
+    if (tqdm.is_none()) return false;
+    bar_ = tqdm(std::forward<Args>(args)...);
     return true;
   }
   py::object bar_ = py::none();
@@ -385,16 +393,10 @@ class JobsProgress {
   JobsProgress(const py::object& progress, const std::string& what, const std::string& unit)
       : what_(what), unit_(unit) {
     if (progress.is_none()) return;
-    if (!py::isinstance<py::bool_>(progress)) {
+    if (!py::isinstance<py::bool_>(progress))
       callback_ = progress;
-      return;
-    }
-    if (!progress.cast<bool>()) return;
-    try {
-      tqdm_ = py::module_::import("tqdm").attr("tqdm");
-    } catch (py::error_already_set&) {
-      PyErr_WarnEx(PyExc_UserWarning, "progress=True: tqdm is not installed; no progress bar", 1);
-    }
+    else
+      tqdm_ = tqdm_if_asked(progress);
   }
   ~JobsProgress() {
     if (!bar_.is_none()) bar_.attr("close")();
