@@ -1,6 +1,6 @@
 // What the options of orbit, continue, curve, equilibria and simulate are read into (their table:
 // cases/app/option_table.hpp), with every check before any work: one reading and one validation
-// for the program and the Python module. study: study_run.hpp; fit: fit_setup.hpp.
+// for the program and the Python module. study: study_run.hpp; fit: fit_run.hpp; the others, their own *_run.hpp.
 #pragma once
 
 #include <atomic>

@@ -4,7 +4,7 @@
 // (continuation/task_journal.hpp). Files, in --out DIR: basins_journal.csv (the runs as they
 // finish), and at the end, in task order whatever the threads, basins_runs.csv, basins_shares.csv
 // and basins.json (per grid point, each state's share with its 95% Wilson interval; written by
-// basins_output). Under mpirun the same across the ranks of an MPI job
+// the application layer, app/basins_run). Under mpirun the same across the ranks of an MPI job
 // (continuation/task_runner_mpi.hpp), with the same files.
 #include <cstdio>
 #include <filesystem>
