@@ -1,6 +1,8 @@
 // What the options of orbit, continue, curve, equilibria and simulate are read into (their table:
 // cases/app/option_table.hpp), with every check before any work: one reading and one validation
-// for the program and the Python module. study: study_run.hpp; fit: fit_run.hpp; the others, their own *_run.hpp.
+// for the program and the Python module. The other commands' requests are in their own
+// *_run.hpp (study_run, fit_run, map_run, sweep_run, basins_run; orbit_run and simulation_run
+// build on these).
 #pragma once
 
 #include <atomic>
