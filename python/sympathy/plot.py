@@ -195,7 +195,9 @@ def place_labels(ax: Any, labels: list, within: Any = None, clear_of: Any = ()) 
     from matplotlib.transforms import Bbox  # type: ignore[import]
     for line in ax.get_lines():
         if str(line.get_gid()).startswith("event "):
-            r = line.get_markersize() * fig.dpi / 72.0 / 2.0
+            # The marker's half size and its edge's width (a label's first letter was hidden
+            # under a neighbouring codimension-two point's circle by the size alone).
+            r = (line.get_markersize() / 2.0 + line.get_markeredgewidth()) * fig.dpi / 72.0
             for px, py in ax.transData.transform(np.column_stack([line.get_xdata(),
                                                                   line.get_ydata()])):
                 placed.append(Bbox([[px - r, py - r], [px + r, py + r]]))
@@ -467,22 +469,110 @@ CURVE_COLORS = {"BP": "tab:blue", "NS": "tab:purple", "LP": "black", "PD": "tab:
 STABLE_SHADE, UNSTABLE_SHADE = "#c8e6c9", "#f4c7c3"
 
 
-def _edges(values: Any) -> np.ndarray:
-    """Cell edges midway between grid values (the grid's points at the cells' centres)."""
-    v = np.asarray(values, dtype=float)
-    if len(v) == 1:
-        return np.array([v[0] - 0.5, v[0] + 0.5])
-    mids = 0.5 * (v[1:] + v[:-1])
-    return np.concatenate([[2 * v[0] - mids[0]], mids, [2 * v[-1] - mids[-1]]])
+# The codes of stability_regions: what a point of the map's plane is for one orbit.
+REGION_UNSTABLE, REGION_STABLE, REGION_NO_ORBIT, REGION_NOT_SAMPLED = 0, 1, 2, 3
+REGION_SHADES = [UNSTABLE_SHADE, STABLE_SHADE, "white", "#fff59d"]  # not sampled: pale yellow
 
 
-def _stability(orbit: Any) -> Optional[np.ndarray]:
-    """1 stable, 0 unstable, NaN where no orbit was found, on the orbit's grid (rows: second)."""
+def _shifted(values: np.ndarray) -> list[np.ndarray]:
+    """The values of each point's four neighbours (-1 beyond the edges)."""
+    out = []
+    for axis in (0, 1):
+        for step in (1, -1):
+            s = np.full_like(values, -1)
+            if axis == 0:
+                s[max(step, 0):values.shape[0] + min(step, 0)] = \
+                    values[max(-step, 0):values.shape[0] + min(-step, 0)]
+            else:
+                s[:, max(step, 0):values.shape[1] + min(step, 0)] = \
+                    values[:, max(-step, 0):values.shape[1] + min(-step, 0)]
+            out.append(s)
+    return out
+
+
+def _spread(codes: np.ndarray, into: np.ndarray) -> np.ndarray:
+    """Each unassigned (-1) point of `into` takes a neighbour's code, step after step (a
+    breadth-first spread from the assigned points, so each takes the code of the one nearest
+    along paths inside `into`), until nothing changes."""
+    codes = codes.copy()
+    while True:
+        todo = (codes < 0) & into
+        if not todo.any():
+            return codes
+        changed = False
+        for neighbour in _shifted(codes):
+            take = todo & (codes < 0) & (neighbour >= 0)
+            if take.any():
+                codes[take] = neighbour[take]
+                changed = True
+        if not changed:
+            return codes
+
+
+def _walls(orbit: Any, window: tuple, shape: tuple[int, int]) -> np.ndarray:
+    """The raster's points that an event curve of the orbit passes through (its neutral-saddle
+    parts left out: crossing one changes no stability), as an 8-connected chain, which no
+    4-connected path crosses."""
+    (x0, x1), (y0, y1) = window
+    rows, cols = shape
+    walls = np.zeros(shape, dtype=bool)
+    for curve in _field(orbit, "curves", []):
+        points = curve.points
+        u = (np.asarray(points.first, dtype=float) - x0) / (x1 - x0) * cols
+        v = (np.asarray(points.second, dtype=float) - y0) / (y1 - y0) * rows
+        saddle = np.asarray(getattr(points, "neutral_saddle", np.zeros(len(u))), dtype=bool)
+        for i in range(len(u) - 1):
+            if saddle[i]:  # the segment drawn dotted (_map_curves)
+                continue
+            n = int(math.ceil(2.0 * max(abs(u[i + 1] - u[i]), abs(v[i + 1] - v[i])))) + 1
+            f = np.linspace(0.0, 1.0, n + 1)
+            su, sv = u[i] + f * (u[i + 1] - u[i]), v[i] + f * (v[i + 1] - v[i])
+            inside = (su >= 0) & (su <= cols) & (sv >= 0) & (sv <= rows)
+            c = np.minimum(su[inside].astype(int), cols - 1)
+            r = np.minimum(sv[inside].astype(int), rows - 1)
+            walls[r, c] = True
+    return walls
+
+
+def stability_regions(orbit: Any, shape: tuple[int, int] = (300, 400)) -> \
+        Optional[tuple[np.ndarray, tuple]]:
+    """An orbit of a map on a raster of its grid's window, finer than the grid (`shape`: rows
+    along the second parameter, columns along the first), as the regions its computed curves
+    bound: each raster point takes the state of the grid point nearest to it along paths that
+    cross none of the orbit's event curves (REGION_UNSTABLE, REGION_STABLE, REGION_NO_ORBIT;
+    REGION_NOT_SAMPLED in a region that holds no grid point, such as a sliver between two close
+    curves). A region bounded by curves on all sides is thus one state, its edge the curves' own
+    line, not the grid's cells; where the grid's points in one region disagree (a curve not
+    computed, the orbit lost by the grid's own continuation), the border between them is midway,
+    as the grid's cells would have it. Returns the codes (rows: second parameter, upwards) and
+    the window ((first0, first1), (second0, second1)), or None without a grid."""
     grid = _field(orbit, "grid")
     if not grid:
         return None
-    count = np.asarray(_field(grid, "unstable_count"), dtype=float)
-    return np.where(count < 0, np.nan, (count == 0).astype(float))
+    first = np.asarray(_field(grid, "first"), dtype=float)
+    second = np.asarray(_field(grid, "second"), dtype=float)
+    count = np.asarray(_field(grid, "unstable_count"), dtype=int)
+    window = ((float(first[0]), float(first[-1])), (float(second[0]), float(second[-1])))
+    if window[0][0] == window[0][1] or window[1][0] == window[1][1]:
+        return None
+    rows, cols = shape
+    walls = _walls(orbit, window, shape)
+    codes = np.full(shape, -1, dtype=int)
+    c = np.minimum(((first - first[0]) / (first[-1] - first[0]) * cols).astype(int), cols - 1)
+    r = np.minimum(((second - second[0]) / (second[-1] - second[0]) * rows).astype(int),
+                   rows - 1)
+    for i, row in enumerate(r):
+        for j, col in enumerate(c):
+            if not walls[row, col]:  # a grid point on a curve tells neither side
+                n = count[i, j]
+                codes[row, col] = (REGION_NO_ORBIT if n < 0 else REGION_STABLE if n == 0
+                                   else REGION_UNSTABLE)
+    codes = _spread(codes, ~walls)
+    codes[(codes < 0) & ~walls] = REGION_NOT_SAMPLED
+    # The curves' own points: a neighbour's state (the curve is drawn over them).
+    codes = _spread(codes, walls)
+    codes[codes < 0] = REGION_NOT_SAMPLED
+    return codes, window
 
 
 def _map_curves(ax: Any, orbit: Any, drawn: set) -> list:
@@ -531,20 +621,29 @@ def _marks(ax: Any, marks: list, window: Optional[tuple] = None) -> list:
             continue
         ax.plot([x], [y], marker="*", ms=7, color="black", mfc="black" if inside else "white",
                 ls="none", zorder=6, gid="event mark")
-        text = _field(m, "name") if inside else f"{_field(m, 'name')} ({_field(m, 'off_plane')})"
-        labels.append(ax.annotate(text, (x, y), textcoords="offset points", xytext=(4, 3),
+        # Off the plane: what differs on a second line (one line was wider than a map's panel).
+        text = _field(m, "name") if inside else f"{_field(m, 'name')}\n({_field(m, 'off_plane')})"
+        labels.append(ax.annotate(text, (x, y), textcoords="offset points", xytext=(6, 3),
                                   fontsize=6.5, gid="event label"))
     return labels
 
 
+def _shade(ax: Any, codes: np.ndarray, window: tuple, colors: list) -> None:
+    """Codes 0, 1, ... on the map's window in `colors` (an image, each raster point a block)."""
+    from matplotlib.colors import ListedColormap  # type: ignore[import]
+    ax.imshow(codes, origin="lower", extent=(*window[0], *window[1]), aspect="auto",
+              interpolation="nearest", cmap=ListedColormap(colors), vmin=-0.5,
+              vmax=len(colors) - 0.5, gid="shading", zorder=0)
+
+
 def stability_map(result: Any, ax: Any = None) -> Any:
     """A stability map (``sympathy map``): per orbit a panel, shaded where it is stable, unstable
-    or not found on its grid, with the event curves that bound those regions (a legend entry per
-    curve kind) and their codimension-two points, the case's parameter sets starred; with two or
-    more orbits, a last panel of where only one of the first two, both or neither is stable.
+    or not found, by the regions its computed curves bound (stability_regions: the shading's
+    edges are the curves, not the grid's cells), with those curves (a legend entry per curve
+    kind) and their codimension-two points, the case's parameter sets starred; with two or more
+    orbits, a last panel of where only one of the first two, both or neither is stable.
     Returns the first panel's axes."""
     import matplotlib.pyplot as plt  # type: ignore[import]
-    from matplotlib.colors import ListedColormap  # type: ignore[import]
     from matplotlib.patches import Patch  # type: ignore[import]
 
     orbits = list(result.orbits)
@@ -559,57 +658,61 @@ def stability_map(result: Any, ax: Any = None) -> Any:
     else:
         axes = [ax]
         orbits = orbits[:1]
-    shade = ListedColormap([UNSTABLE_SHADE, STABLE_SHADE])
-    stabilities = []
+    regions = []
     to_place: list = []  # (panel, its labels), placed once every panel is drawn
     for panel, orbit in zip(axes, orbits):
-        stable = _stability(orbit)
-        stabilities.append(stable)
-        grid = _field(orbit, "grid")
-        if stable is not None:
-            panel.pcolormesh(_edges(_field(grid, "first")), _edges(_field(grid, "second")),
-                             stable, cmap=shade, vmin=0, vmax=1, shading="flat")
+        region = stability_regions(orbit)
+        regions.append(region)
+        window = region[1] if region else None
+        handles = []
+        if region is not None:
+            codes, window = region
+            _shade(panel, codes, window, REGION_SHADES)
+            handles = [Patch(color=STABLE_SHADE, label="stable"),
+                       Patch(color=UNSTABLE_SHADE, label="unstable"),
+                       Patch(facecolor="white", edgecolor="0.7", label="no orbit")]
+            if (codes == REGION_NOT_SAMPLED).any():
+                handles.append(Patch(color=REGION_SHADES[REGION_NOT_SAMPLED], label="not sampled"))
         drawn: set = set()
-        window = None
-        if grid:
-            window = ((_field(grid, "first")[0], _field(grid, "first")[-1]),
-                      (_field(grid, "second")[0], _field(grid, "second")[-1]))
-        labels = _map_curves(panel, orbit, drawn) + _marks(panel, _field(result, "marks", []),
-                                                           window)
-        if grid:  # the map's window: the grid's first and last values
-            panel.set_xlim(_field(grid, "first")[0], _field(grid, "first")[-1])
-            panel.set_ylim(_field(grid, "second")[0], _field(grid, "second")[-1])
+        # The parameter sets' labels placed first: fewer and longer than the curves' points'.
+        labels = _marks(panel, _field(result, "marks", []), window) + \
+            _map_curves(panel, orbit, drawn)
+        if window:  # the map's window: the grid's first and last values
+            panel.set_xlim(*window[0])
+            panel.set_ylim(*window[1])
         panel.set_title(_field(orbit, "name"))
         panel.set_xlabel(axis_label(first_name))
-        handles = [Patch(color=STABLE_SHADE, label="stable"),
-                   Patch(color=UNSTABLE_SHADE, label="unstable"),
-                   Patch(facecolor="white", edgecolor="0.7", label="no orbit")]
         handles += [h for h in panel.get_legend_handles_labels()[0]]
         # Below the panel: inside it would cover the curves.
         _finish(panel, handles=handles, loc="upper center", bbox_to_anchor=(0.5, -0.3), ncol=2,
                 frameon=False)
         to_place.append((panel, labels))
-    if len(axes) > len(orbits) and all(s is not None for s in stabilities[:2]):
+    if len(axes) > len(orbits) and all(r is not None for r in regions[:2]) and \
+            regions[0][1] == regions[1][1]:  # type: ignore[index]
         panel = axes[-1]
-        a, b = stabilities[0], stabilities[1]
-        assert a is not None and b is not None
-        both = np.where(np.isnan(a) | np.isnan(b), np.nan, a + 2 * b)
-        colors = ["#e0e0e0", "#bbdefb", "#ffe0b2", STABLE_SHADE]
-        grid = _field(orbits[0], "grid")
-        panel.pcolormesh(_edges(_field(grid, "first")), _edges(_field(grid, "second")), both,
-                         cmap=ListedColormap(colors), vmin=-0.5, vmax=3.5, shading="flat")
+        (a, window), (b, _) = regions[0], regions[1]  # type: ignore[misc]
+        # Where an orbit is not found it is not stable; unsampled where either is.
+        both = (a == REGION_STABLE) + 2 * (b == REGION_STABLE)
+        both[(a == REGION_NOT_SAMPLED) | (b == REGION_NOT_SAMPLED)] = 4
+        colors = ["#e0e0e0", "#bbdefb", "#ffe0b2", STABLE_SHADE, REGION_SHADES[REGION_NOT_SAMPLED]]
+        _shade(panel, both, window, colors)
         drawn = set()
         labels = []
         for orbit in orbits[:2]:
             labels += _map_curves(panel, orbit, drawn)
+        panel.set_xlim(*window[0])
+        panel.set_ylim(*window[1])
         names = [_field(o, "name") for o in orbits[:2]]
         panel.set_title("stable: " + " / ".join(names))
         panel.set_xlabel(axis_label(first_name))
-        _finish(panel, handles=[Patch(color=colors[3], label="both"),
-                                Patch(color=colors[1], label=f"only {names[0]}"),
-                                Patch(color=colors[2], label=f"only {names[1]}"),
-                                Patch(color=colors[0], label="neither")], loc="upper center",
-                bbox_to_anchor=(0.5, -0.3), ncol=2, frameon=False)
+        handles = [Patch(color=colors[3], label="both"),
+                   Patch(color=colors[1], label=f"only {names[0]}"),
+                   Patch(color=colors[2], label=f"only {names[1]}"),
+                   Patch(color=colors[0], label="neither")]
+        if (both == 4).any():
+            handles.append(Patch(color=colors[4], label="not sampled"))
+        _finish(panel, handles=handles, loc="upper center", bbox_to_anchor=(0.5, -0.3), ncol=2,
+                frameon=False)
         to_place.append((panel, labels))
     axes[0].set_ylabel(axis_label(second_name))
     axes[0].yaxis.label.set_fontsize(8)

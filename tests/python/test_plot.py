@@ -193,7 +193,72 @@ start = "anti-phase"
         kinds = {c.kind for c in m.orbits[0].curves}
         assert kinds == {"BP", "NS"} and all(f"{k} curve" in legend for k in kinds)
         assert labels_apart(ax) == 1  # table2's star
-        assert len(ax.collections) == 1  # the shading
+        assert [image.get_gid() for image in ax.images] == ["shading"]
+
+
+def shade_at(ax, x, y):
+    """The colour the map's shading has at the point (x, y) of its two parameters."""
+    image = next(image for image in ax.images if image.get_gid() == "shading")
+    x0, x1, y0, y1 = image.get_extent()
+    codes = image.get_array()
+    rows, cols = codes.shape
+    col = min(int((x - x0) / (x1 - x0) * cols), cols - 1)
+    row = min(int((y - y0) / (y1 - y0) * rows), rows - 1)
+    return tuple(image.to_rgba(codes)[row, col])
+
+
+def test_map_shading_agrees_with_its_curves_on_both_sides(tmp_path):
+    # A map's JSON whose curves are known exactly (k in [0, 10], c in [0, 1], a 6 x 5 grid):
+    # a BP line at k = 4.3 (one multiplier outside to its right), an NS line c = 0.8 - 0.04 k
+    # (a pair outside above it; a neutral saddle for k > 8, which changes no stability) and an
+    # LP line at k = 9.1 (no orbit beyond). The grid's cells change at k = 5 and c = 0.625 or
+    # 0.875, so points 0.06 in k or 0.02 in c from a curve were shaded wrong by the grid's cells;
+    # shaded by the regions the curves bound, each side is its own.
+    import json
+
+    def count(k, c):
+        if k > 9.1:
+            return -1
+        return int(k > 4.3) + 2 * int(c > 0.8 - 0.04 * k)
+
+    def line(ks, cs, saddle=lambda k: False):
+        return [{"first": float(k), "second": float(c), "neutral_saddle": bool(saddle(k))}
+                for k, c in zip(ks, cs)]
+
+    first, second = [0.0, 2.0, 4.0, 6.0, 8.0, 10.0], [0.0, 0.25, 0.5, 0.75, 1.0]
+    ns_k = np.linspace(0.0, 9.1, 92)
+    orbit = {"name": "synthetic", "start": "anti-phase",
+             "grid": {"first": first, "second": second,
+                      "unstable_count": [[count(k, c) for k in first] for c in second]},
+             "curves": [
+                 {"kind": "BP", "points": line([4.3] * 11, np.linspace(0, 1, 11)), "events": []},
+                 {"kind": "NS", "points": line(ns_k, 0.8 - 0.04 * ns_k, lambda k: k > 8.0),
+                  "events": [{"type": "R4", "first": 2.0, "second": 0.72},
+                             {"type": "R3", "first": 2.1, "second": 0.716}]},
+                 {"kind": "LP", "points": line([9.1] * 11, np.linspace(0, 1, 11)), "events": []}]}
+    (tmp_path / "synthetic.json").write_text(json.dumps({
+        "map": "synthetic", "title": "", "case": "none", "marks": [], "orbits": [orbit],
+        "first": {"parameter": "k", "from": 0.0, "to": 10.0},
+        "second": {"parameter": "c", "from": 0.0, "to": 1.0}}))
+    ax = sympathy.plot.draw(sympathy.load(tmp_path / "synthetic.json"))
+    from matplotlib.colors import to_rgba  # type: ignore[import]
+    shades = [to_rgba(c) for c in sympathy.plot.REGION_SHADES]
+
+    def expected(k, c):
+        n = count(k, c)
+        return shades[sympathy.plot.REGION_NO_ORBIT if n < 0 else
+                      sympathy.plot.REGION_STABLE if n == 0 else sympathy.plot.REGION_UNSTABLE]
+
+    samples = [(4.3 + side, c) for c in (0.1, 0.3, 0.5, 0.9) for side in (-0.06, 0.06)]
+    samples += [(k, 0.8 - 0.04 * k + side) for k in (0.5, 1.5, 3.0, 4.0, 6.0)
+                for side in (-0.02, 0.02)]
+    samples += [(9.1 + side, c) for c in (0.2, 0.6) for side in (-0.06, 0.06)]
+    for k, c in samples:
+        assert shade_at(ax, k, c) == expected(k, c), (k, c)
+    assert shade_at(ax, 4.24, 0.1) == shades[sympathy.plot.REGION_STABLE]  # both states are drawn
+    legend = [t.get_text() for t in ax.get_legend().get_texts()]
+    assert {"BP curve", "NS curve", "NS: neutral saddle", "LP curve"} <= set(legend)
+    assert labels_apart(ax) == 2  # R4 and R3, 0.1 apart in k
 
 
 def test_basins_shares_side_by_side_with_intervals_where_won(tmp_path):
