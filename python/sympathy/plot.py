@@ -174,11 +174,32 @@ def _runs(result: Any, x: np.ndarray, yy: np.ndarray) -> list[tuple[bool, np.nda
     return runs
 
 
-def place_labels(ax: Any, labels: list, within: Any = None, clear_of: Any = ()) -> list:
+def _line_points(ax: Any, spacing: float = 2.0) -> np.ndarray:
+    """The drawn lines of `ax` (branches, curves, marks' vertical lines; not the events' markers
+    nor the leader lines) as points in display coordinates, at most `spacing` pixels apart."""
+    points = [np.zeros((0, 2))]
+    for line in ax.get_lines():
+        if str(line.get_gid()).startswith("event ") or line.get_linestyle() in ("None", "none", ""):
+            continue
+        xy = line.get_transform().transform(np.column_stack([line.get_xdata(),
+                                                             line.get_ydata()]))
+        xy = xy[np.all(np.isfinite(xy), axis=1)]
+        for (x0, y0), (x1, y1) in zip(xy[:-1], xy[1:]):
+            n = int(max(abs(x1 - x0), abs(y1 - y0)) / spacing) + 1
+            f = np.linspace(0.0, 1.0, n + 1)[:, None]
+            points.append(np.column_stack([x0 + f[:, 0] * (x1 - x0), y0 + f[:, 0] * (y1 - y0)]))
+    return np.concatenate(points)
+
+
+def place_labels(ax: Any, labels: list, within: Any = None, clear_of: Any = (),
+                 reach: Optional[int] = 10) -> list:
     """Moves annotations (in the order given) until no two overlap, none covers an event's
     marker, the legend or a box of `clear_of`, and each lies inside the axes (or the figure,
     `within="figure"`): each tries offsets above and below its point and on its left, nearer
-    first. Returns the boxes the labels took (for a later call's `clear_of`)."""
+    first, up to `reach` label heights away (None: as far as `within` goes), and takes the
+    nearest that crosses no drawn line (else the nearest that is free of
+    the rest). A label moved away from its marker gets a thin leader line to it, which later
+    labels keep clear of. Returns the boxes the labels took (for a later call's `clear_of`)."""
     fig = ax.figure
     # Extents are known once drawn (the layout done); the layout is then kept, so that the places
     # found hold in the file.
@@ -187,12 +208,17 @@ def place_labels(ax: Any, labels: list, within: Any = None, clear_of: Any = ()) 
         fig.set_layout_engine("none")
     renderer = fig.canvas.get_renderer()
     inside = fig.bbox if within == "figure" else ax.get_window_extent(renderer)
-    placed: list = list(clear_of)
+    boxes = [[b.x0, b.y0, b.x1, b.y1] for b in clear_of]
     taken: list = []
-    if ax.get_legend() is not None:
-        placed.append(ax.get_legend().get_window_extent(renderer))
+    legend = ax.get_legend()
+    if legend is not None:
+        b = legend.get_window_extent(renderer)
+        boxes.append([b.x0, b.y0, b.x1, b.y1])
+        # Kept where it is: a legend at "best" would otherwise move over the labels placed now.
+        corner = ax.transAxes.inverted().transform((b.x0, b.y0))
+        if legend.get_bbox_to_anchor().bounds == ax.bbox.bounds:
+            legend._loc = (float(corner[0]), float(corner[1]))
     # The events' markers too: a label does not cover another event.
-    from matplotlib.transforms import Bbox  # type: ignore[import]
     for line in ax.get_lines():
         if str(line.get_gid()).startswith("event "):
             # The marker's half size and its edge's width (a label's first letter was hidden
@@ -200,37 +226,64 @@ def place_labels(ax: Any, labels: list, within: Any = None, clear_of: Any = ()) 
             r = (line.get_markersize() / 2.0 + line.get_markeredgewidth()) * fig.dpi / 72.0
             for px, py in ax.transData.transform(np.column_stack([line.get_xdata(),
                                                                   line.get_ydata()])):
-                placed.append(Bbox([[px - r, py - r], [px + r, py + r]]))
+                boxes.append([px - r, py - r, px + r, py + r])
+    lines = _line_points(ax)
+
+    def free(box: Any) -> tuple[bool, bool]:
+        """(clear of every box and inside, clear of the drawn lines too)"""
+        if box.x0 < inside.x0 or box.x1 > inside.x1 or box.y0 < inside.y0 or box.y1 > inside.y1:
+            return False, False
+        if boxes:
+            o = np.asarray(boxes)
+            if np.any((o[:, 0] < box.x1) & (o[:, 2] > box.x0) & (o[:, 1] < box.y1) &
+                      (o[:, 3] > box.y0)):
+                return False, False
+        crossed = np.any((lines[:, 0] > box.x0) & (lines[:, 0] < box.x1) &
+                         (lines[:, 1] > box.y0) & (lines[:, 1] < box.y1))
+        return True, not crossed
+
+    from matplotlib.transforms import Bbox  # type: ignore[import]
     for label in labels:
         x0, y0 = label.xyann
         height = label.get_window_extent(renderer).height * 72.0 / fig.dpi + 1.0
         width = label.get_window_extent(renderer).width * 72.0 / fig.dpi
         # Places nearer first: up or down a label's height at a time, or on the marker's left
         # (as far as a label's width).
-        candidates = sorted(((side, step) for side in (0, 1) for step in range(-8, 9)),
+        steps = reach if reach is not None else \
+            int(inside.height * 72.0 / fig.dpi / height) + 1
+        candidates = sorted(((side, step) for side in (0, 1) for step in range(-steps, steps + 1)),
                             key=lambda c: abs(c[1]) * height + c[0] * (width + 6.0) +
                             (0.5 if c[1] < 0 else 0.0))
-        choice = None
+        choice, fallback = None, None
         for side, step in candidates:
             label.xyann = (x0 if side == 0 else -x0 - width, y0 + step * height)
             box = label.get_window_extent(renderer)
-            if any(box.overlaps(other) for other in placed):
-                continue
-            if box.x0 < inside.x0 or box.x1 > inside.x1 or box.y0 < inside.y0 or \
-                    box.y1 > inside.y1:
-                continue
-            choice = box
-            break
-        if choice is None:  # nowhere free: where it was, still drawn
-            label.xyann = (x0, y0)
-            choice = label.get_window_extent(renderer)
-        placed.append(choice)
-        taken.append(choice)
-        if label.xyann != (x0, y0):  # moved away from its marker: a thin leader line to it
+            clear, clear_of_lines = free(box)
+            if clear and clear_of_lines:
+                choice = (label.xyann, box)
+                break
+            if clear and fallback is None:
+                fallback = (label.xyann, box)
+        if choice is None:  # nowhere clear of the lines: the nearest free place, or where it was
+            label.xyann = fallback[0] if fallback else (x0, y0)
+            choice = (label.xyann, label.get_window_extent(renderer))
+        box = choice[1]
+        boxes.append([box.x0, box.y0, box.x1, box.y1])
+        taken.append(Bbox([[box.x0, box.y0], [box.x1, box.y1]]))
+        if label.xyann != (x0, y0) and label.get_gid() != "mark label":
+            # Moved away from its marker: a thin leader line to it.
             ax.annotate("", label.xy, textcoords="offset points", xytext=label.xyann,
                         gid="leader", arrowprops=dict(arrowstyle="-", lw=0.4,
                                                       color=label.get_color(), shrinkA=0,
                                                       shrinkB=2))
+            # Later labels keep clear of it: its points as tiny boxes.
+            start = ax.transData.transform(label.xy) if label.xycoords == "data" else None
+            if start is not None:
+                end = np.array([box.x0 if label.xyann[0] >= 0 else box.x1, box.y0])
+                n = int(np.hypot(*(end - start)) / 3.0) + 1
+                for f in np.linspace(0.0, 1.0, n + 1)[1:-1]:
+                    px, py = start + f * (end - start)
+                    boxes.append([px - 0.5, py - 0.5, px + 0.5, py + 0.5])
     return taken
 
 
@@ -248,7 +301,7 @@ def _events(ax: Any, events: list, where: Callable[[Any], tuple[float, float]],
                 zorder=5, label=None if kind in drawn else kind, gid=f"event {kind}")
         drawn.add(kind)
         trusted = getattr(e, "trusted", True)
-        labels.append(ax.annotate(f"{kind}{'' if trusted else '?'} {value(e):.5g}", (x, y),
+        labels.append(ax.annotate(f"{kind}{'' if trusted else '?'} {value(e):.4g}", (x, y),
                                   textcoords="offset points", xytext=(3, 3), fontsize=6.5,
                                   color=EVENT_COLOR, gid="event label"))
     return labels
@@ -298,7 +351,7 @@ def study(result: Any, ax: Any = None) -> Any:
     y = "frequency" if getattr(result, "axis", "phase") == "frequency" else "phase:th2"
     seen: set = set()
     labels: list = []
-    names: list = []  # the branches' names and the marks', placed first
+    names: list = []  # the branches' names, placed first
     for name, b in result.branches.items():
         if getattr(b, "error", "") or len(getattr(b.points, "value", [])) == 0:
             continue
@@ -306,13 +359,17 @@ def study(result: Any, ax: Any = None) -> Any:
         labels += events
         names.append(tag)
     # The marked parameter sets (the paper's Fig. 9: the stiffness before and after the fit):
-    # vertical dash-dotted lines, named at the top.
+    # vertical dash-dotted lines, each named beside its line inside the axes (above them, the
+    # names ran into the title), where its name crosses no curve, before the events' labels; on
+    # two lines (on one, Fig. 9's table2 did not fit between its line and table3's).
+    marks = []
     for m in getattr(result, "marks", None) or []:
         name, value = _field(m, "name"), float(_field(m, "value"))
         ax.axvline(value, color="0.3", lw=0.8, ls="-.", gid=f"mark {name}")
-        names.append(ax.annotate(f"{name}: {value:.4g}", (value, 1.0),
-                                 xycoords=("data", "axes fraction"), textcoords="offset points",
-                                 xytext=(2, -9), fontsize=6.5, gid="mark label"))
+        marks.append(ax.annotate(f"{name}\n{math_name(result.parameter)} = {value:.4g}",
+                                 (value, 1.0), xycoords=("data", "axes fraction"),
+                                 textcoords="offset points", xytext=(2, -17), fontsize=6.5,
+                                 color="0.3", gid="mark label"))
     ax.set_xlabel(axis_label(result.parameter))
     if y == "frequency":
         ax.set_ylabel("frequency (Hz)")
@@ -323,8 +380,12 @@ def study(result: Any, ax: Any = None) -> Any:
     if getattr(result, "title", ""):
         import textwrap
         ax.set_title(textwrap.fill(result.title, 50))
-    _finish(ax, loc="best")
-    place_labels(ax, labels, clear_of=place_labels(ax, names, within="figure"))
+    # The legend below the axes, in rows: inside, it took the room the events' labels need.
+    _finish(ax, loc="upper center", bbox_to_anchor=(0.5, -0.2), ncol=5, frameon=False,
+            handlelength=1.8, columnspacing=1.0)
+    first = place_labels(ax, names, within="figure")
+    first += place_labels(ax, marks, clear_of=first, reach=None)  # anywhere along its line
+    place_labels(ax, labels, clear_of=first)
     return ax
 
 

@@ -314,25 +314,23 @@ def test_time_series_layout_of_the_paper_with_the_phase_difference():
     assert abs(inside[0] - np.pi) < 0.1 and abs(inside[-1]) < 0.3
 
 
-def test_study_marks_parameter_sets_as_vertical_lines(tmp_path):
-    # The paper's Fig. 9 marks the stiffness before and after the fit (Tables II and III:
-    # k = 14.7467 and 47.0899 N/m in cases/row2.toml): a vertical line at each, named.
-    study = tmp_path / "marked.toml"
-    study.write_text(f"""case = "{ROW2}"
-params = "table3"
-parameter = "k"
-axis = "frequency"
-marks = ["table2", "table3"]
-
-[[branches]]
-name = "anti-phase"
-start = "anti-phase"
-from = 10.0
-to = 50.0
-""")
-    result = sympathy.study(str(study), out=str(tmp_path), accuracy="fast")
-    for r in (result, sympathy.load(tmp_path / "marked.json")):
+def test_fig09_marks_both_stiffnesses_and_its_labels_are_apart(tmp_path):
+    # The paper's Fig. 9 (cases/figures/fig09.toml): Table III's platform, the stiffness before
+    # and after the fit marked (Tables II and III: k = 14.7467 and 47.0899 N/m in
+    # cases/row2.toml), a vertical line at each, named inside the axes; its in-phase branch's
+    # cluster of events between k = 50 and 55 labelled with no two labels' boxes overlapping,
+    # the marks' names included.
+    import json
+    result = sympathy.study(os.path.join(SOURCE, "cases/figures/fig09.toml"), out=str(tmp_path),
+                            accuracy="fast")
+    assert json.loads((tmp_path / "fig09.json").read_text())["params_set"] == "table3"
+    for r in (result, sympathy.load(tmp_path / "fig09.json")):
         ax = r.plot()
         lines = {line.get_gid(): line.get_xdata()[0] for line in ax.get_lines()
                  if str(line.get_gid()).startswith("mark ")}
         assert lines == {"mark table2": 14.7467, "mark table3": 47.0899}
+        events = sum(len(b.events) for b in r.branches.values())
+        for t in ax.texts:
+            if t.get_gid() == "mark label":
+                t.set_gid("event label")  # checked with the events' labels
+        assert labels_apart(ax) == events + 2 >= 8
