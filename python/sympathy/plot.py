@@ -248,25 +248,29 @@ def place_labels(ax: Any, labels: list, within: Any = None, clear_of: Any = (),
         height = label.get_window_extent(renderer).height * 72.0 / fig.dpi + 1.0
         width = label.get_window_extent(renderer).width * 72.0 / fig.dpi
         # Places nearer first: up or down a label's height at a time, or on the marker's left
-        # (as far as a label's width).
-        steps = reach if reach is not None else \
-            int(inside.height * 72.0 / fig.dpi / height) + 1
+        # (as far as a label's width); within `reach` first, then as far as `within` goes (a
+        # label left where it was when nothing near was free overlapped a neighbour's).
+        everywhere = int(inside.height * 72.0 / fig.dpi / height) + 1
+        steps = max(everywhere, reach or 0)
         candidates = sorted(((side, step) for side in (0, 1) for step in range(-steps, steps + 1)),
                             key=lambda c: abs(c[1]) * height + c[0] * (width + 6.0) +
                             (0.5 if c[1] < 0 else 0.0))
-        choice, fallback = None, None
+        found: dict = {}  # (near, clear of the lines) -> the first such place
         for side, step in candidates:
             label.xyann = (x0 if side == 0 else -x0 - width, y0 + step * height)
             box = label.get_window_extent(renderer)
             clear, clear_of_lines = free(box)
-            if clear and clear_of_lines:
-                choice = (label.xyann, box)
-                break
-            if clear and fallback is None:
-                fallback = (label.xyann, box)
-        if choice is None:  # nowhere clear of the lines: the nearest free place, or where it was
-            label.xyann = fallback[0] if fallback else (x0, y0)
+            near = reach is None or abs(step) <= reach
+            if clear:
+                found.setdefault((near, clear_of_lines), (label.xyann, box))
+                if near and clear_of_lines:
+                    break
+        choice = next((found[k] for k in ((True, True), (True, False), (False, True),
+                                          (False, False)) if k in found), None)
+        if choice is None:  # nowhere free: where it was, still drawn
+            label.xyann = (x0, y0)
             choice = (label.xyann, label.get_window_extent(renderer))
+        label.xyann = choice[0]
         box = choice[1]
         boxes.append([box.x0, box.y0, box.x1, box.y1])
         taken.append(Bbox([[box.x0, box.y0], [box.x1, box.y1]]))
