@@ -833,6 +833,71 @@ def basins(result: Any, ax: Any = None) -> Any:
     return ax
 
 
+def _state_unit(name: str) -> str:
+    """A metronome state's unit: m for x and y, rad for an angle, per second for a velocity."""
+    position = name[1:] if name.startswith("v") and len(name) > 1 else name
+    base = "m" if position in ("x", "y") else "rad"
+    return base + "/s" if position != name else base
+
+
+def fitted_unit(name: str) -> str:
+    """The unit of a fitted unknown: a metronome parameter's ("d": N m s) or an initial state's
+    ("th1(0)": rad); "" where unknown (an equation case file's names)."""
+    if name.endswith("(0)"):
+        state = name[:-3]
+        return _state_unit(state) if state.lstrip("v")[:2] in ("th", "x", "y") else ""
+    return UNITS.get(name.rstrip("0123456789"), "")
+
+
+def fit(t: Any, data: dict, model: dict, unknowns: Optional[list] = None,
+        title: Optional[str] = None) -> Any:
+    """A recording against the model fitted to it (``sympathy fit``): per recorded state the data
+    (dots) and the fitted model (a line) on top, the residuals (data - model) below with their
+    RMS; platform positions in mm, angles in rad. `data` and `model`: arrays by state name at the
+    times `t`; `unknowns`: the fit JSON's (name, value, error), written in the title with their
+    units and standard errors unless `title` is given. Returns the first panel's axes."""
+    import matplotlib.pyplot as plt  # type: ignore[import]
+    t = np.asarray(t, dtype=float)
+    names = [n for n in data if n != "t" and n in model]
+    fig, axes = plt.subplots(2 * len(names), 1, figsize=(7.0, 0.6 + 2.0 * len(names)),
+                             sharex=True, squeeze=False, layout="constrained",
+                             height_ratios=[3, 1.2] * len(names))
+    for k, name in enumerate(names):
+        unit = _state_unit(name)
+        factor, unit = (1e3, unit.replace("m", "mm", 1)) if unit.startswith("m") else (1.0, unit)
+        top, bottom = axes[2 * k][0], axes[2 * k + 1][0]
+        d = factor * np.asarray(data[name], dtype=float)
+        m = factor * np.asarray(model[name], dtype=float)
+        top.plot(t, d, ".", ms=1.5, color="0.55", label="data", gid=f"data {name}")
+        top.plot(t, m, "-", lw=0.8, color="C0", label="fitted model", gid=f"model {name}")
+        top.set_ylabel(f"{math_name(name)} ({unit})")
+        # The legend above the panel's right corner: inside, it covered the largest swings.
+        _finish(top, loc="lower right", bbox_to_anchor=(1.0, 1.0), ncol=2, frameon=False,
+                borderaxespad=0.0)
+        residual = d - m
+        rms = float(np.sqrt(np.mean(residual ** 2))) if len(residual) else 0.0
+        bottom.plot(t, residual, ".", ms=1.2, color="C3", gid=f"residual {name}")
+        bottom.axhline(0.0, color="k", lw=0.5)
+        bottom.set_ylabel("residual")
+        bottom.text(0.01, 0.95, f"RMS {rms:.3g} {unit}", transform=bottom.transAxes, va="top",
+                    fontsize=7, bbox=dict(facecolor="white", edgecolor="none", pad=1.0))
+        _finish(bottom, legend=False)
+    axes[-1][0].set_xlabel("t (s)")
+    axes[-1][0].xaxis.label.set_fontsize(8)
+    if title is None and unknowns:
+        parts = []
+        for u in unknowns:
+            error = _field(u, "error")
+            spread = f" $\\pm$ {error:.2g}" if error is not None and math.isfinite(error) \
+                else " (undetermined)"
+            unit = f" {fitted_unit(_field(u, 'name'))}" if fitted_unit(_field(u, "name")) else ""
+            parts.append(f"{_field(u, 'name')} = {_field(u, 'value'):.5g}{spread}{unit}")
+        title = "fitted: " + ",  ".join(parts)
+    if title:
+        fig.suptitle(title, fontsize=8)
+    return axes[0][0]
+
+
 def kind_of(result: Any) -> str:
     """What a result is, for `draw`: "branch", "equilibria", "curve", "study", "map", "basins"
     or "simulation"."""

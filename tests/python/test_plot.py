@@ -334,3 +334,24 @@ def test_fig09_marks_both_stiffnesses_and_its_labels_are_apart(tmp_path):
             if t.get_gid() == "mark label":
                 t.set_gid("event label")  # checked with the events' labels
         assert labels_apart(ax) == events + 2 >= 8
+
+
+def test_fit_figure_has_the_fitted_values_with_units_and_the_residuals():
+    # sympathy.plot.fit on a made-up recording: the title's values carry their units (d in
+    # N m s, s in N m, th1(0) in rad: docs/reference/case-files.md), the residual panel's data
+    # are data - model, the platform's x in mm.
+    t = np.linspace(0.0, 1.0, 11)
+    data = {"th1": np.sin(t), "x": 1e-3 * t}
+    model = {"th1": np.sin(t) + 0.01, "x": 2e-3 * t}
+    unknowns = [{"name": "d", "value": 2.4e-6, "error": 6.2e-9},
+                {"name": "s", "value": 4.51e-5, "error": 8.5e-8},
+                {"name": "th1(0)", "value": 0.3, "error": 7.2e-4}]
+    ax = sympathy.plot.fit(t, data, model, unknowns=unknowns)
+    title = ax.figure._suptitle.get_text()
+    assert "d = 2.4e-06" in title and "N m s" in title and "N m," in title and "rad" in title
+    axes = ax.figure.axes
+    residual = next(line for line in axes[1].get_lines() if line.get_gid() == "residual th1")
+    assert np.allclose(residual.get_ydata(), -0.01)
+    residual = next(line for line in axes[3].get_lines() if line.get_gid() == "residual x")
+    assert np.allclose(residual.get_ydata(), -1e3 * 1e-3 * t)
+    assert axes[2].get_ylabel() == "x (mm)"
