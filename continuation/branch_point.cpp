@@ -27,12 +27,12 @@ struct Linearization {
   Eigen::MatrixXd jacobian;  // N x (N + 1): [F_x F_p]
 };
 
-Linearization linearize(ShootingProblem& problem, const BranchSpace& space, int parameter,
-                        const Eigen::VectorXd& y) {
+Linearization linearize(ShootingProblem& problem, const PhaseSection& section,
+                        const BranchSpace& space, int parameter, const Eigen::VectorXd& y) {
   Linearization l;
   const int N = problem.unknowns();
   try {
-    l.evaluation = problem.evaluate(y.head(N), space.values_at(y[N]), true, parameter);
+    l.evaluation = problem.evaluate(y.head(N), space.values_at(y[N]), section, true, parameter);
     l.jacobian = Eigen::MatrixXd(problem.jacobian(l.evaluation, true));
   } catch (const std::exception& ex) {
     l.failure = ex.what();
@@ -45,13 +45,13 @@ Linearization linearize(ShootingProblem& problem, const BranchSpace& space, int 
 
 }  // namespace
 
-std::optional<Eigen::VectorXd> hessian_along(ShootingProblem& problem, const BranchSpace& space,
-                                             int parameter, const Eigen::VectorXd& y,
-                                             const Eigen::VectorXd& psi,
+std::optional<Eigen::VectorXd> hessian_along(ShootingProblem& problem, const PhaseSection& section,
+                                             const BranchSpace& space, int parameter,
+                                             const Eigen::VectorXd& y, const Eigen::VectorXd& psi,
                                              const Eigen::VectorXd& gradient,
                                              const Eigen::VectorXd& direction, double h,
                                              std::string& failure) {
-  const Linearization d = linearize(problem, space, parameter, y + h * direction);
+  const Linearization d = linearize(problem, section, space, parameter, y + h * direction);
   if (!d.ok) {
     failure = d.failure;
     return std::nullopt;
@@ -59,10 +59,10 @@ std::optional<Eigen::VectorXd> hessian_along(ShootingProblem& problem, const Bra
   return Eigen::VectorXd((d.jacobian.transpose() * psi - gradient) / h);
 }
 
-BranchPointSolution solve_branch_point(ShootingProblem& problem, const BranchSpace& space,
-                                       int parameter, const Eigen::VectorXd& guess,
-                                       double residual_noise, double monodromy_noise,
-                                       const BranchPointOptions& options) {
+BranchPointSolution solve_branch_point(ShootingProblem& problem, const PhaseSection& section,
+                                       const BranchSpace& space, int parameter,
+                                       const Eigen::VectorXd& guess, double residual_noise,
+                                       double monodromy_noise, const BranchPointOptions& options) {
   BranchPointSolution out;
   const int N = problem.unknowns();
   if (N + 1 > options.max_unknowns) {
@@ -74,7 +74,7 @@ BranchPointSolution solve_branch_point(ShootingProblem& problem, const BranchSpa
   const Eigen::VectorXd& w = space.weights();  // of y = (x, p)
   const int size = 2 * N + 2;                  // y, psi, beta
   Eigen::VectorXd y = guess;
-  Linearization at = linearize(problem, space, parameter, y);
+  Linearization at = linearize(problem, section, space, parameter, y);
   ++out.evaluations;
   if (!at.ok) {
     out.reason = "integration failed: " + at.failure;
@@ -101,7 +101,7 @@ BranchPointSolution solve_branch_point(ShootingProblem& problem, const BranchSpa
     for (int j = 0; j <= N; ++j) {
       std::string failure;
       const auto column =
-          hessian_along(problem, space, parameter, y, psi, gradient,
+          hessian_along(problem, section, space, parameter, y, psi, gradient,
                         Eigen::VectorXd::Unit(N + 1, j), kDifferenceStep / w[j], failure);
       ++out.evaluations;
       if (!column) {
@@ -160,7 +160,7 @@ BranchPointSolution solve_branch_point(ShootingProblem& problem, const BranchSpa
     psi += dz.segment(N + 1, N);
     beta += dz[size - 1];
     last_step = step;
-    at = linearize(problem, space, parameter, y);
+    at = linearize(problem, section, space, parameter, y);
     ++out.evaluations;
     if (!at.ok) {
       out.reason = "integration failed: " + at.failure;
@@ -185,8 +185,8 @@ void Continuation::refine_branch_point(Bifurcation& e, const ContinuationPoint& 
   const double residual_noise = corrector_tolerance();
   const double monodromy_noise =
       std::max(e.floquet.trivial_error, std::numeric_limits<double>::epsilon());
-  const BranchPointSolution s =
-      solve_branch_point(*problem_, *space_, parameter_, guess, residual_noise, monodromy_noise);
+  const BranchPointSolution s = solve_branch_point(*problem_, a.section, *space_, parameter_, guess,
+                                                   residual_noise, monodromy_noise);
   const double lo = std::min(a.parameter, b.parameter), hi = std::max(a.parameter, b.parameter);
   if (!s.converged || s.y[N] < lo || s.y[N] > hi) {
     const std::string why =

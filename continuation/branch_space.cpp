@@ -71,9 +71,9 @@ Eigen::VectorXd BranchSpace::arclength_row(const Eigen::VectorXd& tangent) const
 // slide along the orbits as the branch goes on (in raw units the normal is dominated by the large
 // rates of the velocities, and the section is nearly a level of one velocity, which a shrinking
 // swing leaves).
-Eigen::VectorXd BranchSpace::section_normal(const Eigen::VectorXd& z, double v) const {
+PhaseSection BranchSpace::section(const Eigen::VectorXd& z, double v) const {
   const Eigen::VectorXd w = weights_.head(n_);
-  return w.array().square() * system_.rhs(0.0, z, values_at(v)).array();
+  return {z, w.array().square() * system_.rhs(0.0, z, values_at(v)).array()};
 }
 
 // The direction of a shift in time along the orbits at y: f at each segment's state, nothing in

@@ -76,11 +76,9 @@ Eigen::VectorXd critical_eigenvector(const Eigen::MatrixXd& m, double target,
 
 }  // namespace
 
-Eigen::VectorXd Continuation::branching_direction(const Eigen::VectorXd& y0,
-                                                  const Eigen::MatrixXd& jacobian,
-                                                  const Eigen::VectorXd& psi,
-                                                  const Eigen::MatrixXd& kernel,
-                                                  const Eigen::VectorXd& old) const {
+Eigen::VectorXd Continuation::branching_direction(
+    const PhaseSection& section, const Eigen::VectorXd& y0, const Eigen::MatrixXd& jacobian,
+    const Eigen::VectorXd& psi, const Eigen::MatrixXd& kernel, const Eigen::VectorXd& old) const {
   // The algebraic branching equation on the kernel {phi_1, phi_2} (scaled): the tangents
   // t = a phi_1 + b phi_2 of the branches through the point solve
   //   sum_ij c_ij t_i t_j = 0,   c_ij = psi^T F_yy[phi_i, phi_j],
@@ -92,7 +90,7 @@ Eigen::VectorXd Continuation::branching_direction(const Eigen::VectorXd& y0,
   const Eigen::VectorXd gradient = jacobian.transpose() * psi;
   for (int j = 0; j < 2; ++j) {
     std::string failure;
-    const auto hj = hessian_along(*problem_, *space_, parameter_, y0, psi, gradient,
+    const auto hj = hessian_along(*problem_, section, *space_, parameter_, y0, psi, gradient,
                                   winv.cwiseProduct(kernel.col(j)), h, failure);
     if (!hj) throw std::runtime_error("branch switching: " + failure);
     for (int i = 0; i < 2; ++i) c(i, j) = hj->dot(winv.cwiseProduct(kernel.col(i)));
@@ -141,11 +139,11 @@ Branch Continuation::run_switched(const PeriodicOrbit& base, const Eigen::Vector
   space_->include_sizes(sizes);
   const BranchSpace& space = *space_;
   const double p0 = system_.parameter(base.parameters, parameter_);
-  problem_->set_phase_section(base.state0, space.section_normal(base.state0, p0));
+  const PhaseSection section = space.section(base.state0, p0);
   Eigen::VectorXd y0(N + 1);
   y0.head(N) = problem_->unknowns_from(base.state0, base.parameters, base.period);
   y0[N] = p0;
-  const auto e = problem_->evaluate(y0.head(N), base.parameters, true, parameter_);
+  const auto e = problem_->evaluate(y0.head(N), base.parameters, section, true, parameter_);
   family_dimension_ = base.family_dimension;
   predictions_land_ = false;  // the steps off the event: plain runs first, as from a start
 
@@ -164,7 +162,8 @@ Branch Continuation::run_switched(const PeriodicOrbit& base, const Eigen::Vector
   Eigen::VectorXd tau;
   double expected_old = 0.0;  // the new direction's own component along the old tangent
   if (transcritical && old_tangent.size() == N + 1 && k == 2) {
-    tau = branching_direction(y0, jacobian, svd.matrixU().col(N - 1), kernel, a.normalized());
+    tau = branching_direction(section, y0, jacobian, svd.matrixU().col(N - 1), kernel,
+                              a.normalized());
     expected_old = std::abs(tau.dot(a.normalized()));
   } else {
     tau = nearest_in_span(kernel, w.asDiagonal() * critical, a);
@@ -185,7 +184,7 @@ Branch Continuation::run_switched(const PeriodicOrbit& base, const Eigen::Vector
     double h = options_.initial_step;
     std::string why;
     for (int tries = 0; tries < 8; ++tries, h *= 0.5) {
-      const Correction c = correct_step(y0, sign * tau, h, y0 + sign * h * tau, nullptr);
+      const Correction c = correct_step(section, y0, sign * tau, h, y0 + sign * h * tau, nullptr);
       if (!c.converged) {
         why = "no step off the event could be corrected: " + c.reason;
         continue;
@@ -258,8 +257,8 @@ Branch Continuation::run_switched(const PeriodicOrbit& base, const Eigen::Vector
       p.orbit.state0 = mirror * p.orbit.state0;
       p.unknowns = reflect(p.unknowns);
       p.tangent = reflect(p.tangent);
-      if (p.section.size() == n) p.section = mirror * p.section;
-      if (p.section_normal.size() == n) p.section_normal = mirror * p.section_normal;
+      if (p.section.through.size() == n) p.section.through = mirror * p.section.through;
+      if (p.section.normal.size() == n) p.section.normal = mirror * p.section.normal;
       inner.on_point(p);
     }
     for (auto& ev : back.events) {
@@ -317,9 +316,8 @@ Branch switch_branch(const OdeSystem& system, const Branch& branch, const Bifurc
 
   // The critical eigenvector from the monodromy at the event.
   ShootingProblem problem(system, options.orbit.shooting);
-  problem.set_phase_reference(event.state0, values);
-  const auto e =
-      problem.evaluate(problem.unknowns_from(event.state0, values, event.period), values, true);
+  const auto e = problem.evaluate(problem.unknowns_from(event.state0, values, event.period), values,
+                                  problem.section_through(event.state0, values), true);
   const Eigen::VectorXd f = system.rhs(0.0, event.state0, values);
   const Eigen::MatrixXd across =
       event.symmetry == SymmetryKind::Breaking && !base.subspace.is_whole_space()
@@ -356,9 +354,8 @@ Branch switch_branch(const OdeSystem& system, const Branch& branch, const Bifurc
   // (A BP's segments are the event's own, already integrated; a PD's are of the doubled period.)
   ShootingProblem::Evaluation doubled;
   if (doubling) {
-    problem.set_phase_reference(base.state0, values);
-    doubled =
-        problem.evaluate(problem.unknowns_from(base.state0, values, base.period), values, true);
+    doubled = problem.evaluate(problem.unknowns_from(base.state0, values, base.period), values,
+                               problem.section_through(base.state0, values), true);
   }
   const ShootingProblem::Evaluation& eb = doubling ? doubled : e;
   const int n = system.dimension(), m = problem.segments();

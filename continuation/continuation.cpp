@@ -137,8 +137,9 @@ double Continuation::corrector_tolerance() const {
                               options_.orbit.shooting.flow, space_->sizes().maxCoeff());
 }
 
-Correction Continuation::correct_step(const Eigen::VectorXd& from, const Eigen::VectorXd& tangent,
-                                      double step, const Eigen::VectorXd& guess,
+Correction Continuation::correct_step(const PhaseSection& section, const Eigen::VectorXd& from,
+                                      const Eigen::VectorXd& tangent, double step,
+                                      const Eigen::VectorXd& guess,
                                       const Eigen::SparseMatrix<double>* chord,
                                       double expected) const {
   CorrectorOptions corrector;
@@ -147,7 +148,8 @@ Correction Continuation::correct_step(const Eigen::VectorXd& from, const Eigen::
   corrector.derivatives_first = predictions_land_;
   corrector.tolerance = corrector_tolerance();
   corrector.expected_residual = expected;
-  return correct(*problem_, *space_, parameter_, corrector, from, tangent, step, guess, chord);
+  return correct(*problem_, section, *space_, parameter_, corrector, from, tangent, step, guess,
+                 chord);
 }
 
 namespace {
@@ -197,8 +199,7 @@ ContinuationPoint Continuation::make_point(const Correction& c, const Eigen::Vec
   p.parameter = c.y[N];
   p.unknowns = c.y.head(N);
   p.tangent = tangent;
-  p.section = problem_->phase_reference();
-  p.section_normal = problem_->phase_normal();
+  p.section = c.evaluation.section;
   p.step = step;
   p.iterations = c.iterations;
   PeriodicOrbit& o = p.orbit;
@@ -246,14 +247,13 @@ std::optional<ContinuationPoint> Continuation::point_on_bound(const Continuation
   Eigen::VectorXd ya(N + 1), yb(N + 1);
   ya << a.unknowns, a.parameter;
   yb << b.unknowns, b.parameter;
-  problem_->set_phase_section(a.section, a.section_normal);
   // A "tangent" whose arclength row is the parameter's unit row: the condition p - p_a = step.
   const double w = space_->weights()[N];
   Eigen::VectorXd along_parameter = Eigen::VectorXd::Zero(N + 1);
   along_parameter[N] = 1.0 / (w * w);
   const double t = (bound - a.parameter) / (b.parameter - a.parameter);
-  const Correction c =
-      correct_step(ya, along_parameter, bound - a.parameter, ya + t * (yb - ya), &chord_jacobian_);
+  const Correction c = correct_step(a.section, ya, along_parameter, bound - a.parameter,
+                                    ya + t * (yb - ya), &chord_jacobian_);
   if (!c.converged) return std::nullopt;
   const Eigen::VectorXd tau =
       space_->tangent(problem_->jacobian(c.evaluation, true), c.y, a.tangent);
@@ -278,7 +278,7 @@ std::optional<ContinuationPoint> Continuation::point_at(
         chord = (1.0 - between->fraction) * chord_jacobian_ + between->fraction * *jacobian_b;
     }
   }
-  const Correction c = correct_step(ya, a.tangent, s, guess, &chord);
+  const Correction c = correct_step(a.section, ya, a.tangent, s, guess, &chord);
   if (!c.converged) {
     why = c.reason;
     return std::nullopt;
@@ -373,7 +373,7 @@ Branch Continuation::run_from(const PeriodicOrbit& start, int direction,
 
   // The starting point, corrected at its parameter value.
   const double p0 = system_.parameter(start.parameters, parameter_);
-  problem_->set_phase_section(start.state0, space.section_normal(start.state0, p0));
+  const PhaseSection section0 = space.section(start.state0, p0);
   Eigen::VectorXd y0(N + 1);
   try {
     y0.head(N) = problem_->unknowns_from(start.state0, start.parameters, start.period);
@@ -384,7 +384,7 @@ Branch Continuation::run_from(const PeriodicOrbit& start, int direction,
   y0[N] = p0;
   Eigen::VectorXd along_parameter = Eigen::VectorXd::Zero(N + 1);
   along_parameter[N] = 1.0 / space.weights()[N];  // unit in the scaled norm
-  const Correction c0 = correct_step(y0, along_parameter, 0.0, y0, nullptr);
+  const Correction c0 = correct_step(section0, y0, along_parameter, 0.0, y0, nullptr);
   if (!c0.converged)
     return finish(StopReason::StartFailed, "the starting orbit does not converge: " + c0.reason);
   // A continuum of orbits persists along the branch: its dimension is decided once, here, not
@@ -457,7 +457,6 @@ driver::Attempt<OrbitNode> Continuation::Run::step(const OrbitNode* before, cons
   driver::Attempt<OrbitNode> attempt;
   Eigen::VectorXd ya(N_ + 1);
   ya << a.unknowns, a.parameter;
-  problem.set_phase_section(a.section, a.section_normal);
   // The quasi-Newton steps start from the Jacobian extrapolated along the branch from the last
   // two points (when they share a's section): its error is then O(ds^2), not O(ds).
   Eigen::SparseMatrix<double> chord = c_.chord_jacobian_;
@@ -487,7 +486,8 @@ driver::Attempt<OrbitNode> Continuation::Run::step(const OrbitNode* before, cons
       return attempt;
     }
   }
-  Correction c = c_.correct_step(ya, a.tangent, ds, predicted, &chord, c_.guess_residual_);
+  Correction c =
+      c_.correct_step(a.section, ya, a.tangent, ds, predicted, &chord, c_.guess_residual_);
   c_.predictions_land_ = c.converged && c.chord_steps == 0 && c.iterations == 0;
   if (std::isfinite(c.guess_residual)) c_.guess_residual_ = c.guess_residual;
   if (!c.converged) {
@@ -503,9 +503,9 @@ driver::Attempt<OrbitNode> Continuation::Run::step(const OrbitNode* before, cons
   const Eigen::VectorXd zb = y.head(n);
   const Eigen::VectorXd w = space.weights().head(n);
   const Eigen::VectorXd flow_b = w.asDiagonal() * c_.system_.rhs(0.0, zb, space.values_at(y[N_]));
-  const Eigen::VectorXd flow_ref = w.cwiseInverse().asDiagonal() * problem.phase_normal();
+  const Eigen::VectorXd flow_ref = w.cwiseInverse().asDiagonal() * a.section.normal;
   const double crossing = flow_ref.normalized().dot(flow_b.normalized());
-  if (crossing < 0.9) problem.set_phase_section(zb, space.section_normal(zb, y[N_]));
+  if (crossing < 0.9) problem.move_to_section(c.evaluation, y.head(N_), space.section(zb, y[N_]));
   Eigen::SparseMatrix<double> jacobian_b = problem.jacobian(c.evaluation, true);
   Eigen::VectorXd tau_b = space.tangent(jacobian_b, y, a.tangent);
   if (in_subspace) problem.project_on_subspace(tau_b);
@@ -566,7 +566,6 @@ driver::Found<Bifurcation> Continuation::Run::detect(const OrbitNode* before, co
     const Eigen::SparseMatrix<double>* jacobian_b = b.jacobian.rows() ? &b.jacobian : nullptr;
     const Locator locator = [&](BifurcationType type, int multiplicity, std::complex<double> mu_a,
                                 std::complex<double> mu_b, bool beside_fold) {
-      c_.problem_->set_phase_section(a.section, a.section_normal);
       Bifurcation e = locate(
           a, b, type, multiplicity, mu_a, mu_b, options.location_tolerance,
           0.01 * (options.upper - options.lower),
@@ -740,7 +739,6 @@ bool Continuation::Run::resample(OrbitNode& a, int segments) {
         c_.options_.upper - c_.options_.lower, c_.options_.orbit.newton.rank_tolerance);
     c_.space_->reset_scales(a.orbit.state0, a.orbit.period, c_.options_.orbit.transient_flow);
     c_.space_->include_sizes(old_space->sizes());
-    c_.problem_->set_phase_section(a.section, a.section_normal);
     const int N = c_.problem_->unknowns();
     Eigen::VectorXd y(N + 1);
     // The new segments' starts from the old ones (each integrated over one new segment at most).
@@ -762,7 +760,7 @@ bool Continuation::Run::resample(OrbitNode& a, int segments) {
     along.head(n) = a.tangent.head(n);
     along[N - 1] = a.tangent[N_old - 1];
     along[N] = a.tangent[N_old];
-    const Correction c = c_.correct_step(y, along, 0.0, y, nullptr);
+    const Correction c = c_.correct_step(a.section, y, along, 0.0, y, nullptr);
     if (!c.converged) return restore();
     Eigen::SparseMatrix<double> jacobian = c_.problem_->jacobian(c.evaluation, true);
     const Eigen::VectorXd tau = c_.space_->tangent(jacobian, c.y, along);

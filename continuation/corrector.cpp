@@ -18,8 +18,8 @@ double inf_norm(const Eigen::VectorXd& v) {
 
 }  // namespace
 
-Correction correct(ShootingProblem& problem, const BranchSpace& space, int parameter,
-                   const CorrectorOptions& options, const Eigen::VectorXd& from,
+Correction correct(ShootingProblem& problem, const PhaseSection& section, const BranchSpace& space,
+                   int parameter, const CorrectorOptions& options, const Eigen::VectorXd& from,
                    const Eigen::VectorXd& tangent, double step, const Eigen::VectorXd& guess,
                    const Eigen::SparseMatrix<double>* chord) {
   const int N = space.unknowns();
@@ -43,7 +43,7 @@ Correction correct(ShootingProblem& problem, const BranchSpace& space, int param
   std::optional<ShootingProblem::Evaluation> known;  // with sensitivities, at y
   if (options.derivatives_first) {
     try {
-      known = problem.evaluate(y.head(N), space.values_at(y[N]), true, parameter);
+      known = problem.evaluate(y.head(N), space.values_at(y[N]), section, true, parameter);
     } catch (const IntegrationError& error) {
       c.reason = error.what();
       return c;
@@ -80,9 +80,9 @@ Correction correct(ShootingProblem& problem, const BranchSpace& space, int param
       Eigen::VectorXd residual;
       try {
         const ParameterValues values = space.values_at(y[N]);
-        residual = given ? known->residual : problem.residual(y.head(N), values, coarse);
+        residual = given ? known->residual : problem.residual(y.head(N), values, section, coarse);
         if (coarse && inf_norm(residual) <= options.coarse_above * tolerance)
-          residual = problem.residual(y.head(N), values);
+          residual = problem.residual(y.head(N), values, section);
       } catch (const IntegrationError&) {
         y = before;
         break;
@@ -118,7 +118,7 @@ Correction correct(ShootingProblem& problem, const BranchSpace& space, int param
       e = std::move(*known);  // the chord steps did not move y
     } else {
       try {
-        e = problem.evaluate(y.head(N), space.values_at(y[N]), true, parameter);
+        e = problem.evaluate(y.head(N), space.values_at(y[N]), section, true, parameter);
       } catch (const IntegrationError& error) {
         c.reason = error.what();
         return c;

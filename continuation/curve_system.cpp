@@ -74,8 +74,6 @@ CurveSystem::CurveSystem(const OdeSystem& system, BifurcationType kind,
     throw std::invalid_argument("NS curve: the critical block has fewer than two dimensions");
   if (size < 1) throw std::invalid_argument("curve: the critical block is empty");
   tolerance_ = options.tolerance;  // until set_scales knows the state's size
-  // ShootingProblem's own phase row is not used (the curve has its own, in y).
-  problem_.set_phase_section(Eigen::VectorXd::Zero(n_), Eigen::VectorXd::Zero(n_));
 }
 
 ParameterValues CurveSystem::values(const Eigen::VectorXd& u) const {
@@ -171,7 +169,8 @@ CurveSystem::Evaluation CurveSystem::evaluate(const Eigen::VectorXd& u) {
   try {
     const ParameterValues p = values(u);
     system_.check_parameters(p);
-    const auto s = problem_.evaluate(x, p, true);
+    // No phase row (an empty section): the curve has its own, in y.
+    const auto s = problem_.evaluate(x, p, PhaseSection{}, true);
     ++evaluations_;
     e.end = s.residual.head(n_) + x.head(n_);
     e.monodromy = s.transitions.front();

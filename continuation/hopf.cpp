@@ -110,7 +110,7 @@ PeriodicOrbit orbit_at_amplitude(const OdeSystem& system, int parameter, const H
   const int n = system.dimension();
   const int N = problem.unknowns();
   const Eigen::VectorXd z_ref = hopf.state + eps * qr;
-  problem.set_phase_section(z_ref, qi);
+  const PhaseSection section{z_ref, qi};
   // Newton starts at the normal form's parameter and period (to second order in eps), not at p_H
   // and 2 pi / omega, where the bordered Jacobian has the family's double multiplier 1 nearly in
   // it.
@@ -137,7 +137,7 @@ PeriodicOrbit orbit_at_amplitude(const OdeSystem& system, int parameter, const H
   };
   for (int it = 0; it < start.max_iterations; ++it) {
     values = system.with_parameter(hopf.values, parameter, p);
-    const auto e = problem.evaluate(x, values, true, parameter);
+    const auto e = problem.evaluate(x, values, section, true, parameter);
     Eigen::VectorXd g(N + 1);
     g.head(N) = e.residual;
     g[N] = qr.dot(x.head(n) - hopf.state) - eps * qr.squaredNorm();

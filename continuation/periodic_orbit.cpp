@@ -174,7 +174,7 @@ PeriodicOrbit solve_periodic_orbit(const OdeSystem& system, const ParameterValue
   orbit.subspace = subspace;
   NewtonSummary& s = orbit.newton;
   const Eigen::VectorXd z = subspace.project(z0);
-  problem.set_phase_reference(z, p);
+  const PhaseSection section = problem.section_through(z, p);
 
   LinearSolveOptions linear;
   linear.prefer_sparse = m > 1;
@@ -184,7 +184,7 @@ PeriodicOrbit solve_periodic_orbit(const OdeSystem& system, const ParameterValue
   ShootingProblem::Evaluation e;
   try {
     x = project_unknowns(subspace, problem.unknowns_from(z, p, period), n, m);
-    e = problem.evaluate(x, p, true);
+    e = problem.evaluate(x, p, section, true);
   } catch (const IntegrationError& error) {
     s.outcome = NewtonOutcome::GuessNotIntegrable;
     s.reason = std::string("integration failed at the initial guess: ") + error.what();
@@ -230,7 +230,7 @@ PeriodicOrbit solve_periodic_orbit(const OdeSystem& system, const ParameterValue
     for (int h = 0; h <= options.newton.max_halvings && !accepted; ++h, alpha *= 0.5) {
       const Eigen::VectorXd trial = project_unknowns(subspace, x + alpha * step.x, n, m);
       try {
-        auto et = problem.evaluate(trial, p, true);
+        auto et = problem.evaluate(trial, p, section, true);
         const double trial_norm = inf_norm(et.residual);
         if (trial_norm < norm) {
           accepted = true;

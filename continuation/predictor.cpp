@@ -10,9 +10,7 @@ Eigen::VectorXd predict(const BranchSpace& space, const ContinuationPoint* befor
   Eigen::VectorXd ya(N + 1);
   ya << a.unknowns, a.parameter;
   Eigen::VectorXd guess = ya + ds * a.tangent;
-  if (!curved || !before || before->section.size() != a.section.size() ||
-      before->section != a.section)
-    return guess;
+  if (!curved || !before || !(before->section == a.section)) return guess;
   Eigen::VectorXd y0(N + 1);
   y0 << before->unknowns, before->parameter;
   const double h = std::sqrt(space.dot(ya - y0, ya - y0));  // chord length from before to a
@@ -33,7 +31,7 @@ std::optional<BetweenGuess> predict_between(const BranchSpace& space, const Cont
                                             const ContinuationPoint& b, double s,
                                             double min_cosine) {
   const int N = space.unknowns();
-  if (b.section.size() != a.section.size() || b.section != a.section) return std::nullopt;
+  if (!(b.section == a.section)) return std::nullopt;
   Eigen::VectorXd ya(N + 1), yb(N + 1);
   ya << a.unknowns, a.parameter;
   yb << b.unknowns, b.parameter;

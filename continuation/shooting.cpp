@@ -176,12 +176,11 @@ std::optional<ShootingProblem::Evaluation> ShootingProblem::across_evaluation(
                           C * s.across.block(w) * C.transpose());
   e.end_rates.push_back(system_.rhs(T, end, p));
   if (parameter >= 0) e.parameter_sensitivities = Eigen::MatrixXd::Zero(n_, 1);
-  // The remembered residual, to first order in the unknowns' difference; the phase condition on
-  // the section as it is now.
+  // The remembered residual, to first order in the unknowns' difference (the phase condition's
+  // row is the caller's section's: evaluate).
   e.residual = s.evaluation.residual;
   e.residual.head(n_) += (e.transitions[0] - Eigen::MatrixXd::Identity(n_, n_)) * dx.head(n_) +
                          e.end_rates[0] * dx[n_];
-  e.residual[n_] = f_ref_.dot(x.head(n_) - z_ref_);
   if (dx.head(n_).cwiseAbs().maxCoeff() == 0.0 && dx[n_] == 0.0) e.samples = s.evaluation.samples;
   ++s.served;
   return e;
@@ -277,7 +276,7 @@ std::optional<ShootingProblem::Evaluation> ShootingProblem::split_evaluation(
   e.residual.resize(unknowns());
   e.residual.head(n_) =
       end - *zV - winding_ + (e.transitions[0] - Eigen::MatrixXd::Identity(n_, n_)) * (z0 - *zV);
-  e.residual[n_] = f_ref_.dot(z0 - z_ref_);
+  e.residual[n_] = 0.0;  // the section's row: evaluate
   ++s.split_served;
   return e;
 }
@@ -293,19 +292,18 @@ ShootingProblem::ShootingProblem(const OdeSystem& system, ShootingOptions option
   if (options_.segments < 1) throw std::invalid_argument("shooting needs at least one segment");
   if (!autonomous_ && !(forced_period_ > 0.0))
     throw std::invalid_argument("a periodically forced system needs its period");
-  z_ref_ = Eigen::VectorXd::Zero(n_);
-  f_ref_ = Eigen::VectorXd::Zero(n_);
   winding_ = Eigen::VectorXd::Zero(n_);
 }
 
-void ShootingProblem::set_phase_reference(const Eigen::VectorXd& z_ref, const ParameterValues& p) {
-  set_phase_section(z_ref, system_.rhs(0.0, z_ref, p));
+PhaseSection ShootingProblem::section_through(const Eigen::VectorXd& z,
+                                              const ParameterValues& p) const {
+  return {z, system_.rhs(0.0, z, p)};
 }
 
-void ShootingProblem::set_phase_section(const Eigen::VectorXd& z_ref,
-                                        const Eigen::VectorXd& normal) {
-  z_ref_ = z_ref;
-  f_ref_ = normal;
+void ShootingProblem::move_to_section(Evaluation& e, const Eigen::VectorXd& x,
+                                      PhaseSection section) const {
+  if (autonomous_) e.residual[n_ * options_.segments] = section.offset(x.head(n_));
+  e.section = std::move(section);
 }
 
 double ShootingProblem::period(const Eigen::VectorXd& x) const {
@@ -402,12 +400,17 @@ FlowOptions ShootingProblem::plain_options(bool coarse) const {
 }
 
 Eigen::VectorXd ShootingProblem::residual(const Eigen::VectorXd& x, const ParameterValues& p,
-                                          bool coarse) {
+                                          const PhaseSection& section, bool coarse) {
+  Eigen::VectorXd r;
   if (symmetric_ && options_.segments == 1 && autonomous_)
-    if (auto r = residual_in_subspace(x, p, coarse)) return std::move(*r);
-  auto& flow = plain_flows_[coarse ? 1 : 0];
-  if (!flow) flow = std::make_unique<Flow>(system_, plain_options(coarse));
-  return evaluate(x, p, false, -1, *flow).residual;
+    if (auto in_v = residual_in_subspace(x, p, coarse)) r = std::move(*in_v);
+  if (!r.size()) {
+    auto& flow = plain_flows_[coarse ? 1 : 0];
+    if (!flow) flow = std::make_unique<Flow>(system_, plain_options(coarse));
+    r = evaluate(x, p, false, -1, *flow).residual;
+  }
+  if (autonomous_) r[n_ * options_.segments] = section.offset(x.head(n_));
+  return r;
 }
 
 std::optional<Eigen::VectorXd> ShootingProblem::residual_in_subspace(const Eigen::VectorXd& x,
@@ -426,25 +429,27 @@ std::optional<Eigen::VectorXd> ShootingProblem::residual_in_subspace(const Eigen
   // The residual of z0's part in V (z0's part across V, at most 1e-13 of it, left out).
   Eigen::VectorXd r(unknowns());
   r.head(n_) = k.embed(flow->advance(k.restrict(*zV), p, 0.0, T)) - *zV - winding_;
-  r[n_] = f_ref_.dot(z0 - z_ref_);
+  r[n_] = 0.0;  // the section's row: residual
   return r;
 }
 
 ShootingProblem::Evaluation ShootingProblem::evaluate(const Eigen::VectorXd& x,
-                                                      const ParameterValues& p, bool derivatives,
+                                                      const ParameterValues& p,
+                                                      const PhaseSection& section, bool derivatives,
                                                       int parameter) {
   const bool symmetric =
       derivatives && symmetric_ && options_.segments == 1 && autonomous_ && record_samples_;
+  std::optional<Evaluation> e;
   if (symmetric) {
-    if (auto e = across_evaluation(x, p, parameter)) return std::move(*e);
-    if (auto e = split_evaluation(x, p, parameter)) {
-      remember(x, *e);
-      return std::move(*e);
-    }
+    e = across_evaluation(x, p, parameter);
+    if (!e && (e = split_evaluation(x, p, parameter))) remember(x, *e);
   }
-  Evaluation e = evaluate(x, p, derivatives, parameter, flow_);
-  if (symmetric) remember(x, e);
-  return e;
+  if (!e) {
+    e = evaluate(x, p, derivatives, parameter, flow_);
+    if (symmetric) remember(x, *e);
+  }
+  move_to_section(*e, x, section);
+  return std::move(*e);
 }
 
 ShootingProblem::Evaluation ShootingProblem::evaluate(const Eigen::VectorXd& x,
@@ -528,7 +533,7 @@ ShootingProblem::Evaluation ShootingProblem::evaluate(const Eigen::VectorXd& x,
     for (const auto& failure : failures)
       if (failure) std::rethrow_exception(failure);
   }
-  if (autonomous_) e.residual[n_ * m] = f_ref_.dot(x.head(n_) - z_ref_);
+  if (autonomous_) e.residual[n_ * m] = 0.0;  // the section's row: the public evaluate
   return e;
 }
 
@@ -554,8 +559,8 @@ Eigen::SparseMatrix<double> ShootingProblem::jacobian(const Evaluation& e,
     if (parameter_column)
       for (int i = 0; i < n_; ++i) t.emplace_back(r0 + i, rows, e.parameter_sensitivities(i, j));
   }
-  if (autonomous_)
-    for (int i = 0; i < n_; ++i) t.emplace_back(n_ * m, i, f_ref_[i]);
+  if (autonomous_ && e.section.normal.size() == n_)
+    for (int i = 0; i < n_; ++i) t.emplace_back(n_ * m, i, e.section.normal[i]);
   Eigen::SparseMatrix<double> jac(rows, cols);
   jac.setFromTriplets(t.begin(), t.end());  // duplicates (M - I with one segment) are summed
   return jac;

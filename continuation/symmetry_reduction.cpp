@@ -67,8 +67,8 @@ ContinuationPoint lift(ContinuationPoint point, const SymmetryReduction& reducti
   point.orbit = lift(std::move(point.orbit), reduction, subspace, options);
   point.unknowns = embed_unknowns(point.unknowns, reduction);
   point.tangent = embed_unknowns(point.tangent, reduction);
-  point.section = embed_state(point.section, reduction);
-  point.section_normal = embed_state(point.section_normal, reduction);
+  point.section.through = embed_state(point.section.through, reduction);
+  point.section.normal = embed_state(point.section.normal, reduction);
   return point;
 }
 

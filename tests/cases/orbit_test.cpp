@@ -175,17 +175,16 @@ TEST(Orbits, PlainResidualAsAccurateAsTheSensitivityRuns) {
     ASSERT_TRUE(f.orbit.converged());
     const ParameterValues& p = f.orbit.parameters;
     ShootingProblem problem(*f.model, ShootingOptions{});
-    problem.set_phase_reference(f.orbit.state0, p);
+    const PhaseSection section = problem.section_through(f.orbit.state0, p);
     const Eigen::VectorXd x = problem.unknowns_from(f.orbit.state0, p, f.orbit.period);
     ShootingOptions tight;
     tight.flow.rtol = 1e-13;
     tight.flow.atol = 1e-15;
     ShootingProblem reference(*f.model, tight);
-    reference.set_phase_reference(f.orbit.state0, p);
-    const Eigen::VectorXd exact = reference.evaluate(x, p, false).residual;
-    const double plain = (problem.residual(x, p) - exact).cwiseAbs().maxCoeff();
+    const Eigen::VectorXd exact = reference.evaluate(x, p, section, false).residual;
+    const double plain = (problem.residual(x, p, section) - exact).cwiseAbs().maxCoeff();
     const double with_derivatives =
-        (problem.evaluate(x, p, true).residual - exact).cwiseAbs().maxCoeff();
+        (problem.evaluate(x, p, section, true).residual - exact).cwiseAbs().maxCoeff();
     EXPECT_LT(plain, 1e-9) << start;
     EXPECT_LT(with_derivatives, 3e-9) << start;
     EXPECT_LT(plain, 2.0 * with_derivatives + 1e-10) << start;
@@ -194,7 +193,7 @@ TEST(Orbits, PlainResidualAsAccurateAsTheSensitivityRuns) {
     // error must stay well below that, a fifth (measured 1.4e-7 and 1.6e-7 from the points where
     // the default preset's transients end, 3.9e-8 and 2.8e-8 from BDF's at rtol 1e-11: the
     // error depends on where on the orbit the period starts).
-    const double coarse = (problem.residual(x, p, true) - exact).cwiseAbs().maxCoeff();
+    const double coarse = (problem.residual(x, p, section, true) - exact).cwiseAbs().maxCoeff();
     EXPECT_LT(coarse, 2e-7) << start;
   }
 }

@@ -85,12 +85,12 @@ TEST(BranchPoint, NewtonConvergesFromAFarGuess) {
   ShootingProblem problem(system, shooting);
   Eigen::VectorXd z(2);
   z << 2.0, 0.0;
-  problem.set_phase_section(z, Eigen::Vector2d(0.0, 1.0));  // the x axis: y = 0
+  const PhaseSection section{z, Eigen::Vector2d(0.0, 1.0)};  // the x axis: y = 0
   BranchSpace space(system, problem, 0, system.default_parameters(), 2.0, 1e-10);
   space.reset_scales(z, 1.0, shooting.flow);
   Eigen::VectorXd guess(4);
   guess << 2.001, 0.0, 1.0, 2.001;
-  const auto s = solve_branch_point(problem, space, 0, guess, 1e-10, 1e-10);
+  const auto s = solve_branch_point(problem, section, space, 0, guess, 1e-10, 1e-10);
   ASSERT_TRUE(s.converged) << s.reason;
   EXPECT_NEAR(s.y[3], 2.0, 1e-10);
   EXPECT_NEAR(s.y[0], 2.0, 1e-10);
@@ -129,7 +129,8 @@ TEST(BranchPoint, TooManyUnknownsRefused) {
   shooting.segments = 30;  // 61 unknowns and the parameter
   ShootingProblem problem(system, shooting);
   BranchSpace space(system, problem, 0, system.default_parameters(), 2.0, 1e-10);
-  const auto s = solve_branch_point(problem, space, 0, Eigen::VectorXd::Zero(62), 1e-10, 1e-10);
+  const auto s = solve_branch_point(problem, PhaseSection{}, space, 0, Eigen::VectorXd::Zero(62),
+                                    1e-10, 1e-10);
   EXPECT_FALSE(s.converged);
   EXPECT_NE(s.reason.find("62 unknowns"), std::string::npos) << s.reason;
   EXPECT_EQ(s.evaluations, 0);

@@ -245,7 +245,7 @@ TEST(Continuation, GuessInsideAStepIsFourthOrder) {
     p.unknowns = y.head(N);
     p.parameter = y[N];
     p.tangent = -std::sin(angle) * e1 + std::cos(angle) * e2;
-    p.section = Eigen::VectorXd::Ones(N);
+    p.section = {Eigen::VectorXd::Ones(N), Eigen::VectorXd::Ones(N)};
     return p;
   };
   auto error = [&](double h, double* straight) {
@@ -270,7 +270,7 @@ TEST(Continuation, GuessInsideAStepIsFourthOrder) {
   EXPECT_GT(straight, 300.0 * coarse);
   EXPECT_NEAR(coarse / fine, 16.0, 4.0);
   ContinuationPoint a = at(0.0), b = at(0.1);
-  b.section[0] = 2.0;
+  b.section.through[0] = 2.0;
   EXPECT_FALSE(predict_between(space, a, b, 0.01, 0.9).has_value());
 }
 

@@ -61,19 +61,18 @@ TEST(SegmentThreads, FourSegmentsOfTheHopfCycleOnThreeThreads) {
   const Eigen::Vector3d z0(1.0, 0.0, 0.0);
 
   ShootingProblem one(system, o);
-  one.set_phase_reference(z0, p);
+  const PhaseSection section = one.section_through(z0, p);
   one.record_samples(true);
   o.threads = 3;
   ShootingProblem three(system, o);
-  three.set_phase_reference(z0, p);
   three.record_samples(true);
   const Eigen::VectorXd x = one.unknowns_from(z0, p, T);
   ASSERT_TRUE(x == three.unknowns_from(z0, p, T));
 
-  const auto a = one.evaluate(x, p, true, 0);
-  const auto b = three.evaluate(x, p, true, 0);
+  const auto a = one.evaluate(x, p, section, true, 0);
+  const auto b = three.evaluate(x, p, section, true, 0);
   expect_identical(a, b, "with derivatives");
-  EXPECT_TRUE(one.residual(x, p) == three.residual(x, p));
+  EXPECT_TRUE(one.residual(x, p, section) == three.residual(x, p, section));
   EXPECT_EQ(one.statistics().steps, three.statistics().steps);
   EXPECT_EQ(one.statistics().calls, three.statistics().calls);
 
@@ -126,21 +125,20 @@ TEST(SegmentThreads, RowSetupSegmentsAreTheSameOnAnyNumberOfThreads) {
     o.flow.rtol = i.rtol;
     o.flow.atol = i.rtol * 1e-2;
     ShootingProblem one(model, o);
-    one.set_phase_reference(z0, p);
+    const PhaseSection section = one.section_through(z0, p);
     one.record_samples(true);
     const Eigen::VectorXd x = one.unknowns_from(z0, p, 0.58);
     one.reset_statistics();
-    const auto a = one.evaluate(x, p, true, k);
-    const Eigen::VectorXd r = one.residual(x, p);
+    const auto a = one.evaluate(x, p, section, true, k);
+    const Eigen::VectorXd r = one.residual(x, p, section);
     const long steps = one.statistics().steps;
     for (int threads : {2, 5}) {
       o.threads = threads;
       ShootingProblem many(model, o);
-      many.set_phase_reference(z0, p);
       many.record_samples(true);
       const std::string what = std::string(i.name) + ", " + std::to_string(threads) + " threads";
-      expect_identical(a, many.evaluate(x, p, true, k), what);
-      EXPECT_TRUE(r == many.residual(x, p)) << what;
+      expect_identical(a, many.evaluate(x, p, section, true, k), what);
+      EXPECT_TRUE(r == many.residual(x, p, section)) << what;
       // Every flow's work is counted, the helpers' too.
       EXPECT_EQ(many.statistics().steps, steps) << what;
     }
@@ -163,9 +161,8 @@ TEST(SegmentThreads, TheFirstFailingSegmentsErrorIsRethrown) {
   const auto failure = [&](int threads) {
     o.threads = threads;
     ShootingProblem problem(system, o);
-    problem.set_phase_section(Eigen::VectorXd::Zero(1), Eigen::VectorXd::Ones(1));
     try {
-      problem.evaluate(x, p, true);
+      problem.evaluate(x, p, {Eigen::VectorXd::Zero(1), Eigen::VectorXd::Ones(1)}, true);
     } catch (const IntegrationError& e) {
       return std::pair<std::string, double>(e.what(), e.time());
     }

@@ -81,17 +81,14 @@ Blocks blocks(const OdeSystem& system, const InvariantSubspace& subspace, const 
   return b;
 }
 
-// A shooting problem that samples its period (as a continuation's does), its phase section
-// through z0, told `symmetry` where one is given.
+// A shooting problem that samples its period (as a continuation's does), told `symmetry` where one
+// is given.
 std::unique_ptr<ShootingProblem> sampled_problem(const OdeSystem& system,
                                                  const ShootingOptions& options,
-                                                 const Eigen::VectorXd& z0,
-                                                 const ParameterValues& p,
                                                  const InvariantSubspace* symmetry) {
   auto problem = std::make_unique<ShootingProblem>(system, options);
   problem->record_samples(true);
   if (symmetry) problem->use_symmetry(*symmetry);
-  problem->set_phase_reference(z0, p);
   return problem;
 }
 
@@ -228,24 +225,25 @@ TEST(SymmetricBlocks, ShootingReusesTheOrbitOnlyWhereTheParameterLeavesIt) {
   options.flow = tight();
   const Eigen::VectorXd z0 = (Eigen::VectorXd(5) << 1.0, 0.0, -1.0, 0.0, 0.0).finished();
   const InvariantSubspace subspace = pair_subspace();
-  auto symmetric = sampled_problem(system, options, z0, p0, &subspace);
-  auto whole = sampled_problem(system, options, z0, p0, nullptr);
+  auto symmetric = sampled_problem(system, options, &subspace);
+  auto whole = sampled_problem(system, options, nullptr);
+  const PhaseSection section = whole->section_through(z0, p0);
   const Eigen::VectorXd x = symmetric->unknowns_from(z0, p0, 2.0 * kPi);
   whole->unknowns_from(z0, p0, 2.0 * kPi);
   const int gamma = system.parameter_index("gamma"), w = system.parameter_index("w");
-  symmetric->evaluate(x, p0, true, gamma);  // remembered
+  symmetric->evaluate(x, p0, section, true, gamma);  // remembered
   EXPECT_EQ(symmetric->across_evaluations(), 0);
   const ParameterValues p1 = system.with_parameter(p0, gamma, 1.3);
-  const auto a = symmetric->evaluate(x, p1, true, gamma);
+  const auto a = symmetric->evaluate(x, p1, section, true, gamma);
   EXPECT_EQ(symmetric->across_evaluations(), 1);
-  const auto b = whole->evaluate(x, p1, true, gamma);
+  const auto b = whole->evaluate(x, p1, section, true, gamma);
   EXPECT_LT((a.residual - b.residual).cwiseAbs().maxCoeff(), 1e-9);
   EXPECT_LT((a.transitions[0] - b.transitions[0]).cwiseAbs().maxCoeff(), 1e-9);
   EXPECT_EQ(a.parameter_sensitivities.cwiseAbs().maxCoeff(), 0.0);
   EXPECT_LT(b.parameter_sensitivities.cwiseAbs().maxCoeff(), 1e-12);
   const ParameterValues p2 = system.with_parameter(p0, w, 1.1);
-  const auto c = symmetric->evaluate(x, p2, true, w);
-  const auto d = whole->evaluate(x, p2, true, w);
+  const auto c = symmetric->evaluate(x, p2, section, true, w);
+  const auto d = whole->evaluate(x, p2, section, true, w);
   EXPECT_EQ(symmetric->across_evaluations(), 1);  // not served: w moves the orbit
   EXPECT_LT((c.residual - d.residual).cwiseAbs().maxCoeff(), 1e-12);
   EXPECT_LT((c.transitions[0] - d.transitions[0]).cwiseAbs().maxCoeff(), 1e-12);
@@ -266,8 +264,8 @@ TEST(SymmetricBlocks, BranchKeptInItsSubspaceExactly) {
   options.flow = tight();
   const Eigen::VectorXd z0 = (Eigen::VectorXd(5) << 1.0, 0.0, -1.0, 0.0, 0.0).finished();
   const InvariantSubspace subspace = pair_subspace();
-  auto symmetric = sampled_problem(system, options, z0, p, &subspace);
-  auto whole = sampled_problem(system, options, z0, p, nullptr);
+  auto symmetric = sampled_problem(system, options, &subspace);
+  auto whole = sampled_problem(system, options, nullptr);
   const Eigen::VectorXd x = symmetric->unknowns_from(z0, p, 2.0 * kPi);
   Eigen::VectorXd off = x;
   off[2] += 2e-16;
@@ -326,15 +324,16 @@ TEST(SymmetricBlocks, SplitEvaluationOfAnOrbitThatMovesEqualsTheWhole) {
   options.flow = augmented();
   const Eigen::VectorXd z0 = (Eigen::VectorXd(5) << 1.0, 0.0, -1.0, 0.0, 0.0).finished();
   const InvariantSubspace subspace = pair_subspace();
-  auto split = sampled_problem(system, options, z0, p, &subspace);
-  auto whole = sampled_problem(system, options, z0, p, nullptr);
+  auto split = sampled_problem(system, options, &subspace);
+  auto whole = sampled_problem(system, options, nullptr);
+  const PhaseSection section = whole->section_through(z0, p);
   Eigen::VectorXd x(6);
   x << z0, 2.0 * kPi;
   const int w = system.parameter_index("w");
-  const auto a = split->evaluate(x, p, true, w);
+  const auto a = split->evaluate(x, p, section, true, w);
   EXPECT_EQ(split->split_evaluations(), 1);
   EXPECT_EQ(split->across_evaluations(), 0);
-  const auto b = whole->evaluate(x, p, true, w);
+  const auto b = whole->evaluate(x, p, section, true, w);
   EXPECT_EQ(whole->split_evaluations(), 0);
   const Eigen::VectorXd exact_column =
       (Eigen::VectorXd(5) << 0.0, 2.0 * kPi, 0.0, -2.0 * kPi, 0.0).finished();
@@ -352,7 +351,8 @@ TEST(SymmetricBlocks, SplitEvaluationOfAnOrbitThatMovesEqualsTheWhole) {
   ASSERT_TRUE(a.samples.of(z0, 2.0 * kPi));
   EXPECT_LT((a.samples.states - b.samples.states).cwiseAbs().maxCoeff(), 1e-9);
   // The plain residual integrates the orbit in V alone: the whole problem's to 1e-9.
-  EXPECT_LT((split->residual(x, p) - whole->residual(x, p)).cwiseAbs().maxCoeff(), 1e-9);
+  EXPECT_LT((split->residual(x, p, section) - whole->residual(x, p, section)).cwiseAbs().maxCoeff(),
+            1e-9);
 }
 
 // A parameter that detunes the reflection (the second metronome's pendulum length lp2, on the row
@@ -373,8 +373,9 @@ TEST(SymmetricBlocks, SplitRefusesAParameterThatDetunesTheReflection) {
   ASSERT_TRUE(orbit.converged());
   ShootingOptions options;
   options.flow = augmented();
-  auto split = sampled_problem(model, options, orbit.state0, orbit.parameters, &subspace);
-  auto whole = sampled_problem(model, options, orbit.state0, orbit.parameters, nullptr);
+  auto split = sampled_problem(model, options, &subspace);
+  auto whole = sampled_problem(model, options, nullptr);
+  const PhaseSection section = whole->section_through(orbit.state0, orbit.parameters);
   const Eigen::VectorXd x = split->unknowns_from(orbit.state0, orbit.parameters, orbit.period);
   whole->unknowns_from(orbit.state0, orbit.parameters, orbit.period);
   const auto names = model.state_names();
@@ -384,17 +385,17 @@ TEST(SymmetricBlocks, SplitRefusesAParameterThatDetunesTheReflection) {
   const int th1 = at("th1"), th2 = at("th2");
   ASSERT_LT(th2, 6);
   const int lp2 = model.parameter_index("lp2");
-  const auto a = split->evaluate(x, orbit.parameters, true, lp2);
+  const auto a = split->evaluate(x, orbit.parameters, section, true, lp2);
   EXPECT_EQ(split->split_evaluations(), 0);
-  const auto b = whole->evaluate(x, orbit.parameters, true, lp2);
+  const auto b = whole->evaluate(x, orbit.parameters, section, true, lp2);
   const Eigen::VectorXd column = a.parameter_sensitivities.col(0);
   EXPECT_GT(std::abs(column[th1] - column[th2]),
             0.1 * std::max(std::abs(column[th1]), std::abs(column[th2])));
   EXPECT_LT((column - b.parameter_sensitivities.col(0)).cwiseAbs().maxCoeff(), 1e-9);
   const int k = model.parameter_index("k");
-  const auto c = split->evaluate(x, orbit.parameters, true, k);
+  const auto c = split->evaluate(x, orbit.parameters, section, true, k);
   EXPECT_EQ(split->split_evaluations(), 1);
-  const auto d = whole->evaluate(x, orbit.parameters, true, k);
+  const auto d = whole->evaluate(x, orbit.parameters, section, true, k);
   const double size = d.transitions[0].cwiseAbs().maxCoeff();
   EXPECT_LT((c.transitions[0] - d.transitions[0]).cwiseAbs().maxCoeff(), 1e-8 * size);
   EXPECT_LT((c.parameter_sensitivities - d.parameter_sensitivities).cwiseAbs().maxCoeff(),

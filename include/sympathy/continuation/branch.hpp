@@ -34,14 +34,14 @@ std::string describe(BifurcationType t);   // "fold", ...
 struct ContinuationPoint {
   int index = 0;  // along the branch; negative on the backward part of a two-way run
   double parameter = 0.0;
-  PeriodicOrbit orbit;             // state, period, multipliers, residual, trivial-multiplier error
-  Eigen::VectorXd unknowns;        // shooting unknowns (all segment states and the period)
-  Eigen::VectorXd tangent;         // unit tangent (unknowns, parameter) in the scaled norm
-  Eigen::VectorXd section;         // point the phase section goes through, for the tangent and the
-                                   // next step (kept while the flow crosses it well)
-  Eigen::VectorXd section_normal;  // its normal
-  double step = 0.0;               // arclength step that led here (scaled)
-  int iterations = 0;              // corrector iterations
+  PeriodicOrbit orbit;       // state, period, multipliers, residual, trivial-multiplier error
+  Eigen::VectorXd unknowns;  // shooting unknowns (all segment states and the period)
+  Eigen::VectorXd tangent;   // unit tangent (unknowns, parameter) in the scaled norm
+  // The phase condition's section its unknowns satisfy, which its tangent and the next step use
+  // (kept from point to point while the flow crosses it well).
+  PhaseSection section;
+  double step = 0.0;                // arclength step that led here (scaled)
+  int iterations = 0;               // corrector iterations
   std::vector<double> description;  // what the model's OrbitDescriber says of the orbit (if any)
 };
 

@@ -60,18 +60,19 @@ struct BranchPointSolution {
 // / h, `gradient` being F_y(y)^T psi; one evaluation with derivatives. What the regular system's
 // second derivatives and switching's branching equation are made of. nullopt, with `failure`,
 // where y + h d cannot be integrated.
-std::optional<Eigen::VectorXd> hessian_along(ShootingProblem& problem, const BranchSpace& space,
-                                             int parameter, const Eigen::VectorXd& y,
-                                             const Eigen::VectorXd& psi,
+std::optional<Eigen::VectorXd> hessian_along(ShootingProblem& problem, const PhaseSection& section,
+                                             const BranchSpace& space, int parameter,
+                                             const Eigen::VectorXd& y, const Eigen::VectorXd& psi,
                                              const Eigen::VectorXd& gradient,
                                              const Eigen::VectorXd& direction, double h,
                                              std::string& failure);
 
 // Newton on Moore's system from `guess` (unknowns, parameter), for the continued `parameter`,
-// in the problem's current phase section; `space` gives the parameter values and the scaled norm.
-BranchPointSolution solve_branch_point(ShootingProblem& problem, const BranchSpace& space,
-                                       int parameter, const Eigen::VectorXd& guess,
-                                       double residual_noise, double monodromy_noise,
+// in the phase condition's `section`; `space` gives the parameter values and the scaled norm.
+BranchPointSolution solve_branch_point(ShootingProblem& problem, const PhaseSection& section,
+                                       const BranchSpace& space, int parameter,
+                                       const Eigen::VectorXd& guess, double residual_noise,
+                                       double monodromy_noise,
                                        const BranchPointOptions& options = {});
 
 }  // namespace sympathy

@@ -47,9 +47,9 @@ class BranchSpace {
   // The row <tau, .> of the arclength condition in the scaled norm.
   Eigen::VectorXd arclength_row(const Eigen::VectorXd& tangent) const;
 
-  // Normal to the flow at z (parameter value v) in the scaled norm: a section normal to the flow
-  // there contains the directions in which the orbit's amplitude changes.
-  Eigen::VectorXd section_normal(const Eigen::VectorXd& z, double v) const;
+  // The phase section through z normal to the flow there (parameter value v) in the scaled norm:
+  // it contains the directions in which the orbit's amplitude changes.
+  PhaseSection section(const Eigen::VectorXd& z, double v) const;
   // Cosine between two tangents with shifts in time along the orbits at `at` left out (how a
   // tangent is oriented).
   double orbit_cosine(const Eigen::VectorXd& u, const Eigen::VectorXd& v,

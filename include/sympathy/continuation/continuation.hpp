@@ -82,10 +82,11 @@ class Continuation {
   // The corrector's residual tolerance: the options', or what the integration attains at the
   // branch's state scale if that is larger (attainable_tolerance).
   double corrector_tolerance() const;
-  // `expected`: the guess's residual expected (CorrectorOptions::expected_residual).
-  Correction correct_step(const Eigen::VectorXd& from, const Eigen::VectorXd& tangent, double step,
-                          const Eigen::VectorXd& guess, const Eigen::SparseMatrix<double>* chord,
-                          double expected = 0.0) const;
+  // In `section` (the point from's); `expected`: the guess's residual expected
+  // (CorrectorOptions::expected_residual).
+  Correction correct_step(const PhaseSection& section, const Eigen::VectorXd& from,
+                          const Eigen::VectorXd& tangent, double step, const Eigen::VectorXd& guess,
+                          const Eigen::SparseMatrix<double>* chord, double expected = 0.0) const;
   ContinuationPoint make_point(const Correction& c, const Eigen::VectorXd& tangent, int index,
                                double step) const;
   // The point at arclength s from a along a's tangent, in a's section: what location probes. With
@@ -109,11 +110,12 @@ class Continuation {
                                                const ContinuationPoint& b) const;
 
   // The new branch's unit tangent (scaled) at a branch point y0 with Jacobian [F_x F_p],
-  // left null vector psi and kernel (two orthonormal columns, scaled): the root of the algebraic
-  // branching equation least parallel to `old` (unit, scaled). Throws std::runtime_error where
-  // the equation has no two real roots (branch_switching.cpp).
-  Eigen::VectorXd branching_direction(const Eigen::VectorXd& y0, const Eigen::MatrixXd& jacobian,
-                                      const Eigen::VectorXd& psi, const Eigen::MatrixXd& kernel,
+  // left null vector psi and kernel (two orthonormal columns, scaled), all in `section`: the root
+  // of the algebraic branching equation least parallel to `old` (unit, scaled). Throws
+  // std::runtime_error where the equation has no two real roots (branch_switching.cpp).
+  Eigen::VectorXd branching_direction(const PhaseSection& section, const Eigen::VectorXd& y0,
+                                      const Eigen::MatrixXd& jacobian, const Eigen::VectorXd& psi,
+                                      const Eigen::MatrixXd& kernel,
                                       const Eigen::VectorXd& old) const;
 
   // A branch point located by its crossing, moved to the solution of the regular branch-point

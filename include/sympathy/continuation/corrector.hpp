@@ -50,9 +50,10 @@ struct Correction {
 };
 
 // Corrects `guess` onto the branch at arclength `step` from `from` along `tangent`, for the
-// continued `parameter`; `chord` (may be null) is the Jacobian the quasi-Newton steps start from.
-Correction correct(ShootingProblem& problem, const BranchSpace& space, int parameter,
-                   const CorrectorOptions& options, const Eigen::VectorXd& from,
+// continued `parameter`, in the phase condition's `section` (the point `from`'s); `chord` (may be
+// null) is the Jacobian the quasi-Newton steps start from, in that section.
+Correction correct(ShootingProblem& problem, const PhaseSection& section, const BranchSpace& space,
+                   int parameter, const CorrectorOptions& options, const Eigen::VectorXd& from,
                    const Eigen::VectorXd& tangent, double step, const Eigen::VectorXd& guess,
                    const Eigen::SparseMatrix<double>* chord);
 

@@ -91,6 +91,25 @@ struct ShootingOptions {
 // with sensitivities that confirmed it: what the branch's scales and the describers read instead
 // of integrating the period once more (on the anti-phase k-branch those two plain runs per point
 // were 23% of the fast preset's time and 10% of the default's).
+// The phase condition's Poincare section: the hyperplane through `through` normal to `normal`
+// (f(through; p), or f in a chosen metric: BranchSpace::section). It belongs to the point whose
+// unknowns it fixes in time and travels with it: each evaluation is made in the section it is
+// given and carries it, so that a residual and its Jacobian agree wherever they are used, and no
+// caller depends on what another left in the problem. Empty: no phase row (a forced system, or a
+// caller with a phase condition of its own); its row is then zero.
+struct PhaseSection {
+  Eigen::VectorXd through;
+  Eigen::VectorXd normal;
+  // <normal, z0 - through>: the phase condition's residual at a first state z0.
+  double offset(const Eigen::VectorXd& z0) const {
+    return through.size() ? normal.dot(z0 - through) : 0.0;
+  }
+  bool operator==(const PhaseSection& o) const {
+    return through.size() == o.through.size() && normal.size() == o.normal.size() &&
+           through == o.through && normal == o.normal;
+  }
+};
+
 struct PeriodSamples {
   static constexpr int intervals = 800;
   double period = 0.0;
@@ -137,11 +156,8 @@ class ShootingProblem {
   bool autonomous() const { return autonomous_; }
   const OdeSystem& system() const { return system_; }
 
-  // The phase condition's section: through z_ref, normal f(z_ref; p) (or `normal`).
-  void set_phase_reference(const Eigen::VectorXd& z_ref, const ParameterValues& p);
-  void set_phase_section(const Eigen::VectorXd& z_ref, const Eigen::VectorXd& normal);
-  const Eigen::VectorXd& phase_reference() const { return z_ref_; }
-  const Eigen::VectorXd& phase_normal() const { return f_ref_; }
+  // The section through z normal to the flow there, f(z; p).
+  PhaseSection section_through(const Eigen::VectorXd& z, const ParameterValues& p) const;
 
   // Unknowns from an initial state and period: the segment states by integrating one period.
   // Also sets the winding: what each angle gains over the period, rounded to a multiple of 2 pi.
@@ -164,6 +180,7 @@ class ShootingProblem {
   struct Evaluation {
     Eigen::VectorXd residual;
     ParameterValues parameters;  // where it was evaluated
+    PhaseSection section;        // in which (the phase row of the residual and the Jacobian)
     bool derivatives = false;
     std::vector<Eigen::MatrixXd> transitions;  // per segment, dPhi/dz_j
     std::vector<Eigen::VectorXd> end_rates;    // per segment, f at its end
@@ -174,17 +191,22 @@ class ShootingProblem {
   // Evaluations with derivatives also sample the period (PeriodSamples) on the way, from their
   // steps' interpolants: 801 interpolations, about a tenth of a plain run of the period.
   void record_samples(bool on) { record_samples_ = on; }
-  // Residual at parameter values p, and with `derivatives` the transition matrices (and dPhi/dp
-  // for the named parameter `parameter`). Throws IntegrationError if a segment cannot be
-  // integrated.
-  Evaluation evaluate(const Eigen::VectorXd& x, const ParameterValues& p, bool derivatives,
-                      int parameter = -1);
+  // Residual at parameter values p in `section`, and with `derivatives` the transition matrices
+  // (and dPhi/dp for the named parameter `parameter`). Throws IntegrationError if a segment
+  // cannot be integrated.
+  Evaluation evaluate(const Eigen::VectorXd& x, const ParameterValues& p,
+                      const PhaseSection& section, bool derivatives, int parameter = -1);
+  // The same evaluation of x in another section (a continuation moves its section to a point it
+  // accepted): the phase row's residual changes, nothing is integrated.
+  void move_to_section(Evaluation& e, const Eigen::VectorXd& x, PhaseSection section) const;
   // The residual alone, from plain integrations as accurate as those with derivatives.
   // `coarse`: at a thousand times the tolerances, for a Newton-like step far from the solution,
   // where the residual is large against that run's error (CorrectorOptions::coarse_above).
-  Eigen::VectorXd residual(const Eigen::VectorXd& x, const ParameterValues& p, bool coarse = false);
+  Eigen::VectorXd residual(const Eigen::VectorXd& x, const ParameterValues& p,
+                           const PhaseSection& section, bool coarse = false);
 
-  // d(residual)/dx as a sparse matrix, rows = unknowns(); with `parameter_column` the column
+  // d(residual)/dx as a sparse matrix (in the evaluation's section), rows = unknowns(); with
+  // `parameter_column` the column
   // d(residual)/dp appended (the evaluation must carry it).
   Eigen::SparseMatrix<double> jacobian(const Evaluation& e, bool parameter_column = false) const;
 
@@ -222,7 +244,6 @@ class ShootingProblem {
   std::optional<Evaluation> split_evaluation(const Eigen::VectorXd& x, const ParameterValues& p,
                                              int parameter);
   void remember(const Eigen::VectorXd& x, const Evaluation& e);
-  Eigen::VectorXd z_ref_, f_ref_;
   Eigen::VectorXd winding_;  // n: 2 pi k per rotating angle
   bool record_samples_ = false;
 };
