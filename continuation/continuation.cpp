@@ -28,6 +28,9 @@ namespace detail {
 // of the step that found it), which location interpolates and the next step starts from.
 struct OrbitNode : ContinuationPoint {
   Eigen::SparseMatrix<double> jacobian;
+  // The largest growth over one segment of half as many (Growth::halved): whether the point
+  // would be resolved on fewer segments. Infinite where not measured.
+  double halved_growth = std::numeric_limits<double>::infinity();
 };
 }  // namespace detail
 using detail::OrbitNode;
@@ -53,6 +56,12 @@ class Continuation::Run {
   bool resample(OrbitNode& a, int segments);
   // The most shooting segments a refinement takes a branch to.
   static constexpr int kMostSegments = 8;
+  // A branch on more segments than asked goes back to half as many after this many accepted
+  // points in a row whose growth on half (OrbitNode::halved_growth) stays below kHalvedGrowth:
+  // a hundredth of the lowest growth at which one segment was seen to fail (1.3e4, AUTO's ab
+  // at p2 = 15), so that a coarsened branch is far from needing the segments again.
+  static constexpr double kHalvedGrowth = 100.0;
+  static constexpr int kResolvedPoints = 3;
   double parameter(const OrbitNode& p) const { return p.parameter; }
 
   std::optional<HopfPoint> hopf_end;  // where the family ended at a Hopf point
@@ -75,6 +84,7 @@ class Continuation::Run {
   // The first turn without a multiplier at +1: the points before it (their count in path_) and
   // its parameter.
   std::optional<std::pair<std::size_t, double>> turn_;
+  int resolved_points_ = 0;  // in a row, resolved on half the segments (kHalvedGrowth)
 };
 
 OptionCheck ContinuationOptions::validate() const {
@@ -156,6 +166,10 @@ namespace {
 
 struct Growth {
   double segment = 0.0, monodromy = 0.0;
+  // On half the segments (each pair j = 2k, 2k + 1 made one, m even): the largest of
+  // |D^-1 M D|_inf over each pair's two matrices and their product, a lower bound of the growth
+  // inside the merged segment. Infinite for an odd count.
+  double halved = std::numeric_limits<double>::infinity();
 };
 
 // |D^-1 M D|_inf for each segment's M (the largest) and for their product, the monodromy.
@@ -186,6 +200,12 @@ Growth growth(const std::vector<Eigen::MatrixXd>& transitions, const Eigen::Vect
     product = product.size() ? Eigen::MatrixXd(M * product) : M;
   }
   if (whole && product.size()) g.monodromy = scaled_norm(product);
+  const std::size_t m = transitions.size();
+  if (whole && m >= 2 && m % 2 == 0) {
+    g.halved = g.segment;
+    for (std::size_t j = 0; j < m; j += 2)
+      g.halved = std::max(g.halved, scaled_norm(transitions[j + 1] * transitions[j]));
+  }
   return g;
 }
 
@@ -512,6 +532,9 @@ driver::Attempt<OrbitNode> Continuation::Run::step(const OrbitNode* before, cons
   attempt.point.emplace();
   static_cast<ContinuationPoint&>(*attempt.point) = c_.make_point(c, tau_b, a.index + 1, ds);
   attempt.point->jacobian = std::move(jacobian_b);
+  if (problem.segments() > options.orbit.shooting.segments)
+    attempt.point->halved_growth =
+        growth(c.evaluation.transitions, space.sizes().head(problem.dimension())).halved;
   return attempt;
 }
 
@@ -700,6 +723,15 @@ void Continuation::Run::accept(OrbitNode& b) {
   }
   b.orbit.samples = PeriodSamples{};
   b.tangent /= std::sqrt(c_.space_->dot(b.tangent, b.tangent));
+  // Segments given back where the orbits no longer need them, as AUTO re-meshes both ways: a
+  // refinement at a canard or a spike (AUTO's fhn, ab at p2 = 16) otherwise ran the rest of the
+  // branch on 4 segments where one resolves it. b is re-sampled onto half (each new segment's
+  // start is an old one's), corrected and its tangent recomputed, as a refinement does.
+  resolved_points_ = b.halved_growth < kHalvedGrowth ? resolved_points_ + 1 : 0;
+  if (resolved_points_ >= kResolvedPoints) {
+    resolved_points_ = 0;
+    resample(b, c_.problem_->segments() / 2);
+  }
 }
 
 bool Continuation::Run::refine(OrbitNode& a, const std::string&) {
@@ -741,14 +773,16 @@ bool Continuation::Run::resample(OrbitNode& a, int segments) {
     c_.space_->include_sizes(old_space->sizes());
     const int N = c_.problem_->unknowns();
     Eigen::VectorXd y(N + 1);
-    // The new segments' starts from the old ones (each integrated over one new segment at most).
+    // The new segments' starts from the old ones: on more segments each integrated over one new
+    // segment at most; on fewer, every old one that starts a new segment kept as it is.
     const int n_old = c_.problem_->dimension();
-    Eigen::MatrixXd starts(n_old, m);
-    for (int j = 0; j < m; ++j) starts.col(j) = a.unknowns.segment(j * n_old, n_old);
+    const int kept = segments % m == 0 ? m : m % segments == 0 ? segments : 0;
+    Eigen::MatrixXd starts(n_old, kept);
+    for (int j = 0; j < kept; ++j)
+      starts.col(j) = a.unknowns.segment(j * (m / kept) * n_old, n_old);
     y.head(N) =
-        segments % m == 0
-            ? c_.problem_->unknowns_from_starts(starts, a.orbit.parameters, a.orbit.period)
-            : c_.problem_->unknowns_from(a.orbit.state0, a.orbit.parameters, a.orbit.period);
+        kept ? c_.problem_->unknowns_from_starts(starts, a.orbit.parameters, a.orbit.period)
+             : c_.problem_->unknowns_from(a.orbit.state0, a.orbit.parameters, a.orbit.period);
     y[N] = a.parameter;
     // The old tangent in the new unknowns (the first segment's start, the period and the parameter
     // mean the same in both; the new segments' starts get 0): the correction stays on the
@@ -775,6 +809,7 @@ bool Continuation::Run::resample(OrbitNode& a, int segments) {
     c_.guess_residual_ = std::numeric_limits<double>::infinity();
     path_.clear();  // unknowns of another size: the retrace check starts again
     turn_.reset();
+    resolved_points_ = 0;
     return true;
   } catch (const IntegrationError&) {
     return restore();
