@@ -49,7 +49,7 @@ Correction correct(ShootingProblem& problem, const PhaseSection& section, const 
       return c;
     }
     const double norm = inf_norm(known->residual);
-    if (norm <= tolerance) {
+    if (norm <= closure_tolerance(tolerance, *known)) {
       c.converged = true;
       c.y = std::move(y);
       c.residual = norm;
@@ -126,8 +126,12 @@ Correction correct(ShootingProblem& problem, const PhaseSection& section, const 
     }
     const double norm = inf_norm(e.residual);
     // Converged; or stalled within ten tolerances: the integration's noise floor, not a failure.
-    const bool stalled = it >= 1 && norm > 0.3 * previous && norm <= 10 * tolerance;
-    if (norm <= tolerance || stalled) {
+    // An orbit closes to kOrbitClosure of its amplitude too (closure_tolerance): a family
+    // shrinking into an equilibrium has, near it, "orbits" whose residual stalls at the decay
+    // over one period, which is no orbit (find_periodic_orbit's rule, here for every point).
+    const double closure = closure_tolerance(tolerance, e);
+    const bool stalled = it >= 1 && norm > 0.3 * previous && norm <= 10 * closure;
+    if (norm <= closure || stalled) {
       c.converged = true;
       c.y = std::move(y);
       c.evaluation = std::move(e);
@@ -138,7 +142,11 @@ Correction correct(ShootingProblem& problem, const PhaseSection& section, const 
     if (it >= options.max_iterations || (it >= 2 && norm > previous)) {
       std::ostringstream msg;
       msg << "corrector " << (norm > previous ? "diverged" : "did not converge") << " (residual "
-          << norm << " after " << iterations << " iterations)";
+          << norm << " after " << iterations << " iterations";
+      if (norm <= 10 * tolerance)
+        msg << "; no orbit: " << norm / sampled_amplitude(e.samples) << " of an amplitude of "
+            << sampled_amplitude(e.samples) << ", where an orbit closes to " << kOrbitClosure;
+      msg << ")";
       c.reason = msg.str();
       return c;
     }

@@ -199,11 +199,7 @@ PeriodicOrbit solve_periodic_orbit(const OdeSystem& system, const ParameterValue
   const double absolute_tolerance =
       attainable_tolerance(options.newton.residual_tolerance, options.newton.rtol_factor,
                            options.shooting.flow, inf_norm(x.head(n)));
-  // The absolute tolerance, and kOrbitClosure of the current iterate's amplitude.
-  const auto tolerance_at = [&](const ShootingProblem::Evaluation& at) {
-    return std::min(absolute_tolerance, kOrbitClosure * sampled_amplitude(at.samples));
-  };
-  double tolerance = tolerance_at(e);
+  double tolerance = closure_tolerance(absolute_tolerance, e);
   for (;;) {
     if (norm <= tolerance) {
       s.converged = true;
@@ -237,7 +233,7 @@ PeriodicOrbit solve_periodic_orbit(const OdeSystem& system, const ParameterValue
           x = trial;
           e = std::move(et);
           norm = trial_norm;
-          tolerance = tolerance_at(e);
+          tolerance = closure_tolerance(absolute_tolerance, e);
           s.halvings += h;
           s.step_norms.push_back(alpha * inf_norm(step.x));
         }
@@ -280,6 +276,10 @@ PeriodicOrbit solve_periodic_orbit(const OdeSystem& system, const ParameterValue
   orbit.flow = problem.statistics();
   orbit.seconds = started.seconds();
   return orbit;
+}
+
+double closure_tolerance(double absolute, const ShootingProblem::Evaluation& e) {
+  return std::min(absolute, kOrbitClosure * sampled_amplitude(e.samples));
 }
 
 double sampled_amplitude(const PeriodSamples& samples) {

@@ -5,7 +5,9 @@
 // (ShootingProblem::residual, about a tenth of their cost) from a chord Jacobian do most of the
 // work: they aim well below the tolerance, so that one integration with sensitivities at their
 // end usually both confirms the point and gives its monodromy. Where predictions land on the
-// branch (CorrectorOptions::derivatives_first) that integration comes first.
+// branch (CorrectorOptions::derivatives_first) that integration comes first. A point is an orbit
+// only where its residual is also within kOrbitClosure of its amplitude (closure_tolerance), as
+// for Newton on a single orbit.
 #pragma once
 
 #include <limits>

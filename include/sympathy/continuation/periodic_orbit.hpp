@@ -70,6 +70,10 @@ constexpr double kOrbitClosure = 1e-7;
 // Half the largest range of a state over the sampled period (inf of the samples' amplitude about
 // their mean); infinity without samples.
 double sampled_amplitude(const PeriodSamples& samples);
+// The residual an orbit must close to: `absolute`, and kOrbitClosure of the amplitude of the
+// period `e` sampled (none sampled: `absolute` alone). One rule for Newton on an orbit
+// (find_periodic_orbit) and a continuation's corrector.
+double closure_tolerance(double absolute, const ShootingProblem::Evaluation& e);
 std::string to_string(NewtonOutcome o);
 
 struct NewtonSummary {
