@@ -1,6 +1,7 @@
 #include "cases/app/basins_run.hpp"
 
 #include "cases/app/basins_file.hpp"
+#include "cases/app/case_arguments.hpp"
 
 #include <cstdio>
 #include <filesystem>

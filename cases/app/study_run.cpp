@@ -8,6 +8,7 @@
 #include <optional>
 #include <thread>
 
+#include "cases/app/case_arguments.hpp"
 #include "cases/app/start_data.hpp"
 #include "sympathy/continuation/branch_output.hpp"
 #include "sympathy/core/csv.hpp"

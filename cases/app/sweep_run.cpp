@@ -8,6 +8,9 @@
 
 #include <nlohmann/json.hpp>
 
+#include "cases/app/fit_run.hpp"
+#include "cases/app/requests.hpp"
+
 #include "sympathy/continuation/branch_output.hpp"
 #include "sympathy/continuation/periodic_orbit.hpp"
 #include "sympathy/core/csv.hpp"

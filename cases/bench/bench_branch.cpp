@@ -9,6 +9,8 @@
 #include <utility>
 
 #include "cases/app/branch_run.hpp"
+#include "cases/app/case_loading.hpp"
+#include "cases/cli/common.hpp"
 
 namespace sympathy::bench {
 

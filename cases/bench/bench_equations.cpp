@@ -12,6 +12,7 @@
 #include <vector>
 
 #include "cases/bench/hand_written_systems.hpp"
+#include "cases/cli/common.hpp"
 #include "sympathy/cases/equation_compiler.hpp"
 #include "sympathy/continuation/periodic_orbit.hpp"
 #include "sympathy/core/autodiff_system.hpp"

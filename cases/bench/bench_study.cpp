@@ -10,6 +10,7 @@
 #include <vector>
 
 #include "cases/app/study_run.hpp"
+#include "cases/cli/common.hpp"
 #include "sympathy/core/csv.hpp"
 #include "sympathy/core/text.hpp"
 

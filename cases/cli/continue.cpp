@@ -11,6 +11,7 @@
 #include "cases/app/requests.hpp"
 #include "cases/app/start_data.hpp"
 #include "cases/cli/commands.hpp"
+#include "cases/cli/common.hpp"
 #include "cases/cli/progress.hpp"
 #include "cases/cli/report.hpp"
 

@@ -13,6 +13,7 @@
 #include "cases/app/study_file.hpp"
 #include "cases/app/study_run.hpp"
 #include "cases/cli/commands.hpp"
+#include "cases/cli/common.hpp"
 #include "cases/cli/progress.hpp"
 #include "cases/cli/report.hpp"
 
