@@ -1,22 +1,48 @@
 #include "sympathy/cases/state_describer.hpp"
 
+#include <algorithm>
 #include <cmath>
 
 #include "sympathy/core/flow.hpp"
 
 namespace sympathy {
 
+namespace {
+
+// The extreme of the samples y over one period (equally spaced, both ends) that `largest` asks
+// for, refined by the parabola through the extreme sample and its neighbours (the vertex lies
+// within half a spacing of that sample). A state that comes back to itself wraps around (its
+// last sample is its first); one that gains over the period (an angle that rotates: AUTO's pen)
+// has its extreme at an end or inside, refined only inside.
+double extreme(const Eigen::VectorXd& y, bool largest) {
+  const long last = y.size() - 1;
+  const bool periodic =
+      y[last] == y[0] || std::abs(y[last] - y[0]) <= 1e-9 * y.cwiseAbs().maxCoeff();
+  const long m = periodic ? last : y.size();  // the distinct samples
+  long k = 0;
+  for (long j = 1; j < m; ++j)
+    if (largest ? y[j] > y[k] : y[j] < y[k]) k = j;
+  if (m < 3 || (!periodic && (k == 0 || k == last))) return y[k];
+  const double before = y[(k + m - 1) % m], at = y[k], after = y[(k + 1) % m];
+  const double curvature = after - 2.0 * at + before;
+  if (curvature == 0.0) return at;
+  return at - (after - before) * (after - before) / (8.0 * curvature);
+}
+
+}  // namespace
+
 StateDescriber::Sizes StateDescriber::sizes(const PeriodicOrbit& orbit) const {
   const int n = system_.dimension();
-  Sizes r{std::vector<double>(n, 0.0), std::vector<double>(n, 0.0)};
-  if (!(orbit.period > 0.0)) return r;
-  Eigen::VectorXd lo = orbit.state0, hi = orbit.state0;
+  const std::vector<double> zeros(n, 0.0), unknown(n, std::nan(""));
+  if (!(orbit.period > 0.0)) return {zeros, zeros, zeros, zeros};
+  // One period's samples, equally spaced, both ends.
+  Eigen::MatrixXd samples(n, PeriodSamples::intervals + 1);
+  int count = 0;
   Eigen::VectorXd integral = Eigen::VectorXd::Zero(n), previous_square;
   double previous_t = 0.0;
   try {
     sample_period(system_, orbit, [&](double t, const Eigen::VectorXd& z) {
-      lo = lo.cwiseMin(z);
-      hi = hi.cwiseMax(z);
+      if (count < samples.cols()) samples.col(count++) = z;
       const Eigen::VectorXd square = z.cwiseAbs2();
       if (previous_square.size() == n)
         integral += 0.5 * (t - previous_t) * (square + previous_square);
@@ -24,10 +50,14 @@ StateDescriber::Sizes StateDescriber::sizes(const PeriodicOrbit& orbit) const {
       previous_t = t;
     });
   } catch (const IntegrationError&) {
-    return {std::vector<double>(n, std::nan("")), std::vector<double>(n, std::nan(""))};
+    return {unknown, unknown, unknown, unknown};
   }
+  Sizes r{zeros, zeros, zeros, zeros};
   for (int i = 0; i < n; ++i) {
-    r.amplitudes[i] = 0.5 * (hi[i] - lo[i]);
+    const Eigen::VectorXd y = samples.row(i).head(count).transpose();
+    r.maxima[i] = extreme(y, true);
+    r.minima[i] = extreme(y, false);
+    r.amplitudes[i] = 0.5 * (y.maxCoeff() - y.minCoeff());
     r.rms[i] = std::sqrt(integral[i] / orbit.period);
   }
   return r;
@@ -35,12 +65,18 @@ StateDescriber::Sizes StateDescriber::sizes(const PeriodicOrbit& orbit) const {
 
 std::vector<double> StateDescriber::describe(const PeriodicOrbit& orbit) const {
   Sizes s = sizes(orbit);
-  s.amplitudes.insert(s.amplitudes.end(), s.rms.begin(), s.rms.end());
-  return s.amplitudes;
+  std::vector<double> all = std::move(s.amplitudes);
+  for (const auto* group : {&s.rms, &s.maxima, &s.minima})
+    all.insert(all.end(), group->begin(), group->end());
+  return all;
 }
 
 std::vector<OrbitDescriber::Group> StateDescriber::layout() const {
-  return {{"amplitudes", "amp_", system_.state_names()}, {"rms", "rms_", system_.state_names()}};
+  const auto names = system_.state_names();
+  return {{"amplitudes", "amp_", names},
+          {"rms", "rms_", names},
+          {"max", "max_", names},
+          {"min", "min_", names}};
 }
 
 }  // namespace sympathy
