@@ -211,6 +211,9 @@ Branch branch_from_json(const JsonReader& in, const OdeSystem& model,
     p.index = key(points[i], "index", where).get<int>();
     p.parameter = key(points[i], "value", where).get<double>();
     p.orbit.state0 = vector_of(key(points[i], "state0", where), where + ".state0", n);
+    p.orbit.period = key(points[i], "period", where).get<double>();
+    p.orbit.parameters = model.with_parameter(b.start_values, b.parameter, p.parameter);
+    if (points[i].contains("segments")) p.orbit.segments = points[i]["segments"].get<int>();
     p.orbit.family_dimension = key(points[i], "structural", where).get<int>();
     p.orbit.subspace = subspace;
     b.points.push_back(std::move(p));

@@ -21,7 +21,7 @@ LoadedEquations load_equations(const Arguments& args) {
 
 LoadedSystem load_system(const Arguments& args) {
   return LoadedSystem(args.positional(0), args.text("--params", ""), args.assignments("--set"),
-                      start_data_path(args), args.command());
+                      start_data_path(args), args.command(), saved_start(args));
 }
 
 ParameterWindow parameter_window(const Arguments& args, const LoadedSystem& c) {

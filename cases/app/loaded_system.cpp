@@ -9,7 +9,8 @@ namespace sympathy::app {
 
 LoadedSystem::LoadedSystem(const std::string& path, const std::string& params,
                            const std::vector<Assignment>& sets,
-                           const std::optional<std::string>& start_data, const std::string& what)
+                           const std::optional<std::string>& start_data, const std::string& what,
+                           const std::optional<SavedStart>& saved)
     : sets_(sets) {
   if (case_file_kind(path) == "equations") {
     equations_.emplace(load_equations(path, params, sets, start_data));
@@ -23,6 +24,7 @@ LoadedSystem::LoadedSystem(const std::string& path, const std::string& params,
     if (start_data)
       recorded_ = read_recorded_period(*start_data, model_->state_names(), this->path());
   }
+  if (saved) saved_ = read_saved_orbit(*saved, system());
 }
 
 const std::string& LoadedSystem::path() const {
@@ -34,6 +36,7 @@ std::vector<std::pair<std::string, std::string>> LoadedSystem::inputs() const {
   if (equations_ && !equations_->file.plugin().empty())
     files.emplace_back("plug-in source", equations_->file.plugin());
   if (recorded_) files.emplace_back("--start-data", recorded_->path);
+  if (saved_) files.emplace_back("--parent", saved_->path);
   return files;
 }
 
@@ -107,6 +110,10 @@ void LoadedSystem::require_autonomous(const std::string& what) const {
 BranchSource LoadedSystem::source(const std::string& start, const std::vector<Assignment>& initial,
                                   const std::optional<RecordedPeriod>& data) const {
   const ParameterValues values = equations_ ? equations_->values : model_->default_parameters();
+  if (saved_ && !data)
+    return {system(),       *describer_,         saved_->values,
+            saved_->state0, InvariantSubspace(), "saved " + saved_->description,
+            saved_->period};
   if (data)
     return {system(),     *describer_,         values,
             data->state0, InvariantSubspace(), "data " + data->path,

@@ -13,6 +13,7 @@
 #include "cases/app/branch_run.hpp"
 #include "cases/app/case_loading.hpp"
 #include "cases/app/equation_loading.hpp"
+#include "cases/app/saved_start.hpp"
 #include "sympathy/cases/metronome_model.hpp"
 #include "sympathy/cases/parameter_fit.hpp"
 
@@ -32,11 +33,13 @@ class LoadedSystem {
   // The case file at `path` with parameter set `params` ("" for the file's default) and `sets` on
   // top, and the recorded period at `start_data` if given (read and checked before anything is
   // compiled). `what` names the computation for the check that the model is differentiable
-  // ("continue", "a branch").
+  // ("continue", "a branch"). `saved`: the start is a saved orbit (--parent, --from-point), read
+  // once the system is known.
   LoadedSystem(const std::string& path, const std::string& params,
                const std::vector<Assignment>& sets,
                const std::optional<std::string>& start_data = std::nullopt,
-               const std::string& what = "a branch");
+               const std::string& what = "a branch",
+               const std::optional<SavedStart>& saved = std::nullopt);
 
   bool equations() const { return equations_.has_value(); }
   const std::string& path() const;
@@ -63,6 +66,8 @@ class LoadedSystem {
 
   // --start-data's recorded period (nullopt without it).
   const std::optional<RecordedPeriod>& start_data() const { return recorded_; }
+  // The saved orbit --parent and --from-point name (nullopt without them): source()'s start.
+  const std::optional<SavedOrbit>& saved_orbit() const { return saved_; }
   // InputError unless the system's orbits have a known period (an equation case file that uses t
   // declares forcing_period), and for --start-data with a forced system.
   void require_orbits() const;
@@ -73,7 +78,8 @@ class LoadedSystem {
   // The start named `start` ("" is the file's [states] for an equation case file; a metronome
   // case file needs a name: InputError "--start is required"), with `initial` on top; its
   // invariant subspace (a metronome start's declared symmetry). With `data`, the recorded
-  // period's first row and its period guess instead (Newton at once, in the whole state).
+  // period's first row and its period guess instead (Newton at once, in the whole state); with a
+  // saved orbit, its state, period and parameter values (the same).
   BranchSource source(const std::string& start, const std::vector<Assignment>& initial,
                       const std::optional<RecordedPeriod>& data = std::nullopt) const;
   InvariantSubspace subspace(const std::string& start) const;
@@ -88,6 +94,7 @@ class LoadedSystem {
  private:
   std::vector<Assignment> sets_;  // --set, for range checks of an equation case file
   std::optional<RecordedPeriod> recorded_;
+  std::optional<SavedOrbit> saved_;
   std::optional<LoadedCase> metronomes_;
   std::optional<LoadedEquations> equations_;
   std::unique_ptr<MetronomeModel> model_;

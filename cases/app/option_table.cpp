@@ -48,6 +48,14 @@ OptionSpec segment_threads_option() {
           "result is the same for any number)"};
 }
 
+// A start from an earlier run's saved orbit (AUTO's IRS), with --parent.
+OptionSpec from_point_option() {
+  return {"--from-point", "POINT", false,
+          "start from this point of the --parent branch (its index, points[].index of the JSON) "
+          "or its event (LP1, BP1, PD1, NS1, UZ1, ...): the saved orbit's state, period, segments "
+          "and parameter values, corrected at once (AUTO's IRS)"};
+}
+
 OptionSpec start_data_option() {
   return {"--start-data", "FILE.csv", false,
           "start from one recorded period instead (columns t and every state, as simulate --out "
@@ -89,7 +97,7 @@ std::vector<OptionSpec> continue_options() {
         "nearly vertical, shrunk where Newton fails)"},
        {"--parent", "FILE", false,
         "with --switch-at: the parent branch from this JSON (continue --json; for HB, equilibria "
-        "--json) instead of computed"},
+        "--json) instead of computed; with --from-point: the branch JSON the start is saved in"},
        {"--whole-state", "", false,
         "no symmetry reduction: integrate every metronome (for comparison)"},
        {"--quiet", "", false, "no progress lines"},
@@ -101,6 +109,7 @@ std::vector<OptionSpec> continue_options() {
   options.insert(options.end(), integrator.begin(), integrator.end());
   options.push_back(accuracy_option());
   options.push_back(start_data_option());
+  options.push_back(from_point_option());
   return options;
 }
 
@@ -122,6 +131,9 @@ std::vector<OptionSpec> orbit_options() {
   options.insert(options.end(), integrator.begin(), integrator.end());
   options.push_back(accuracy_option());
   options.push_back(start_data_option());
+  options.push_back({"--parent", "FILE", false,
+                     "with --from-point: the branch JSON (continue --json) the start is saved in"});
+  options.push_back(from_point_option());
   return options;
 }
 

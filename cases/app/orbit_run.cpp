@@ -25,21 +25,28 @@ OrbitRun run_orbit(const Arguments& args) {
         "--whole-state: only for a metronome case file (an equation case file's "
         "orbits are always computed in the whole state space)");
   const auto& recorded = c.start_data();
-  if (metronomes && !recorded && !args.has("--start"))
-    throw InputError("--start NAME is required (or --start-data FILE.csv); expected one of: " +
-                     join(c.start_names()));
+  const auto& saved = c.saved_orbit();
+  if (metronomes && !recorded && !saved && !args.has("--start"))
+    throw InputError(
+        "--start NAME is required (or --start-data FILE.csv, or --parent FILE --from-point "
+        "POINT); expected one of: " +
+        join(c.start_names()));
   // From a recorded period: Newton at once in the whole state space (the data need not lie in a
   // start's symmetric subspace); a forced system's transient 0 unless --transient gives one.
   const BranchSource source =
       c.source(args.text("--start", ""), args.assignments("--initial"), recorded);
   run.options = orbit_request(args, !system.autonomous());
+  if (saved && !args.has("--segments")) run.options.shooting.segments = saved->segments;
   if (const auto path = args.value("--json")) {
     check_writable(*path, "--json");
     check_distinct_outputs({{"--json", *path}}, c.inputs());
   }
 
+  // A saved orbit: Newton from it at once (it may be unstable: no transient).
   run.orbit = recorded ? orbit_from_recorded_period(system, source.values, *recorded,
                                                     source.subspace, run.options)
+              : saved  ? solve_periodic_orbit(system, source.values, source.start_state,
+                                              saved->period, source.subspace, run.options)
                        : find_periodic_orbit(system, source.values, source.start_state,
                                              source.subspace, run.options);
   run.seconds = clock.seconds();
@@ -53,12 +60,15 @@ OrbitRun run_orbit(const Arguments& args) {
     run.rms = sizes.rms;
   }
   run.start_name = recorded              ? describe_start_data(*recorded)
+                   : saved               ? source.start_name
                    : args.has("--start") ? *args.value("--start")
                                          : "(the file's [states])";
   run.json = orbit_json(system, run.orbit, &c.describer());
   run.json["case"] = c.path();
   run.json["params_set"] = c.params();
-  run.json["start"] = recorded ? "data " + recorded->path : args.text("--start", "");
+  run.json["start"] = recorded ? "data " + recorded->path
+                      : saved  ? source.start_name
+                               : args.text("--start", "");
   run.json["seconds"] = run.seconds;
   if (const auto path = args.value("--json")) write_file_atomically(*path, run.json.dump(2) + "\n");
   return run;

@@ -48,8 +48,9 @@ BranchRequest continue_request(const Arguments& args, const LoadedSystem& c) {
   BranchRequest request;
   request.start_data = c.start_data();
   c.require_orbits();
-  if (!c.equations() && !args.has("--start") && !request.start_data)
-    throw InputError("--start is required (or --start-data FILE.csv)");
+  if (!c.equations() && !args.has("--start") && !request.start_data && !c.saved_orbit())
+    throw InputError(
+        "--start is required (or --start-data FILE.csv, or --parent FILE --from-point POINT)");
   request.start = args.text("--start", "");
   request.parameter = window.parameter;
   request.from = window.from;
@@ -76,14 +77,18 @@ BranchRequest continue_request(const Arguments& args, const LoadedSystem& c) {
                        ": expected a positive amplitude (state units)");
   }
   request.parent_path = args.text("--parent", "");
+  if (c.saved_orbit()) request.parent_path.clear();  // the start's file, not a parent to switch in
   if (!request.parent_path.empty() && request.switch_at.empty())
     throw InputError("--parent " + request.parent_path +
-                     ": expected --switch-at EVENT too (the event of the parent to switch at)");
+                     ": expected --switch-at EVENT (the event of the parent to switch at) or "
+                     "--from-point POINT (the saved orbit to start from) too");
 
   if (args.flag("--quiet")) request.progress = nullptr;
   request.verbose = args.flag("--verbose");
   auto& o = request.continuation;
   o = branch_continuation(args, c.system());
+  if (c.saved_orbit() && !args.has("--segments"))
+    o.orbit.shooting.segments = c.saved_orbit()->segments;  // what it was resolved on
   o.orbit.shooting.threads = segment_threads(args);
   o.user_points = args.numbers("--user-points");
   for (double v : o.user_points)
@@ -171,6 +176,7 @@ FlowOptions simulation_flow_options(const Arguments& args) {
 void write_branch_json(const std::string& path, const Branch& branch, const BranchRequest& request,
                        const LoadedSystem& c, double seconds) {
   nlohmann::json j = branch_json(branch, request, c.describer());
+  if (c.saved_orbit()) j["start"] = "saved " + c.saved_orbit()->description;
   j["case"] = c.path();
   j["params_set"] = c.params();
   j["seconds"] = seconds;

@@ -36,6 +36,7 @@ int run_continue(const std::vector<std::string>& argv) {
   const BranchSource source = c.source(request.start, request.initial, request.start_data);
   const auto json_path = args.value("--json");
   const std::string start_name = request.start_data      ? describe_start_data(*request.start_data)
+                                 : c.saved_orbit()       ? source.start_name
                                  : request.start.empty() ? "(the file's [states])"
                                                          : request.start;
   std::printf("sympathy continue %s  params %s  start %s  %s from %g to %g\n", c.path().c_str(),

@@ -72,6 +72,8 @@ class Case:
         linear_solver: Literal['dense', 'klu', 'structured'] | None = ...,
         accuracy: Literal['fast', 'default', 'high'] | None = ...,
         start_data: str | os.PathLike[str] | None = ...,
+        parent: str | os.PathLike[str] | None = ...,
+        from_point: str | None = ...,
     ) -> Result: ...
     def continue_branch(
         self,
@@ -104,6 +106,7 @@ class Case:
         linear_solver: Literal['dense', 'klu', 'structured'] | None = ...,
         accuracy: Literal['fast', 'default', 'high'] | None = ...,
         start_data: str | os.PathLike[str] | None = ...,
+        from_point: str | None = ...,
         progress: bool | Callable[[Any], None] | None = ...,
     ) -> Result: ...
     def equilibria(
@@ -213,6 +216,8 @@ def orbit(
     linear_solver: Literal['dense', 'klu', 'structured'] | None = ...,
     accuracy: Literal['fast', 'default', 'high'] | None = ...,
     start_data: str | os.PathLike[str] | None = ...,
+    parent: str | os.PathLike[str] | None = ...,
+    from_point: str | None = ...,
 ) -> Result: ...
 def continue_branch(
     case: Case | CaseSource,
@@ -245,6 +250,7 @@ def continue_branch(
     linear_solver: Literal['dense', 'klu', 'structured'] | None = ...,
     accuracy: Literal['fast', 'default', 'high'] | None = ...,
     start_data: str | os.PathLike[str] | None = ...,
+    from_point: str | None = ...,
     progress: bool | Callable[[Any], None] | None = ...,
 ) -> Result: ...
 def equilibria(

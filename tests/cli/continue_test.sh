@@ -5,7 +5,7 @@ set -u
 bin=$1 src=$2 work=$3
 mkdir -p "$work"
 . "$(dirname "$0")/check.sh"
-json() { /usr/bin/python3 -c "import json,sys; j=json.load(open(sys.argv[1])); print($2)" "$1"; }
+json() { /usr/bin/python3 -c "import json,math,sys; j=json.load(open(sys.argv[1])); print($2)" "$1"; }
 
 # The anti-phase branch across its first stability change (paper: about 47 N/m).
 "$bin" continue "$src/cases/row2.toml" --start anti-phase --param k --from 40 --to 52 \
@@ -133,5 +133,46 @@ check "ab: the points on 1 segment after the spike resolved (trivial multiplier 
 uz() { json "$1" "[e['period'] for e in j['events'] if e['type'] == 'UZ' and e['trusted']][0]"; }
 check "ab: the user point at p1 = 0.25 on 1 segment is the one on 4 (period to 1e-9)" \
   /usr/bin/python3 -c "import sys; sys.exit(abs($(uz "$work/ab1.json") - $(uz "$work/ab4.json")) > 1e-9)"
+
+# A restart from a saved orbit (--parent FILE --from-point POINT, AUTO's IRS), exact on lcbp: the
+# circles r = p1 (period 1) cross the circles r = p2 at the branch point p1 = p2 = 2; the branch
+# born there is r = p1, unstable for p1 < p2 (radial multiplier exp(-p1 (p1 - p2))). Its user
+# point at p1 = 1.5 (UZ1), an unstable orbit, restarted in the other parameter p2 from 2 to 2.5:
+# every point the circle r = 1.5 to 1e-9, period 1, its largest multiplier exp(0.75) at p2 = 2
+# and exp(1.5) at 2.5 (to 1e-7); its first point the saved one (state to 1e-9). From a point's
+# index, orbit gives back the saved orbit. Under 1 s.
+lcbp=$src/cases/examples/lcbp.toml
+"$bin" continue "$lcbp" --param p1 --from 1 --to 3 --quiet --json "$work/lcbp_a.json" > /dev/null
+"$bin" continue "$lcbp" --param p1 --from 1 --to 3 --switch-at BP1 --parent "$work/lcbp_a.json" \
+  --user-points 1.5 --quiet --json "$work/lcbp_b.json" > /dev/null
+"$bin" continue "$lcbp" --parent "$work/lcbp_b.json" --from-point UZ1 --param p2 --from 2 --to 2.5 \
+  --quiet --json "$work/lcbp_c.json" > "$work/lcbp_c.out"
+check "restart from a saved user point in another parameter exits 0" test $? -eq 0
+check "... its start named" grep -qF "start saved $work/lcbp_b.json, UZ1 (p1 = 1.5)" "$work/lcbp_c.out"
+check "... every point the circle r = 1.5, period 1 (to 1e-9)" test "$(json "$work/lcbp_c.json" "all(abs(math.hypot(*p['state0']) - 1.5) < 1e-9 and abs(p['period'] - 1) < 1e-9 for p in j['points'])")" = True
+check "... unstable: largest multiplier exp(-p1 (p1 - p2)) at both ends (to 1e-7)" test "$(json "$work/lcbp_c.json" "(lambda ps: abs(max(abs(complex(*m)) for m in ps[0]['multipliers']) - math.exp(0.75)) < 1e-7 and abs(max(abs(complex(*m)) for m in ps[-1]['multipliers']) - math.exp(1.5)) < 1e-7 and not ps[0]['stable'])(sorted(j['points'], key=lambda p: p['index']))")" = True
+check "... its first point the saved orbit (to 1e-9)" /usr/bin/python3 -c "
+import json, sys
+b = json.load(open(sys.argv[1])); c = json.load(open(sys.argv[2]))
+uz = [e for e in b['events'] if e['type'] == 'UZ'][0]['state0']
+first = [p for p in c['points'] if p['index'] == 0][0]['state0']
+sys.exit(max(abs(u - v) for u, v in zip(uz, first)) > 1e-9)" "$work/lcbp_b.json" "$work/lcbp_c.json"
+"$bin" orbit "$lcbp" --parent "$work/lcbp_b.json" --from-point 5 --json "$work/lcbp_o.json" > /dev/null
+check "orbit from a saved point's index: the saved orbit (state and period to 1e-9)" /usr/bin/python3 -c "
+import json, sys
+b = json.load(open(sys.argv[1])); o = json.load(open(sys.argv[2]))
+p = [q for q in b['points'] if q['index'] == 5][0]
+sys.exit(abs(p['period'] - o['period']) > 1e-9 or max(abs(u - v) for u, v in zip(p['state0'], o['state0'])) > 1e-9)" "$work/lcbp_b.json" "$work/lcbp_o.json"
+restart_bad() {  # restart_bad NAME EXPECTED ARGS...: refused with exit code 2, saying EXPECTED
+  local name=$1 expected=$2; shift 2
+  "$bin" continue "$lcbp" --param p2 --from 2 --to 2.5 "$@" > /dev/null 2> "$work/$name.err"
+  check "$name: exit code 2" test $? -eq 2
+  check "$name: says '$expected'" grep -qF -- "$expected" "$work/$name.err"
+}
+restart_bad no_parent "--from-point UZ1: expected --parent FILE too" --from-point UZ1
+restart_bad with_start "--initial: not with --from-point UZ1" --parent "$work/lcbp_b.json" --from-point UZ1 --initial x=1
+restart_bad no_point "$work/lcbp_b.json has no point 999; expected an index from" --parent "$work/lcbp_b.json" --from-point 999
+restart_bad no_event "--from-point PD1: the branch has no such event; it has UZ1" --parent "$work/lcbp_b.json" --from-point PD1
+restart_bad bad_name "--from-point XY1: expected a point's index" --parent "$work/lcbp_b.json" --from-point XY1
 
 exit $failures
