@@ -7,30 +7,6 @@
 
 namespace sympathy {
 
-namespace {
-
-// The extreme of the samples y over one period (equally spaced, both ends) that `largest` asks
-// for, refined by the parabola through the extreme sample and its neighbours (the vertex lies
-// within half a spacing of that sample). A state that comes back to itself wraps around (its
-// last sample is its first); one that gains over the period (an angle that rotates: AUTO's pen)
-// has its extreme at an end or inside, refined only inside.
-double extreme(const Eigen::VectorXd& y, bool largest) {
-  const long last = y.size() - 1;
-  const bool periodic =
-      y[last] == y[0] || std::abs(y[last] - y[0]) <= 1e-9 * y.cwiseAbs().maxCoeff();
-  const long m = periodic ? last : y.size();  // the distinct samples
-  long k = 0;
-  for (long j = 1; j < m; ++j)
-    if (largest ? y[j] > y[k] : y[j] < y[k]) k = j;
-  if (m < 3 || (!periodic && (k == 0 || k == last))) return y[k];
-  const double before = y[(k + m - 1) % m], at = y[k], after = y[(k + 1) % m];
-  const double curvature = after - 2.0 * at + before;
-  if (curvature == 0.0) return at;
-  return at - (after - before) * (after - before) / (8.0 * curvature);
-}
-
-}  // namespace
-
 StateDescriber::Sizes StateDescriber::sizes(const PeriodicOrbit& orbit) const {
   const int n = system_.dimension();
   const std::vector<double> zeros(n, 0.0), unknown(n, std::nan(""));
@@ -55,8 +31,8 @@ StateDescriber::Sizes StateDescriber::sizes(const PeriodicOrbit& orbit) const {
   Sizes r{zeros, zeros, zeros, zeros};
   for (int i = 0; i < n; ++i) {
     const Eigen::VectorXd y = samples.row(i).head(count).transpose();
-    r.maxima[i] = extreme(y, true);
-    r.minima[i] = extreme(y, false);
+    r.maxima[i] = sampled_extreme(y, true);
+    r.minima[i] = sampled_extreme(y, false);
     r.amplitudes[i] = 0.5 * (y.maxCoeff() - y.minCoeff());
     r.rms[i] = std::sqrt(integral[i] / orbit.period);
   }

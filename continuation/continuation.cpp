@@ -85,6 +85,8 @@ class Continuation::Run {
   // its parameter.
   std::optional<std::pair<std::size_t, double>> turn_;
   int resolved_points_ = 0;  // in a row, resolved on half the segments (kHalvedGrowth)
+  // The first value to stop at that detect located in the step: its arclength from a and note.
+  std::optional<std::pair<double, std::string>> stop_at_;
 };
 
 OptionCheck ContinuationOptions::validate() const {
@@ -120,6 +122,8 @@ OptionCheck ContinuationOptions::validate() const {
         return OptionProblem{"user_points", "distinct values (" + format_double(user_points[i]) +
                                                 " is given twice)"};
   }
+  for (const auto& v : user_values)
+    if (!std::isfinite(v.value)) return OptionProblem{"user_values", "finite values"};
   return nested("orbit.", orbit.validate());
 }
 
@@ -134,6 +138,14 @@ Continuation::Continuation(const OdeSystem& system, int parameter, ContinuationO
   if (parameter < 0 || parameter >= system.parameter_count())
     throw std::invalid_argument("continuation: no parameter with index " +
                                 std::to_string(parameter));
+  for (const auto& v : options_.user_values) {
+    if (v.quantity == UserValue::Quantity::Period && !system.autonomous())
+      throw std::invalid_argument("continuation: user value " + v.name +
+                                  ": a forced system's period is the forcing's");
+    if (v.quantity != UserValue::Quantity::Period && (v.state < 0 || v.state >= system.dimension()))
+      throw std::invalid_argument("continuation: user value " + v.name + ": no state " +
+                                  std::to_string(v.state));
+  }
   requested_ = options_;
   // A forced system's problem is made by each run, with the start's period (the forcing's).
   if (system.autonomous()) {
@@ -264,22 +276,34 @@ std::optional<ContinuationPoint> Continuation::point_on_bound(const Continuation
                                                               const ContinuationPoint& b,
                                                               double bound) const {
   const int N = problem_->unknowns();
+  return point_where(a, b, N, bound);
+}
+
+std::optional<ContinuationPoint> Continuation::point_where(const ContinuationPoint& a,
+                                                           const ContinuationPoint& b, int k,
+                                                           double value) const {
+  const int N = problem_->unknowns();
   Eigen::VectorXd ya(N + 1), yb(N + 1);
   ya << a.unknowns, a.parameter;
   yb << b.unknowns, b.parameter;
-  // A "tangent" whose arclength row is the parameter's unit row: the condition p - p_a = step.
-  const double w = space_->weights()[N];
-  Eigen::VectorXd along_parameter = Eigen::VectorXd::Zero(N + 1);
-  along_parameter[N] = 1.0 / (w * w);
-  const double t = (bound - a.parameter) / (b.parameter - a.parameter);
-  const Correction c = correct_step(a.section, ya, along_parameter, bound - a.parameter,
-                                    ya + t * (yb - ya), &chord_jacobian_);
+  // A "tangent" whose arclength row is the unit row of y_k: the condition y_k - y_k(a) = step.
+  const double w = space_->weights()[k];
+  Eigen::VectorXd along = Eigen::VectorXd::Zero(N + 1);
+  along[k] = 1.0 / (w * w);
+  const double t = (value - ya[k]) / (yb[k] - ya[k]);
+  const Correction c =
+      correct_step(a.section, ya, along, value - ya[k], ya + t * (yb - ya), &chord_jacobian_);
   if (!c.converged) return std::nullopt;
   const Eigen::VectorXd tau =
       space_->tangent(problem_->jacobian(c.evaluation, true), c.y, a.tangent);
   // Its arclength from a along a's tangent, as location measures it.
   ContinuationPoint p = make_point(c, tau, a.index + 1, space_->dot(a.tangent, c.y - ya));
-  p.parameter = bound;  // the linear condition holds to rounding; the bound itself is exact
+  // The linear condition holds to rounding; the value itself is exact.
+  if (k == N) p.parameter = value;
+  if (k == N - 1 && system_.autonomous()) {
+    p.unknowns[k] = value;
+    p.orbit.period = value;
+  }
   return p;
 }
 
@@ -611,9 +635,18 @@ driver::Found<Bifurcation> Continuation::Run::detect(const OrbitNode* before, co
   if (!options.user_points.empty()) {  // AUTO's UZ, among the step's events along it
     auto passed = c_.user_points_between(a, b);
     found.events.insert(found.events.end(), passed.begin(), passed.end());
-    std::stable_sort(found.events.begin(), found.events.end(),
-                     [](const auto& x, const auto& y) { return x.arclength < y.arclength; });
   }
+  // AUTO's UZ and UZSTOP on a quantity of the orbits: the first stop of the step ends the branch
+  // there (ends).
+  stop_at_.reset();
+  for (auto& [event, stop] :
+       c_.user_values_between(a, b, b.jacobian.rows() ? &b.jacobian : nullptr)) {
+    if (stop && (!stop_at_ || event.arclength < stop_at_->first))
+      stop_at_.emplace(event.arclength, event.note);
+    found.events.push_back(std::move(event));
+  }
+  std::stable_sort(found.events.begin(), found.events.end(),
+                   [](const auto& x, const auto& y) { return x.arclength < y.arclength; });
   return found;
 }
 
@@ -628,6 +661,14 @@ PeriodRecord record_of(const OrbitNode& p) {
 std::optional<driver::Ending> Continuation::Run::ends(const OrbitNode& a, const OrbitNode& b,
                                                       std::vector<Bifurcation>& events) {
   const auto name = [&] { return c_.system_.parameter_names()[c_.parameter_]; };
+  // A value the branch was asked to stop at, passed in this step: the events beyond it dropped,
+  // b not kept (the branch's orbit there is the event's).
+  if (stop_at_) {
+    const auto [s, note] = *stop_at_;
+    stop_at_.reset();
+    std::erase_if(events, [&](const Bifurcation& e) { return e.arclength > s; });
+    return driver::Ending{driver::Stop::UserValue, "reached the value asked for: " + note, false};
+  }
   if (path_.empty()) path_.push_back(y_of(a));
   if (periods_.empty()) periods_.push_back(record_of(a));
   // A family approaching a homoclinic orbit: ended there, b kept (it is as good as any before).
@@ -721,7 +762,11 @@ void Continuation::Run::accept(OrbitNode& b) {
   } catch (const IntegrationError&) {
     // keep the scales as they are
   }
-  b.orbit.samples = PeriodSamples{};
+  // Kept where a user value reads the orbits' extremes: the next step's detect reads b's.
+  const bool extremes =
+      std::any_of(c_.options_.user_values.begin(), c_.options_.user_values.end(),
+                  [](const UserValue& v) { return v.quantity != UserValue::Quantity::Period; });
+  if (!extremes) b.orbit.samples = PeriodSamples{};
   b.tangent /= std::sqrt(c_.space_->dot(b.tangent, b.tangent));
   // Segments given back where the orbits no longer need them, as AUTO re-meshes both ways: a
   // refinement at a canard or a spike (AUTO's fhn, ab at p2 = 16) otherwise ran the rest of the

@@ -24,6 +24,8 @@ std::string to_string(StopReason s) {
       return "homoclinic orbit";
     case StopReason::Closed:
       return "closed";
+    case StopReason::UserValue:
+      return "user value";
   }
   return "?";
 }

@@ -35,6 +35,7 @@ constexpr int exit_code(StopReason stop) {
     case StopReason::HopfPoint:
     case StopReason::Homoclinic:
     case StopReason::Closed:
+    case StopReason::UserValue:
       return kDone;
   }
   return kFailure;

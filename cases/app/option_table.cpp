@@ -85,6 +85,11 @@ std::vector<OptionSpec> continue_options() {
        {"--initial", "VAR=VALUE", true, "initial state value (on top of --start)"},
        {"--user-points", "V1,V2,...", false,
         "report the branch's orbit at each of these values of --param (AUTO's UZ), as events"},
+       {"--user-value", "QUANTITY=VALUE", true,
+        "report the branch's orbit where a quantity of its orbits takes this value, as an event "
+        "(AUTO's UZ on any quantity): period, max_NAME or min_NAME (a state's largest or "
+        "smallest value over the period)"},
+       {"--stop-at", "QUANTITY=VALUE", true, "the same, and the branch ends there (AUTO's UZSTOP)"},
        {"--csv", "FILE", false, "stream every point to this CSV"},
        {"--json", "FILE", false, "write the branch and its bifurcations as JSON"},
        {"--events", "FILE", false, "stream each bifurcation to this CSV as it is located"},

@@ -43,6 +43,43 @@ ContinuationOptions branch_continuation(const Arguments& args, const OdeSystem& 
   return o;
 }
 
+UserValue user_value(const Assignment& a, bool stop, const OdeSystem& system,
+                     const std::string& option) {
+  UserValue v;
+  v.value = a.value;
+  v.stop = stop;
+  v.name = a.key;
+  const auto names = system.state_names();
+  const auto state = [&](const std::string& name) {
+    const auto it = std::find(names.begin(), names.end(), name);
+    return it == names.end() ? -1 : static_cast<int>(it - names.begin());
+  };
+  if (a.key == "period") {
+    if (!system.autonomous())
+      throw InputError(option + " period=" + format_number(a.value) +
+                       ": a forced system's period is the forcing's; expected max_NAME or "
+                       "min_NAME");
+    if (!(a.value > 0.0))
+      throw InputError(option + " period=" + format_number(a.value) +
+                       ": expected a positive period");
+    v.quantity = UserValue::Quantity::Period;
+    return v;
+  }
+  for (const auto& [prefix, quantity] :
+       {std::pair{std::string("max_"), UserValue::Quantity::Maximum},
+        std::pair{std::string("min_"), UserValue::Quantity::Minimum}})
+    if (a.key.rfind(prefix, 0) == 0 && state(a.key.substr(prefix.size())) >= 0) {
+      v.quantity = quantity;
+      v.state = state(a.key.substr(prefix.size()));
+      return v;
+    }
+  std::vector<std::string> expected{"period"};
+  for (const auto& n : names) expected.push_back("max_" + n);
+  for (const auto& n : names) expected.push_back("min_" + n);
+  throw InputError(option + " " + a.key + "=" + format_number(a.value) +
+                   ": not a quantity of the orbits; expected one of: " + join(expected));
+}
+
 BranchRequest continue_request(const Arguments& args, const LoadedSystem& c) {
   const ParameterWindow window = parameter_window(args, c);
   BranchRequest request;
@@ -96,6 +133,9 @@ BranchRequest continue_request(const Arguments& args, const LoadedSystem& c) {
       throw InputError("--user-points " + format_number(v) + ": outside --from " +
                        format_number(request.from) + " .. --to " + format_number(request.to) +
                        "; expected values the branch can reach");
+  for (const bool stop : {false, true})
+    for (const Assignment& a : args.assignments(stop ? "--stop-at" : "--user-value"))
+      o.user_values.push_back(user_value(a, stop, c.system(), stop ? "--stop-at" : "--user-value"));
   o.orbit.use_symmetry = !args.flag("--whole-state");
   check_options(o.validate(), "");
   c.check_range(request.parameter, window.ends());

@@ -36,6 +36,10 @@ ContinuationOptions branch_continuation(const Arguments& args, const OdeSystem& 
 
 // sympathy continue: the request (the window, the start, the continuation
 // options, switching, the outputs), checked against the case `c`.
+// A --user-value or --stop-at given as QUANTITY=VALUE (period, max_NAME, min_NAME); InputError
+// naming the option and the quantities the system has.
+UserValue user_value(const Assignment& a, bool stop, const OdeSystem& system,
+                     const std::string& option);
 BranchRequest continue_request(const Arguments& args, const LoadedSystem& c);
 
 // Writes `branch`'s JSON to `path` as continue --json does: the engine's branch JSON with the

@@ -175,4 +175,24 @@ restart_bad no_point "$work/lcbp_b.json has no point 999; expected an index from
 restart_bad no_event "--from-point PD1: the branch has no such event; it has UZ1" --parent "$work/lcbp_b.json" --from-point PD1
 restart_bad bad_name "--from-point XY1: expected a point's index" --parent "$work/lcbp_b.json" --from-point XY1
 
+# User values and stops on a quantity of the orbits (AUTO's UZ and UZSTOP on any quantity), exact
+# on the Hopf normal form (cases/examples/hopf.toml: the circle of radius sqrt(mu), period 2 pi /
+# w): in mu, max_x = 0.6 at mu = 0.36 and the stop at max_x = 0.8 at mu = 0.64 (located on the
+# one locator: to 1e-9 relative; measured 3e-11), no point kept beyond it; in w, period = 4 at
+# w = pi / 2 and the stop at period = 3 at w = 2 pi / 3 (the period held at the value: to 1e-9
+# relative; measured 1e-12, the period exact).
+hopf=$src/cases/examples/hopf.toml
+"$bin" continue "$hopf" --param mu --from 0.25 --to 1 --user-value max_x=0.6 --stop-at max_x=0.8 \
+  --quiet --json "$work/uv_mu.json" > "$work/uv_mu.out"
+check "--user-value and --stop-at on max_x exit 0" test $? -eq 0
+check "... stopped there, saying so" grep -qF "stopped: reached the value asked for: stop at max_x = 0.8" "$work/uv_mu.out"
+check "... UZ at mu = 0.36 and 0.64 (max x = sqrt(mu)), trusted, to 1e-9 relative" test "$(json "$work/uv_mu.json" "[e['type'] for e in j['events']] == ['UZ', 'UZ'] and all(e['trusted'] and abs(e['value'] - v) < 1e-9 * v for e, v in zip(j['events'], (0.36, 0.64)))")" = True
+check "... no point beyond the stop" test "$(json "$work/uv_mu.json" "max(p['value'] for p in j['points']) < 0.64")" = True
+"$bin" continue "$hopf" --param w --from 1 --to 3 --user-value period=4 --stop-at period=3 \
+  --quiet --json "$work/uv_w.json" > /dev/null
+check "... on the period: UZ at w = pi / 2 and 2 pi / 3 to 1e-9 relative, the period exact" test "$(json "$work/uv_w.json" "[e['type'] for e in j['events']] == ['UZ', 'UZ'] and all(abs(e['value'] - w) < 1e-9 * w and e['period'] == T for e, w, T in zip(j['events'], (math.pi / 2, 2 * math.pi / 3), (4, 3)))")" = True
+"$bin" continue "$hopf" --param w --from 1 --to 3 --user-value peri=4 > /dev/null 2> "$work/uv_bad.err"
+check "an unknown quantity: exit code 2" test $? -eq 2
+check "... naming the quantities there are" grep -qF -- "--user-value peri=4: not a quantity of the orbits; expected one of: period, max_x, max_y, min_x, min_y" "$work/uv_bad.err"
+
 exit $failures

@@ -100,6 +100,11 @@ class Continuation {
   // section; nullopt when it cannot be corrected.
   std::optional<ContinuationPoint> point_on_bound(const ContinuationPoint& a,
                                                   const ContinuationPoint& b, double bound) const;
+  // The same where the unknown y_k (k = unknowns(): the parameter; unknowns() - 1: the period of
+  // an autonomous system) takes `value`, between a and b.
+  std::optional<ContinuationPoint> point_where(const ContinuationPoint& a,
+                                               const ContinuationPoint& b, int k,
+                                               double value) const;
   // The options' user points the step from a to b passed (b at one, or a and b on either side),
   // each as a UserPoint event: the branch's point at the value (point_on_bound), ordered along
   // the step (user_points.cpp).
@@ -108,6 +113,15 @@ class Continuation {
   }
   std::vector<Bifurcation> user_points_between(const ContinuationPoint& a,
                                                const ContinuationPoint& b) const;
+  // The options' user values (UserValue) the step from a to b passed, each as a UserPoint event
+  // (user_points.cpp): a period by point_where, a state's extreme on the one locator from probes
+  // along a's tangent (b's Jacobian, in a's section, for their chord); each with whether the
+  // branch stops there (UserValue::stop).
+  std::vector<std::pair<Bifurcation, bool>> user_values_between(
+      const ContinuationPoint& a, const ContinuationPoint& b,
+      const Eigen::SparseMatrix<double>* jacobian_b) const;
+  // A user value's quantity at a point (its samples, or one plain period).
+  double quantity(const UserValue& v, const ContinuationPoint& p) const;
 
   // The new branch's unit tangent (scaled) at a branch point y0 with Jacobian [F_x F_p],
   // left null vector psi and kernel (two orthonormal columns, scaled), all in `section`: the root

@@ -9,6 +9,18 @@
 
 namespace sympathy {
 
+// A value of a quantity of a branch's orbits: the period (located exactly: the orbit there is
+// corrected with its period held at the value), or a state's largest or smallest value over the
+// period (located on the one locator, from the period's samples). `stop`: the branch ends there.
+struct UserValue {
+  enum class Quantity { Period, Maximum, Minimum };
+  Quantity quantity = Quantity::Period;
+  int state = -1;  // Maximum, Minimum: the state's index
+  double value = 0.0;
+  bool stop = false;
+  std::string name;  // as the outputs name the quantity: "period", "max_x", "min_x"
+};
+
 struct ContinuationOptions {
   double lower = 0.0, upper = 0.0;  // parameter bounds; the run stops when it leaves them
   double initial_step = 0.02;       // scaled arclength
@@ -35,6 +47,9 @@ struct ContinuationOptions {
   // branch passes one, the point there, corrected with the parameter fixed at it, is an event of
   // type UserPoint. Finite and distinct; any order. The start itself is not reported.
   std::vector<double> user_points;
+  // Values of a quantity of the orbits at which the branch reports its orbit, or stops there
+  // (AUTO's UZ and UZSTOP on any quantity), each as an event of type UserPoint.
+  std::vector<UserValue> user_values;
   OrbitOptions orbit;  // shooting, rank tolerance, stability tolerance
 
   // The bounds are not checked here (a branch run sets them from its problem; the Continuation

@@ -72,6 +72,7 @@ enum class StopReason {
   Homoclinic,      // an orbit family's period grows without bound as its parameter converges
                    // (homoclinic_approach.hpp)
   Closed,          // a curve came back to its start
+  UserValue,       // an orbit branch reached a value it was asked to stop at (UserValue::stop)
 };
 std::string to_string(StopReason s);  // "parameter bound", "point limit", ...
 
