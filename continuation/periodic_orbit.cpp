@@ -8,6 +8,7 @@
 
 #include "stiffness_choice.hpp"
 #include "sympathy/continuation/symmetry_reduction.hpp"
+#include "sympathy/core/csv.hpp"
 #include "sympathy/core/linear_solve.hpp"
 #include "sympathy/core/reduced_system.hpp"
 #include "sympathy/core/text.hpp"
@@ -482,8 +483,9 @@ PeriodicOrbit find_periodic_orbit(const OdeSystem& system, const ParameterValues
                                                                options.max_period / 1e4);
   if (!(period > 0.0)) {
     failed.newton.outcome = NewtonOutcome::NoPeriod;
-    failed.newton.reason = "no return to the section within " + std::to_string(options.max_period) +
-                           " s after the transient (an equilibrium, or a longer period?)";
+    failed.newton.reason = "no return to the section within " + format_double(options.max_period) +
+                           " s after the transient (an equilibrium, or a longer period? "
+                           "max_period, --max-period, raises the limit)";
     failed.state0 = z;
     failed.flow = flow.statistics();
     failed.seconds = started.seconds();

@@ -48,6 +48,13 @@ OptionSpec segment_threads_option() {
           "result is the same for any number)"};
 }
 
+// The longest period a transient's start looks for (OrbitOptions::max_period).
+OptionSpec max_period_option() {
+  return {"--max-period", "SECONDS", false,
+          "the longest period looked for after the transient (default 10): a start whose orbit "
+          "is slower needs more"};
+}
+
 // A start from an earlier run's saved orbit (AUTO's IRS), with --parent.
 OptionSpec from_point_option() {
   return {"--from-point", "POINT", false,
@@ -68,7 +75,8 @@ std::vector<OptionSpec> branch_step_options() {
           {"--max-step", "DS", false, "largest arclength step, scaled (default 0.1)"},
           {"--max-points", "N", false, "point limit per direction (default 400)"},
           {"--transient", "SECONDS", false,
-           "integration before the first Newton (default 60; 0 for a forced system)"}};
+           "integration before the first Newton (default 60; 0 for a forced system)"},
+          max_period_option()};
 }
 
 std::vector<OptionSpec> continue_options() {
@@ -128,6 +136,7 @@ std::vector<OptionSpec> orbit_options() {
        segment_threads_option(),
        {"--transient", "SECONDS", false,
         "integration before Newton (default 60; 0 for a forced system)"},
+       max_period_option(),
        {"--json", "FILE", false, "write the orbit as JSON"},
        {"--whole-state", "", false,
         "no symmetry reduction: integrate every metronome (for comparison)"},

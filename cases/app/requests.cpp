@@ -22,6 +22,7 @@ OrbitOptions orbit_request(const Arguments& args, bool forced) {
   // A forced system's orbit: Newton from the start at once unless a transient is asked for (its
   // period is known; a transient would leave an unstable response for whatever attracts).
   o.transient = args.number("--transient", forced ? 0.0 : o.transient);
+  o.max_period = args.number("--max-period", o.max_period);
   apply_accuracy(accuracy(args), o);
   shooting_flow_options(args, o);
   o.use_symmetry = !args.flag("--whole-state");
@@ -34,6 +35,7 @@ ContinuationOptions branch_continuation(const Arguments& args, const OdeSystem& 
   // A forced system's start: Newton at once unless a transient is asked for (its period is the
   // forcing's; a transient would leave an unstable response for whatever attracts).
   o.orbit.transient = args.number("--transient", system.autonomous() ? o.orbit.transient : 0.0);
+  o.orbit.max_period = args.number("--max-period", o.orbit.max_period);
   o.orbit.shooting.segments = args.integer("--segments", 1);
   o.initial_step = args.number("--step", o.initial_step);
   o.max_step = args.number("--max-step", o.max_step);

@@ -90,4 +90,17 @@ interrupted_after 1 "$bin" orbit "$src/cases/row/row64.toml" --start in-phase --
 check "SIGINT during orbit exits 6" test $? -eq 6
 check "... saying it was interrupted" grep -q "interrupted: stopped, no file written" "$work/signal.err"
 check "... writing no JSON" test "$(ls "$work" | grep -c '^signal.json')" -eq 0
+# A slow orbit found by a transient (issue 36: AUTO's c2c, the food chain at d1 = 0.45, period
+# 66.6): past the default longest period (10 s) the start says how to raise it; --max-period 100
+# finds the orbit, whose period is the HB1 family's at d1 = 0.45 (its user point, an independent
+# continuation from the Hopf point: to 1e-7 relative; measured 4e-10). About 1 s with the compile.
+c2c=$src/tests/auto/cases/c2c.toml
+"$bin" orbit "$c2c" --set d1=0.45 --transient 5000 > "$work/c2c_short.out" 2>&1
+check "c2c at d1 = 0.45 without --max-period: no return within 10 s, saying how to raise it" grep -qF "no return to the section within 10 s after the transient (an equilibrium, or a longer period? max_period, --max-period, raises the limit)" "$work/c2c_short.out"
+"$bin" orbit "$c2c" --set d1=0.45 --transient 5000 --max-period 100 --json "$work/c2c.json" > /dev/null
+check "... with --max-period 100 the orbit, exit 0" test $? -eq 0
+"$bin" equilibria "$c2c" --param d1 --from 0.5 --to 0.6 --quiet --json "$work/c2c_eq.json" > /dev/null
+"$bin" continue "$c2c" --param d1 --from 0.2 --to 0.6 --switch-at HB1 --parent "$work/c2c_eq.json" \
+  --user-points 0.45 --quiet --json "$work/c2c_po.json" > /dev/null
+check "... its period the HB1 family's at d1 = 0.45 (to 1e-7 relative)" test "$(json_value "$work/c2c.json" "(lambda T: any(abs(e['period'] - T) < 1e-7 * T for e in json.load(open('$work/c2c_po.json'))['events'] if e['type'] == 'UZ'))(j['period'])")" = True
 exit $failures
