@@ -53,12 +53,20 @@ RecordedPeriod read_recorded_period(const std::string& path,
   // flow's direction to first order in the sampling step): g = <n, z - z0> starts at 0, is
   // |n|^2 > 0 at the second row, and comes back up through 0 near z0 one period later. The
   // plane is crossed once more far from z0, the other way: only a crossing near z0 counts (within
-  // a fifth of the farthest distance yet, as estimate_period does on a flow).
+  // a fifth of the farthest distance yet, as estimate_period does on a flow). An orbit of several
+  // loops (a period-4 orbit of the Lorenz system) crosses near z0 once a loop: the period is the
+  // first return as near z0 as the recording comes back at all (within twice the nearest
+  // return's distance, or a hundredth of the farthest), not the first loop's.
   const Eigen::VectorXd normal = difference(state(1), out.state0);
   if (!(normal.cwiseAbs().maxCoeff() > 0.0))
     throw InputError(path + ":" + std::to_string(r.lines[1]) + ": the same state as line " +
                      std::to_string(r.lines[0]) +
                      "; expected samples of a periodic motion (the state moves between rows)");
+  struct Return {
+    double time, distance;
+    int line;
+  };
+  std::vector<Return> returns;
   double previous_g = 0.0, farthest = 0.0, largest_step = 0.0;
   Eigen::VectorXd previous = out.state0;
   for (int row = 1; row < rows; ++row) {
@@ -70,16 +78,26 @@ RecordedPeriod read_recorded_period(const std::string& path,
     if (row > 1 && previous_g < 0.0 && g >= 0.0) {
       const double s = -previous_g / (g - previous_g);
       const Eigen::VectorXd crossing = previous + s * difference(z, previous);
-      if (difference(crossing, out.state0).cwiseAbs().maxCoeff() < 0.2 * farthest) {
-        out.period = r.times[row - 1] + s * (r.times[row] - r.times[row - 1]) - out.start_time;
-        out.returned = true;
-        out.return_line = r.lines[row];
-        return out;
-      }
+      const double d = difference(crossing, out.state0).cwiseAbs().maxCoeff();
+      if (d < 0.2 * farthest)
+        returns.push_back(
+            {r.times[row - 1] + s * (r.times[row] - r.times[row - 1]) - out.start_time, d,
+             r.lines[row]});
     }
     farthest = std::max(farthest, distance);
     previous_g = g;
     previous = z;
+  }
+  if (!returns.empty()) {
+    double nearest = returns.front().distance;
+    for (const auto& x : returns) nearest = std::min(nearest, x.distance);
+    const double near_enough = std::max(2.0 * nearest, 0.01 * farthest);
+    const auto first = std::find_if(returns.begin(), returns.end(),
+                                    [&](const Return& x) { return x.distance <= near_enough; });
+    out.period = first->time;
+    out.returned = true;
+    out.return_line = first->line;
+    return out;
   }
   // No return inside the data: it must end where it began (one period, the last row within two
   // sampling steps of the first), or it is less than a period.

@@ -193,4 +193,27 @@ TOML
 check "a bad angle declaration: exit code 2" test $? -eq 2
 check "... located" grep -qF "bad_angle.toml:3: key 'states.theta.angle': expected true or false, got 1" "$work/bad_angle.err"
 
+# A recording of an orbit of several loops starts that orbit, not its first loop's (issue 36 item
+# 4): the Lorenz system at rho = 216.6 (AUTO's lor) settles on its period-4 orbit (four loops,
+# T = 1.984); 2.4 time units of it recorded after a transient of 50. The first return to the
+# section near the first row comes after one loop (0.477: it started the unstable period-1 orbit,
+# T 0.495); the first return as near as the recording comes back at all is the period-4 orbit's.
+# Its period is the period-4 branch's at rho = 216.6 (AUTO's run: PD1 of the period-2 branch born
+# at PD1 of the period-1 branch; to 1e-7 relative, measured 5e-11). About 4 s.
+lor=$src/tests/auto/cases/lor.toml
+"$bin" simulate "$lor" --set rho=216.6 --t-end 52.5 --dt 0.001 --out "$work/lor_sim.csv" > /dev/null 2>&1
+/usr/bin/python3 -c "
+import csv, sys
+rows = list(csv.reader(open(sys.argv[1])))
+with open(sys.argv[2], 'w', newline='') as f:
+    w = csv.writer(f)
+    w.writerow(rows[0])
+    w.writerows(r for r in rows[1:] if 50.0 <= float(r[0]) <= 52.4)" "$work/lor_sim.csv" "$work/lor_period4.csv"
+"$bin" orbit "$lor" --set rho=216.6 --start-data "$work/lor_period4.csv" --json "$work/lor4.json" > /dev/null
+check "a period-4 recording of lor: orbit exits 0" test $? -eq 0
+"$bin" continue "$lor" --param rho --from 280 --to 200 --quiet --json "$work/lor_po.json" > /dev/null
+"$bin" continue "$lor" --param rho --from 280 --to 200 --switch-at PD1 --parent "$work/lor_po.json" --quiet --json "$work/lor_pd1.json" > /dev/null
+"$bin" continue "$lor" --param rho --from 280 --to 200 --switch-at PD1 --parent "$work/lor_pd1.json" --user-points 216.6 --quiet --json "$work/lor_pd2.json" > /dev/null
+check "... its period the period-4 branch's at rho = 216.6 (to 1e-7 relative), stable" test "$(json_value "$work/lor4.json" "j['stable'] and any(abs(e['period'] - j['period']) < 1e-7 * j['period'] for e in json.load(open('$work/lor_pd2.json'))['events'] if e['type'] == 'UZ')")" = True
+
 exit "$failures"
