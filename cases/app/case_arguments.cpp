@@ -20,8 +20,11 @@ LoadedEquations load_equations(const Arguments& args) {
 }
 
 LoadedSystem load_system(const Arguments& args) {
-  return LoadedSystem(args.positional(0), args.text("--params", ""), args.assignments("--set"),
-                      start_data_path(args), args.command(), saved_start(args));
+  const auto period = data_period(args);  // checked before anything is compiled
+  LoadedSystem c(args.positional(0), args.text("--params", ""), args.assignments("--set"),
+                 start_data_path(args), args.command(), saved_start(args));
+  if (period) c.scale_data_time(*period);
+  return c;
 }
 
 ParameterWindow parameter_window(const Arguments& args, const LoadedSystem& c) {

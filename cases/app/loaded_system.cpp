@@ -2,6 +2,7 @@
 
 #include <algorithm>
 
+#include "cases/app/start_data.hpp"
 #include "sympathy/cases/metronome_describer.hpp"
 #include "sympathy/cases/state_describer.hpp"
 
@@ -25,6 +26,10 @@ LoadedSystem::LoadedSystem(const std::string& path, const std::string& params,
       recorded_ = read_recorded_period(*start_data, model_->state_names(), this->path());
   }
   if (saved) saved_ = read_saved_orbit(*saved, system());
+}
+
+void LoadedSystem::scale_data_time(double period) {
+  if (recorded_) scale_time(*recorded_, period);
 }
 
 const std::string& LoadedSystem::path() const {

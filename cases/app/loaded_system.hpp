@@ -66,6 +66,8 @@ class LoadedSystem {
 
   // --start-data's recorded period (nullopt without it).
   const std::optional<RecordedPeriod>& start_data() const { return recorded_; }
+  // Its time scaled to [0, 1] over `period` (--data-period, AUTO's dat files).
+  void scale_data_time(double period);
   // The saved orbit --parent and --from-point name (nullopt without them): source()'s start.
   const std::optional<SavedOrbit>& saved_orbit() const { return saved_; }
   // InputError unless the system's orbits have a known period (an equation case file that uses t

@@ -69,6 +69,13 @@ OptionSpec start_data_option() {
           "writes; its first row the start, its span or first return the period guess)"};
 }
 
+// AUTO's dat files: time scaled to [0, 1], the period given beside them.
+OptionSpec data_period_option() {
+  return {"--data-period", "SECONDS", false,
+          "with --start-data: its time column is scaled to [0, 1] over one period (AUTO's dat "
+          "files), and this is the period"};
+}
+
 std::vector<OptionSpec> branch_step_options() {
   return {{"--segments", "M", false, "shooting segments (default 1)"},
           {"--step", "DS", false, "initial arclength step, scaled (default 0.02)"},
@@ -122,6 +129,7 @@ std::vector<OptionSpec> continue_options() {
   options.insert(options.end(), integrator.begin(), integrator.end());
   options.push_back(accuracy_option());
   options.push_back(start_data_option());
+  options.push_back(data_period_option());
   options.push_back(from_point_option());
   return options;
 }
@@ -145,6 +153,7 @@ std::vector<OptionSpec> orbit_options() {
   options.insert(options.end(), integrator.begin(), integrator.end());
   options.push_back(accuracy_option());
   options.push_back(start_data_option());
+  options.push_back(data_period_option());
   options.push_back({"--parent", "FILE", false,
                      "with --from-point: the branch JSON (continue --json) the start is saved in"});
   options.push_back(from_point_option());
@@ -216,6 +225,7 @@ std::vector<OptionSpec> curve_options() {
   options.insert(options.end(), integrator.begin(), integrator.end());
   options.push_back(accuracy_option());
   options.push_back(start_data_option());
+  options.push_back(data_period_option());
   return options;
 }
 

@@ -49,6 +49,12 @@ OrbitRun run_orbit(const Arguments& args) {
                                               saved->period, source.subspace, run.options)
                        : find_periodic_orbit(system, source.values, source.start_state,
                                              source.subspace, run.options);
+  // A recording over [0, 1] that does not start its orbit may be AUTO's dat, its time scaled.
+  if (recorded && !run.orbit.converged() && !(recorded->scaled_by > 0.0) &&
+      recorded->start_time == 0.0 && recorded->span == 1.0)
+    run.orbit.newton.reason +=
+        "; the recording's time runs from 0 to 1: if it is scaled to one period (AUTO's dat "
+        "files), give the period with --data-period";
   run.seconds = clock.seconds();
   if (metronomes) {
     const MetronomeDescriber::Report report = MetronomeDescriber(*metronomes).report(run.orbit);

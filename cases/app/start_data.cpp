@@ -1,8 +1,11 @@
 #include "cases/app/start_data.hpp"
 
+#include <cmath>
 #include <cstdio>
 
+#include "sympathy/core/csv.hpp"
 #include "sympathy/core/errors.hpp"
+#include "sympathy/core/text.hpp"
 
 namespace sympathy::app {
 
@@ -15,6 +18,24 @@ std::optional<std::string> start_data_path(const Arguments& args) {
                        " (the recording's first row is the start, and Newton starts there "
                        "without a transient); expected one or the other");
   return *path;
+}
+
+std::optional<double> data_period(const Arguments& args) {
+  if (!args.has("--data-period")) return std::nullopt;
+  const double T = args.number("--data-period", 0.0);
+  if (!args.has("--start-data"))
+    throw InputError("--data-period " + format_number(T) +
+                     ": expected --start-data FILE too (the recording whose time it scales)");
+  if (!(T > 0.0 && std::isfinite(T)))
+    throw InputError("--data-period " + format_number(T) + ": expected a positive period");
+  return T;
+}
+
+void scale_time(RecordedPeriod& r, double period) {
+  r.start_time *= period;
+  r.span *= period;
+  r.period *= period;
+  r.scaled_by = period;
 }
 
 std::optional<RecordedPeriod> start_data(const Arguments& args,
@@ -32,6 +53,7 @@ std::string describe_start_data(const RecordedPeriod& r) {
                 r.period, r.returned ? "its first return, line " : "its time span");
   std::string s = "data " + r.path + text;
   if (r.returned) s += std::to_string(r.return_line);
+  if (r.scaled_by > 0.0) s += ", its time scaled by --data-period " + format_double(r.scaled_by);
   return s + ")";
 }
 

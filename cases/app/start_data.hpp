@@ -23,6 +23,12 @@ std::optional<RecordedPeriod> start_data(const Arguments& args,
                                          const std::string& system,
                                          const std::vector<int>& angles = {});
 
+// --data-period (nullopt without it): the period of a recording whose time is scaled to [0, 1]
+// (AUTO's dat files); InputError without --start-data or for a period that is not positive.
+std::optional<double> data_period(const Arguments& args);
+// The recording's times (start, span, period guess) multiplied by `period`.
+void scale_time(RecordedPeriod& r, double period);
+
 // "data FILE.csv (N rows over S s; period guess T s: the first return, line L)" for the reports.
 std::string describe_start_data(const RecordedPeriod& recorded);
 

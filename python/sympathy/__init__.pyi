@@ -73,6 +73,7 @@ class Case:
         linear_solver: Literal['dense', 'klu', 'structured'] | None = ...,
         accuracy: Literal['fast', 'default', 'high'] | None = ...,
         start_data: str | os.PathLike[str] | None = ...,
+        data_period: float | None = ...,
         parent: str | os.PathLike[str] | None = ...,
         from_point: str | None = ...,
     ) -> Result: ...
@@ -110,6 +111,7 @@ class Case:
         linear_solver: Literal['dense', 'klu', 'structured'] | None = ...,
         accuracy: Literal['fast', 'default', 'high'] | None = ...,
         start_data: str | os.PathLike[str] | None = ...,
+        data_period: float | None = ...,
         from_point: str | None = ...,
         progress: bool | Callable[[Any], None] | None = ...,
     ) -> Result: ...
@@ -183,6 +185,7 @@ class Case:
         linear_solver: Literal['dense', 'klu', 'structured'] | None = ...,
         accuracy: Literal['fast', 'default', 'high'] | None = ...,
         start_data: str | os.PathLike[str] | None = ...,
+        data_period: float | None = ...,
         progress: bool | Callable[[Any], None] | None = ...,
     ) -> Result: ...
 
@@ -221,6 +224,7 @@ def orbit(
     linear_solver: Literal['dense', 'klu', 'structured'] | None = ...,
     accuracy: Literal['fast', 'default', 'high'] | None = ...,
     start_data: str | os.PathLike[str] | None = ...,
+    data_period: float | None = ...,
     parent: str | os.PathLike[str] | None = ...,
     from_point: str | None = ...,
 ) -> Result: ...
@@ -258,6 +262,7 @@ def continue_branch(
     linear_solver: Literal['dense', 'klu', 'structured'] | None = ...,
     accuracy: Literal['fast', 'default', 'high'] | None = ...,
     start_data: str | os.PathLike[str] | None = ...,
+    data_period: float | None = ...,
     from_point: str | None = ...,
     progress: bool | Callable[[Any], None] | None = ...,
 ) -> Result: ...
@@ -331,6 +336,7 @@ def curve(
     linear_solver: Literal['dense', 'klu', 'structured'] | None = ...,
     accuracy: Literal['fast', 'default', 'high'] | None = ...,
     start_data: str | os.PathLike[str] | None = ...,
+    data_period: float | None = ...,
     progress: bool | Callable[[Any], None] | None = ...,
 ) -> Result: ...
 def study(

@@ -216,4 +216,27 @@ check "a period-4 recording of lor: orbit exits 0" test $? -eq 0
 "$bin" continue "$lor" --param rho --from 280 --to 200 --switch-at PD1 --parent "$work/lor_pd1.json" --user-points 216.6 --quiet --json "$work/lor_pd2.json" > /dev/null
 check "... its period the period-4 branch's at rho = 216.6 (to 1e-7 relative), stable" test "$(json_value "$work/lor4.json" "j['stable'] and any(abs(e['period'] - j['period']) < 1e-7 * j['period'] for e in json.load(open('$work/lor_pd2.json'))['events'] if e['type'] == 'UZ')")" = True
 
+# AUTO's dat files: one period with its time scaled to [0, 1], the period given beside it
+# (--data-period). The Hopf normal form's circle of radius 0.5 (mu = 0.25, w = 1), 101 rows over
+# [0, 1] starting at the angle 0.3: with --data-period 2 pi the orbit, its period 2 pi and its
+# radius 0.5 to 1e-9; without, Newton fails (exit 4) and says the time may be scaled; without
+# --start-data the option is refused.
+/usr/bin/python3 -c "
+import math, sys
+with open(sys.argv[1], 'w') as f:
+    f.write('t,x,y\\n')
+    for k in range(101):
+        a = 2 * math.pi * k / 100 + 0.3
+        f.write('%r,%r,%r\\n' % (k / 100, 0.5 * math.cos(a), 0.5 * math.sin(a)))" "$work/hopf_dat.csv"
+"$bin" orbit "$hopf" --start-data "$work/hopf_dat.csv" --data-period 6.283185307179586 --json "$work/hopf_dat.json" > "$work/hopf_dat.out"
+check "an AUTO-style dat with --data-period: orbit exits 0" test $? -eq 0
+check "... the report says the time was scaled" grep -qF "its time scaled by --data-period 6.283185307179586" "$work/hopf_dat.out"
+check "... period 2 pi and radius 0.5 (to 1e-9)" test "$(json_value "$work/hopf_dat.json" "abs(j['period'] - 2 * math.pi) < 1e-9 and abs(math.hypot(*j['state0']) - 0.5) < 1e-9")" = True
+"$bin" orbit "$hopf" --start-data "$work/hopf_dat.csv" > "$work/hopf_dat_bare.out" 2>&1
+check "... without --data-period: exit 4" test $? -eq 4
+check "... saying the time may be scaled" grep -qF "give the period with --data-period" "$work/hopf_dat_bare.out"
+"$bin" orbit "$hopf" --data-period 3 > /dev/null 2> "$work/dat_alone.err"
+check "--data-period without --start-data: refused, exit 2" test $? -eq 2
+check "... saying what it needs" grep -qF -- "--data-period 3: expected --start-data FILE too" "$work/dat_alone.err"
+
 exit "$failures"

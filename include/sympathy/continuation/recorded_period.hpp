@@ -23,6 +23,7 @@ struct RecordedPeriod {
   bool returned = false;  // period is a first return found inside the data (else the span)
   int return_line = 0;    // the line of the first row past the return (0 if none)
   int rows = 0;
+  double scaled_by = 0.0;  // > 0: its time was scaled to [0, 1] and multiplied by this (AUTO's dat)
 };
 
 // At least this many rows: fewer cannot show a closed curve (two rows are a chord, three a
