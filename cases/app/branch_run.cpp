@@ -45,7 +45,7 @@ Branch run_branch(const BranchSource& source, const BranchRequest& request,
   problem.start_state = source.start_state;
   problem.subspace = source.subspace;
   problem.start_name = source.start_name;
-  problem.start_period = source.start_period;
+  problem.start_period = request.period_guess ? request.period_guess : source.start_period;
   // The engine's own check of the problem, before any work ("at 3: expected a value between
   // from and to"), in the command line's names.
   if (const std::string wrong = problem.problem_with(model); !wrong.empty())

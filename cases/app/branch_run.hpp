@@ -37,6 +37,8 @@ struct BranchRequest {
   // "BP1", "PD2": continue the branch born at that event of the branch asked for instead (its
   // points and events are what the CSV, the events file and the result hold).
   std::string switch_at;
+  // --period-guess: Newton at once from the start state with this period (no transient).
+  std::optional<double> period_guess;
   // With switch_at a Hopf point (HBn): how the family's first orbit is found there.
   HopfStartOptions hopf_start;
   // With switch_at: the parent branch read from this JSON (written by continue --json) instead

@@ -69,6 +69,13 @@ OptionSpec start_data_option() {
           "writes; its first row the start, its span or first return the period guess)"};
 }
 
+// Newton at once from the start state with a period guess (no transient).
+OptionSpec period_guess_option() {
+  return {"--period-guess", "SECONDS", false,
+          "Newton at once from the start state (--start, --initial) with this period, no "
+          "transient: an unstable orbit, or one of several loops, from a state on it"};
+}
+
 // AUTO's dat files: time scaled to [0, 1], the period given beside them.
 OptionSpec data_period_option() {
   return {"--data-period", "SECONDS", false,
@@ -131,6 +138,7 @@ std::vector<OptionSpec> continue_options() {
   options.push_back(start_data_option());
   options.push_back(data_period_option());
   options.push_back(from_point_option());
+  options.push_back(period_guess_option());
   return options;
 }
 
@@ -157,6 +165,7 @@ std::vector<OptionSpec> orbit_options() {
   options.push_back({"--parent", "FILE", false,
                      "with --from-point: the branch JSON (continue --json) the start is saved in"});
   options.push_back(from_point_option());
+  options.push_back(period_guess_option());
   return options;
 }
 

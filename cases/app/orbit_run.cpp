@@ -36,6 +36,7 @@ OrbitRun run_orbit(const Arguments& args) {
   const BranchSource source =
       c.source(args.text("--start", ""), args.assignments("--initial"), recorded);
   run.options = orbit_request(args, !system.autonomous());
+  const auto guess = period_guess(args);
   if (saved && !args.has("--segments")) run.options.shooting.segments = saved->segments;
   if (const auto path = args.value("--json")) {
     check_writable(*path, "--json");
@@ -47,6 +48,8 @@ OrbitRun run_orbit(const Arguments& args) {
                                                     source.subspace, run.options)
               : saved  ? solve_periodic_orbit(system, source.values, source.start_state,
                                               saved->period, source.subspace, run.options)
+              : guess  ? solve_periodic_orbit(system, source.values, source.start_state, *guess,
+                                              source.subspace, run.options)
                        : find_periodic_orbit(system, source.values, source.start_state,
                                              source.subspace, run.options);
   // A recording over [0, 1] that does not start its orbit may be AUTO's dat, its time scaled.

@@ -96,6 +96,7 @@ BranchRequest continue_request(const Arguments& args, const LoadedSystem& c) {
   request.to = window.to;
   request.at = window.at;
   request.initial = args.assignments("--initial");
+  request.period_guess = period_guess(args);
   request.csv_path = args.text("--csv", "");
   request.switch_at = args.text("--switch-at", "");
   if (!request.switch_at.empty() && !parse_hopf_name(request.switch_at, "--switch-at"))

@@ -20,6 +20,18 @@ std::optional<std::string> start_data_path(const Arguments& args) {
   return *path;
 }
 
+std::optional<double> period_guess(const Arguments& args) {
+  if (!args.has("--period-guess")) return std::nullopt;
+  const double T = args.number("--period-guess", 0.0);
+  for (const char* other : {"--start-data", "--from-point", "--transient"})
+    if (args.has(other))
+      throw InputError("--period-guess " + format_number(T) + ": not with " + other +
+                       " (Newton starts at once from the start state with this period)");
+  if (!(T > 0.0 && std::isfinite(T)))
+    throw InputError("--period-guess " + format_number(T) + ": expected a positive period");
+  return T;
+}
+
 std::optional<double> data_period(const Arguments& args) {
   if (!args.has("--data-period")) return std::nullopt;
   const double T = args.number("--data-period", 0.0);

@@ -23,6 +23,10 @@ std::optional<RecordedPeriod> start_data(const Arguments& args,
                                          const std::string& system,
                                          const std::vector<int>& angles = {});
 
+// --period-guess (nullopt without it); InputError beside a start that carries its own period
+// (--start-data, --from-point) or a transient (--transient), and for a period that is not positive.
+std::optional<double> period_guess(const Arguments& args);
+
 // --data-period (nullopt without it): the period of a recording whose time is scaled to [0, 1]
 // (AUTO's dat files); InputError without --start-data or for a period that is not positive.
 std::optional<double> data_period(const Arguments& args);

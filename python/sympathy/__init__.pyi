@@ -76,6 +76,7 @@ class Case:
         data_period: float | None = ...,
         parent: str | os.PathLike[str] | None = ...,
         from_point: str | None = ...,
+        period_guess: float | None = ...,
     ) -> Result: ...
     def continue_branch(
         self,
@@ -113,6 +114,7 @@ class Case:
         start_data: str | os.PathLike[str] | None = ...,
         data_period: float | None = ...,
         from_point: str | None = ...,
+        period_guess: float | None = ...,
         progress: bool | Callable[[Any], None] | None = ...,
     ) -> Result: ...
     def equilibria(
@@ -227,6 +229,7 @@ def orbit(
     data_period: float | None = ...,
     parent: str | os.PathLike[str] | None = ...,
     from_point: str | None = ...,
+    period_guess: float | None = ...,
 ) -> Result: ...
 def continue_branch(
     case: Case | CaseSource,
@@ -264,6 +267,7 @@ def continue_branch(
     start_data: str | os.PathLike[str] | None = ...,
     data_period: float | None = ...,
     from_point: str | None = ...,
+    period_guess: float | None = ...,
     progress: bool | Callable[[Any], None] | None = ...,
 ) -> Result: ...
 def equilibria(

@@ -103,4 +103,16 @@ check "... with --max-period 100 the orbit, exit 0" test $? -eq 0
 "$bin" continue "$c2c" --param d1 --from 0.2 --to 0.6 --switch-at HB1 --parent "$work/c2c_eq.json" \
   --user-points 0.45 --quiet --json "$work/c2c_po.json" > /dev/null
 check "... its period the HB1 family's at d1 = 0.45 (to 1e-7 relative)" test "$(json_value "$work/c2c.json" "(lambda T: any(abs(e['period'] - T) < 1e-7 * T for e in json.load(open('$work/c2c_po.json'))['events'] if e['type'] == 'UZ'))(j['period'])")" = True
+# A start state with a period guess (--period-guess): Newton at once, no transient. On lcbp at
+# p1 = 1, p2 = 2 the circle r = 1 repels (its multiplier exp(-p1 (p1 - p2)) = e); from (1, 0)
+# with the guess 1 it is the orbit: period 1 and radius 1 to 1e-9, multiplier e to 1e-7. The
+# branch in p2 from it stays on r = 1. Beside --transient it is refused.
+lcbp=$src/cases/examples/lcbp.toml
+"$bin" orbit "$lcbp" --initial x=1 --initial y=0 --period-guess 1 --json "$work/guess.json" > /dev/null
+check "orbit with --period-guess on the unstable circle exits 0" test $? -eq 0
+check "... period 1, radius 1 (to 1e-9), multiplier e (to 1e-7)" test "$(json_value "$work/guess.json" "abs(j['period'] - 1) < 1e-9 and abs((j['state0'][0]**2 + j['state0'][1]**2)**0.5 - 1) < 1e-9 and abs(max(abs(complex(*m)) for m in j['multipliers']) - 2.718281828459045) < 1e-7")" = True
+"$bin" continue "$lcbp" --initial x=1 --initial y=0 --period-guess 1 --param p2 --from 2 --to 2.5 --quiet --json "$work/guess_branch.json" > /dev/null
+check "... continue from it in p2: every point on r = 1 (to 1e-9)" test "$(json_value "$work/guess_branch.json" "all(abs((p['state0'][0]**2 + p['state0'][1]**2)**0.5 - 1) < 1e-9 for p in j['points'])")" = True
+"$bin" orbit "$lcbp" --period-guess 1 --transient 5 > /dev/null 2> "$work/guess_transient.err"
+check "--period-guess with --transient: exit 2, saying why" grep -qF -- "--period-guess 1: not with --transient" "$work/guess_transient.err"
 exit $failures
