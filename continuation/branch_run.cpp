@@ -199,22 +199,27 @@ Branch continue_branch(const OdeSystem& system, const BranchProblem& problem,
     auto it = descriptions.find(p.index);
     if (it != descriptions.end()) p.description = std::move(it->second);
   }
-  if (describer)
-    for (auto& e : branch.events) {
-      // The located orbit, for the describer: its samples from location (or, where they are not
-      // of this state and period, one plain integration of the period).
-      PeriodicOrbit located;
-      located.state0 = e.state0;
-      located.period = e.period;
-      located.parameters = system.with_parameter(problem.values, problem.parameter, e.parameter);
-      located.subspace = orbit.subspace;
-      located.samples = std::move(e.samples);
-      e.description = describer->describe(located);
-    }
+  if (describer) describe_events(branch, system, *describer, problem.values, orbit.subspace);
   for (auto& e : branch.events) e.samples = PeriodSamples{};
   if (!problem.start_orbit) branch.flow += orbit.flow;  // the start's transient and Newton
   branch.seconds = clock.seconds();
   return branch;
+}
+
+void describe_events(Branch& branch, const OdeSystem& system, const OrbitDescriber& describer,
+                     const ParameterValues& values, const InvariantSubspace& subspace) {
+  for (auto& e : branch.events) {
+    // The located orbit, for the describer: its samples from location (or, where they are not
+    // of this state and period, one plain integration of the period).
+    PeriodicOrbit located;
+    located.state0 = e.state0;
+    located.period = e.period;
+    located.parameters = system.with_parameter(values, branch.parameter, e.parameter);
+    located.subspace = subspace;
+    located.samples = std::move(e.samples);
+    e.samples = PeriodSamples{};
+    e.description = describer.describe(located);
+  }
 }
 
 }  // namespace sympathy

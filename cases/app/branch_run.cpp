@@ -104,6 +104,7 @@ Branch run_branch(const BranchSource& source, const BranchRequest& request,
     };
     Branch born = run_hopf_branch(source, request, *hb, described);
     for (auto& p : born.points) p.description = describer.describe(p.orbit);
+    describe_events(born, model, describer, source.values);
     if (csv) csv->close();
     if (events) events->close();
     return born;
@@ -158,6 +159,7 @@ Branch run_branch(const BranchSource& source, const BranchRequest& request,
     born.stop_reason = std::string("no branch born at ") + name.text + ": " + e.what();
   }
   for (auto& p : born.points) p.description = describer.describe(p.orbit);
+  describe_events(born, model, describer, source.values);
   born.flow += parent.flow;
   if (csv) csv->close();
   if (events) events->close();

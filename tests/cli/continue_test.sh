@@ -145,6 +145,7 @@ lcbp=$src/cases/examples/lcbp.toml
 "$bin" continue "$lcbp" --param p1 --from 1 --to 3 --quiet --json "$work/lcbp_a.json" > /dev/null
 "$bin" continue "$lcbp" --param p1 --from 1 --to 3 --switch-at BP1 --parent "$work/lcbp_a.json" \
   --user-points 1.5 --quiet --json "$work/lcbp_b.json" > /dev/null
+check "the switched branch's events described too: UZ1's max and min of x and y are +-1.5 (to 1e-7)" test "$(json "$work/lcbp_b.json" "(lambda e: all(abs(v - 1.5) < 1e-7 for v in e['max']) and all(abs(v + 1.5) < 1e-7 for v in e['min']))([e for e in j['events'] if e['type'] == 'UZ'][0])")" = True
 "$bin" continue "$lcbp" --parent "$work/lcbp_b.json" --from-point UZ1 --param p2 --from 2 --to 2.5 \
   --quiet --json "$work/lcbp_c.json" > "$work/lcbp_c.out"
 check "restart from a saved user point in another parameter exits 0" test $? -eq 0

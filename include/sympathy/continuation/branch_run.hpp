@@ -44,4 +44,11 @@ Branch continue_branch(const OdeSystem& system, const BranchProblem& problem,
                        const ContinuationCallbacks& callbacks = {},
                        const OrbitDescriber* describer = nullptr);
 
+// The located orbit of each event described (Bifurcation::description), at `values` with the
+// branch's parameter at the event's value, from the event's samples where it carries them (then
+// emptied) or one plain period: what continue_branch does for its events, for a branch made
+// otherwise (switch_branch, a family born at a Hopf point).
+void describe_events(Branch& branch, const OdeSystem& system, const OrbitDescriber& describer,
+                     const ParameterValues& values, const InvariantSubspace& subspace = {});
+
 }  // namespace sympathy
