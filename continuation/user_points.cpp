@@ -10,6 +10,7 @@
 #include "sympathy/continuation/crossing_locator.hpp"
 #include "sympathy/continuation/orbit_describer.hpp"
 #include "sympathy/core/csv.hpp"
+#include "sympathy/core/text.hpp"
 
 namespace sympathy {
 
@@ -31,8 +32,8 @@ void describe_located(Bifurcation& e, const ContinuationPoint& at, const TrustLi
   if (e.floquet.trivial_error > limit) {
     e.trust = EventTrust::TrivialErrorTooLarge;
     e.note = note + "; not trusted: trivial-multiplier error " +
-             format_double(e.floquet.trivial_error) + " above the trust limit " +
-             format_double(limit);
+             format_number(e.floquet.trivial_error) + " above the trust limit " +
+             format_number(limit);
   }
 }
 

@@ -54,12 +54,10 @@ Study load_study(const std::string& path) {
             {"name", "start", "from", "to", "at", "set", "initial", "max_points", "step",
              "max_step", "transient", "switch_at", "user_points", "start_data"});
     StudyBranch b;
-    // A branch switched at another's event may leave out its start: the parent's.
-    const toml::node* switch_node = t.get("switch_at");
-    const bool chained = switch_node && switch_node->is_string() &&
-                         switch_node->as_string()->get().find(':') != std::string::npos;
-    for (const char* key : {"name", "start", "from", "to"})
-      if (!t.get(key) && !((chained || t.get("start_data")) && std::string(key) == "start"))
+    // The start may be left out: a branch switched at another's event takes the parent's, an
+    // equation case file's branch its [states] (a metronome case file's needs one: study_run).
+    for (const char* key : {"name", "from", "to"})
+      if (!t.get(key))
         throw InputError(path + ":" + std::to_string(entry.source().begin.line) + ": key '" +
                          prefix + key + "' is missing");
     b.name = in.string(*t.get("name"), prefix + "name");

@@ -50,6 +50,10 @@ StudyRun study_run(const Arguments& args) {
         {study.path + ": branch '" + b.name + "': to", b.request.to}};
     if (b.request.at) ends.push_back({study.path + ": branch '" + b.name + "': at", *b.request.at});
     c->check_range(study.parameter, ends);
+    if (!c->equations() && b.request.start.empty() && b.start_data.empty())
+      throw InputError(study.path + ": branch '" + b.name +
+                       "': key 'start' is missing; expected the name of one of " + c->path() +
+                       "'s starts: " + join(c->start_names()));
     sources.push_back(c->source(b.request.start, b.request.initial, recorded.back()));
     systems.push_back(std::move(c));
   }

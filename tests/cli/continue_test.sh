@@ -196,4 +196,21 @@ check "... on the period: UZ at w = pi / 2 and 2 pi / 3 to 1e-9 relative, the pe
 check "an unknown quantity: exit code 2" test $? -eq 2
 check "... naming the quantities there are" grep -qF -- "--user-value peri=4: not a quantity of the orbits; expected one of: period, max_x, max_y, min_x, min_y" "$work/uv_bad.err"
 
+# A study branch of an equation case file may leave out its start (the file's [states], as the
+# studies guide says); a metronome case file's branch must name one, and the error lists them.
+root=$(cd "$src" && pwd)
+cat > "$work/nostart_eq.toml" << TOML
+case = "$root/cases/examples/hopf.toml"
+parameter = "mu"
+[[branches]]
+name = "cycles"
+from = 0.25
+to = 1
+TOML
+"$bin" study "$work/nostart_eq.toml" --out "$work/nostart_eq" > /dev/null 2>&1
+check "a study branch of an equation case file without start: exit 0" test $? -eq 0
+sed -e "s|examples/hopf.toml|row2.toml|" -e 's|"mu"|"k"|' -e 's|0.25|40|' -e 's|^to = 1|to = 45|' "$work/nostart_eq.toml" > "$work/nostart_met.toml"
+"$bin" study "$work/nostart_met.toml" --out "$work/nostart_met" > /dev/null 2> "$work/nostart_met.err"
+check "... of a metronome case file: exit 2, naming the starts" grep -qF "branch 'cycles': key 'start' is missing; expected the name of one of $root/cases/row2.toml's starts: in-phase, anti-phase" "$work/nostart_met.err"
+
 exit $failures
