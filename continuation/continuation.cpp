@@ -664,7 +664,8 @@ std::optional<driver::Ending> Continuation::Run::ends(const OrbitNode& a, const 
   // A value the branch was asked to stop at, passed in this step: the events beyond it dropped,
   // b not kept (the branch's orbit there is the event's).
   if (stop_at_) {
-    const auto [s, note] = *stop_at_;
+    const double s = stop_at_->first;
+    const std::string note = stop_at_->second;
     stop_at_.reset();
     std::erase_if(events, [&](const Bifurcation& e) { return e.arclength > s; });
     return driver::Ending{driver::Stop::UserValue, "reached the value asked for: " + note, false};
