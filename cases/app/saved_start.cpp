@@ -38,10 +38,10 @@ std::optional<int> index_of(const std::string& text) {
 
 SavedOrbit read_saved_orbit(const SavedStart& start, const OdeSystem& system) {
   const Branch branch = read_branch_json(start.path, system, InvariantSubspace());
-  const std::string& name = branch.parameter_name;
   SavedOrbit saved;
   saved.path = start.path;
-  char value[96];
+  double at = 0.0;    // the branch's parameter there
+  std::string label;  // "point 12", "UZ1"
   if (const auto index = index_of(start.what)) {
     const auto p = std::find_if(branch.points.begin(), branch.points.end(),
                                 [&](const ContinuationPoint& q) { return q.index == *index; });
@@ -58,9 +58,8 @@ SavedOrbit read_saved_orbit(const SavedStart& start, const OdeSystem& system) {
     saved.state0 = p->orbit.state0;
     saved.period = p->orbit.period;
     saved.segments = std::max(1, p->orbit.segments);
-    saved.values = system.with_parameter(branch.start_values, branch.parameter, p->parameter);
-    std::snprintf(value, sizeof value, " (%s = %.10g)", name.c_str(), p->parameter);
-    saved.description = start.path + ", point " + start.what + value;
+    at = p->parameter;
+    label = "point " + start.what;
   } else {
     const EventName event = parse_event_name(
         start.what, "--from-point",
@@ -74,10 +73,13 @@ SavedOrbit read_saved_orbit(const SavedStart& start, const OdeSystem& system) {
     const int n = system.dimension();
     const long states = e.unknowns.size() - (system.autonomous() ? 1 : 0);
     saved.segments = n > 0 && states >= n && states % n == 0 ? static_cast<int>(states / n) : 1;
-    saved.values = system.with_parameter(branch.start_values, branch.parameter, e.parameter);
-    std::snprintf(value, sizeof value, " (%s = %.10g)", name.c_str(), e.parameter);
-    saved.description = start.path + ", " + start.what + value;
+    at = e.parameter;
+    label = start.what;
   }
+  saved.values = system.with_parameter(branch.start_values, branch.parameter, at);
+  char value[96];
+  std::snprintf(value, sizeof value, " (%s = %.10g)", branch.parameter_name.c_str(), at);
+  saved.description = start.path + ", " + label + value;
   if (!(saved.period > 0.0))
     throw InputError("--from-point " + start.what + ": " + start.path +
                      " gives it no positive period; expected a branch JSON written by continue "
