@@ -50,9 +50,10 @@ Study load_study(const std::string& path) {
     ++index;
     const std::string prefix = "branches[" + std::to_string(index) + "].";
     const auto& t = *entry.as_table();
-    in.only(t, prefix,
-            {"name", "start", "from", "to", "at", "set", "initial", "max_points", "step",
-             "max_step", "transient", "switch_at", "user_points", "start_data"});
+    in.only(
+        t, prefix,
+        {"name", "start", "from", "to", "at", "set", "initial", "max_points", "step", "max_step",
+         "transient", "switch_at", "user_points", "start_data", "user_value", "stop_at"});
     StudyBranch b;
     // The start may be left out: a branch switched at another's event takes the parent's, an
     // equation case file's branch its [states] (a metronome case file's needs one: study_run).
@@ -130,15 +131,18 @@ Study load_study(const std::string& path) {
     if (b.request.at && !(*b.request.at > std::min(b.request.from, b.request.to) &&
                           *b.request.at < std::max(b.request.from, b.request.to)))
       throw InputError(where + "at: expected a value between from and to");
-    for (const char* group : {"set", "initial"}) {
+    for (const char* group : {"set", "initial", "user_value", "stop_at"}) {
       const toml::node* n = t.get(group);
       if (!n) continue;
       if (!n->is_table()) in.fail(*n, prefix + group, "a table of NAME = VALUE");
-      for (auto&& [k, v] : *n->as_table()) {
-        Assignment a{std::string(k.str()),
-                     in.number(v, prefix + group + "." + std::string(k.str())), in.where(v)};
-        (std::string(group) == "set" ? b.sets : b.request.initial).push_back(a);
-      }
+      const std::string g = group;
+      auto& to = g == "set"          ? b.sets
+                 : g == "initial"    ? b.request.initial
+                 : g == "user_value" ? b.user_values
+                                     : b.stops;
+      for (auto&& [k, v] : *n->as_table())
+        to.push_back({std::string(k.str()),
+                      in.number(v, prefix + group + "." + std::string(k.str())), in.where(v)});
     }
     s.branches.push_back(std::move(b));
   }

@@ -17,6 +17,9 @@ struct StudyBranch {
   std::string parent;
   BranchRequest request;
   std::vector<Assignment> sets;  // on top of the study's parameter set
+  // `user_value` and `stop_at` (tables of QUANTITY = VALUE, as continue's --user-value and
+  // --stop-at): read against the case's states by the study (study_run).
+  std::vector<Assignment> user_values, stops;
   // `start_data`: a recorded period to start from instead of `start` (relative to the study
   // file; read by the study against its case's states).
   std::string start_data;

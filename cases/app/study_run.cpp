@@ -9,6 +9,7 @@
 #include <thread>
 
 #include "cases/app/case_arguments.hpp"
+#include "cases/app/requests.hpp"
 #include "cases/app/start_data.hpp"
 #include "sympathy/continuation/branch_output.hpp"
 #include "sympathy/core/csv.hpp"
@@ -50,6 +51,12 @@ StudyRun study_run(const Arguments& args) {
         {study.path + ": branch '" + b.name + "': to", b.request.to}};
     if (b.request.at) ends.push_back({study.path + ": branch '" + b.name + "': at", *b.request.at});
     c->check_range(study.parameter, ends);
+    for (const bool stop : {false, true})
+      for (const Assignment& a : stop ? b.stops : b.user_values)
+        b.request.continuation.user_values.push_back(
+            user_value(a, stop, c->system(),
+                       a.source + ": key 'branches." + b.name + "." +
+                           (stop ? "stop_at" : "user_value") + "'"));
     if (!c->equations() && b.request.start.empty() && b.start_data.empty())
       throw InputError(study.path + ": branch '" + b.name +
                        "': key 'start' is missing; expected the name of one of " + c->path() +
