@@ -68,6 +68,13 @@ class Continuation::Run {
 
  private:
   Eigen::VectorXd y_of(const OrbitNode& p) const;  // (unknowns, parameter)
+  // Whether an accepted point keeps its period's samples: where a user value reads the orbits'
+  // extremes, the next step's detect reads them (else one plain period is integrated again).
+  bool keeps_samples() const {
+    return std::any_of(
+        c_.options_.user_values.begin(), c_.options_.user_values.end(),
+        [](const UserValue& v) { return v.quantity != UserValue::Quantity::Period; });
+  }
   // Continuation::hopf_end of a turn, asked once per located turn: detection asks it to decide
   // whether to retry the step, ends to end the family there (a secant search on the equilibria
   // and their Lyapunov coefficient each time).
@@ -763,11 +770,7 @@ void Continuation::Run::accept(OrbitNode& b) {
   } catch (const IntegrationError&) {
     // keep the scales as they are
   }
-  // Kept where a user value reads the orbits' extremes: the next step's detect reads b's.
-  const bool extremes =
-      std::any_of(c_.options_.user_values.begin(), c_.options_.user_values.end(),
-                  [](const UserValue& v) { return v.quantity != UserValue::Quantity::Period; });
-  if (!extremes) b.orbit.samples = PeriodSamples{};
+  if (!keeps_samples()) b.orbit.samples = PeriodSamples{};
   b.tangent /= std::sqrt(c_.space_->dot(b.tangent, b.tangent));
   // Segments given back where the orbits no longer need them, as AUTO re-meshes both ways: a
   // refinement at a canard or a spike (AUTO's fhn, ab at p2 = 16) otherwise ran the rest of the
@@ -846,7 +849,7 @@ bool Continuation::Run::resample(OrbitNode& a, int segments) {
     const Eigen::VectorXd tau = c_.space_->tangent(jacobian, c.y, along);
     OrbitNode refined;
     static_cast<ContinuationPoint&>(refined) = c_.make_point(c, tau, a.index, a.step);
-    refined.orbit.samples = PeriodSamples{};
+    if (!keeps_samples()) refined.orbit.samples = PeriodSamples{};
     a = std::move(refined);
     N_ = N;
     c_.chord_jacobian_ = std::move(jacobian);
