@@ -31,8 +31,8 @@ StateDescriber::Sizes StateDescriber::sizes(const PeriodicOrbit& orbit) const {
   Sizes r{zeros, zeros, zeros, zeros};
   for (int i = 0; i < n; ++i) {
     const Eigen::VectorXd y = samples.row(i).head(count).transpose();
-    r.maxima[i] = sampled_extreme(y, true);
-    r.minima[i] = sampled_extreme(y, false);
+    r.maxima[i] = refined_extreme(system_, orbit, samples.leftCols(count), i, true);
+    r.minima[i] = refined_extreme(system_, orbit, samples.leftCols(count), i, false);
     r.amplitudes[i] = 0.5 * (y.maxCoeff() - y.minCoeff());
     r.rms[i] = std::sqrt(integral[i] / orbit.period);
   }

@@ -82,6 +82,7 @@ def read_references(path):
                                        if (row.get("norm_precision") or "").strip() else None),
                     "norm_of": (row.get("norm_of") or "").split(),
                     "status": row["status"].strip(), "reason": (row["reason"] or "").strip(),
+                    "extremes": read_extremes(row.get("extremes") or ""),
                 }
             except (KeyError, ValueError, AttributeError) as error:
                 usage("%s: row %d: %s" % (path, number, error))
@@ -96,6 +97,31 @@ def read_references(path):
             reference["row"] = number
             references.append(reference)
     return references
+
+
+def printed_precision(text):
+    """Half a unit of the last digit printed in text (AUTO's 1.99585E+00: 5e-6), or 1e-5 of
+    the value, whichever is larger: the precision rule of the other columns."""
+    mantissa, _, exponent = text.upper().partition("E")
+    decimals = len(mantissa.partition(".")[2])
+    half_unit = 0.5 * 10.0 ** (int(exponent or 0) - decimals)
+    return max(half_unit, 1e-5 * abs(float(text)))
+
+
+def read_extremes(text):
+    """'max:NAME=VALUE min:NAME=VALUE~PRECISION ...': a state's largest or smallest value over
+    the orbit (AUTO's MAX U(i), MIN U(i) columns), held to VALUE's printed precision or to the
+    PRECISION given after ~ (an independent value's)."""
+    extremes = []
+    for word in text.split():
+        what, _, value = word.partition("=")
+        which, _, name = what.partition(":")
+        value, _, precision = value.partition("~")
+        if which not in ("max", "min") or not name or not value:
+            raise ValueError("extremes: expected max:NAME=VALUE or min:NAME=VALUE, got %r" % word)
+        extremes.append({"which": which, "name": name, "value": float(value),
+                         "precision": float(precision) if precision else printed_precision(value)})
+    return extremes
 
 
 def expand(args, source_dir, out, outputs):
@@ -207,6 +233,16 @@ def judge(reference, result):
             dn = norm - reference["norm"]
             text += ", L2 %.10g (d %.2g)" % (norm, dn)
             period_ok = period_ok and abs(dn) <= reference["norm_precision"]
+    for extreme in reference["extremes"]:
+        values = event.get(extreme["which"])
+        if values is None or extreme["name"] not in names:
+            period_ok = False
+            text += ", no %s of %s" % (extreme["which"], extreme["name"])
+            continue
+        got = values[names.index(extreme["name"])]
+        dx = got - extreme["value"]
+        text += ", %s %s %.10g (d %.2g)" % (extreme["which"], extreme["name"], got, dx)
+        period_ok = period_ok and abs(dx) <= extreme["precision"]
     text += " (d %.2g, precision %.2g)" % (dv, reference["precision"])
     value_ok = abs(dv) <= reference["precision"]
     trusted = event_trusted(event)

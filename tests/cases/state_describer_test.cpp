@@ -6,11 +6,12 @@
 #include <numbers>
 
 #include "sympathy/core/autodiff_system.hpp"
+#include "tests/support/math.hpp"
 
 namespace sympathy {
 namespace {
 
-constexpr double kPi = std::numbers::pi;
+using testing::kPi;
 
 // The Hopf normal form about (c, 0): its cycle is the circle of radius sqrt(mu) about (c, 0),
 // period 2 pi / w.
