@@ -685,8 +685,19 @@ std::optional<driver::Ending> Continuation::Run::ends(const OrbitNode& a, const 
   // resolve (their trivial error 1e-3 at T 94); fhn's canard grows it 1.6 times.
   // Or seen through its orbits, which are no longer resolved while the period grows (AUTO's pen).
   periods_.push_back(record_of(b));
+  // A stop asked for at a longer period (AUTO's UZSTOP on PERIOD: pen's families to T = 30)
+  // goes on toward it while the orbits' multipliers are resolved (trivial error within
+  // kUnresolved): the homoclinic approach is where a run would otherwise go on without end, and
+  // this one has its end. Beyond, the corrector crawls: AUTO's ab at p2 = 18 took 400 points from
+  // T 23.28 to 23.29, each with untrusted PD and BP events (trivial errors about 1).
+  const auto longer_period = std::ranges::find_if(c_.options_.user_values, [&](const UserValue& v) {
+    return v.stop && v.quantity == UserValue::Quantity::Period && v.value > b.orbit.period;
+  });
+  const bool asked = longer_period != c_.options_.user_values.end();
   const auto homoclinic =
-      homoclinic_approach(periods_, 1e-4 * std::max(1.0, std::abs(b.parameter)));
+      asked && b.orbit.floquet.trivial_error <= kUnresolved
+          ? std::nullopt
+          : homoclinic_approach(periods_, 1e-4 * std::max(1.0, std::abs(b.parameter)));
   const auto unresolved = homoclinic ? std::nullopt : unresolved_approach(periods_);
   periods_.pop_back();
   if ((homoclinic || unresolved) && c_.system_.autonomous()) {
@@ -700,7 +711,13 @@ std::optional<driver::Ending> Continuation::Run::ends(const OrbitNode& a, const 
                   homoclinic ? ""
                              : " and the orbits' multipliers were not resolved (trivial-multiplier "
                                "errors above 1e-2)");
-    return driver::Ending{driver::Stop::Homoclinic, what, true};
+    std::string why = what;
+    if (asked)
+      why += "; the stop at " + longer_period->name + " = " + format_double(longer_period->value) +
+             " not reached: the orbits' multipliers are no longer resolved (trivial-multiplier "
+             "error " +
+             format_number(b.orbit.floquet.trivial_error) + " above 1e-2)";
+    return driver::Ending{driver::Stop::Homoclinic, why, true};
   }
   // A branch that turned back without a multiplier at +1 and now retraces itself: b lies on one
   // of the branch's chords before the turn (driver::on_chord). Stopped there, b not kept.

@@ -27,6 +27,10 @@ void describe_located(Bifurcation& e, const ContinuationPoint& at, const TrustLi
   e.state0 = at.orbit.state0;
   e.unknowns = at.unknowns;
   e.tangent = at.tangent;
+  // The period's samples from the corrector's own run, as a located event keeps them: a plain
+  // integration of the period from state0 diverges on strongly unstable orbits (AUTO's pen at
+  // T = 30, |M| 1e10: ps1's maximum 1e-3 off).
+  e.samples = at.orbit.samples;
   e.note = note;
   const double limit = trust.without_multipliers(e.monodromy_growth);
   if (e.floquet.trivial_error > limit) {

@@ -196,6 +196,15 @@ check "... on the period: UZ at w = pi / 2 and 2 pi / 3 to 1e-9 relative, the pe
 check "an unknown quantity: exit code 2" test $? -eq 2
 check "... naming the quantities there are" grep -qF -- "--user-value peri=4: not a quantity of the orbits; expected one of: period, max_x, max_y, min_x, min_y" "$work/uv_bad.err"
 
+# A stop at a longer period goes on past the homoclinic approach that otherwise ends a branch,
+# while the orbits' multipliers are resolved (trivial error within 1e-2): AUTO's pen to T = 30
+# (its script's UZSTOP) ended at T 23.0 by the approach; it now goes on to T 27.1, where its
+# multipliers are no longer resolved, and says why it stopped (about 2 s).
+"$bin" continue "$src/tests/auto/cases/pen.toml" --param ri --from 0.4 --to 0 --stop-at period=30 \
+  --quiet --json "$work/pen_30.json" > "$work/pen_30.out"
+check "a stop at period 30 goes on past the homoclinic approach to T > 25" test "$(json "$work/pen_30.json" "max(p['period'] for p in j['points']) > 25")" = True
+check "... and stops where its multipliers are no longer resolved, saying so" grep -qF "the stop at period = 30 not reached: the orbits' multipliers are no longer resolved" "$work/pen_30.out"
+
 # A study branch of an equation case file may leave out its start (the file's [states], as the
 # studies guide says); a metronome case file's branch must name one, and the error lists them.
 root=$(cd "$src" && pwd)
