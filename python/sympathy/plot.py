@@ -3,9 +3,11 @@ plotting scripts call. A branch of orbits or equilibria is drawn stable solid bl
 dashed grey, the style changing at the located event (not at the last point computed before it);
 its events are marked and named, their labels placed so that no two overlap; a study's branches
 on one diagram; a two-parameter curve in its two parameters with its codimension-two points; a
-stability map's regions, curves and parameter sets; basins' shares over one parameter; a
-simulation's states against time. Sizes are those of a journal's column (3.4 inches wide, 8-point text); ``save``
-writes PDF, SVG or PNG by the file's extension.
+stability map's regions, curves and parameter sets; basins (the shares of the states over one
+parameter, with a study's diagram below, maps of them over two, one grid point's starts); a
+simulation's states against time; a fit; the bench's accuracy report. Sizes are those of a
+journal's column (3.4 inches wide, 8-point text), a page's (7 inches) for the figures of several
+panels; ``save`` writes PDF, SVG or PNG by the file's extension.
 
     >>> import sympathy, sympathy.plot
     >>> branch = sympathy.continue_branch("cases/row2.toml", start="in-phase", param="k",
@@ -383,7 +385,10 @@ def study(result: Any, ax: Any = None) -> Any:
         ax.set_ylim(-0.4, math.pi + 0.4)
     if getattr(result, "title", ""):
         import textwrap
-        ax.set_title(textwrap.fill(result.title, 50))
+        # Wrapped to the axes' width (8-point text: about 4.5 points a character), 50
+        # characters on a column's.
+        width = ax.get_position().width * ax.figure.get_figwidth() * 72.0 / 4.5
+        ax.set_title(textwrap.fill(result.title, max(40, int(width))))
     # The legend below the axes, in rows: inside, it took the room the events' labels need.
     _finish(ax, loc="upper center", bbox_to_anchor=(0.5, -0.2), ncol=5, frameon=False,
             handlelength=1.8, columnspacing=1.0)
@@ -391,6 +396,9 @@ def study(result: Any, ax: Any = None) -> Any:
     first += place_labels(ax, marks, clear_of=first, reach=None)  # anywhere along its line
     place_labels(ax, labels, clear_of=first)
     return ax
+
+
+_study_diagram = study  # for basins(), whose argument `study` hides the function's name
 
 
 def curve(result: Any, ax: Any = None) -> Any:
@@ -793,43 +801,249 @@ STATE_COLORS = {"in-phase": "tab:blue", "anti-phase": "tab:red", "in-in": "tab:b
                 "anti-anti": "tab:red", "in-anti": "tab:purple",
                 "not-synchronized": "tab:orange", "stopped": "0.3", "undetermined": "0.6",
                 "failed": "black"}
+# A marker per state as well as a colour: two states with the same shares (the mirror-image
+# locked orbits born at a branch point, locked+2.95 and locked-2.95) were one line under another.
+STATE_MARKERS = {"in-phase": "o", "anti-phase": "s", "in-in": "o", "anti-anti": "s",
+                 "in-anti": "D", "not-synchronized": "D", "stopped": "X", "undetermined": "P",
+                 "failed": "x"}
+_OTHER_COLORS = ["tab:green", "tab:brown", "tab:pink", "tab:olive", "tab:cyan", "tab:gray"]
+_OTHER_MARKERS = ["^", "v", "<", ">", "p", "h"]
 
 
-def basins(result: Any, ax: Any = None) -> Any:
-    """Basins of attraction over one parameter (``sympathy basins`` on a 1-D grid): each state's
-    share of the runs at each grid point with its 95% Wilson interval; the states side by side
-    (a small offset each, so that none hides another), error bars only where the state won a
-    run, states that never won left out. Returns the axes."""
-    ax = new_axes(ax)
-    grid = list(_field(result, "grid"))
-    if len(grid) != 1:
-        raise ValueError("plot: basins over one parameter (scripts/plot_basins draws two)")
-    parameter = _field(grid[0], "parameter")
-    points = [p for p in result.points if _field(p, "runs", 0)]
-    states: list = []
-    for p in points:
+def _basin_states(result: Any) -> list[str]:
+    """The states of a basins result that won at least one run somewhere, in the order met."""
+    states: list[str] = []
+    for p in result.points:
         for state, share in _field(p, "shares").items():
             if _field(share, "count", 0) > 0 and state not in states:
                 states.append(state)
+    return states
+
+
+def _state_styles(states: list[str]) -> dict[str, tuple[Any, str]]:
+    """(colour, marker) by state: the named states' own, the others (locked states) the rest in
+    turn."""
+    styles = {}
+    others = [s for s in states if s not in STATE_COLORS]
+    for state in states:
+        if state in STATE_COLORS:
+            styles[state] = (STATE_COLORS[state], STATE_MARKERS.get(state, "o"))
+        else:
+            n = others.index(state)
+            styles[state] = (_OTHER_COLORS[n % len(_OTHER_COLORS)],
+                             _OTHER_MARKERS[n % len(_OTHER_MARKERS)])
+    return styles
+
+
+def _basins_title(result: Any) -> str:
+    import os
+    import textwrap
+    details = (f"{os.path.basename(str(_field(result, 'case', '')))} "
+               f"({_field(result, 'params', '')}): {_field(result, 'starts')} random starts a "
+               f"point, angles in [{_field(result, 'angles')[0]:g}, "
+               f"{_field(result, 'angles')[1]:g}] rad, {_field(result, 't_end'):g} s")
+    title = _field(result, "title", "")
+    return (textwrap.fill(title, 100) + "\n" if title else "") + details
+
+
+def _basin_offsets(shares: np.ndarray, step: float) -> np.ndarray:
+    """Horizontal offsets of the states' markers (rows: states in order, columns: grid points;
+    NaN where a state won no run): where two or more states' shares at a grid point lie within
+    0.04 of each other (their markers would cover one another), they are spread side by side,
+    0.12 of the grid's step apart; every other marker stays on its grid value."""
+    offsets = np.zeros(shares.shape)
+    spacing = min(0.12, 0.8 / max(shares.shape[0], 1)) * step
+    for i in range(shares.shape[1]):
+        won = [n for n in range(shares.shape[0]) if not np.isnan(shares[n, i])]
+        won.sort(key=lambda n: shares[n, i])
+        clusters: list[list[int]] = []
+        for n in won:
+            if clusters and shares[n, i] - shares[clusters[-1][-1], i] < 0.04:
+                clusters[-1].append(n)
+            else:
+                clusters.append([n])
+        for cluster in clusters:
+            for j, n in enumerate(sorted(cluster)):
+                offsets[n, i] = (j - (len(cluster) - 1) / 2) * spacing
+    return offsets
+
+
+def _basin_shares(ax: Any, result: Any) -> None:
+    """The shares over a one-parameter grid on `ax`: per state its markers where it won runs,
+    with their 95% intervals, and a line through them down to 0 at the neighbouring grid points
+    (a state that won at neither end of a step has no line there: the zero shares' lines and
+    intervals were a clutter along the bottom); each state its colour and marker, and markers
+    that would cover one another side by side; the legend beside the axes."""
+    from matplotlib.lines import Line2D  # type: ignore[import]
+    parameter = _field(_field(result, "grid")[0], "parameter")
+    points = [p for p in result.points if _field(p, "runs", 0)]
+    states = _basin_states(result)
+    styles = _state_styles(states)
     xs = np.array([_field(p, "values")[parameter] for p in points], dtype=float)
-    step = np.min(np.diff(np.unique(xs))) if len(np.unique(xs)) > 1 else 1.0
-    others = iter(["tab:green", "tab:brown", "tab:pink", "tab:olive", "tab:cyan", "tab:gray"])
+    unique = np.unique(xs)
+    step = float(np.min(np.diff(unique))) if len(unique) > 1 else 1.0
+    table = [[_field(p, "shares").get(state) for p in points] for state in states]
+    won = np.array([[q is not None and _field(q, "count", 0) > 0 for q in row] for row in table],
+                   dtype=bool).reshape(len(states), len(points))
+    y = np.array([[_field(q, "share", 0.0) if q is not None else 0.0 for q in row]
+                  for row in table]).reshape(len(states), len(points))
+    offsets = _basin_offsets(np.where(won, y, np.nan), step)
+    handles = []
     for n, state in enumerate(states):
-        color = STATE_COLORS.get(state) or next(others, "0.4")
-        dx = (n - (len(states) - 1) / 2) * 0.06 * step
-        shares = [_field(p, "shares").get(state) for p in points]
-        y = np.array([_field(q, "share", 0.0) if q is not None else 0.0 for q in shares])
-        ax.plot(xs + dx, y, color=color, lw=1.0, marker="o", ms=3, label=state, gid=state)
-        won = [i for i, q in enumerate(shares) if q is not None and _field(q, "count", 0) > 0]
-        if won:
-            lower = np.array([y[i] - _field(shares[i], "lower") for i in won])
-            upper = np.array([_field(shares[i], "upper") - y[i] for i in won])
-            ax.errorbar(xs[won] + dx, y[won], yerr=[lower, upper], fmt="none", color=color,
-                        capsize=2, lw=0.8, gid=f"interval {state}")
+        color, marker = styles[state]
+        x = xs + offsets[n]
+        near = won[n].copy()
+        near[1:] |= won[n, :-1]
+        near[:-1] |= won[n, 1:]
+        ax.plot(x, np.where(near, y[n], np.nan), color=color, lw=1.0, gid=f"line {state}")
+        at = np.flatnonzero(won[n])
+        ax.plot(x[at], y[n, at], ls="none", marker=marker, ms=4, color=color, gid=state,
+                zorder=3)
+        lower = np.array([y[n, i] - _field(table[n][i], "lower") for i in at])
+        upper = np.array([_field(table[n][i], "upper") - y[n, i] for i in at])
+        ax.errorbar(x[at], y[n, at], yerr=[lower, upper], fmt="none", color=color, capsize=2,
+                    lw=0.8, gid=f"interval {state}")
+        handles.append(Line2D([], [], color=color, marker=marker, ms=4, lw=1.0, label=state))
+    ax.set_xlim(unique[0] - 0.5 * step, unique[-1] + 0.5 * step)
     ax.set_ylim(-0.05, 1.05)
     ax.set_xlabel(axis_label(parameter))
     ax.set_ylabel("share of runs (95% interval)")
-    _finish(ax, loc="best")
+    ax.grid(alpha=0.25)
+    # The legend beside the axes (inside, it covered the shares), at the axes' text size.
+    _finish(ax, legend=False)
+    ax.legend(handles=handles, loc="upper left", bbox_to_anchor=(1.01, 1.0), frameon=False,
+              fontsize=8)
+
+
+def _basin_maps(fig: Any, result: Any) -> list:
+    """A two-parameter grid: a map of the share per state that won anywhere, one colour bar."""
+    grid = _field(result, "grid")
+    p1, p2 = _field(grid[0], "parameter"), _field(grid[1], "parameter")
+    states = _basin_states(result)
+    axes = list(fig.subplots(1, len(states), squeeze=False, sharey=True)[0])
+    xs = sorted({_field(p, "values")[p1] for p in result.points})
+    ys = sorted({_field(p, "values")[p2] for p in result.points})
+
+    def edges(values: list) -> list:  # cells centred on the values, half a step beyond each end
+        half = 0.5 * (values[1] - values[0]) if len(values) > 1 else 0.5
+        return [values[0] - half, values[-1] + half]
+
+    image = None
+    for ax, state in zip(axes, states):
+        shares = np.full((len(ys), len(xs)), np.nan)
+        for p in result.points:
+            if _field(p, "runs", 0):
+                share = _field(p, "shares").get(state)
+                shares[ys.index(_field(p, "values")[p2]), xs.index(_field(p, "values")[p1])] = \
+                    _field(share, "share", 0.0) if share is not None else 0.0
+        image = ax.imshow(shares, origin="lower", aspect="auto", vmin=0, vmax=1, cmap="viridis",
+                          extent=(*edges(xs), *edges(ys)), gid=f"share {state}")
+        ax.set_title(state)
+        ax.set_xlabel(axis_label(p1))
+        _finish(ax, legend=False)
+    axes[0].set_ylabel(axis_label(p2))
+    axes[0].yaxis.label.set_fontsize(8)
+    bar = fig.colorbar(image, ax=axes, label="share of runs")
+    bar.ax.tick_params(labelsize=8)
+    bar.ax.yaxis.label.set_fontsize(8)
+    return axes
+
+
+def _basin_runs(result: Any, point: int) -> list[dict]:
+    """The runs of a basins result at one grid point, from its runs CSV (``runs_csv``, beside
+    the JSON the result was read from): dicts of the CSV's columns (th1_0, th2_0, class, ...)."""
+    import csv
+    import os
+    points = list(result.points)
+    if not 0 <= point < len(points):
+        raise ValueError(f"point {point}: expected a grid point 0 .. {len(points) - 1}")
+    path = os.path.join(os.path.dirname(str(_field(result, "path", ""))),
+                        str(_field(result, "runs_csv", "")))
+    try:
+        with open(path, newline="") as f:
+            rows = [r for r in csv.DictReader(f) if int(r["point"]) == point]
+    except OSError as e:
+        raise ValueError(f"{path}: the runs cannot be read ({e.strerror})") from None
+    if not rows:
+        raise ValueError(f"{path}: no runs at grid point {point}")
+    return rows
+
+
+def _basin_starts(ax: Any, result: Any, point: int) -> None:
+    """The basin at one grid point: each run's start angles (th1, th2) in its final state's
+    colour and marker."""
+    rows = _basin_runs(result, point)
+    # The states in the order, colours and markers of the shares' figure.
+    everywhere = _basin_states(result)
+    here = set(r["class"] for r in rows)
+    states = [s for s in everywhere if s in here] + sorted(here - set(everywhere))
+    styles = _state_styles(everywhere + [s for s in states if s not in everywhere])
+    for state in states:
+        chosen = [r for r in rows if r["class"] == state]
+        color, marker = styles[state]
+        ax.plot([float(r["th1_0"]) for r in chosen], [float(r["th2_0"]) for r in chosen],
+                ls="none", marker=marker, ms=4, color=color, gid=state,
+                label=f"{state} ({len(chosen)})")
+    values = ", ".join(f"{math_name(k)} = {v:g}"
+                       for k, v in _field(list(result.points)[point], "values").items())
+    initial = ", ".join(f"{math_name(k)} = {v:g}"
+                        for k, v in (_field(result, "initial") or {}).items())
+    ax.set_title(f"basin at {values}: start angles, " + (initial or "platform at rest"))
+    ax.set_xlabel(r"$\theta_1$ at t = 0 (rad)")
+    ax.set_ylabel(r"$\theta_2$ at t = 0 (rad)")
+    ax.set_aspect("equal")
+    ax.grid(alpha=0.25)
+    _finish(ax, loc="upper left", bbox_to_anchor=(1.02, 1.0), frameon=False)
+
+
+def basins(result: Any, ax: Any = None, study: Any = None, point: Optional[int] = None) -> Any:
+    """Basins of attraction (``sympathy basins``; its result, or its JSON read by
+    ``sympathy.load``). Over one parameter: each state's share of the runs at each grid point
+    with its 95% Wilson interval, every state that won a run somewhere in its colour and
+    marker, a marker and an interval only where it won (none at a zero share), a line through
+    them down to 0 at the neighbouring points, markers that would cover one another side by
+    side; with `study` (a study of the same parameter, as ``sympathy.study`` returns it or
+    ``sympathy.load`` reads its JSON) its stability diagram below, on the same axis. Over two
+    parameters: a map of the share per state. With `point` (a grid point's index): the basin
+    there, each run's start angles in its final state's colour and marker (from the runs CSV
+    beside the JSON). On a new figure a page wide (7 inches), the study's title and how the
+    runs were made above; `ax` only for the shares or a point's basin. Returns the (first)
+    axes."""
+    import matplotlib.pyplot as plt  # type: ignore[import]
+    grid = list(_field(result, "grid"))
+    new = ax is None
+    if point is not None:
+        if new:
+            fig, ax = plt.subplots(figsize=(5.0, 3.6), layout="constrained")
+        _basin_starts(ax, result, point)
+    elif len(grid) == 2:
+        if not new:
+            raise ValueError("plot: basins over two parameters draw a panel per state; no ax")
+        fig = plt.figure(figsize=(7.0, 2.9), layout="constrained")
+        ax = _basin_maps(fig, result)[0]
+    elif len(grid) != 1:
+        raise ValueError(f"plot: expected basins over one or two parameters, not {len(grid)}")
+    elif study is not None:
+        if not new:
+            raise ValueError("plot: basins with a study draw two panels; no ax")
+        parameter = _field(grid[0], "parameter")
+        if _field(study, "parameter") != parameter:
+            raise ValueError(f"plot: the study's parameter is {_field(study, 'parameter')}; "
+                             f"expected {parameter}, the basins grid's")
+        fig, (ax, below) = plt.subplots(2, 1, figsize=(7.0, 5.4), sharex=True,
+                                        layout="constrained", height_ratios=[1.0, 1.15])
+        _basin_shares(ax, result)
+        ax.set_xlabel("")
+        fig.suptitle(_basins_title(result), fontsize=8)
+        # The study drawn last: its labels are placed once the layout is done (place_labels).
+        _study_diagram(study, below)
+        return ax
+    else:
+        if new:
+            fig, ax = plt.subplots(figsize=(7.0, 2.8), layout="constrained")
+        _basin_shares(ax, result)
+    if new:
+        ax.figure.suptitle(_basins_title(result), fontsize=8)
     return ax
 
 
@@ -896,6 +1110,204 @@ def fit(t: Any, data: dict, model: dict, unknowns: Optional[list] = None,
     if title:
         fig.suptitle(title, fontsize=8)
     return axes[0][0]
+
+
+def _number(text: Any) -> float:
+    """A bench CSV's field as a number (NaN for '-', '' or text)."""
+    try:
+        return float(text)
+    except (TypeError, ValueError):
+        return math.nan
+
+
+def _tolerance(value: float) -> str:
+    """A tolerance as a reader writes it: 1e-6, 5e-12."""
+    import re
+    return re.sub(r"e([-+])0*(\d)", r"e\1\2", f"{value:g}").replace("e+", "e")
+
+
+BENCH_WIDTH = 7.0  # inches: a page's text width, two panels a row
+
+
+def _two_decades(ax: Any) -> None:
+    """Each logarithmic axis of `ax` made to show at least two powers of ten, its limits moved
+    out to the nearer next one while it shows fewer, and no labels on the minor ticks (within
+    one decade matplotlib labelled them, 2, 3, 4 and 6 x 10^-2 running into each other)."""
+    from matplotlib.ticker import NullFormatter  # type: ignore[import]
+    for get, set_, axis in ((ax.get_xlim, ax.set_xlim, ax.xaxis),
+                            (ax.get_ylim, ax.set_ylim, ax.yaxis)):
+        if axis.get_scale() != "log":
+            continue
+        lo, hi = (math.log10(v) for v in get())
+        while math.floor(hi) - math.ceil(lo) < 1:
+            up, down = math.floor(hi) + 1 - hi, lo - (math.ceil(lo) - 1)
+            if up <= down:
+                hi = math.floor(hi) + 1
+            else:
+                lo = math.ceil(lo) - 1
+        set_(10.0 ** lo, 10.0 ** hi)
+        axis.set_minor_formatter(NullFormatter())
+
+
+def bench(rows: list[dict], scaling: Optional[list[dict]] = None,
+          sections: Optional[str] = None) -> Any:
+    """The accuracy report of ``sympathy bench`` (`rows`: its bench.csv as dicts by column;
+    `scaling`: its scaling.csv's, for section (e)): per problem a panel of the error against the
+    run time, one line per family of settings (a tolerance sweep, loose to tight), the accuracy
+    presets as stars (hollow without the symmetry reduction), AUTO-07p's measured points as
+    black crosses; section (e) the cost of one period with the monodromy against the number of
+    metronomes, per linear solver. Section (f) on sympathy's CPU seconds where the bench wrote
+    them. `sections`: only these letters' panels (e.g. "f"). A page wide (7 inches), two panels
+    a row, every text 8 points: a panel whose legend is long (more than six entries) has its
+    legend in the slot beside it; the other panels share one legend (a colour per family
+    throughout), in a free slot or a row below them. Returns the first panel's axes."""
+    import textwrap
+
+    import matplotlib.pyplot as plt  # type: ignore[import]
+
+    def letter(problem: str) -> str:
+        return problem[1:2] if problem.startswith("(") else ""
+
+    rows = [r for r in rows if not sections or letter(r["problem"]) in sections]
+    costs: list[dict] = [r for r in scaling or [] if _number(r.get("seconds")) > 0] \
+        if not sections or "e" in sections else []
+    problems = list(dict.fromkeys(r["problem"] for r in rows))
+    panels: list[tuple[str, str]] = [(letter(p), p) for p in problems]
+    cost = "(e) cost against the number of metronomes"  # scaling.csv's panel
+    if costs:
+        panels.append(("e", cost))
+    panels.sort(key=lambda panel: panel[0])
+    if not panels:
+        raise ValueError("plot: no bench rows to draw" + (f" in sections {sections}"
+                                                          if sections else ""))
+
+    # Each panel's series: (label, colour key, style, xs, ys).
+    Series = tuple[str, str, dict, list, list]
+
+    def series_of(problem: str) -> list[Series]:
+        mine = [r for r in rows if r["problem"] == problem]
+        in_k = letter(problem) in ("c", "f")
+        key = "parameter_error" if in_k else "multiplier_error"
+        out: list[Series] = []
+        auto = [r for r in mine if r["converged"] == "AUTO-07p"]
+        if auto:
+            out.append(("AUTO-07p (AUTO's measurements)", "AUTO-07p",
+                        dict(ls="none", marker="x", ms=6, mew=1.3, color="black"),
+                        [_number(r["seconds"]) for r in auto], [_number(r[key]) for r in auto]))
+        for name in dict.fromkeys(r["setting"] for r in mine if r["converged"] != "AUTO-07p"):
+            chosen = [r for r in mine if r["setting"] == name and r["converged"] == "yes"]
+            # Section (f) on its CPU seconds where the bench wrote them (a shared machine's
+            # wall time is not the run's); AUTO's points are its own whole-process times.
+            clock = "cpu_seconds" if letter(problem) == "f" and chosen and all(
+                _number(r.get("cpu_seconds")) > 0 for r in chosen) else "seconds"
+            points = [(_number(r[clock]), _number(r[key]), _number(r["rtol"])) for r in chosen]
+            points = [p for p in points if p[1] > 0]
+            if not points:
+                continue
+            xs, ys, tolerances = (list(v) for v in zip(*points))
+            if name.startswith("preset "):
+                whole = name.endswith(", whole state")
+                out.append((f"{name} (rtol {_tolerance(tolerances[0])})",
+                            name.removesuffix(", whole state"),
+                            dict(ls="none", marker="*", ms=10, mew=1.0,
+                                 mfc="white" if whole else None), xs, ys))
+            else:
+                out.append((name, name, dict(ls="-", marker="o", ms=3, lw=1.2), xs, ys))
+        return out
+
+    def scaling_series() -> list[Series]:
+        out: list[Series] = []
+        for solver in dict.fromkeys(r["linear_solver"] for r in costs):
+            mine = [r for r in costs if r["linear_solver"] == solver]
+            xs = [_number(r["metronomes"]) for r in mine]
+            out.append((f"{solver}: seconds", f"{solver} (e)", dict(ls="-", marker="o", ms=3),
+                        xs, [_number(r["seconds"]) for r in mine]))
+            out.append((f"{solver}: steps / $10^4$", f"{solver} (e)",
+                        dict(ls=":", marker=".", ms=4), xs,
+                        [_number(r["steps"]) / 1e4 for r in mine]))
+        return out
+
+    drawn = {title: scaling_series() if title == cost else series_of(title)
+             for _, title in panels}
+    # A long legend (section (f): presets, integrators, AUTO's points) beside its own panel;
+    # the others' entries pooled into one legend, a colour per family throughout.
+    own = [t for _, t in panels if len({s[0] for s in drawn[t]}) > 6]
+    shared = [t for _, t in panels if t not in own]
+    colours: dict[str, Any] = {}
+
+    def colour(group: str, key: str) -> Any:
+        if key == "AUTO-07p":
+            return "black"
+        mine = colours.setdefault(group, {})
+        if key not in mine:
+            mine[key] = f"C{len(mine) % 10}"
+        return mine[key]
+
+    # Rows of slots: the pooled panels two a row, the pooled legend in the slot beside an odd
+    # last one or in a row of its own below them; then each long-legend panel with its legend.
+    slots: list[list[str]] = [shared[i:i + 2] for i in range(0, len(shared), 2)]
+    legend_row = None
+    if shared:
+        if len(shared) % 2:
+            slots[-1].append("legend")
+        else:
+            slots.append(["legend"])
+            legend_row = len(slots) - 1
+    for title in own:
+        slots.append([title, f"legend {title}"])
+    pooled_labels = list(dict.fromkeys(s[0] for t in shared for s in drawn[t]))
+    legend_lines = (len(pooled_labels) + 1) // 2
+    heights = [0.2 + 0.17 * legend_lines if i == legend_row else 2.4 for i in range(len(slots))]
+    fig = plt.figure(figsize=(BENCH_WIDTH, sum(heights)), layout="constrained")
+    grid = fig.add_gridspec(len(slots), 2, height_ratios=heights)
+    axes: dict[str, Any] = {}
+    for i, row in enumerate(slots):
+        for j, what in enumerate(row):
+            axes[what] = fig.add_subplot(grid[i, :] if what == "legend" and len(row) == 1
+                                         else grid[i, j])
+    handles: dict[str, dict[str, Any]] = {}
+    for code, title in panels:
+        ax = axes[title]
+        group = "shared" if title in shared else title
+        mine = handles.setdefault(group, {})
+        for label, key, style, xs, ys in drawn[title]:
+            style = dict(style)
+            style.setdefault("color", colour(group, key))
+            if style.get("mfc") == "white":
+                style["mec"] = style["color"]
+            line, = ax.loglog(xs, ys, label=label, gid=f"series {label}", **style)
+            mine.setdefault(label, line)
+        _two_decades(ax)
+        if title == cost:
+            # The numbers of metronomes themselves on the axis (2, 4, ..., 64).
+            from matplotlib.ticker import FixedLocator, NullLocator  # type: ignore[import]
+            counts = sorted({int(_number(r["metronomes"])) for r in costs})
+            ax.set_xlim(counts[0] / 1.15, counts[-1] * 1.15)
+            ax.xaxis.set_major_locator(FixedLocator(counts))
+            ax.xaxis.set_major_formatter(lambda v, _: f"{v:g}")
+            ax.xaxis.set_minor_locator(NullLocator())
+            ax.set_xlabel("metronomes")
+            ax.set_ylabel("one period with the monodromy")
+        else:
+            ax.set_xlabel("run time (s; sympathy's CPU time)" if code == "f" else "run time (s)")
+            ax.set_ylabel("largest error in k (relative)" if code == "f" else
+                          "error in k (relative)" if code == "c" else "largest multiplier error")
+        ax.set_title(textwrap.fill(title, 48))
+        ax.grid(alpha=0.3, which="both")
+        ax.tick_params(which="both", labelsize=8)
+        _finish(ax, legend=False)
+    for name, ax in axes.items():
+        if not name.startswith("legend"):
+            continue
+        ax.axis("off")
+        group = "shared" if name == "legend" else name.removeprefix("legend ")
+        entries = handles.get(group, {})
+        spans = ax.get_subplotspec().colspan
+        ax.legend(list(entries.values()), list(entries.keys()), fontsize=8, frameon=False,
+                  loc="center" if len(spans) == 2 else "center left",
+                  ncol=2 if len(spans) == 2 else 1, handlelength=2.0)
+    first = axes[panels[0][1]]
+    return first
 
 
 def kind_of(result: Any) -> str:

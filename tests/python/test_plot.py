@@ -9,6 +9,7 @@ import matplotlib  # type: ignore[import]
 
 matplotlib.use("Agg")
 
+import matplotlib.pyplot as plt  # type: ignore[import]  # noqa: E402
 import numpy as np  # noqa: E402
 import pytest  # noqa: E402
 
@@ -18,6 +19,13 @@ import sympathy.plot  # noqa: E402
 SOURCE = os.environ.get("SYMPATHY_SOURCE_DIR", os.path.join(os.path.dirname(__file__), "../.."))
 ROW2 = os.path.join(SOURCE, "cases/row2.toml")
 ABC = os.path.join(SOURCE, "cases/examples/abc.toml")
+
+
+@pytest.fixture(autouse=True)
+def close_figures():
+    """Every figure a test drew closed after it (pyplot keeps them, and warned past 20)."""
+    yield
+    plt.close("all")
 
 
 def runs(ax):
@@ -261,22 +269,211 @@ def test_map_shading_agrees_with_its_curves_on_both_sides(tmp_path):
     assert labels_apart(ax) == 2  # R4 and R3, 0.1 apart in k
 
 
-def test_basins_shares_side_by_side_with_intervals_where_won(tmp_path):
-    # Two grid points, 4 starts each: one line per state that won a run, offset so that none
-    # hides another; an interval only at the points where the state won.
-    result = sympathy.basins(ROW2, grid="k=45:55:2", starts=4, t_end=20, out=tmp_path)
-    ax = result.plot()
-    won = {s for p in result.points for s, share in p.shares.items() if share.count > 0}
-    lines = {line.get_gid(): line for line in ax.get_lines() if line.get_gid() in won}
-    assert set(lines) == won
-    offsets = {name: line.get_xdata()[0] - 45.0 for name, line in lines.items()}
-    assert len(set(np.round(list(offsets.values()), 9))) == len(won)
-    for name in won:
-        intervals = [c for c in ax.containers if c.lines[2] and
-                     c.lines[2][0].get_gid() == f"interval {name}"]
-        counts = [p.shares[name].count for p in result.points if name in p.shares]
-        assert sum(len(c.lines[2][0].get_segments()) for c in intervals) == \
-            sum(1 for n in counts if n > 0)
+# Shares of the docs' basins study (cases/figures/basins_k.toml, 20 starts a point; the shares
+# docs/guides/basins.md quotes), on four of its grid points, with the two mirror-image locked
+# states at exactly the same shares (0.25 at k = 45), as that study found them.
+BASINS_SHARES = {40.0: {"in-phase": 20},
+                 45.0: {"in-phase": 10, "locked+2.95": 5, "locked-2.95": 5},
+                 50.0: {"in-phase": 8, "not-synchronized": 12},
+                 55.0: {"not-synchronized": 20},
+                 60.0: {"anti-phase": 20}}
+BASINS_STATES = ["in-phase", "anti-phase", "locked+2.95", "locked-2.95", "not-synchronized"]
+
+
+def wilson(count, n):
+    """The 95% Wilson score interval of count / n (z = 1.959964), as the program writes it."""
+    z, p = 1.959964, count / n
+    centre = (p + z * z / (2 * n)) / (1 + z * z / n)
+    half = z / (1 + z * z / n) * np.sqrt(p * (1 - p) / n + z * z / (4 * n * n))
+    return max(0.0, centre - half), min(1.0, centre + half)
+
+
+def basins_json(tmp_path, grid=None):
+    """A basins JSON as the program writes it (the keys sympathy.load and the plot read), with
+    its runs CSV beside it: per grid point each state's count, share and interval."""
+    import json
+    points, runs = [], ["task,point,k,start,th1_0,th2_0,class"]
+    for i, (k, counts) in enumerate(BASINS_SHARES.items()):
+        shares = {}
+        for state in BASINS_STATES:
+            n = counts.get(state, 0)
+            lower, upper = wilson(n, 20)
+            shares[state] = {"count": n, "share": n / 20, "lower": lower, "upper": upper}
+        points.append({"point": i, "values": {"k": k}, "runs": 20, "shares": shares})
+        classes = [s for s, n in counts.items() for _ in range(n)]
+        for j, state in enumerate(classes):
+            runs.append(f"{20 * i + j},{i},{k},{j},{-0.6 + 0.06 * j},{0.6 - 0.05 * j},{state}")
+    (tmp_path / "basins_runs.csv").write_text("\n".join(runs) + "\n")
+    (tmp_path / "basins.json").write_text(json.dumps({
+        "study": "", "title": "synthetic", "case": "cases/row2.toml", "params": "table2",
+        "grid": grid or [{"parameter": "k", "from": 40.0, "to": 60.0, "count": 5}],
+        "starts": 20, "angles": [-0.6, 0.6], "initial": {}, "t_end": 100.0, "complete": True,
+        "runs_csv": "basins_runs.csv", "points": points}))
+    return sympathy.load(tmp_path / "basins.json")
+
+
+def test_basins_every_state_visible_and_no_interval_at_a_zero_share(tmp_path):
+    # Each state that won a run has its markers at exactly its shares, where it won; none is
+    # hidden under another (locked+2.95 and locked-2.95 have the same shares: drawn side by
+    # side, each marker at least its own size from every other state's, in the file's pixels);
+    # an interval only where the state won (its bar from the Wilson lower to the upper bound),
+    # none at a zero share; its line through its markers down to 0 at the neighbouring points.
+    result = basins_json(tmp_path)
+    ax = sympathy.plot.basins(result)
+    ax.figure.canvas.draw()
+    won = list(dict.fromkeys(s for c in BASINS_SHARES.values() for s in c))  # in order met
+    markers = {line.get_gid(): line for line in ax.get_lines() if line.get_gid() in won}
+    assert set(markers) == set(won)
+    ks = np.array(list(BASINS_SHARES))
+    for state, line in markers.items():
+        wins = [k for k, counts in BASINS_SHARES.items() if counts.get(state, 0) > 0]
+        x, y = np.asarray(line.get_xdata()), np.asarray(line.get_ydata())
+        assert np.allclose(x, wins, atol=0.5) and len(x) == len(wins)
+        assert np.array_equal(y, [BASINS_SHARES[k][state] / 20 for k in wins])
+        # The intervals: one bar a won point, at its marker, from lower to upper; none else.
+        bars = [c for c in ax.containers if c.lines[2] and
+                c.lines[2][0].get_gid() == f"interval {state}"]
+        segments = [seg for c in bars for seg in c.lines[2][0].get_segments()]
+        assert len(segments) == len(wins)
+        for seg, k, xk in zip(segments, wins, x):
+            lower, upper = wilson(BASINS_SHARES[k][state], 20)
+            assert seg[0][0] == seg[1][0] == xk
+            assert np.allclose(sorted([seg[0][1], seg[1][1]]), [lower, upper])
+        # The line: through the won points and down to 0 at their neighbours, nothing else.
+        path = next(line for line in ax.get_lines() if line.get_gid() == f"line {state}")
+        drawn = ~np.isnan(np.asarray(path.get_ydata(), dtype=float))
+        near = np.array([any(abs(k - w) <= 5.0 for w in wins) for k in ks])
+        assert np.array_equal(drawn, near)
+    assert "anti-phase" in markers  # won only at the last point
+    # None hidden: every two markers of different states at least a marker's size apart (or
+    # of different shapes and still apart) in display coordinates.
+    size = {state: line.get_markersize() * ax.figure.dpi / 72.0 for state, line in
+            markers.items()}
+    xy = {state: line.get_transform().transform(np.column_stack([line.get_xdata(),
+                                                                 line.get_ydata()]))
+          for state, line in markers.items()}
+    for a in won:
+        for b in won:
+            if a < b:
+                d = np.hypot(*(xy[a][:, None, :] - xy[b][None, :, :]).transpose(2, 0, 1))
+                assert d.min() >= 0.9 * max(size[a], size[b]), (a, b, d.min())
+    assert markers["locked+2.95"].get_marker() != markers["locked-2.95"].get_marker()
+    legend = [t.get_text() for t in ax.get_legend().get_texts()]
+    assert legend == won
+
+
+def test_basins_with_a_study_below_a_point_s_starts_and_two_parameters(tmp_path):
+    # --study: the shares above Fig. 8's diagram on the same axis (k 35 to 65: the grid's half a
+    # step beyond its ends); --map POINT: every run's start angles, by the state it ended in;
+    # a two-parameter grid: a map of the share per state.
+    result = basins_json(tmp_path)
+    study = sympathy.study(os.path.join(SOURCE, "cases/figures/fig08.toml"), out=str(tmp_path),
+                           accuracy="fast")
+    ax = sympathy.plot.basins(result, study=study)
+    top, bottom = ax.figure.axes[:2]
+    assert top is ax and top.get_xlim() == bottom.get_xlim() == (37.5, 62.5)
+    assert {line.get_gid() for line in bottom.get_lines()} >= {"stable", "unstable"}
+    with pytest.raises(ValueError, match="expected k, the basins grid's"):
+        sympathy.plot.basins(result, study=sympathy.Result(parameter="c", branches={}))
+    ax = result.plot(point=2)  # k = 50: 8 in phase, 12 not synchronized
+    drawn = {line.get_gid(): len(line.get_xdata()) for line in ax.get_lines()}
+    assert drawn == {"in-phase": 8, "not-synchronized": 12}
+    with pytest.raises(ValueError, match="expected a grid point 0 .. 4"):
+        result.plot(point=5)
+    two = basins_json(tmp_path, grid=[{"parameter": "k", "from": 40.0, "to": 60.0, "count": 5},
+                                      {"parameter": "c", "value": 0.0185}])
+    for p in two.points:
+        p.values["c"] = 0.0185
+    ax = sympathy.plot.basins(two)
+    images = {image.get_gid(): image.get_array() for a in ax.figure.axes for image in a.images}
+    assert set(images) == {f"share {s}" for s in BASINS_STATES if s != "anti-phase"} | \
+        {"share anti-phase"}
+    assert np.allclose(images["share in-phase"][0], [1.0, 0.5, 0.4, 0.0, 0.0])
+
+
+def bench_rows():
+    """A bench report's rows (bench.csv's columns that the figure reads): sections (a), (c) and
+    (f), (f) with presets, a sweep, a failed run and AUTO-07p's points."""
+    rows = []
+
+    def row(problem, setting, rtol, error, seconds, converged="yes", cpu=""):
+        key = "parameter_error" if problem[1] in "cf" else "multiplier_error"
+        rows.append({"problem": problem, "setting": setting, "rtol": rtol, "seconds": seconds,
+                     "multiplier_error": "-", "parameter_error": "-", key: error,
+                     "converged": converged, "cpu_seconds": cpu})
+
+    for problem in ("(a) anti-phase orbit, Table II",
+                    "(c) first stability change of the anti-phase k-branch"):
+        for family, scale in (("BDF, dense, model derivatives", 1.0), ("Adams", 0.5),
+                              ("BDF, KLU", 2.0)):
+            for rtol, error, seconds in (("1e-06", "1e-5", "0.01"), ("1e-09", "1e-8", "0.02"),
+                                         ("1e-12", "1e-11", "0.05")):
+                row(problem, family, rtol, error, str(scale * float(seconds)))
+    f = "(f) anti-phase k-branch, k 1 to 100 N/m"
+    for n, preset in enumerate(("fast", "default", "high", "fast, whole state",
+                                "default, whole state")):
+        row(f, f"preset {preset}", "1e-08", str(10.0 ** -(8 + n)), "9.9", cpu=str(0.1 * (n + 1)))
+    for n, family in enumerate(("forward module, BDF", "forward module, Adams",
+                                "augmented, Adams", "ERK Dormand-Prince")):
+        row(f, family, "1e-10", "1e-9", "9.9", cpu=str(0.2 + n / 10))
+        row(f, family, "1e-12", "1e-11", "9.9", cpu=str(0.4 + n / 10))
+    row(f, "ERK Verner", "1e-07", "-", "9.9", converged="no", cpu="1.0")
+    for ntst in (25, 50, 100):
+        row(f, f"AUTO-07p NTST {ntst}", "-", "4e-7", str(ntst / 100), converged="AUTO-07p")
+    scaling = [{"metronomes": str(n), "linear_solver": solver, "steps": str(1000 * n),
+                "seconds": str(0.001 * n * n)} for solver in ("dense", "structured")
+               for n in (2, 4, 8, 16)]
+    return rows, scaling
+
+
+def test_bench_is_readable_at_a_page_width():
+    # The accuracy report a page wide (7 inches), two panels a row, no text under 8 points at
+    # that size (the report was five panels in a row, 3300 x 504 px, 6-point labels); each panel
+    # the problem's points (section (f) on CPU seconds, AUTO's on its own seconds), a run that
+    # failed left out; (f)'s long legend beside it, the others' shared.
+    import matplotlib.text  # type: ignore[import]
+    rows, scaling = bench_rows()
+    ax = sympathy.plot.bench(rows, scaling)
+    fig = ax.figure
+    assert tuple(fig.get_size_inches())[0] == 7.0
+    fig.canvas.draw()
+    texts = [t for t in fig.findobj(matplotlib.text.Text) if t.get_visible() and t.get_text()]
+    assert len(texts) > 40
+    assert min(t.get_fontsize() for t in texts) >= 8.0
+    panels = [a for a in fig.axes if a.axison]
+    assert [a.get_title().split()[0] for a in panels] == ["(a)", "(c)", "(e)", "(f)"]
+    rows_of_panels = {}
+    for a in panels:
+        rows_of_panels.setdefault(round(a.get_position().y0, 2), []).append(a)
+    assert max(len(r) for r in rows_of_panels.values()) == 2
+    # Every text inside the figure: titles, axis labels, legends and the ticks in view.
+    renderer = fig.canvas.get_renderer()
+    shown = [t for t in texts if not any(t in a.get_xticklabels() + a.get_yticklabels()
+                                         for a in fig.axes)]
+    for a in panels:
+        for axis in (a.xaxis, a.yaxis):
+            lo, hi = sorted(axis.get_view_interval())
+            shown += [tick.label1 for tick in axis.get_major_ticks() if lo <= tick.get_loc() <= hi]
+    for t in shown:
+        box = t.get_window_extent(renderer)
+        assert fig.bbox.x0 - 1 <= box.x0 and box.x1 <= fig.bbox.x1 + 1, t.get_text()
+        assert fig.bbox.y0 - 1 <= box.y0 and box.y1 <= fig.bbox.y1 + 1, t.get_text()
+    f = panels[-1]
+    series = {line.get_gid(): line for line in f.get_lines()}
+    assert np.allclose(series["series preset fast (rtol 1e-8)"].get_xdata(), [0.1])
+    assert np.allclose(series["series AUTO-07p (AUTO's measurements)"].get_xdata(),
+                       [0.25, 0.5, 1.0])
+    assert not any("Verner" in str(gid) for gid in series)
+    assert series["series preset fast, whole state (rtol 1e-8)"].get_markerfacecolor() in \
+        ("white", (1.0, 1.0, 1.0, 1.0))
+    legends = [a.get_legend() for a in fig.axes if not a.axison and a.get_legend()]
+    entries = [[t.get_text() for t in legend.get_texts()] for legend in legends]
+    assert any("forward module, BDF" in e for e in entries)
+    assert any("BDF, KLU" in e and "structured: seconds" in e for e in entries)
+    # Section (f) alone: one panel and its legend, the figure still a page wide.
+    ax = sympathy.plot.bench(rows, scaling, sections="f")
+    assert [a.get_title().split()[0] for a in ax.figure.axes if a.axison] == ["(f)"]
+    assert tuple(ax.figure.get_size_inches())[0] == 7.0
 
 
 def test_phase_difference_is_the_exact_lag_and_is_drawn_below_the_angles():
