@@ -1192,7 +1192,7 @@ def bench(rows: list[dict], scaling: Optional[list[dict]] = None,
         auto = [r for r in mine if r["converged"] == "AUTO-07p"]
         if auto:
             out.append(("AUTO-07p (AUTO's measurements)", "AUTO-07p",
-                        dict(ls="none", marker="x", ms=6, mew=1.3, color="black"),
+                        dict(ls="none", marker="x", ms=6, mew=1.3, color="black", zorder=4),
                         [_number(r["seconds"]) for r in auto], [_number(r[key]) for r in auto]))
         for name in dict.fromkeys(r["setting"] for r in mine if r["converged"] != "AUTO-07p"):
             chosen = [r for r in mine if r["setting"] == name and r["converged"] == "yes"]
@@ -1209,7 +1209,7 @@ def bench(rows: list[dict], scaling: Optional[list[dict]] = None,
                 whole = name.endswith(", whole state")
                 out.append((f"{name} (rtol {_tolerance(tolerances[0])})",
                             name.removesuffix(", whole state"),
-                            dict(ls="none", marker="*", ms=10, mew=1.0,
+                            dict(ls="none", marker="*", ms=10, mew=1.0, zorder=4,
                                  mfc="white" if whole else None), xs, ys))
             else:
                 out.append((name, name, dict(ls="-", marker="o", ms=3, lw=1.2), xs, ys))
