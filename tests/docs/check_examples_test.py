@@ -138,3 +138,50 @@ def test_links_stay_in_the_repository(tmp_path):
     status, out = links("[gone](nothere.md)\n")
     assert status == 2 and "nothere.md: no such file" in out
     assert links("```text\n[not a link](nothere.md)\n```\n")[0] == 0
+
+
+def test_figures_every_png_a_page_shows_is_drawn(tmp_path):
+    # A repository of its own whose scripts/figures --docs draws fig08.png alone: a page that
+    # shows fig12.png too fails naming it, a PNG outside cases/figures fails (that script draws
+    # none), a page generated from a notebook is the notebook's, and a failing script fails.
+    repo = tmp_path / "repo"
+    (repo / "scripts").mkdir(parents=True)
+    (repo / "cases" / "figures").mkdir(parents=True)
+    (repo / "docs" / "notebook").mkdir(parents=True)
+    (repo / "scripts" / "check_examples").write_text(SCRIPT.read_text())
+    for name in ("cases/figures/fig08.png", "cases/figures/fig12.png", "docs/notebook/f.png"):
+        (repo / name).write_bytes(b"\x89PNG")
+    figures = repo / "scripts" / "figures"
+
+    def drawing(exit_code):
+        figures.write_text(
+            "import pathlib, sys\n"
+            "out = pathlib.Path(sys.argv[sys.argv.index('--docs') + 1])\n"
+            "out.mkdir(parents=True, exist_ok=True)\n"
+            "(out / 'fig08.png').write_bytes(b'\\x89PNG')\n"
+            "print(f'wrote {out}/fig08.png')\n"
+            f"sys.exit({exit_code})\n")
+
+    def check_page(text):
+        page = repo / "docs" / "page.md"
+        page.write_text(text)
+        done = subprocess.run([sys.executable, str(repo / "scripts" / "check_examples"),
+                               "--sympathy", "/bin/true", "--figures", str(tmp_path / "out"),
+                               str(page)], capture_output=True, text=True)
+        return done.returncode, done.stdout + done.stderr
+
+    drawing(0)
+    status, out = check_page("![a](../cases/figures/fig08.png)\n")
+    assert status == 0 and "1 shown in the checked documents, all drawn" in out
+    status, out = check_page("![a](../cases/figures/fig08.png)\n\n"
+                             "![b](../cases/figures/fig12.png)\n")
+    assert status == 1 and "docs/page.md:3: shows ../cases/figures/fig12.png, which " \
+        "scripts/figures --docs did not draw" in out
+    status, out = check_page("![n](notebook/f.png)\n")
+    assert status == 1 and "does not draw (it draws the PNGs of cases/figures)" in out
+    status, out = check_page("<!-- Generated from x.ipynb by scripts/notebook_markdown: do not "
+                             "edit. -->\n\n![n](notebook/f.png)\n")
+    assert status == 0 and "0 shown" in out
+    drawing(3)
+    status, out = check_page("![a](../cases/figures/fig08.png)\n")
+    assert status == 1 and "FAILED (exit status 3)" in out
