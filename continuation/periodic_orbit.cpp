@@ -2,6 +2,7 @@
 
 #include "sympathy/continuation/accuracy.hpp"
 
+#include <algorithm>
 #include <cmath>
 #include <limits>
 #include <sstream>
@@ -88,6 +89,40 @@ Eigen::VectorXd state_difference(const OdeSystem& system, const Eigen::VectorXd&
 Eigen::VectorXd wrap_angles(const OdeSystem& system, Eigen::VectorXd z) {
   for (int i : system.angle_states()) z[i] = std::remainder(z[i], 2.0 * M_PI);
   return z;
+}
+
+// The largest magnitude of a state's component.
+double state_size(const Eigen::VectorXd& z) {
+  return std::max(z.cwiseAbs().maxCoeff(), 1e-300);
+}
+
+// One period of the motion from z: how far it came back (its return's distance, angles on the
+// circle) and the motion's own size over the period, the largest half range of a state (at the
+// integrator's steps: the same integration as a plain advance, step for step). A return is
+// measured against the smaller of that amplitude and the state's size: against the state's
+// size alone, a slowly growing spiral about an equilibrium far from the origin looked settled
+// (AUTO's chu at alpha = 6.9, about its equilibrium x = 1.5, moved by 0.1% of the state but 0.9%
+// of its own amplitude); for a motion about the origin (the metronomes) the state's size is the
+// smaller, and its starts are as they were.
+struct Return {
+  Eigen::VectorXd later;  // the state a period on
+  double moved = 0.0;
+  double size = 0.0;
+};
+
+Return one_return(Flow& flow, const ParameterValues& p, const Eigen::VectorXd& z, double period,
+                  const InvariantSubspace& subspace) {
+  Eigen::VectorXd low = z, high = z;
+  Return r;
+  r.later = subspace.project(flow.advance_observing_steps(
+      z, p, 0.0, period, [&](double, double, const Eigen::VectorXd& y) {
+        low = low.cwiseMin(y);
+        high = high.cwiseMax(y);
+      }));
+  for (int i : flow.system().angle_states()) low[i] = high[i] = 0.0;  // a turn is no size
+  r.size = std::max(0.5 * (high - low).maxCoeff(), 1e-300);
+  r.moved = state_difference(flow.system(), r.later, z).cwiseAbs().maxCoeff();
+  return r;
 }
 
 double inf_norm(const Eigen::VectorXd& v) {
@@ -437,9 +472,8 @@ PeriodicOrbit find_periodic_orbit(const OdeSystem& system, const ParameterValues
         const double period =
             estimate_period(flow, p, z, options.max_period, options.max_period / 1e4);
         if (period > 0.0) {
-          const Eigen::VectorXd later = subspace.project(flow.advance(z, p, 0.0, period));
-          const double size = std::max(z.cwiseAbs().maxCoeff(), 1e-300);
-          const double moved = state_difference(system, later, z).cwiseAbs().maxCoeff();
+          const Return back = one_return(flow, p, z, period, subspace);
+          const double size = std::min(state_size(z), back.size), moved = back.moved;
           if (moved <= options.settle_tolerance * size) {
             settled_period = period;
             break;
@@ -494,19 +528,24 @@ PeriodicOrbit find_periodic_orbit(const OdeSystem& system, const ParameterValues
   choose_method(z, period);
   PeriodicOrbit orbit = measured(solve_periodic_orbit(system, p, z, period, subspace, last));
   if (!orbit.converged()) {
-    // Say whether the transient had settled: how far the motion still moved in one period.
+    // Say whether the transient had settled: how far the motion came back in one period, against
+    // its amplitude, and whether the next return came closer (a motion that grows, as the row
+    // setup without hinge damping, whose swings go over the top, moves by a small part of its
+    // growing range but never settles).
     try {
-      const Eigen::VectorXd later = subspace.project(flow.advance(z, p, 0.0, period));
-      const double moved = state_difference(system, later, z).cwiseAbs().maxCoeff();
-      const double size = std::max(z.cwiseAbs().maxCoeff(), 1e-300);
+      const Return first = one_return(flow, p, z, period, subspace);
+      const Return next = one_return(flow, p, first.later, period, subspace);
+      const double size = std::min(state_size(z), std::max(first.size, next.size));
+      const double moved = next.moved;
+      const bool settled = moved <= 1e-3 * size && moved <= first.moved;
       std::ostringstream note;
       note.precision(2);
       note << "; after the " << options.transient << " s transient the motion still moved by "
-           << moved << " (" << 100.0 * moved / size << "% of the state) in one period: "
-           << (moved > 1e-3 * size ? "it had not settled on a periodic orbit (a longer "
-                                     "transient, or there may be none, e.g. when no "
-                                     "dissipation balances a drive)"
-                                   : "it had settled, so the orbit may be hard for Newton here");
+           << moved << " (" << 100.0 * moved / size << "% of its size) in one period, "
+           << first.moved << " in the one before: "
+           << (settled ? "it had settled, so the orbit may be hard for Newton here"
+                       : "it had not settled on a periodic orbit (a longer transient, or there "
+                         "may be none, e.g. when no dissipation balances a drive)");
       orbit.newton.reason += note.str();
     } catch (const IntegrationError&) {
     }

@@ -103,6 +103,16 @@ check "... with --max-period 100 the orbit, exit 0" test $? -eq 0
 "$bin" continue "$c2c" --param d1 --from 0.2 --to 0.6 --switch-at HB1 --parent "$work/c2c_eq.json" \
   --user-points 0.45 --quiet --json "$work/c2c_po.json" > /dev/null
 check "... its period the HB1 family's at d1 = 0.45 (to 1e-7 relative)" test "$(json_value "$work/c2c.json" "(lambda T: any(abs(e['period'] - T) < 1e-7 * T for e in json.load(open('$work/c2c_po.json'))['events'] if e['type'] == 'UZ'))(j['period'])")" = True
+# "Settled" on the orbit's own return (issue 36: AUTO's chu): at alpha = 6.9 the motion spirals
+# slowly out from the equilibrium x = 1.5 onto a cycle of amplitude 0.18 in x. After the 60 s
+# transient it still moves by 0.0017 in a period: 0.1% of the state's size, which the old measure
+# took for nearly settled, but 0.9% of its own amplitude, which it is not; a longer transient
+# settles it (period 2.06695, the HB1 family's).
+chu=$src/tests/auto/cases/chu.toml
+"$bin" orbit "$chu" --start nonzero --set alpha=6.9 --initial x=1.6 > "$work/chu_short.out" 2>&1
+check "chu at alpha = 6.9 after 60 s: not settled, by more than 0.5% of its size (its own amplitude)" test "$(grep -oE 'moved by [0-9.e-]+ \(([0-9.]+)% of its size\)' "$work/chu_short.out" | grep -oE '\([0-9.]+' | tr -d '(' | awk '{print ($1 > 0.5)}')" = 1
+"$bin" orbit "$chu" --start nonzero --set alpha=6.9 --initial x=1.6 --transient 400 --json "$work/chu.json" > /dev/null
+check "... settled after a longer transient: period 2.06695" test "$(json_value "$work/chu.json" "abs(j['period'] - 2.06695) < 1e-5")" = True
 # A start state with a period guess (--period-guess): Newton at once, no transient. On lcbp at
 # p1 = 1, p2 = 2 the circle r = 1 repels (its multiplier exp(-p1 (p1 - p2)) = e); from (1, 0)
 # with the guess 1 it is the orbit: period 1 and radius 1 to 1e-9, multiplier e to 1e-7. The

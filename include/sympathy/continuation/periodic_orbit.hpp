@@ -97,11 +97,14 @@ struct OrbitOptions {
   NewtonOptions newton;
   FloquetOptions floquet;
   double transient = 60.0;  // s of integration before Newton (find_periodic_orbit) ...
-  // ... cut short where the motion has settled: back within this (relative to the state's size)
-  // one period later, checked at 8 s and then every half again as long (12, 18, 27, 40.5 s); 0:
-  // always the whole transient (and no early Newton below). At 1e-4 Newton starts about that far
-  // from the orbit and needs two or three iterations (row setup: the in-phase orbit at Table III
-  // settles by 24 s, the anti-phase start needs most of the 60 s).
+  // ... cut short where the motion has settled: back within this one period later, relative to
+  // the smaller of the state's size and the motion's own amplitude (the largest half range of a
+  // state over the period: an orbit about an equilibrium far from the origin is dwarfed by the
+  // state), checked at 8 s
+  // and then every half again as long (12, 18, 27, 40.5 s); 0: always the whole transient (and no
+  // early Newton below). At 1e-4 Newton starts about that far from the orbit and needs two or three
+  // iterations (row setup: the in-phase orbit at Table III settles by 24 s, the anti-phase start
+  // needs most of the 60 s).
   double settle_tolerance = 1e-4;
   // ... or where it moved by less than this at a check, Newton is tried there (at most five
   // iterations) and its orbit taken if it converged within a tenth of the state's size of where
