@@ -16,8 +16,13 @@ namespace sympathy {
 
 namespace {
 
-// The event of the corrected orbit `at`: trusted on its corrector, as a fold is (its multipliers
-// need only show the monodromy's noise floor: TrustLimit::without_multipliers).
+// The event of the corrected orbit `at`: trusted on its corrector alone. Its value (the parameter
+// asked for, or where the quantity takes its value) and its orbit are what the corrector solved
+// for, to its tolerance; its multipliers do not enter them. Where they are not resolved (a trivial
+// error above the noise floor TrustLimit::without_multipliers allows) the note says that its
+// stability there is unknown. (They had untrusted it: AUTO's pen at T = 30, whose stops at
+// AUTO's parameters were trusted or not as the trivial error, 1e-4 to 6e-3 at |M| 1e10, fell
+// either side of the ceiling 1e-4 from one start of the transient to the next.)
 void describe_located(Bifurcation& e, const ContinuationPoint& at, const TrustLimit& trust,
                       const std::string& note) {
   e.location = LocationOutcome::Located;
@@ -33,12 +38,10 @@ void describe_located(Bifurcation& e, const ContinuationPoint& at, const TrustLi
   e.samples = at.orbit.samples;
   e.note = note;
   const double limit = trust.without_multipliers(e.monodromy_growth);
-  if (e.floquet.trivial_error > limit) {
-    e.trust = EventTrust::TrivialErrorTooLarge;
-    e.note = note + "; not trusted: trivial-multiplier error " +
-             format_number(e.floquet.trivial_error) + " above the trust limit " +
-             format_number(limit);
-  }
+  if (e.floquet.trivial_error > limit)
+    e.note = note + "; its multipliers not resolved (trivial-multiplier error " +
+             format_number(e.floquet.trivial_error) + " above " + format_number(limit) +
+             "): its stability here unknown";
 }
 
 }  // namespace

@@ -212,7 +212,9 @@ def judge(reference, result):
 
     names = data.get("state_names", [])
 
-    event = min(events, key=distance)
+    # The nearest, a trusted one first among those within the precision (a two-way run's two
+    # stops at the same value, one of them interpolated where its orbit did not correct).
+    event = min(events, key=lambda e: (distance(e) > 1.0, not event_trusted(e), distance(e)))
     dv = event["value"] - reference["value"]
     text = "%s at %.10g" % (wanted, event["value"])
     period_ok = True
