@@ -410,8 +410,12 @@ def curve(result: Any, ax: Any = None) -> Any:
     ax.plot(first, second, color="black", lw=1.4, gid="curve", label=f"{result.kind} curve")
     labels = _events(ax, list(result.events), lambda e: (float(e.first), float(e.second)),
                      lambda e: float(e.first))
-    ax.set_xlabel(axis_label(result.first_name))
-    ax.set_ylabel(axis_label(result.second_name))
+    # The engine's result names its parameters first_name and second_name; the program's JSON,
+    # read back by sympathy.load, first and second.
+    first_name = _field(result, "first_name") or _field(result, "first")
+    second_name = _field(result, "second_name") or _field(result, "second")
+    ax.set_xlabel(axis_label(str(first_name)))
+    ax.set_ylabel(axis_label(str(second_name)))
     _finish(ax, loc="best")
     place_labels(ax, labels)
     return ax

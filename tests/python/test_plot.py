@@ -151,7 +151,7 @@ at = 48.0
     assert all(any(e.value == end for e in branch.events) for end in ends)
 
 
-def test_the_plot_script_draws_an_equation_case_files_branch(tmp_path):
+def test_the_plot_script_draws_an_equation_case_files_branch_and_curve(tmp_path):
     # scripts/plot on the program's JSON of abc's family born at HB1 (an equation case file):
     # a vector file, drawn by the same module (its two folds at AUTO's p1 = 0.211903 and 0.213697).
     cli = os.environ.get("SYMPATHY_CLI", os.path.join(SOURCE, "build/cases/sympathy"))
@@ -170,6 +170,22 @@ def test_the_plot_script_draws_an_equation_case_files_branch(tmp_path):
                    if e.type == "LP")
     assert folds == [0.211903, 0.213697]
     assert labels_apart(ax) >= 2
+    # The family's first fold followed in (p1, p3), drawn from the command line and from Python:
+    # the curve's line is its points (about 2 s).
+    subprocess.run([cli, "curve", ABC, "--parent", str(tmp_path / "family.json"), "--event", "LP1",
+                    "--param", "p1", "--from", "0.15", "--to", "0.3", "--second", "p3",
+                    "--second-from", "1.4", "--second-to", "1.6", "--quiet",
+                    "--json", str(tmp_path / "fold.json")], check=True, capture_output=True)
+    run = subprocess.run([os.path.join(SOURCE, "scripts/plot"), str(tmp_path / "fold.json"),
+                          "--out", str(tmp_path / "fold.pdf")],
+                         check=True, capture_output=True, text=True, env=env)
+    assert run.stdout.strip().endswith("fold.pdf")
+    assert (tmp_path / "fold.pdf").read_bytes().startswith(b"%PDF")
+    fold = sympathy.load(tmp_path / "fold.json")
+    ax = fold.plot()
+    line = next(line for line in ax.get_lines() if line.get_gid() == "curve")
+    assert np.array_equal(line.get_xdata(), fold.points.first)
+    assert (ax.get_xlabel(), ax.get_ylabel()) == ("$p_{1}$", "$p_{3}$")
 
 
 def test_stability_map_has_a_legend_entry_per_curve_kind_and_labels_apart(tmp_path):
