@@ -29,6 +29,8 @@ OptionCheck EquilibriumOptions::validate() const {
     return OptionProblem{"min_tangent_cosine", "a number between 0 and 1"};
   if (!positive(location_tolerance) || location_tolerance >= 0.1)
     return OptionProblem{"location_tolerance", "a positive number below 0.1"};
+  for (double v : user_points)
+    if (!std::isfinite(v)) return OptionProblem{"user_points", "finite parameter values"};
   return std::nullopt;
 }
 
@@ -40,6 +42,8 @@ std::string to_string(EquilibriumEventType t) {
       return "BP";
     case EquilibriumEventType::Hopf:
       return "HB";
+    case EquilibriumEventType::UserPoint:
+      return "UZ";
   }
   return "?";
 }
@@ -223,9 +227,15 @@ class EquilibriumContinuation {
   }
   driver::Found<Event> detect(const Point*, const Point& a, const Point& b) const {
     driver::Found<Event> found;
-    if (!o_.detect_bifurcations) return found;
-    found.events = events_between(a, b, b.step);
+    if (o_.detect_bifurcations) found.events = events_between(a, b, b.step);
     for (const auto& e : found.events) found.unlocated |= !e.located;
+    for (const double value : o_.user_points) {
+      // Passed in this step (b on it counts; a on it was the step before's).
+      if (!((a.parameter - value) * (b.parameter - value) < 0.0 || b.parameter == value)) continue;
+      found.events.push_back(user_point(a, b, value));
+    }
+    std::stable_sort(found.events.begin(), found.events.end(),
+                     [](const auto& x, const auto& y) { return x.arclength < y.arclength; });
     return found;
   }
   std::optional<driver::Ending> ends(const Point&, const Point&, std::vector<Event>&) const {
@@ -321,6 +331,33 @@ class EquilibriumContinuation {
     std::sort(events.begin(), events.end(),
               [](const auto& x, const auto& y) { return x.arclength < y.arclength; });
     return events;
+  }
+
+  // The equilibrium at the parameter value asked for, between a and b: Newton with the parameter
+  // held there, from the state interpolated linearly between them; where it fails, reported at
+  // the interpolated state, not located.
+  EquilibriumEvent user_point(const EquilibriumPoint& a, const EquilibriumPoint& b,
+                              double value) const {
+    const double w = (value - a.parameter) / (b.parameter - a.parameter);
+    EquilibriumEvent e;
+    e.type = EquilibriumEventType::UserPoint;
+    e.parameter = value;
+    e.after_point = a.index;
+    e.arclength = w * b.step;
+    e.tangent = b.tangent;
+    e.note = "user point";
+    const Equilibrium at =
+        solve_equilibrium(system_, values_at(value), (1 - w) * a.state + w * b.state);
+    e.located = at.converged;
+    e.state = at.converged ? at.state : Eigen::VectorXd((1 - w) * a.state + w * b.state);
+    Eigen::VectorXd y(n_ + 1);
+    y << e.state, value;
+    e.eigenvalues = sorted_eigenvalues(jacobian(y).leftCols(n_));
+    e.residual = f(y).lpNorm<Eigen::Infinity>();
+    if (!at.converged)
+      e.note += "; not located: Newton at this value failed (" + at.reason +
+                "), the state interpolated between the points around it";
+    return e;
   }
 
   // The one locator (crossing_locator.hpp) in the arclength from a along a's tangent, in [0, ds].

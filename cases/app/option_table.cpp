@@ -197,6 +197,9 @@ std::vector<OptionSpec> equilibria_options() {
        {"--to", "B", false, "last parameter value", true},
        {"--at", "V", false, "start at V instead and continue both ways, to A and to B"},
        {"--initial", "VAR=VALUE", true, "initial state value (on top of --start)"},
+       {"--user-points", "V1,V2,...", false,
+        "report the branch's equilibrium at each of these values of --param (AUTO's UZ), as "
+        "events"},
        {"--step", "DS", false, "initial arclength step, scaled (default 0.01)"},
        {"--max-step", "DS", false, "largest arclength step, scaled (default 0.05)"},
        {"--max-points", "N", false, "point limit per direction (default 1000)"},

@@ -186,6 +186,12 @@ EquilibriaRequest equilibria_request(const Arguments& args, const LoadedSystem& 
   o.max_points = args.integer("--max-points", o.max_points);
   o.lower = std::min(problem.from, problem.to);
   o.upper = std::max(problem.from, problem.to);
+  o.user_points = args.numbers("--user-points");
+  for (double v : o.user_points)
+    if (v < o.lower || v > o.upper)
+      throw InputError("--user-points " + format_number(v) + ": outside --from " +
+                       format_number(problem.from) + " .. --to " + format_number(problem.to) +
+                       "; expected values the branch can reach");
   check_options(o.validate(), "");
   r.csv_path = args.text("--csv", "");
   const std::string& csv_path = r.csv_path;

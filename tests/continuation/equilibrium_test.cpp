@@ -55,6 +55,30 @@ TEST(Equilibrium, NewtonScalesWithTheState) {
   EXPECT_NEAR(e.state[2], 1e3, 1e-12 * 1e3);
 }
 
+// User points (AUTO's UZ) on x' = p - x^2 from x = 1 at p = 1 through its fold at p = 0 and back:
+// p = 0.25 is passed twice, at x = 0.5 and at x = -0.5 after the fold, each solved with the
+// parameter held there (exact to Newton's tolerance: 1e-12), in order along the branch, with its
+// eigenvalue -2x; a value the branch does not reach (p = 2) is not reported.
+TEST(EquilibriumBranch, UserPointsAtTheValuesAskedForOnBothSidesOfAFold) {
+  Equilibria1D system(Equilibria1D::Kind::SaddleNode);
+  EquilibriumOptions o;
+  o.user_points = {0.25, 2.0};
+  const auto branch =
+      continue_equilibria(system, problem_of(system, 1.0, -1.0, Eigen::Vector2d(0.9, 0.1)), o);
+  ASSERT_TRUE(branch.started()) << branch.stop_reason;
+  const auto uz = events_of(branch, EquilibriumEventType::UserPoint);
+  ASSERT_EQ(uz.size(), 2u);
+  for (int k = 0; k < 2; ++k) {
+    const double x = k == 0 ? 0.5 : -0.5;
+    EXPECT_TRUE(uz[k].located) << uz[k].note;
+    EXPECT_EQ(uz[k].parameter, 0.25);
+    EXPECT_NEAR(uz[k].state[0], x, 1e-12);
+    EXPECT_NEAR(uz[k].eigenvalues[0].real(), -2.0 * x, 1e-10);
+  }
+  EXPECT_LT(uz[0].after_point, uz[1].after_point);
+  EXPECT_EQ(to_string(uz[0].type), "UZ");
+}
+
 // x' = p - x^2: from x = 1 at p = 1 down to the fold at p = 0 exactly (x = 0), then back up on
 // x = -sqrt(p); stable (eigenvalue -2x) before the fold, unstable after.
 TEST(EquilibriumBranch, FoldLocatedExactly) {

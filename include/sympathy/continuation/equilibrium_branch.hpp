@@ -42,6 +42,9 @@ struct EquilibriumOptions {
   double min_tangent_cosine = 0.95;   // a step that turns the tangent more is halved
   double location_tolerance = 1e-10;  // relative, in the parameter
   bool detect_bifurcations = true;
+  // Parameter values at which to report the branch's equilibrium (AUTO's UZ), each where the
+  // branch passes it, solved there with the parameter held (exact).
+  std::vector<double> user_points;
 
   OptionCheck validate() const;
 };
@@ -50,8 +53,9 @@ enum class EquilibriumEventType {
   Fold,         // LP: a real eigenvalue through 0 where the branch turns
   BranchPoint,  // BP: a real eigenvalue through 0 where two branches cross
   Hopf,         // HB: a complex pair through the imaginary axis
+  UserPoint,    // UZ: a parameter value asked for (EquilibriumOptions::user_points)
 };
-std::string to_string(EquilibriumEventType t);  // "LP", "BP", "HB"
+std::string to_string(EquilibriumEventType t);  // "LP", "BP", "HB", "UZ"
 
 struct EquilibriumPoint {
   int index = 0;  // along the branch; negative on the backward part of a two-way run
