@@ -59,8 +59,9 @@ OptionSpec max_period_option() {
 OptionSpec from_point_option() {
   return {"--from-point", "POINT", false,
           "start from this point of the --parent branch (its index, points[].index of the JSON) "
-          "or its event (LP1, BP1, PD1, NS1, UZ1, ...): the saved orbit's state, period, segments "
-          "and parameter values, corrected at once (AUTO's IRS)"};
+          "or its event (LP1, BP1, PD1, NS1, UZ1, ...), or from a point of a --parent curve (curve "
+          "--json, by index): the saved orbit's state, period, segments and parameter values, "
+          "corrected at once (AUTO's IRS)"};
 }
 
 OptionSpec start_data_option() {
@@ -124,7 +125,8 @@ std::vector<OptionSpec> continue_options() {
         "nearly vertical, shrunk where Newton fails)"},
        {"--parent", "FILE", false,
         "with --switch-at: the parent branch from this JSON (continue --json; for HB, equilibria "
-        "--json) instead of computed; with --from-point: the branch JSON the start is saved in"},
+        "--json) instead of computed; with --from-point: the branch or curve JSON the start is "
+        "saved in"},
        {"--whole-state", "", false,
         "no symmetry reduction: integrate every metronome (for comparison)"},
        {"--quiet", "", false, "no progress lines"},
@@ -162,8 +164,10 @@ std::vector<OptionSpec> orbit_options() {
   options.push_back(accuracy_option());
   options.push_back(start_data_option());
   options.push_back(data_period_option());
-  options.push_back({"--parent", "FILE", false,
-                     "with --from-point: the branch JSON (continue --json) the start is saved in"});
+  options.push_back(
+      {"--parent", "FILE", false,
+       "with --from-point: the branch or curve JSON (continue or curve --json) the start is "
+       "saved in"});
   options.push_back(from_point_option());
   options.push_back(period_guess_option());
   return options;

@@ -5,6 +5,7 @@
 
 #include "cases/app/branch_run.hpp"
 #include "cases/app/event_name.hpp"
+#include "cases/app/json_reader.hpp"
 #include "sympathy/core/errors.hpp"
 
 namespace sympathy::app {
@@ -34,9 +35,73 @@ std::optional<int> index_of(const std::string& text) {
   return std::stoi(text);
 }
 
+// Whether `path` holds a two-parameter curve (curve --json: its two parameters' names as
+// `first` and `second`), not a branch.
+bool is_curve_json(const JsonReader& file) {
+  const nlohmann::json& j = file.root();
+  return j.is_object() && j.contains("first") && j["first"].is_string() && j.contains("second") &&
+         j["second"].is_string();
+}
+
+// A point of a curve (curve --json) by its index: its orbit at both of its parameters' values
+// (AUTO's restart from a label of a two-parameter run). Its events are located on the points'
+// curve, not orbits of their own with a name to restart from: points only.
+SavedOrbit read_curve_point(const JsonReader& file, const SavedStart& start,
+                            const OdeSystem& system) {
+  const auto index = index_of(start.what);
+  if (!index)
+    throw InputError("--from-point " + start.what + ": " + start.path +
+                     " is a curve (curve --json); expected a point's index along it (its "
+                     "points[].index)");
+  return file.read([&](const nlohmann::json& j) {
+    const std::string first = j["first"], second = j["second"];
+    const auto names = system.parameter_names();
+    for (const std::string& name : {first, second})
+      if (std::find(names.begin(), names.end(), name) == names.end())
+        throw InputError(start.path + ": the curve's parameter '" + name +
+                         "' is not one of this case's");
+    const nlohmann::json& points = file.key(j, "points", start.path);
+    int lo = 0, hi = 0;
+    for (const nlohmann::json& p : points) {
+      const int i = p.at("index");
+      lo = std::min(lo, i);
+      hi = std::max(hi, i);
+      if (i != *index) continue;
+      SavedOrbit saved;
+      saved.path = start.path;
+      saved.state0 =
+          file.numbers(file.key(p, "state0", "points"), "points[].state0", system.dimension());
+      saved.period = p.at("period");
+      saved.segments = 1;  // a curve's orbits are single-shooting ones
+      ParameterValues values = file.numbers(file.key(j, "parameter_values", start.path),
+                                            "parameter_values", system.parameter_values_size());
+      const double a = p.at("first"), b = p.at("second");
+      values = system.with_parameter(values, system.parameter_index(first), a);
+      saved.values = system.with_parameter(values, system.parameter_index(second), b);
+      char where[160];
+      std::snprintf(where, sizeof where, ", point %d (%s = %.10g, %s = %.10g)", *index,
+                    first.c_str(), a, second.c_str(), b);
+      saved.description = start.path + where;
+      if (!(saved.period > 0.0))
+        throw InputError("--from-point " + start.what + ": " + start.path +
+                         " gives it no positive period; expected a curve JSON written by "
+                         "curve --json");
+      return saved;
+    }
+    throw InputError("--from-point " + start.what + ": " + start.path + " has no point " +
+                     start.what + "; expected an index from " + std::to_string(lo) + " to " +
+                     std::to_string(hi));
+  });
+}
+
 }  // namespace
 
 SavedOrbit read_saved_orbit(const SavedStart& start, const OdeSystem& system) {
+  {
+    const JsonReader file(start.path,
+                          "a branch JSON (continue --json) or a curve JSON (curve --json)");
+    if (is_curve_json(file)) return read_curve_point(file, start, system);
+  }
   const Branch branch = read_branch_json(start.path, system, InvariantSubspace());
   SavedOrbit saved;
   saved.path = start.path;

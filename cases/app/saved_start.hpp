@@ -1,5 +1,6 @@
 // --parent FILE --from-point N|EVENT (orbit, continue): a start from a point or an event of a
-// branch an earlier run saved (continue --json), AUTO's IRS with a label. The saved orbit's state,
+// branch an earlier run saved (continue --json), or from a point of a two-parameter curve (curve
+// --json: its orbit at both parameters' values), AUTO's IRS with a label. The saved orbit's state,
 // period, shooting segments and parameter values are the start; Newton corrects it at once (no
 // transient), so an unstable orbit restarts as well as a stable one, in the same parameter or
 // another. The file is read and checked as the arguments are, before any work.

@@ -28,6 +28,18 @@ check "every point: the breaking multiplier within 1e-8 of 1, trivial error belo
 check "the last point on the window's edge, c = 0.03 exactly, k below the Table II BP" \
   test "$(json "$work/bp.json" "j['points'][-1]['second'] == 0.03 and j['points'][-1]['first'] < 47.06")" = True
 
+# A restart from a point of the curve (AUTO's IRS on a two-parameter run): orbit --parent
+# bp.json --from-point N starts at the point's orbit at both its parameters' values, and Newton
+# gives back its period to 1e-9 relative and its breaking multiplier at +1 (to 1e-7: a BP curve's
+# point, corrected without the curve's extra equation).
+mid=$(json "$work/bp.json" "j['points'][len(j['points']) // 2]['index']")
+"$bin" orbit "$row2" --parent "$work/bp.json" --from-point "$mid" --json "$work/from_bp.json" \
+  > "$work/from_bp.out" 2>&1
+check "orbit from a curve's point: exit 0, the point named" grep -qF "start saved $work/bp.json, point $mid (k = " "$work/from_bp.out"
+check "... its period the point's (1e-9 relative), a multiplier at +1 (1e-7) beside the trivial" test "$(json "$work/from_bp.json" "(lambda p: abs(j['period'] - p['period']) < 1e-9 * p['period'] and sum(abs(complex(*m) - 1) < 1e-7 for m in j['multipliers']) >= 2)([q for q in json.load(open('$work/bp.json'))['points'] if q['index'] == $mid][0])")" = True
+"$bin" orbit "$row2" --parent "$work/bp.json" --from-point PD1 > /dev/null 2> "$work/from_bp_bad.err"
+check "... an event name refused: a curve's points by index" grep -qF "is a curve (curve --json); expected a point's index along it" "$work/from_bp_bad.err"
+
 # The fast preset's BP curve at looser tolerances: the corrector's tolerances and difference
 # step follow the integration's measured noise (CurveSystem::measure_noise). Before, the chord
 # counted its stalled noise-level steps as divergence: no curve at rtol 5e-8, a spurious turn
