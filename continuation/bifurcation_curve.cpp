@@ -21,6 +21,9 @@ OptionCheck CurveOptions::validate() const {
     return OptionProblem{"first window", "finite bounds, the lower below the upper"};
   if (!(std::isfinite(second_lower) && std::isfinite(second_upper) && second_lower < second_upper))
     return OptionProblem{"second window", "finite bounds, the lower below the upper"};
+  for (const UserValue& v : user_values)
+    if (v.quantity != UserValue::Quantity::Period || !(v.value > 0.0))
+      return OptionProblem{"user_values", "positive periods (a curve's points carry no others)"};
   if (auto wrong = driver::step_options(*this).validate()) return wrong;  // the step fields
   if (max_iterations < 1) return OptionProblem{"max_iterations", "a positive integer"};
   if (!positive(tolerance)) return OptionProblem{"tolerance", "a positive number"};
@@ -112,7 +115,8 @@ class CurveContinuation {
   const CurveOptions& options_;
   std::pair<double, double> origin_;
   const CurvePoint& start_;
-  double farthest_ = 0.0;  // from the start, in the scaled norm
+  double farthest_ = 0.0;               // from the start, in the scaled norm
+  std::optional<std::string> stop_at_;  // a stop passed in the step detect saw last: its note
 };
 
 bool CurveContinuation::inside(const Eigen::VectorXd& u) const {
@@ -187,6 +191,13 @@ std::optional<CurveNode> CurveContinuation::onto_edge(const Point& a, const Poin
 
 std::optional<driver::Ending> CurveContinuation::ends(const Point& a, const Point& b,
                                                       std::vector<Event>&) {
+  // A period the curve was asked to stop at, passed in this step: b not kept (the curve's orbit
+  // there is the event's).
+  if (stop_at_) {
+    const std::string note = *stop_at_;
+    stop_at_.reset();
+    return driver::Ending{driver::Stop::UserValue, "reached the value asked for: " + note, false};
+  }
   // Back at the start: the curve went away from it and the last step passed through it
   // (driver::on_chord). A point merely near the start in the scaled norm is not enough: two NS
   // points 6 N/m apart on a 1-100 N/m window are 0.06 apart, about one step.
@@ -383,8 +394,25 @@ CurveEvent CurveContinuation::locate_turn(int k, const Point& from, const Point&
 driver::Found<CurveEvent> CurveContinuation::detect(const Point*, const Point& from,
                                                     const Point& to) {
   driver::Found<CurveEvent> found;
-  if (!options_.detect) return found;
   std::vector<CurveEvent>& events = found.events;
+  // AUTO's UZ and UZSTOP on the period, on the locator of the codimension-two points.
+  stop_at_.reset();
+  for (const UserValue& v : options_.user_values) {
+    const double f0 = from.period - v.value, f1 = to.period - v.value;
+    if (f0 == 0.0 || (f1 != 0.0 && (f0 < 0.0) == (f1 < 0.0))) continue;
+    const std::string note =
+        (v.stop ? "stop at " : "user value ") + v.name + " = " + format_number(v.value);
+    const double value = v.value;
+    CurveEvent e = locate({"UZ", note, [value](const CurvePoint& p) { return p.period - value; }},
+                          from, to, f0, f1);
+    e.after_point = from.index;
+    if (v.stop && !stop_at_) stop_at_ = note;
+    events.push_back(std::move(e));
+  }
+  if (!options_.detect) {
+    for (const auto& e : events) found.unlocated |= !e.located;
+    return found;
+  }
   for (const auto& w : watches()) {
     const double f0 = w.value(from), f1 = w.value(to);
     if (!(std::isfinite(f0) && std::isfinite(f1)) || (f0 < 0.0) == (f1 < 0.0)) continue;

@@ -59,6 +59,15 @@ CurveRequest curve_request(const Arguments& args, const LoadedSystem& c) {
   co.initial_step = args.number("--step", co.initial_step);
   co.max_step = args.number("--max-step", co.max_step);
   co.max_points = args.integer("--max-points", co.max_points);
+  for (const bool stop : {false, true}) {
+    const std::string option = stop ? "--stop-at" : "--user-value";
+    for (const Assignment& a : args.assignments(option)) {
+      if (a.key != "period")
+        throw InputError(option + " " + a.key + "=" + format_number(a.value) +
+                         ": a curve's points carry their period only; expected period=VALUE");
+      co.user_values.push_back(user_value(a, stop, c.system(), option));
+    }
+  }
   co.orbit = o.orbit;
   check_options(co.validate(), "");  // names initial_step --step, ...
   c.check_range(request.parameter, {{"--from", request.from}, {"--to", request.to}});

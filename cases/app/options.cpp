@@ -14,7 +14,8 @@ OptionKind kind_of(const OptionSpec& spec) {
     if (v == number) return OptionKind::Number;
   if (v == "V1,V2,...") return OptionKind::Numbers;
   if (v == "NAME[,NAME...]" || v == "VAR[,VAR...]") return OptionKind::Names;
-  if (v == "KEY=VALUE" || v == "VAR=VALUE" || v == "QUANTITY=VALUE") return OptionKind::Assignments;
+  if (v == "KEY=VALUE" || v == "VAR=VALUE" || v == "QUANTITY=VALUE" || v == "period=VALUE")
+    return OptionKind::Assignments;
   for (const char* text : {"FILE", "FILE.csv", "FITTED.toml", "DIR", "NAME", "EVENT", "POINT", "P",
                            "Q", "LIST", "MIN:MAX", "NAME=FROM:TO:COUNT", "NAME=LO:HI"})
     if (v == text) return OptionKind::Text;

@@ -200,6 +200,15 @@ def judge(reference, result):
                                                           reference["parameter"])
     wanted = KIND_TO_EVENT[reference["kind"]]
     events = [e for e in data.get("events", []) if e.get("type") == wanted]
+    if isinstance(data.get("first"), str):
+        # A two-parameter curve (curve --json): an event's value is that of the reference's
+        # parameter, one of the curve's two, and its period its point's.
+        if reference["parameter"] not in (data["first"], data["second"]):
+            return "fail", "the curve is in %s and %s, not %s" % (
+                data["first"], data["second"], reference["parameter"])
+        which = "first" if reference["parameter"] == data["first"] else "second"
+        events = [dict(e, value=e[which], period=e.get("point", {}).get("period"),
+                       trusted=e.get("located", False)) for e in events]
     if not events:
         stop = data.get("stop_reason", data.get("stop", ""))
         return "fail", "no %s event (run stopped: %s)" % (wanted, stop)

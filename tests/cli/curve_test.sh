@@ -6,7 +6,7 @@ set -u
 bin=$1 src=$2 work=$3
 mkdir -p "$work"
 . "$(dirname "$0")/check.sh"
-json() { /usr/bin/python3 -c "import json,sys; j=json.load(open(sys.argv[1])); print($2)" "$1"; }
+json() { /usr/bin/python3 -c "import json,math,sys; j=json.load(open(sys.argv[1])); print($2)" "$1"; }
 row2=$src/cases/row2.toml
 
 "$bin" continue "$row2" --start anti-phase --param k --from 46 --to 48 --quiet \
@@ -39,6 +39,36 @@ check "orbit from a curve's point: exit 0, the point named" grep -qF "start save
 check "... its period the point's (1e-9 relative), a multiplier at +1 (1e-7) beside the trivial" test "$(json "$work/from_bp.json" "(lambda p: abs(j['period'] - p['period']) < 1e-9 * p['period'] and sum(abs(complex(*m) - 1) < 1e-7 for m in j['multipliers']) >= 2)([q for q in json.load(open('$work/bp.json'))['points'] if q['index'] == $mid][0])")" = True
 "$bin" orbit "$row2" --parent "$work/bp.json" --from-point PD1 > /dev/null 2> "$work/from_bp_bad.err"
 check "... an event name refused: a curve's points by index" grep -qF "is a curve (curve --json); expected a point's index along it" "$work/from_bp_bad.err"
+
+# A curve's period asked for (AUTO's UZ and UZSTOP on PERIOD), exact on the Bautin normal form
+# r' = r (mu + 2 r^2 - r^4), theta' = w: its cycles' fold lies at mu = -1 (r = 1) for every w, and
+# the fold's period is 2 pi / w, so the curve in (mu, w) reports period 5 at w = 2 pi / 5 and
+# stops at period 4 at w = pi / 2 (to 1e-9 relative; measured 3e-12), mu = -1 (1e-9). 0.1 s.
+cat > "$work/bautin.toml" <<'TOML'
+kind = "equations"
+name = "bautin"
+[states]
+x = 1.4142135623730951
+y = 0.0
+[parameters]
+mu = 0.0
+w = 1.0
+[intermediates]
+rr = "x*x + y*y"
+g = "mu + 2*rr - rr*rr"
+[equations]
+x = "x*g - w*y"
+y = "y*g + w*x"
+TOML
+"$bin" continue "$work/bautin.toml" --param mu --from 0 --to -2 --quiet --json "$work/bautin.json" > /dev/null
+"$bin" curve "$work/bautin.toml" --parent "$work/bautin.json" --event LP1 --param mu --from -2 --to 0 \
+  --second w --second-from 0.5 --second-to 2 --user-value period=5 --stop-at period=4 --quiet \
+  --json "$work/bautin_fold.json" > "$work/bautin_fold.out"
+check "a curve's --user-value and --stop-at on the period: exit 0, stopped there" grep -qF "reached the value asked for: stop at period = 4" "$work/bautin_fold.out"
+check "... UZ at w = 2 pi / 5 and pi / 2 (1e-9 relative), mu = -1 (1e-9)" test "$(json "$work/bautin_fold.json" "[e['type'] for e in j['events']] == ['UZ', 'UZ'] and all(e['located'] and abs(e['second'] - w) < 1e-9 * w and abs(e['first'] + 1) < 1e-9 for e, w in zip(j['events'], (2 * math.pi / 5, math.pi / 2)))")" = True
+"$bin" curve "$work/bautin.toml" --parent "$work/bautin.json" --event LP1 --param mu --from -2 --to 0 \
+  --second w --second-from 0.5 --second-to 2 --stop-at max_x=1 > /dev/null 2> "$work/bautin_bad.err"
+check "... on another quantity: refused, saying what a curve takes" grep -qF -- "--stop-at max_x=1: a curve's points carry their period only; expected period=VALUE" "$work/bautin_bad.err"
 
 # The fast preset's BP curve at looser tolerances: the corrector's tolerances and difference
 # step follow the integration's measured noise (CurveSystem::measure_noise). Before, the chord

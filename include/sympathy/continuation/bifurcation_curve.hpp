@@ -43,6 +43,7 @@
 #include <Eigen/Dense>
 
 #include "sympathy/continuation/branch.hpp"
+#include "sympathy/continuation/continuation_options.hpp"
 
 namespace sympathy {
 
@@ -59,7 +60,11 @@ struct CurveOptions {
   double min_tangent_cosine = 0.95;  // between consecutive tangents, else the step is halved
   double location_tolerance = 1e-9;  // of codimension-two points: arclength (scaled)
   bool detect = true;                // codimension-two points
-  OrbitOptions orbit;                // the shooting flow, Floquet options
+  // Periods at which to report the curve's orbit (AUTO's UZ on PERIOD), events "UZ" located on
+  // the one locator; one with `stop` ends the curve there (UZSTOP). Period only: a curve's
+  // points carry no samples of their orbits.
+  std::vector<UserValue> user_values;
+  OrbitOptions orbit;  // the shooting flow, Floquet options
 
   OptionCheck validate() const;
 };
