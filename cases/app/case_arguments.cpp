@@ -21,8 +21,10 @@ LoadedEquations load_equations(const Arguments& args) {
 
 LoadedSystem load_system(const Arguments& args) {
   const auto period = data_period(args);  // checked before anything is compiled
+  // A saved orbit for the orbit commands; equilibria read their saved point in their request.
   LoadedSystem c(args.positional(0), args.text("--params", ""), args.assignments("--set"),
-                 start_data_path(args), args.command(), saved_start(args));
+                 start_data_path(args), args.command(),
+                 args.command() == "equilibria" ? std::nullopt : saved_start(args));
   if (period) c.scale_data_time(*period);
   return c;
 }

@@ -41,14 +41,30 @@ EquilibriumBranch read_equilibria_json(const std::string& path, const OdeSystem&
     }
     b.start_values = numbers(key(j, "parameter_values", path), path + ": key 'parameter_values'",
                              system.parameter_values_size());
+    if (j.contains("points"))
+      for (const nlohmann::json& q : j["points"]) {
+        EquilibriumPoint pt;
+        pt.index = q.at("index").get<int>();
+        pt.parameter = q.at("value").get<double>();
+        pt.state = numbers(q.at("state"), path + ": points[].state", n);
+        b.points.push_back(std::move(pt));
+      }
     const auto& events = key(j, "events", path);
     for (std::size_t i = 0; i < events.size(); ++i) {
       const std::string where = path + ": events[" + std::to_string(i) + "]";
       EquilibriumEvent e;
       const std::string type = key(events[i], "type", where).get<std::string>();
-      e.type = type == "HB"   ? EquilibriumEventType::Hopf
-               : type == "BP" ? EquilibriumEventType::BranchPoint
-                              : EquilibriumEventType::Fold;
+      if (type == "HB")
+        e.type = EquilibriumEventType::Hopf;
+      else if (type == "BP")
+        e.type = EquilibriumEventType::BranchPoint;
+      else if (type == "LP")
+        e.type = EquilibriumEventType::Fold;
+      else if (type == "UZ")
+        e.type = EquilibriumEventType::UserPoint;
+      else
+        throw InputError(where + ": key 'type': \"" + type +
+                         "\"; expected LP, BP, HB or UZ (written by sympathy equilibria --json)");
       e.parameter = key(events[i], "value", where).get<double>();
       e.state = numbers(key(events[i], "state", where), where + ".state", n);
       if (e.type == EquilibriumEventType::Hopf) {

@@ -204,6 +204,12 @@ std::vector<OptionSpec> equilibria_options() {
        {"--user-points", "V1,V2,...", false,
         "report the branch's equilibrium at each of these values of --param (AUTO's UZ), as "
         "events"},
+       {"--parent", "FILE", false,
+        "with --from-point: the equilibria JSON (equilibria --json) the start is saved in"},
+       {"--from-point", "POINT", false,
+        "start from this point of the --parent equilibria (its index, points[].index of the "
+        "JSON) or its event (LP1, BP1, HB1, UZ1, ...): its state and every parameter value "
+        "(AUTO's IRS)"},
        {"--step", "DS", false, "initial arclength step, scaled (default 0.01)"},
        {"--max-step", "DS", false, "largest arclength step, scaled (default 0.05)"},
        {"--max-points", "N", false, "point limit per direction (default 1000)"},

@@ -175,9 +175,18 @@ EquilibriaRequest equilibria_request(const Arguments& args, const LoadedSystem& 
   problem.to = window.to;
   problem.at = window.at;
   c.check_range(parameter, window.ends());
-  const BranchSource source = c.source(r.start, args.assignments("--initial"));
-  problem.start_state = source.start_state;
-  problem.values = source.values;
+  if (const auto saved = saved_start(args)) {
+    // A point or event of an earlier equilibria run (AUTO's IRS with a label): its state and
+    // every parameter value, in the same parameter or another.
+    const SavedEquilibrium e = read_saved_equilibrium(*saved, system);
+    problem.start_state = e.state;
+    problem.values = e.values;
+    r.start = "saved " + e.description;
+  } else {
+    const BranchSource source = c.source(r.start, args.assignments("--initial"));
+    problem.start_state = source.start_state;
+    problem.values = source.values;
+  }
   if (const std::string wrong = problem.problem_with(system); !wrong.empty())
     throw InputError("--" + wrong);
   EquilibriumOptions& o = r.options;

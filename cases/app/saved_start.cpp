@@ -2,9 +2,11 @@
 
 #include <algorithm>
 #include <cstdio>
+#include <map>
 
 #include "cases/app/branch_run.hpp"
 #include "cases/app/event_name.hpp"
+#include "cases/app/hopf_switch.hpp"
 #include "cases/app/json_reader.hpp"
 #include "sympathy/core/errors.hpp"
 
@@ -15,12 +17,13 @@ std::optional<SavedStart> saved_start(const Arguments& args) {
   SavedStart s{args.text("--parent", ""), *args.value("--from-point")};
   if (s.path.empty())
     throw InputError("--from-point " + s.what +
-                     ": expected --parent FILE too (the branch JSON, continue --json, it is in)");
+                     ": expected --parent FILE too (the JSON it is saved in: continue, curve or "
+                     "equilibria --json)");
   for (const char* own :
        {"--start", "--initial", "--start-data", "--switch-at", "--set", "--params"})
     if (args.has(own))
       throw InputError(std::string(own) + ": not with --from-point " + s.what +
-                       " (the saved orbit is the start, at its own parameter values)");
+                       " (the saved point is the start, at its own parameter values)");
   return s;
 }
 
@@ -149,6 +152,50 @@ SavedOrbit read_saved_orbit(const SavedStart& start, const OdeSystem& system) {
     throw InputError("--from-point " + start.what + ": " + start.path +
                      " gives it no positive period; expected a branch JSON written by continue "
                      "--json");
+  return saved;
+}
+
+SavedEquilibrium read_saved_equilibrium(const SavedStart& start, const OdeSystem& system) {
+  const EquilibriumBranch branch = read_equilibria_json(start.path, system);
+  SavedEquilibrium saved;
+  double at = 0.0;
+  std::string label;
+  if (const auto index = index_of(start.what)) {
+    const auto p = std::find_if(branch.points.begin(), branch.points.end(),
+                                [&](const EquilibriumPoint& q) { return q.index == *index; });
+    if (p == branch.points.end())
+      throw InputError("--from-point " + start.what + ": " + start.path + " has no point " +
+                       start.what + "; expected the index of one of its points (points[].index)");
+    saved.state = p->state;
+    at = p->parameter;
+    label = "point " + start.what;
+  } else {
+    // TYPE and its number among that type's events along the branch: UZ2, HB1.
+    const std::size_t digits = start.what.find_first_of("0123456789");
+    const std::string type = start.what.substr(0, digits);
+    const auto number =
+        digits == std::string::npos ? std::nullopt : index_of(start.what.substr(digits));
+    std::string list;
+    std::map<std::string, int> seen;
+    const EquilibriumEvent* found = nullptr;
+    for (const auto& e : branch.events) {
+      const std::string name = to_string(e.type) + std::to_string(++seen[to_string(e.type)]);
+      list += (list.empty() ? "" : ", ") + name;
+      if (number && to_string(e.type) == type && seen[type] == *number) found = &e;
+    }
+    if (!found)
+      throw InputError("--from-point " + start.what + ": " + start.path +
+                       " has no such point or event; expected a point's index or one of its "
+                       "events: " +
+                       (list.empty() ? std::string("it has none") : list));
+    saved.state = found->state;
+    at = found->parameter;
+    label = start.what;
+  }
+  saved.values = system.with_parameter(branch.start_values, branch.parameter, at);
+  char value[96];
+  std::snprintf(value, sizeof value, " (%s = %.10g)", branch.parameter_name.c_str(), at);
+  saved.description = start.path + ", " + label + value;
   return saved;
 }
 

@@ -1,5 +1,6 @@
-// --parent FILE --from-point N|EVENT (orbit, continue): a start from a point or an event of a
-// branch an earlier run saved (continue --json), or from a point of a two-parameter curve (curve
+// --parent FILE --from-point N|EVENT (orbit, continue; equilibria from equilibria --json): a start
+// from a point or an event of a branch an earlier run saved (continue --json), or from a point of a
+// two-parameter curve (curve
 // --json: its orbit at both parameters' values), AUTO's IRS with a label. The saved orbit's state,
 // period, shooting segments and parameter values are the start; Newton corrects it at once (no
 // transient), so an unstable orbit restarts as well as a stable one, in the same parameter or
@@ -39,5 +40,14 @@ struct SavedOrbit {
 // The saved orbit `start` names in its branch JSON, for `system`; InputError naming the file and
 // what is wrong (no such point: the indices it has; no such event: the events it has).
 SavedOrbit read_saved_orbit(const SavedStart& start, const OdeSystem& system);
+
+// equilibria --parent EQUILIBRIA.json --from-point N|EVENT: a point (by index) or an event (LP1,
+// BP1, HB1, UZ1: its type and number among that type's along the branch) of an earlier run.
+struct SavedEquilibrium {
+  std::string description;  // "FILE, UZ1 (p2 = 14)"
+  Eigen::VectorXd state;
+  ParameterValues values;
+};
+SavedEquilibrium read_saved_equilibrium(const SavedStart& start, const OdeSystem& system);
 
 }  // namespace sympathy::app

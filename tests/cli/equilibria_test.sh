@@ -93,6 +93,18 @@ check "the hanging equilibria: two Hopf points, the in-phase one where the branc
   test "$(json "$work/s_eq.json" "
 len(j['events']) == 2 and min(abs(e['value'] - $(json "$work/s.json" "j['hopf_end']['value']")) for e in j['events']) < 1e-20")" = True
 
+# A restart from a saved equilibrium (AUTO's IRS with a label): abc's equilibria with a user point
+# at p1 = 0.3 (UZ1), continued from there in p3 to 1.7 and back through p3 = 1.55, where the
+# equilibrium is the p1 run's at 0.3 (its second user point, to 1e-9; the state exact at each).
+"$bin" equilibria "$abc" --param p1 --from 0 --to 0.4 --user-points 0.3 --quiet --json "$work/uz.json" > /dev/null
+"$bin" equilibria "$abc" --parent "$work/uz.json" --from-point UZ1 --param p3 --from 1.7 --to 1.4 \
+  --user-points 1.55 --quiet --json "$work/from_uz.json" > "$work/from_uz.out"
+check "equilibria --from-point UZ1: exit 0, the start named" grep -qF "start saved $work/uz.json, UZ1 (p1 = 0.3)" "$work/from_uz.out"
+check "... its equilibrium at p3 = 1.55 the p1 run's at 0.3 (1e-9)" test "$(json "$work/from_uz.json" "max(abs(a - b) for a, b in zip([e for e in j['events'] if e['type'] == 'UZ'][0]['state'], [e for e in json.load(open('$work/uz.json'))['events'] if e['type'] == 'UZ'][0]['state'])) < 1e-9")" = True
+"$bin" equilibria "$abc" --parent "$work/uz.json" --from-point XY1 --param p3 --from 1.7 --to 1.4 \
+  > /dev/null 2> "$work/bad_point.err"
+check "... an event it does not have exits 2, listing its events" grep -qF -- "--from-point XY1: $work/uz.json has no such point or event; expected a point's index or one of its events: HB1, HB2, HB3, UZ1, HB4" "$work/bad_point.err"
+
 # Bad requests: named, exit 2, before any work.
 "$bin" equilibria "$abc" --param p9 --from 0 --to 1 > /dev/null 2> "$work/bad.err"
 check "an unknown parameter exits 2" test $? -eq 2
