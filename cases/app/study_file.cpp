@@ -50,10 +50,10 @@ Study load_study(const std::string& path) {
     ++index;
     const std::string prefix = "branches[" + std::to_string(index) + "].";
     const auto& t = *entry.as_table();
-    in.only(
-        t, prefix,
-        {"name", "start", "from", "to", "at", "set", "initial", "max_points", "step", "max_step",
-         "transient", "switch_at", "user_points", "start_data", "user_value", "stop_at"});
+    in.only(t, prefix,
+            {"name", "start", "from", "to", "at", "set", "initial", "max_points", "step",
+             "max_step", "transient", "switch_at", "user_points", "start_data", "user_value",
+             "stop_at", "parent", "from_point"});
     StudyBranch b;
     // The start may be left out: a branch switched at another's event takes the parent's, an
     // equation case file's branch its [states] (a metronome case file's needs one: study_run).
@@ -70,6 +70,28 @@ Study load_study(const std::string& path) {
           (std::filesystem::path(path).parent_path() / in.string(*n, prefix + "start_data"))
               .lexically_normal()
               .string();
+    }
+    if (t.get("parent") || t.get("from_point")) {
+      // A restart from a saved point: its own start and parameter values.
+      for (const char* key : {"parent", "from_point"})
+        if (!t.get(key))
+          throw InputError(path + ":" + std::to_string(entry.source().begin.line) + ": key '" +
+                           prefix + key +
+                           "' is missing; expected parent (a branch or curve JSON) and "
+                           "from_point (a point's index or an event, UZ1) together");
+      const toml::node& n = *t.get("from_point");
+      for (const char* own : {"start", "start_data", "switch_at", "set", "initial"})
+        if (t.get(own))
+          in.fail(n, prefix + "from_point",
+                  std::string("no ") + own +
+                      " beside it (the saved point is the start, at its own parameter values)");
+      const std::string what = n.is_integer() ? std::to_string(in.integer(n, prefix + "from_point"))
+                                              : in.string(n, prefix + "from_point");
+      b.saved = SavedStart{(std::filesystem::path(path).parent_path() /
+                            in.string(*t.get("parent"), prefix + "parent"))
+                               .lexically_normal()
+                               .string(),
+                           what};
     }
     b.request.parameter = s.parameter;
     b.request.from = in.number(*t.get("from"), prefix + "from");

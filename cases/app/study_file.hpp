@@ -6,6 +6,7 @@
 #include <vector>
 
 #include "cases/app/branch_run.hpp"
+#include "cases/app/saved_start.hpp"
 
 namespace sympathy::app {
 
@@ -26,6 +27,9 @@ struct StudyBranch {
   // `transient` given: a forced system's branch integrates it too (by default it starts with
   // Newton at once, as continue's).
   bool transient_given = false;
+  // `parent` and `from_point`: the branch starts from a point or event an earlier run saved
+  // (continue's --parent FILE --from-point POINT; the file relative to the study file).
+  std::optional<SavedStart> saved;
 };
 
 struct Study {

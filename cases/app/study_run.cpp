@@ -34,8 +34,11 @@ StudyRun study_run(const Arguments& args) {
   auto& sources = run.sources;
   std::vector<std::optional<RecordedPeriod>> recorded;  // each branch's start_data, if any
   for (auto& b : study.branches) {
-    auto c = std::make_unique<LoadedSystem>(study.case_path, study.params, b.sets);
+    auto c = std::make_unique<LoadedSystem>(study.case_path, study.params, b.sets, std::nullopt,
+                                            "a branch", b.saved);
     c->require_orbits();
+    if (c->saved_orbit())  // on the segments it was resolved on, as continue's --from-point
+      b.request.continuation.orbit.shooting.segments = c->saved_orbit()->segments;
     if (!c->system().autonomous() && !b.transient_given) b.request.continuation.orbit.transient = 0;
     if (!b.request.switch_at.empty()) c->require_autonomous("switch_at (branch switching)");
     const auto names = c->system().parameter_names();
@@ -57,7 +60,7 @@ StudyRun study_run(const Arguments& args) {
             user_value(a, stop, c->system(),
                        a.source + ": key 'branches." + b.name + "." +
                            (stop ? "stop_at" : "user_value") + "'"));
-    if (!c->equations() && b.request.start.empty() && b.start_data.empty())
+    if (!c->equations() && b.request.start.empty() && b.start_data.empty() && !b.saved)
       throw InputError(study.path + ": branch '" + b.name +
                        "': key 'start' is missing; expected the name of one of " + c->path() +
                        "'s starts: " + join(c->start_names()));

@@ -231,4 +231,25 @@ sed -i 's/max_x = 0.6/peri = 4/' "$work/uv_study.toml"
 "$bin" study "$work/uv_study.toml" --out "$work/uv_study" > /dev/null 2> "$work/uv_study.err"
 check "... an unknown quantity refused, file, line and key named" grep -qF "uv_study.toml:7: key 'branches.cycles.user_value' peri=4: not a quantity of the orbits" "$work/uv_study.err"
 
+# A study branch from a saved point (parent and from_point, as continue's --parent --from-point;
+# the file relative to the study file): lcbp's user point restarted in p2, the same circle r = 1.5
+# as the command line's run (every point to 1e-9); beside start, refused by key.
+cp "$work/lcbp_b.json" "$work/saved_uz.json"
+cat > "$work/from_saved.toml" << TOML
+title = "from a saved point"
+case = "$lcbp"
+parameter = "p2"
+[[branches]]
+name = "restarted"
+parent = "saved_uz.json"
+from_point = "UZ1"
+from = 2.0
+to = 2.5
+TOML
+"$bin" study "$work/from_saved.toml" --out "$work/from_saved" > /dev/null 2>&1
+check "a study branch from a saved point: exit 0, the circle r = 1.5 (1e-9)" test "$(json "$work/from_saved/from_saved.json" "(lambda b: len(b['points']) > 2 and all(abs(math.hypot(*p['state0']) - 1.5) < 1e-9 for p in b['points']))(j['branches'][0])")" = True
+printf 'start = "x"\n' >> "$work/from_saved.toml"
+"$bin" study "$work/from_saved.toml" --out "$work/from_saved" > /dev/null 2> "$work/from_saved.err"
+check "... beside start: refused, key named" grep -qF "key 'branches[1].from_point': expected no start beside it" "$work/from_saved.err"
+
 exit $failures
