@@ -29,10 +29,11 @@ StateDescriber::Sizes StateDescriber::sizes(const PeriodicOrbit& orbit) const {
     return {unknown, unknown, unknown, unknown};
   }
   Sizes r{zeros, zeros, zeros, zeros};
+  const OrbitExtremes extremes = refined_extremes(system_, orbit, samples.leftCols(count));
   for (int i = 0; i < n; ++i) {
     const Eigen::VectorXd y = samples.row(i).head(count).transpose();
-    r.maxima[i] = refined_extreme(system_, orbit, samples.leftCols(count), i, true);
-    r.minima[i] = refined_extreme(system_, orbit, samples.leftCols(count), i, false);
+    r.maxima[i] = extremes.maxima[i];
+    r.minima[i] = extremes.minima[i];
     r.amplitudes[i] = 0.5 * (y.maxCoeff() - y.minCoeff());
     r.rms[i] = std::sqrt(integral[i] / orbit.period);
   }

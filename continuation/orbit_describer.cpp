@@ -66,25 +66,24 @@ double sampled_extreme(const Eigen::VectorXd& y, bool largest) {
   return at - (after - before) * (after - before) / (8.0 * curvature);
 }
 
-double refined_extreme(const OdeSystem& system, const PeriodicOrbit& orbit,
-                       const Eigen::MatrixXd& samples, int state, bool largest) {
+namespace {
+
+// One state's extreme refined on `flow` (at rtol 1e-12): Newton in time on the state's
+// derivative f_i (zero at the extreme; its rate of change is row i of J f), each iterate
+// integrated from the sample before the extreme one, at most two spacings.
+double refine(Flow& flow, const PeriodicOrbit& orbit, const Eigen::MatrixXd& samples, int state,
+              bool largest) {
+  const OdeSystem& system = flow.system();
   const Eigen::VectorXd y = samples.row(state).transpose();
   const double parabola = sampled_extreme(y, largest);
   const ExtremeSample e = extreme_sample(y, largest);
   if (!e.inside || !system.differentiable() || samples.cols() < 3) return parabola;
-  // Newton in time on the state's derivative f_i (zero at the extreme; its rate of change is row
-  // i of J f), each iterate integrated from the sample before the extreme one, at most two
-  // spacings, at rtol 1e-12.
   const int n = system.dimension();
   const double h = orbit.period / static_cast<double>(samples.cols() - 1);
   const long base = (e.k + e.m - 1) % e.m;
   const double t0 = h * static_cast<double>(base);
   double span = h * (1.0 + vertex_offset(y, e));
-  FlowOptions o;
-  o.rtol = 1e-12;
-  o.atol = 1e-14 * std::max(1.0, samples.cwiseAbs().maxCoeff());
   try {
-    Flow flow(system, o);
     const Eigen::VectorXd z0 = samples.col(base);
     Eigen::VectorXd z = z0, f(n);
     Eigen::MatrixXd jac(n, n);
@@ -110,13 +109,36 @@ double refined_extreme(const OdeSystem& system, const PeriodicOrbit& orbit,
   }
 }
 
+FlowOptions refining_flow(const Eigen::MatrixXd& samples) {
+  FlowOptions o;
+  o.rtol = 1e-12;
+  o.atol = 1e-14 * std::max(1.0, samples.cwiseAbs().maxCoeff());
+  return o;
+}
+
+}  // namespace
+
+OrbitExtremes refined_extremes(const OdeSystem& system, const PeriodicOrbit& orbit,
+                               const Eigen::MatrixXd& samples) {
+  const int n = static_cast<int>(samples.rows());
+  OrbitExtremes r{Eigen::VectorXd(n), Eigen::VectorXd(n)};
+  Flow flow(system, refining_flow(samples));  // one for every state's (a flow is set up once)
+  for (int i = 0; i < n; ++i) {
+    r.maxima[i] = refine(flow, orbit, samples, i, true);
+    r.minima[i] = refine(flow, orbit, samples, i, false);
+  }
+  return r;
+}
+
 double orbit_extreme(const OdeSystem& system, const PeriodicOrbit& orbit, int state, bool largest) {
   Eigen::MatrixXd samples(system.dimension(), PeriodSamples::intervals + 1);
   int count = 0;
   sample_period(system, orbit, [&](double, const Eigen::VectorXd& z) {
     if (count < samples.cols()) samples.col(count++) = z;
   });
-  return refined_extreme(system, orbit, samples.leftCols(count), state, largest);
+  const Eigen::MatrixXd taken = samples.leftCols(count);
+  Flow flow(system, refining_flow(taken));
+  return refine(flow, orbit, taken, state, largest);
 }
 
 }  // namespace sympathy

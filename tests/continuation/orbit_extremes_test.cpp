@@ -71,10 +71,11 @@ TEST(OrbitExtremes, LotkaVolterraSpikesToTheClosedForm) {
   const double c = 1.05 - std::log(0.05) - 1.0;  // H - 1
   const double x_max = level_root(c, true), x_min = level_root(c, false);
   const double y_max = level_root(c, true), y_min = 0.05;
-  EXPECT_NEAR(refined_extreme(system, orbit, samples, 0, true), x_max, 1e-9 * x_max);
-  EXPECT_NEAR(refined_extreme(system, orbit, samples, 0, false), x_min, 1e-9 * x_min);
-  EXPECT_NEAR(refined_extreme(system, orbit, samples, 1, true), y_max, 1e-9 * y_max);
-  EXPECT_NEAR(refined_extreme(system, orbit, samples, 1, false), y_min, 1e-9 * y_min);
+  const OrbitExtremes refined = refined_extremes(system, orbit, samples);
+  EXPECT_NEAR(refined.maxima[0], x_max, 1e-9 * x_max);
+  EXPECT_NEAR(refined.minima[0], x_min, 1e-9 * x_min);
+  EXPECT_NEAR(refined.maxima[1], y_max, 1e-9 * y_max);
+  EXPECT_NEAR(refined.minima[1], y_min, 1e-9 * y_min);
   const Eigen::VectorXd x = samples.row(0).transpose();
   EXPECT_GT(std::abs(sampled_extreme(x, true) - x_max), 1e-7 * x_max)
       << "the parabola alone would pass: the test does not tell the refinement apart";

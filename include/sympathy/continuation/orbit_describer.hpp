@@ -47,14 +47,18 @@ void sample_period(const OdeSystem& system, const PeriodicOrbit& orbit,
 // The parabola's error is O(h^3) of the state's third derivative there (on the Hopf normal
 // form's circle, 2e-12 of the radius, where the extreme sample alone was 8e-6 off).
 double sampled_extreme(const Eigen::VectorXd& y, bool largest);
-// The extreme of one state of `samples` (n x (intervals + 1), one period of `orbit` as
-// sample_period gives it) refined on the flow: the time where the state's derivative vanishes,
-// by Newton from the sample before, each iterate integrated at rtol 1e-12. The parabola above was
-// 2.7e-7 off (5e-7 relative) at the spike of AUTO's pp2 (T = 36 on 800 samples); this is within
-// 1e-9 there of SciPy's DOP853 at rtol 1e-13. The parabola's value where the system has no
-// Jacobian, the extreme is at an end, or Newton leaves the two spacings around the sample.
-double refined_extreme(const OdeSystem& system, const PeriodicOrbit& orbit,
-                       const Eigen::MatrixXd& samples, int state, bool largest);
+// Every state's largest and smallest value over `orbit`, from `samples` (n x (intervals + 1), one
+// period as sample_period gives it) refined on the flow: the time where the state's derivative
+// vanishes, by Newton from the sample before, each iterate integrated at rtol 1e-12. The
+// parabola above was 2.7e-7 off (5e-7 relative) at the spike of AUTO's pp2 (T = 36 on 800
+// samples) and 1e-5 relative on lor; these are within 1e-9 there of SciPy's DOP853 at rtol
+// 1e-13. The parabola's value where the system has no Jacobian, the extreme is at an end, or
+// Newton leaves the two spacings around the sample.
+struct OrbitExtremes {
+  Eigen::VectorXd maxima, minima;
+};
+OrbitExtremes refined_extremes(const OdeSystem& system, const PeriodicOrbit& orbit,
+                               const Eigen::MatrixXd& samples);
 // A state's largest (or smallest) value over the orbit's period, from sample_period, refined.
 double orbit_extreme(const OdeSystem& system, const PeriodicOrbit& orbit, int state, bool largest);
 
