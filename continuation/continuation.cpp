@@ -71,9 +71,11 @@ class Continuation::Run {
   // Whether an accepted point keeps its period's samples: where a user value reads the orbits'
   // extremes, the next step's detect reads them (else one plain period is integrated again).
   bool keeps_samples() const {
-    return std::any_of(
-        c_.options_.user_values.begin(), c_.options_.user_values.end(),
-        [](const UserValue& v) { return v.quantity != UserValue::Quantity::Period; });
+    return std::any_of(c_.options_.user_values.begin(), c_.options_.user_values.end(),
+                       [](const UserValue& v) {
+                         return v.quantity == UserValue::Quantity::Maximum ||
+                                v.quantity == UserValue::Quantity::Minimum;
+                       });
   }
   // Continuation::hopf_end of a turn, asked once per located turn: detection asks it to decide
   // whether to retry the step, ends to end the family there (a secant search on the equilibria

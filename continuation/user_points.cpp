@@ -89,6 +89,7 @@ std::vector<Bifurcation> Continuation::user_points_between(const ContinuationPoi
 
 double Continuation::quantity(const UserValue& v, const ContinuationPoint& p) const {
   if (v.quantity == UserValue::Quantity::Period) return p.orbit.period;
+  if (v.quantity == UserValue::Quantity::AtSection) return p.orbit.state0[v.state];
   return orbit_extreme(system_, p.orbit, v.state, v.quantity == UserValue::Quantity::Maximum);
 }
 
@@ -120,8 +121,8 @@ std::vector<std::pair<Bifurcation, bool>> Continuation::user_values_between(
       at = point_where(a, b, N - 1, v.value);  // exact: the period held at the value
       if (!at) why = "the orbit with this period could not be corrected";
     } else {
-      // The extreme is no unknown: located on the one locator in arclength along a's tangent,
-      // to the location tolerance in the parameter and 1e-7 of the step in arclength.
+      // An extreme (or a state at the section) is located on the one locator in arclength along
+      // a's tangent, to the location tolerance in the parameter and 1e-7 of the step.
       driver::LocatorOptions o;
       o.tolerance = options_.location_tolerance;
       o.floor = 0.01 * (options_.upper - options_.lower);

@@ -111,7 +111,8 @@ std::vector<OptionSpec> continue_options() {
        {"--user-value", "QUANTITY=VALUE", true,
         "report the branch's orbit where a quantity of its orbits takes this value, as an event "
         "(AUTO's UZ on any quantity): period, max_NAME or min_NAME (a state's largest or "
-        "smallest value over the period)"},
+        "smallest value over the period), or NAME (its value at the orbit's point on its "
+        "section, state0)"},
        {"--stop-at", "QUANTITY=VALUE", true, "the same, and the branch ends there (AUTO's UZSTOP)"},
        {"--csv", "FILE", false, "stream every point to this CSV"},
        {"--json", "FILE", false, "write the branch and its bifurcations as JSON"},

@@ -59,12 +59,17 @@ UserValue user_value(const Assignment& a, bool stop, const OdeSystem& system,
   if (a.key == "period") {
     if (!system.autonomous())
       throw InputError(option + " period=" + format_number(a.value) +
-                       ": a forced system's period is the forcing's; expected max_NAME or "
-                       "min_NAME");
+                       ": a forced system's period is the forcing's; expected max_NAME, "
+                       "min_NAME or NAME");
     if (!(a.value > 0.0))
       throw InputError(option + " period=" + format_number(a.value) +
                        ": expected a positive period");
     v.quantity = UserValue::Quantity::Period;
+    return v;
+  }
+  if (state(a.key) >= 0) {  // a state's value at the orbit's section point
+    v.quantity = UserValue::Quantity::AtSection;
+    v.state = state(a.key);
     return v;
   }
   for (const auto& [prefix, quantity] :
@@ -78,6 +83,7 @@ UserValue user_value(const Assignment& a, bool stop, const OdeSystem& system,
   std::vector<std::string> expected{"period"};
   for (const auto& n : names) expected.push_back("max_" + n);
   for (const auto& n : names) expected.push_back("min_" + n);
+  for (const auto& n : names) expected.push_back(n);
   throw InputError(option + " " + a.key + "=" + format_number(a.value) +
                    ": not a quantity of the orbits; expected one of: " + join(expected));
 }

@@ -194,7 +194,14 @@ check "... no point beyond the stop" test "$(json "$work/uv_mu.json" "max(p['val
 check "... on the period: UZ at w = pi / 2 and 2 pi / 3 to 1e-9 relative, the period exact" test "$(json "$work/uv_w.json" "[e['type'] for e in j['events']] == ['UZ', 'UZ'] and all(abs(e['value'] - w) < 1e-9 * w and e['period'] == T for e, w, T in zip(j['events'], (math.pi / 2, 2 * math.pi / 3), (4, 3)))")" = True
 "$bin" continue "$hopf" --param w --from 1 --to 3 --user-value peri=4 > /dev/null 2> "$work/uv_bad.err"
 check "an unknown quantity: exit code 2" test $? -eq 2
-check "... naming the quantities there are" grep -qF -- "--user-value peri=4: not a quantity of the orbits; expected one of: period, max_x, max_y, min_x, min_y" "$work/uv_bad.err"
+check "... naming the quantities there are" grep -qF -- "--user-value peri=4: not a quantity of the orbits; expected one of: period, max_x, max_y, min_x, min_y, x, y" "$work/uv_bad.err"
+
+# A state's value at the orbit's section point (state0): on the Hopf normal form started on the
+# x axis (Newton at once from (0.5, 0)) the section stays the plane y = 0, where x = sqrt(mu); the
+# stop at x = 0.8 is at mu = 0.64 (to 1e-9 relative; measured 1e-12).
+"$bin" continue "$hopf" --param mu --from 0.25 --to 1 --initial x=0.5 --initial y=0 \
+  --period-guess 6.283 --stop-at x=0.8 --quiet --json "$work/uv_x.json" > /dev/null
+check "... on a state at the section: stop at x = 0.8 at mu = 0.64 (1e-9 relative)" test "$(json "$work/uv_x.json" "[e['type'] for e in j['events']] == ['UZ'] and abs(j['events'][0]['value'] - 0.64) < 1e-9 * 0.64 and abs(j['events'][0]['state0'][0] - 0.8) < 1e-9")" = True
 
 # A stop at a longer period goes on past the homoclinic approach that otherwise ends a branch,
 # while the orbits' multipliers are resolved (trivial error within 1e-2): AUTO's pen to T = 30

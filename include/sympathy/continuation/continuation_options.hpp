@@ -13,12 +13,14 @@ namespace sympathy {
 // corrected with its period held at the value), or a state's largest or smallest value over the
 // period (located on the one locator, from the period's samples). `stop`: the branch ends there.
 struct UserValue {
-  enum class Quantity { Period, Maximum, Minimum };
+  // AtSection: a state's value at the orbit's point on its phase section (state0; for a forced
+  // system, at t = 0), AUTO's U(i) at the start of the period.
+  enum class Quantity { Period, Maximum, Minimum, AtSection };
   Quantity quantity = Quantity::Period;
-  int state = -1;  // Maximum, Minimum: the state's index
+  int state = -1;  // Maximum, Minimum, AtSection: the state's index
   double value = 0.0;
   bool stop = false;
-  std::string name;  // as the outputs name the quantity: "period", "max_x", "min_x"
+  std::string name;  // as the outputs name the quantity: "period", "max_x", "min_x", "x"
 };
 
 struct ContinuationOptions {
