@@ -214,9 +214,7 @@ class EquilibriumContinuation {
   // The last point lies on the bound: f = 0 with the parameter fixed there.
   std::optional<Point> onto_edge(const Point& a, const Point& b) const {
     const double bound = std::clamp(b.parameter, o_.lower, o_.upper);
-    const double w = (bound - a.parameter) / (b.parameter - a.parameter);
-    const Equilibrium at =
-        solve_equilibrium(system_, values_at(bound), (1 - w) * a.state + w * b.state);
+    const Equilibrium at = held_at(a, b, bound);
     if (!at.converged) return std::nullopt;
     Eigen::VectorXd y(n_ + 1);
     y << at.state, bound;
@@ -336,6 +334,15 @@ class EquilibriumContinuation {
   // The equilibrium at the parameter value asked for, between a and b: Newton with the parameter
   // held there, from the state interpolated linearly between them; where it fails, reported at
   // the interpolated state, not located.
+  // Newton with the parameter held at `value` (between a's and b's), from the state interpolated
+  // linearly between them: a point on the window's edge, a user point.
+  Equilibrium held_at(const EquilibriumPoint& a, const EquilibriumPoint& b, double value) const {
+    const double w = (value - a.parameter) / (b.parameter - a.parameter);
+    Equilibrium at = solve_equilibrium(system_, values_at(value), (1 - w) * a.state + w * b.state);
+    if (!at.converged) at.state = (1 - w) * a.state + w * b.state;  // the guess, for a report
+    return at;
+  }
+
   EquilibriumEvent user_point(const EquilibriumPoint& a, const EquilibriumPoint& b,
                               double value) const {
     const double w = (value - a.parameter) / (b.parameter - a.parameter);
@@ -346,10 +353,9 @@ class EquilibriumContinuation {
     e.arclength = w * b.step;
     e.tangent = b.tangent;
     e.note = "user point";
-    const Equilibrium at =
-        solve_equilibrium(system_, values_at(value), (1 - w) * a.state + w * b.state);
+    const Equilibrium at = held_at(a, b, value);
     e.located = at.converged;
-    e.state = at.converged ? at.state : Eigen::VectorXd((1 - w) * a.state + w * b.state);
+    e.state = at.state;
     Eigen::VectorXd y(n_ + 1);
     y << e.state, value;
     e.eigenvalues = sorted_eigenvalues(jacobian(y).leftCols(n_));

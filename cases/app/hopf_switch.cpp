@@ -54,15 +54,15 @@ EquilibriumBranch read_equilibria_json(const std::string& path, const OdeSystem&
       const std::string where = path + ": events[" + std::to_string(i) + "]";
       EquilibriumEvent e;
       const std::string type = key(events[i], "type", where).get<std::string>();
-      if (type == "HB")
-        e.type = EquilibriumEventType::Hopf;
-      else if (type == "BP")
-        e.type = EquilibriumEventType::BranchPoint;
-      else if (type == "LP")
-        e.type = EquilibriumEventType::Fold;
-      else if (type == "UZ")
-        e.type = EquilibriumEventType::UserPoint;
-      else
+      // The names to_string writes, read back.
+      bool known = false;
+      for (const auto t : {EquilibriumEventType::Fold, EquilibriumEventType::BranchPoint,
+                           EquilibriumEventType::Hopf, EquilibriumEventType::UserPoint})
+        if (to_string(t) == type) {
+          e.type = t;
+          known = true;
+        }
+      if (!known)
         throw InputError(where + ": key 'type': \"" + type +
                          "\"; expected LP, BP, HB or UZ (written by sympathy equilibria --json)");
       e.parameter = key(events[i], "value", where).get<double>();
