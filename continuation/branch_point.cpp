@@ -20,38 +20,33 @@ namespace {
 // and their truncation error is of the same order; Newton then contracts by about 1e-5 a step.
 constexpr double kDifferenceStep = 1e-6;
 
-struct Linearization {
-  bool ok = false;
-  std::string failure;
-  ShootingProblem::Evaluation evaluation;
-  Eigen::MatrixXd jacobian;  // N x (N + 1): [F_x F_p]
-};
-
-Linearization linearize(ShootingProblem& problem, const PhaseSection& section,
-                        const BranchSpace& space, int parameter, const Eigen::VectorXd& y) {
-  Linearization l;
-  const int N = problem.unknowns();
-  try {
-    l.evaluation = problem.evaluate(y.head(N), space.values_at(y[N]), section, true, parameter);
-    l.jacobian = Eigen::MatrixXd(problem.jacobian(l.evaluation, true));
-  } catch (const std::exception& ex) {
-    l.failure = ex.what();
-    return l;
-  }
-  l.ok = l.evaluation.residual.allFinite() && l.jacobian.allFinite();
-  if (!l.ok) l.failure = "the residual or its Jacobian is not finite";
-  return l;
-}
-
 }  // namespace
 
-std::optional<Eigen::VectorXd> hessian_along(ShootingProblem& problem, const PhaseSection& section,
-                                             const BranchSpace& space, int parameter,
+MooreLinearize shooting_linearization(ShootingProblem& problem, const PhaseSection& section,
+                                      const BranchSpace& space, int parameter) {
+  return [&problem, &section, &space, parameter](const Eigen::VectorXd& y) {
+    MooreLinearization l;
+    const int N = problem.unknowns();
+    try {
+      const auto e = problem.evaluate(y.head(N), space.values_at(y[N]), section, true, parameter);
+      l.jacobian = Eigen::MatrixXd(problem.jacobian(e, true));
+      l.residual = e.residual;
+    } catch (const std::exception& ex) {
+      l.failure = ex.what();
+      return l;
+    }
+    l.ok = l.residual.allFinite() && l.jacobian.allFinite();
+    if (!l.ok) l.failure = "the residual or its Jacobian is not finite";
+    return l;
+  };
+}
+
+std::optional<Eigen::VectorXd> hessian_along(const MooreLinearize& linearize,
                                              const Eigen::VectorXd& y, const Eigen::VectorXd& psi,
                                              const Eigen::VectorXd& gradient,
                                              const Eigen::VectorXd& direction, double h,
                                              std::string& failure) {
-  const Linearization d = linearize(problem, section, space, parameter, y + h * direction);
+  const MooreLinearization d = linearize(y + h * direction);
   if (!d.ok) {
     failure = d.failure;
     return std::nullopt;
@@ -59,22 +54,38 @@ std::optional<Eigen::VectorXd> hessian_along(ShootingProblem& problem, const Pha
   return Eigen::VectorXd((d.jacobian.transpose() * psi - gradient) / h);
 }
 
-BranchPointSolution solve_branch_point(ShootingProblem& problem, const PhaseSection& section,
-                                       const BranchSpace& space, int parameter,
-                                       const Eigen::VectorXd& guess, double residual_noise,
-                                       double monodromy_noise, const BranchPointOptions& options) {
-  BranchPointSolution out;
-  const int N = problem.unknowns();
-  if (N + 1 > options.max_unknowns) {
-    out.reason = std::to_string(N + 1) + " unknowns: above the " +
-                 std::to_string(options.max_unknowns) +
-                 " for which the system's second derivatives are affordable";
-    return out;
+Eigen::VectorXd branching_tangent(const Eigen::Matrix2d& c, const Eigen::MatrixXd& kernel,
+                                  const Eigen::VectorXd& old) {
+  const Eigen::SelfAdjointEigenSolver<Eigen::Matrix2d> eig(0.5 * (c + c.transpose()));
+  const double l1 = eig.eigenvalues()[0], l2 = eig.eigenvalues()[1];
+  if (!(l1 * l2 < 0.0))
+    throw std::runtime_error(
+        "branch switching: the branching equation has no two real roots here (not a simple "
+        "branch point)");
+  // In the eigenvectors' coordinates l1 u^2 + l2 v^2 = 0: (u, v) = (sqrt|l2|, +-sqrt|l1|).
+  Eigen::VectorXd best;
+  double best_cos = 2.0;
+  for (const double sign : {+1.0, -1.0}) {
+    const Eigen::Vector2d uv(std::sqrt(std::abs(l2)), sign * std::sqrt(std::abs(l1)));
+    const Eigen::VectorXd t = (kernel * (eig.eigenvectors() * uv)).normalized();
+    const double cosine = std::abs(t.dot(old));
+    if (cosine < best_cos) {
+      best_cos = cosine;
+      best = t;
+    }
   }
-  const Eigen::VectorXd& w = space.weights();  // of y = (x, p)
-  const int size = 2 * N + 2;                  // y, psi, beta
+  // The other root is the old branch: within the differences' error of the old tangent.
+  return best;
+}
+
+MooreSolution solve_moore(const MooreLinearize& linearize, const Eigen::VectorXd& w,
+                          const Eigen::VectorXd& guess, double residual_noise,
+                          double jacobian_noise, const BranchPointOptions& options) {
+  MooreSolution out;
+  const int N = static_cast<int>(guess.size()) - 1;
+  const int size = 2 * N + 2;  // y, psi, beta
   Eigen::VectorXd y = guess;
-  Linearization at = linearize(problem, section, space, parameter, y);
+  MooreLinearization at = linearize(y);
   ++out.evaluations;
   if (!at.ok) {
     out.reason = "integration failed: " + at.failure;
@@ -93,16 +104,16 @@ BranchPointSolution solve_branch_point(ShootingProblem& problem, const PhaseSect
     out.iterations = it;
     const Eigen::VectorXd gradient = at.jacobian.transpose() * psi;  // F_y^T psi
     Eigen::VectorXd g(size);
-    g.head(N) = at.evaluation.residual + beta * psi;
+    g.head(N) = at.residual + beta * psi;
     g.segment(N, N + 1) = gradient;
     g[size - 1] = 0.5 * (psi.squaredNorm() - 1.0);
     // d(F_y^T psi)/dy: the Hessian of psi^T F, symmetric; its differences symmetrized.
     Eigen::MatrixXd hessian(N + 1, N + 1);
     for (int j = 0; j <= N; ++j) {
       std::string failure;
-      const auto column =
-          hessian_along(problem, section, space, parameter, y, psi, gradient,
-                        Eigen::VectorXd::Unit(N + 1, j), kDifferenceStep / w[j], failure);
+      const auto column = hessian_along(linearize, y, psi, gradient,
+                                        Eigen::VectorXd::Unit(N + 1, j), kDifferenceStep / w[j],
+                                        failure);
       ++out.evaluations;
       if (!column) {
         out.reason = "integration failed: " + failure;
@@ -126,7 +137,7 @@ BranchPointSolution solve_branch_point(ShootingProblem& problem, const PhaseSect
     }
     const Eigen::VectorXd dz = column_scale.cwiseProduct(qr.solve(-g));
     const Eigen::VectorXd dy = dz.head(N + 1);
-    const double step = std::sqrt(space.dot(dy, dy));
+    const double step = w.cwiseProduct(dy).norm();
     if (!std::isfinite(step)) {
       out.reason = "the Newton step is not finite";
       return out;
@@ -136,8 +147,8 @@ BranchPointSolution solve_branch_point(ShootingProblem& problem, const PhaseSect
     if (step <= options.step_tolerance || (it >= 2 && step <= 100 * options.step_tolerance)) {
       out.converged = true;
       out.y = y;
-      out.evaluation = std::move(at.evaluation);
-      out.residual = out.evaluation.residual.cwiseAbs().maxCoeff();
+      out.psi = psi;
+      out.residual = at.residual.cwiseAbs().maxCoeff();
       out.beta = beta;
       // e_p^T A^-1 dG for errors dG of F and of F_y (times |psi| = 1) in each entry, with the
       // worst signs: |v|_1-weighted, v = A^-T e_p. F's error is at least |F| here: the exact
@@ -148,7 +159,8 @@ BranchPointSolution solve_branch_point(ShootingProblem& problem, const PhaseSect
           a.transpose().colPivHouseholderQr().solve(Eigen::VectorXd::Unit(size, N));
       out.uncertainty = std::abs(dy[N]) +
                         std::max(residual_noise, out.residual) * v.head(N).cwiseAbs().sum() +
-                        monodromy_noise * v.segment(N, N + 1).cwiseAbs().sum();
+                        jacobian_noise * v.segment(N, N + 1).cwiseAbs().sum();
+      out.jacobian = std::move(at.jacobian);
       return out;
     }
     if (it > 1 && step > last_step) {
@@ -160,7 +172,7 @@ BranchPointSolution solve_branch_point(ShootingProblem& problem, const PhaseSect
     psi += dz.segment(N + 1, N);
     beta += dz[size - 1];
     last_step = step;
-    at = linearize(problem, section, space, parameter, y);
+    at = linearize(y);
     ++out.evaluations;
     if (!at.ok) {
       out.reason = "integration failed: " + at.failure;
@@ -168,6 +180,42 @@ BranchPointSolution solve_branch_point(ShootingProblem& problem, const PhaseSect
     }
   }
   out.reason = "no convergence in " + std::to_string(options.max_iterations) + " Newton steps";
+  return out;
+}
+
+BranchPointSolution solve_branch_point(ShootingProblem& problem, const PhaseSection& section,
+                                       const BranchSpace& space, int parameter,
+                                       const Eigen::VectorXd& guess, double residual_noise,
+                                       double monodromy_noise, const BranchPointOptions& options) {
+  BranchPointSolution out;
+  const int N = problem.unknowns();
+  if (N + 1 > options.max_unknowns) {
+    out.reason = std::to_string(N + 1) + " unknowns: above the " +
+                 std::to_string(options.max_unknowns) +
+                 " for which the system's second derivatives are affordable";
+    return out;
+  }
+  const MooreSolution s = solve_moore(shooting_linearization(problem, section, space, parameter),
+                                      space.weights(), guess, residual_noise, monodromy_noise,
+                                      options);
+  out.reason = s.reason;
+  out.iterations = s.iterations;
+  out.evaluations = s.evaluations;
+  if (!s.converged) return out;
+  try {
+    // The solution's evaluation with derivatives, for its point (one more integration).
+    out.evaluation =
+        problem.evaluate(s.y.head(N), space.values_at(s.y[N]), section, true, parameter);
+    ++out.evaluations;
+  } catch (const std::exception& ex) {
+    out.reason = std::string("integration failed: ") + ex.what();
+    return out;
+  }
+  out.converged = true;
+  out.y = s.y;
+  out.residual = s.residual;
+  out.beta = s.beta;
+  out.uncertainty = s.uncertainty;
   return out;
 }
 

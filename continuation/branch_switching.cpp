@@ -88,33 +88,15 @@ Eigen::VectorXd Continuation::branching_direction(
   constexpr double h = 1e-6;  // scaled: Jacobians good to about 1e-11 relative, so c to 1e-5
   Eigen::Matrix2d c;
   const Eigen::VectorXd gradient = jacobian.transpose() * psi;
+  const MooreLinearize linearize = shooting_linearization(*problem_, section, *space_, parameter_);
   for (int j = 0; j < 2; ++j) {
     std::string failure;
-    const auto hj = hessian_along(*problem_, section, *space_, parameter_, y0, psi, gradient,
-                                  winv.cwiseProduct(kernel.col(j)), h, failure);
+    const auto hj = hessian_along(linearize, y0, psi, gradient, winv.cwiseProduct(kernel.col(j)),
+                                  h, failure);
     if (!hj) throw std::runtime_error("branch switching: " + failure);
     for (int i = 0; i < 2; ++i) c(i, j) = hj->dot(winv.cwiseProduct(kernel.col(i)));
   }
-  const Eigen::SelfAdjointEigenSolver<Eigen::Matrix2d> eig(0.5 * (c + c.transpose()));
-  const double l1 = eig.eigenvalues()[0], l2 = eig.eigenvalues()[1];
-  if (!(l1 * l2 < 0.0))
-    throw std::runtime_error(
-        "branch switching: the branching equation has no two real roots here (not a simple "
-        "branch point)");
-  // In the eigenvectors' coordinates l1 u^2 + l2 v^2 = 0: (u, v) = (sqrt|l2|, +-sqrt|l1|).
-  Eigen::VectorXd best;
-  double best_cos = 2.0;
-  for (const double sign : {+1.0, -1.0}) {
-    const Eigen::Vector2d uv(std::sqrt(std::abs(l2)), sign * std::sqrt(std::abs(l1)));
-    const Eigen::VectorXd t = (kernel * (eig.eigenvectors() * uv)).normalized();
-    const double cosine = std::abs(t.dot(old));
-    if (cosine < best_cos) {
-      best_cos = cosine;
-      best = t;
-    }
-  }
-  // The other root is the old branch: within the differences' error of the old tangent.
-  return best;
+  return branching_tangent(c, kernel, old);
 }
 
 Branch Continuation::run_switched(const PeriodicOrbit& base, const Eigen::VectorXd& critical,

@@ -1,4 +1,4 @@
-// A simple branch point of cycles located on a regular system instead of by its crossing
+// A simple branch point of cycles (and of equilibria) located on a regular system instead of by its crossing
 // multiplier alone.
 //
 // Why: at a branch point the shooting Jacobian [F_x F_p] loses rank, so the branch's points near
@@ -18,6 +18,7 @@
 // derivatives per unknown and Newton step, so the solver is for small shooting problems.
 #pragma once
 
+#include <functional>
 #include <optional>
 #include <string>
 
@@ -56,16 +57,57 @@ struct BranchPointSolution {
   int evaluations = 0;
 };
 
+// Moore's system for any F(y) = 0 of N equations in y (N + 1 unknowns): what the cycles' and the
+// equilibria's branch points are located on. `linearize` gives F and F_y = [F_x F_p] at y; the
+// second derivatives are its forward differences along each unknown (kDifferenceStep in the
+// scaled norm, whose `weights` are y's). `residual_noise` and `jacobian_noise` are the errors of F
+// and of F_y's entries, for the uncertainty.
+struct MooreLinearization {
+  bool ok = false;
+  std::string failure;        // why not
+  Eigen::VectorXd residual;   // F(y)
+  Eigen::MatrixXd jacobian;   // N x (N + 1): [F_x F_p]
+};
+using MooreLinearize = std::function<MooreLinearization(const Eigen::VectorXd& y)>;
+
+struct MooreSolution {
+  bool converged = false;
+  std::string reason;      // why not
+  Eigen::VectorXd y;       // at the branch point
+  Eigen::VectorXd psi;     // F_y's left null vector there, |psi| = 1
+  Eigen::MatrixXd jacobian;  // F_y at y
+  double residual = 0.0;   // |F(y)|_inf
+  double beta = 0.0;
+  double uncertainty = 0.0;  // of y's parameter (as BranchPointSolution's)
+  int iterations = 0;
+  int evaluations = 0;
+};
+MooreSolution solve_moore(const MooreLinearize& linearize, const Eigen::VectorXd& weights,
+                          const Eigen::VectorXd& guess, double residual_noise,
+                          double jacobian_noise, const BranchPointOptions& options = {});
+
 // The Hessian of psi^T F at y applied to `direction` (unscaled): (F_y(y + h d)^T psi - gradient)
-// / h, `gradient` being F_y(y)^T psi; one evaluation with derivatives. What the regular system's
-// second derivatives and switching's branching equation are made of. nullopt, with `failure`,
-// where y + h d cannot be integrated.
-std::optional<Eigen::VectorXd> hessian_along(ShootingProblem& problem, const PhaseSection& section,
-                                             const BranchSpace& space, int parameter,
+// / h, `gradient` being F_y(y)^T psi; one linearization. What the regular system's second
+// derivatives and switching's branching equation are made of. nullopt, with `failure`, where
+// y + h d cannot be linearized.
+std::optional<Eigen::VectorXd> hessian_along(const MooreLinearize& linearize,
                                              const Eigen::VectorXd& y, const Eigen::VectorXd& psi,
                                              const Eigen::VectorXd& gradient,
                                              const Eigen::VectorXd& direction, double h,
                                              std::string& failure);
+
+// The tangent of the other branch through a simple branch point: the root of the algebraic
+// branching equation sum_ij c_ij t_i t_j = 0 on `kernel`'s two columns (c_ij = psi^T
+// F_yy[phi_i, phi_j], in the kernel's coordinates) least parallel to `old` (unit; all in one
+// scaled norm). Throws std::runtime_error where the equation has no two real roots (not a simple
+// branch point).
+Eigen::VectorXd branching_tangent(const Eigen::Matrix2d& c, const Eigen::MatrixXd& kernel,
+                                  const Eigen::VectorXd& old);
+
+// F = the shooting residual of `problem` in the phase condition's `section`, for the continued
+// `parameter` (`space` gives the parameter values): its linearization for the functions above.
+MooreLinearize shooting_linearization(ShootingProblem& problem, const PhaseSection& section,
+                                      const BranchSpace& space, int parameter);
 
 // Newton on Moore's system from `guess` (unknowns, parameter), for the continued `parameter`,
 // in the phase condition's `section`; `space` gives the parameter values and the scaled norm.
