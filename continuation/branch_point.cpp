@@ -111,9 +111,9 @@ MooreSolution solve_moore(const MooreLinearize& linearize, const Eigen::VectorXd
     Eigen::MatrixXd hessian(N + 1, N + 1);
     for (int j = 0; j <= N; ++j) {
       std::string failure;
-      const auto column = hessian_along(linearize, y, psi, gradient,
-                                        Eigen::VectorXd::Unit(N + 1, j), kDifferenceStep / w[j],
-                                        failure);
+      const auto column =
+          hessian_along(linearize, y, psi, gradient, Eigen::VectorXd::Unit(N + 1, j),
+                        kDifferenceStep / w[j], failure);
       ++out.evaluations;
       if (!column) {
         out.reason = "integration failed: " + failure;
@@ -195,9 +195,9 @@ BranchPointSolution solve_branch_point(ShootingProblem& problem, const PhaseSect
                  " for which the system's second derivatives are affordable";
     return out;
   }
-  const MooreSolution s = solve_moore(shooting_linearization(problem, section, space, parameter),
-                                      space.weights(), guess, residual_noise, monodromy_noise,
-                                      options);
+  const MooreSolution s =
+      solve_moore(shooting_linearization(problem, section, space, parameter), space.weights(),
+                  guess, residual_noise, monodromy_noise, options);
   out.reason = s.reason;
   out.iterations = s.iterations;
   out.evaluations = s.evaluations;

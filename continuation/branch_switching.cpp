@@ -91,8 +91,8 @@ Eigen::VectorXd Continuation::branching_direction(
   const MooreLinearize linearize = shooting_linearization(*problem_, section, *space_, parameter_);
   for (int j = 0; j < 2; ++j) {
     std::string failure;
-    const auto hj = hessian_along(linearize, y0, psi, gradient, winv.cwiseProduct(kernel.col(j)),
-                                  h, failure);
+    const auto hj =
+        hessian_along(linearize, y0, psi, gradient, winv.cwiseProduct(kernel.col(j)), h, failure);
     if (!hj) throw std::runtime_error("branch switching: " + failure);
     for (int i = 0; i < 2; ++i) c(i, j) = hj->dot(winv.cwiseProduct(kernel.col(i)));
   }

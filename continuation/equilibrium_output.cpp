@@ -34,6 +34,7 @@ nlohmann::json equilibrium_branch_json(const EquilibriumBranch& branch) {
   j["state_names"] = branch.state_names;
   j["parameter_values"] = as_vector(branch.start_values);
   j["seconds"] = branch.seconds;
+  if (!branch.origin.empty()) j["origin"] = branch.origin;
   nlohmann::json points = nlohmann::json::array();
   for (const auto& p : branch.points)
     points.push_back({{"index", p.index},
@@ -53,6 +54,7 @@ nlohmann::json equilibrium_branch_json(const EquilibriumBranch& branch) {
                      {"residual", e.residual},
                      {"eigenvalues", eigenvalues_json(e.eigenvalues)},
                      {"after_point", e.after_point},
+                     {"tangent", as_vector(e.tangent)},
                      {"note", e.note}};
     if (e.hopf) x["hopf"] = hopf_json(*e.hopf);
     events.push_back(x);

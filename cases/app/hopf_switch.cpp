@@ -67,6 +67,10 @@ EquilibriumBranch read_equilibria_json(const std::string& path, const OdeSystem&
                          "\"; expected LP, BP, HB or UZ (written by sympathy equilibria --json)");
       e.parameter = key(events[i], "value", where).get<double>();
       e.state = numbers(key(events[i], "state", where), where + ".state", n);
+      // The branch's direction there (written since BP switching; a switch without it takes
+      // the branching equation's root least parallel to nothing in particular).
+      if (events[i].contains("tangent") && events[i]["tangent"].size() == std::size_t(n + 1))
+        e.tangent = numbers(events[i]["tangent"], where + ".tangent", n + 1);
       if (e.type == EquilibriumEventType::Hopf) {
         const auto& h = key(events[i], "hopf", where);
         HopfPoint hp;

@@ -205,8 +205,12 @@ std::vector<OptionSpec> equilibria_options() {
        {"--user-points", "V1,V2,...", false,
         "report the branch's equilibrium at each of these values of --param (AUTO's UZ), as "
         "events"},
+       {"--switch-at", "EVENT", false,
+        "continue the branch of equilibria born at this branch point of the equilibria through "
+        "the start instead (BP1, BP2, ...), both ways from it within --from .. --to"},
        {"--parent", "FILE", false,
-        "with --from-point: the equilibria JSON (equilibria --json) the start is saved in"},
+        "with --switch-at: the parent equilibria from this JSON (equilibria --json) instead of "
+        "computed; with --from-point: the equilibria JSON the start is saved in"},
        {"--from-point", "POINT", false,
         "start from this point of the --parent equilibria (its index, points[].index of the "
         "JSON) or its event (LP1, BP1, HB1, UZ1, ...): its state and every parameter value "

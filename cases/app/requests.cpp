@@ -5,6 +5,7 @@
 #include <memory>
 #include <optional>
 
+#include "cases/app/event_name.hpp"
 #include "cases/app/hopf_switch.hpp"
 #include "cases/app/start_data.hpp"
 #include "sympathy/continuation/branch_output.hpp"
@@ -181,7 +182,42 @@ EquilibriaRequest equilibria_request(const Arguments& args, const LoadedSystem& 
   problem.to = window.to;
   problem.at = window.at;
   c.check_range(parameter, window.ends());
-  if (const auto saved = saved_start(args)) {
+  const auto saved = saved_start(args);  // refuses --from-point beside --switch-at
+  if (args.has("--switch-at")) {
+    const EventName name = parse_event_name(
+        args.text("--switch-at", ""), "--switch-at", {BifurcationType::BranchPoint},
+        "a branch point of the equilibria, BP followed by its number along them (e.g. BP1): only "
+        "there is a branch of equilibria born (the orbits born at a Hopf point: continue "
+        "--switch-at HB1)");
+    r.switch_at = name.ordinal;
+    if (problem.at)
+      throw InputError("--at: not with --switch-at " + name.text +
+                       " (the born branch runs both ways from its branch point)");
+  }
+  r.parent_path = args.text("--parent", "");
+  if (!r.parent_path.empty() && !r.switch_at && !args.has("--from-point"))
+    throw InputError("--parent " + r.parent_path +
+                     ": expected --switch-at BPn (the branch point to switch at) or --from-point "
+                     "POINT (the saved equilibrium to start from) too");
+  if (r.switch_at && !r.parent_path.empty()) {
+    // The parent's branch points and every parameter value, read and checked before any work.
+    EquilibriumBranch parent = read_equilibria_json(r.parent_path, system);
+    if (parent.parameter_name != parameter)
+      throw InputError("--parent " + r.parent_path + ": equilibria in " + parent.parameter_name +
+                       "; expected them in --param " + parameter +
+                       " (a branch point is one in "
+                       "the parameter its branch was continued in)");
+    int bps = 0;
+    for (const auto& e : parent.events) bps += e.type == EquilibriumEventType::BranchPoint;
+    if (bps < r.switch_at)
+      throw InputError("--switch-at BP" + std::to_string(r.switch_at) + ": --parent " +
+                       r.parent_path + " has " + std::to_string(bps) +
+                       " branch point(s); expected BP1 .. BP" + std::to_string(bps));
+    problem.start_state = Eigen::VectorXd::Zero(system.dimension());  // the BP's, when run
+    problem.values = parent.start_values;
+    r.start = "the branch point BP" + std::to_string(r.switch_at) + " of " + r.parent_path;
+    r.parent = std::move(parent);
+  } else if (saved) {
     // A point or event of an earlier equilibria run (AUTO's IRS with a label): its state and
     // every parameter value, in the same parameter or another.
     const SavedEquilibrium e = read_saved_equilibrium(*saved, system);
@@ -247,6 +283,45 @@ void write_branch_json(const std::string& path, const Branch& branch, const Bran
   write_json(path, j);
 }
 
+namespace {
+
+// The branch born at the parent's r.switch_at-th branch point: the parent read (r.parent) or
+// computed over the window (its progress not streamed: the born branch's is); a parent without
+// that many BPs ends the run as a failed start, saying how many it has.
+EquilibriumBranch switch_at_branch_point(const EquilibriaRequest& r, const OdeSystem& system,
+                                         const EquilibriumCallbacks& callbacks) {
+  EquilibriumBranch computed;
+  if (!r.parent) {
+    EquilibriumCallbacks quiet;
+    quiet.stop_requested = callbacks.stop_requested;
+    computed = continue_equilibria(system, r.problem, r.options, quiet);
+  }
+  const EquilibriumBranch& parent = r.parent ? *r.parent : computed;
+  EquilibriumBranch failed;
+  failed.parameter = r.problem.parameter;
+  failed.parameter_name = system.parameter_names()[r.problem.parameter];
+  failed.state_names = system.state_names();
+  failed.stop = StopReason::StartFailed;
+  if (!parent.started()) {
+    failed.stop_reason = "no equilibria to switch at: " + parent.stop_reason;
+    return failed;
+  }
+  const EquilibriumEvent* bp = nullptr;
+  int seen = 0;
+  for (const auto& e : parent.events)
+    if (e.type == EquilibriumEventType::BranchPoint && ++seen == r.switch_at) bp = &e;
+  if (!bp) {
+    failed.stop_reason = "the equilibria through the start have " + std::to_string(seen) +
+                         " branch point(s) in the window; no BP" + std::to_string(r.switch_at);
+    return failed;
+  }
+  EquilibriumProblem problem = r.problem;
+  problem.values = parent.start_values;
+  return continue_from_branch_point(system, problem, *bp, r.options, callbacks);
+}
+
+}  // namespace
+
 EquilibriumBranch run_equilibria(const EquilibriaRequest& r, const OdeSystem& system,
                                  const EquilibriumCallbacks& callbacks) {
   // Each point streamed to the CSV as it is found, before the caller's hook sees it.
@@ -259,7 +334,9 @@ EquilibriumBranch run_equilibria(const EquilibriaRequest& r, const OdeSystem& sy
     if (csv) csv->write(p);
     if (callbacks.on_point) callbacks.on_point(p);
   };
-  EquilibriumBranch branch = continue_equilibria(system, r.problem, r.options, streamed);
+  EquilibriumBranch branch = r.switch_at
+                                 ? switch_at_branch_point(r, system, streamed)
+                                 : continue_equilibria(system, r.problem, r.options, streamed);
   if (csv) csv->close();
   return branch;
 }

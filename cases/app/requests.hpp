@@ -78,9 +78,15 @@ struct EquilibriaRequest {
   EquilibriumOptions options;
   std::string csv_path;   // "" for none: each point streamed here by run_equilibria
   std::string json_path;  // "" for none: write_equilibria_json
+  // --switch-at BPn: the branch born at the parent's n-th branch point instead; the parent read
+  // from --parent (its values the born branch's), or computed from the start over the window.
+  int switch_at = 0;  // n; 0: no switch
+  std::optional<EquilibriumBranch> parent;
+  std::string parent_path;
 };
 EquilibriaRequest equilibria_request(const Arguments& args, const LoadedSystem& c);
-// The branch of equilibria (the engine's continue_equilibria), its points streamed to r.csv_path.
+// The branch of equilibria (the engine's continue_equilibria, or with r.switch_at its
+// continue_from_branch_point at the parent's BP), its points streamed to r.csv_path.
 EquilibriumBranch run_equilibria(const EquilibriaRequest& r, const OdeSystem& system,
                                  const EquilibriumCallbacks& callbacks);
 // The branch's JSON to r.json_path, with the case's path and set, the start, the window and the

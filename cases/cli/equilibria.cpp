@@ -98,6 +98,7 @@ int run_equilibria(const std::vector<std::string>& argv) {
   std::printf("  %zu points; stopped: %s\n", branch.points.size(), branch.stop_reason.c_str());
   std::printf("  from %s = %.10g (%d unstable) to %s = %.10g (%d unstable)\n", parameter.c_str(),
               first.parameter, first.unstable, parameter.c_str(), last.parameter, last.unstable);
+  if (!branch.origin.empty()) std::printf("  %s\n", branch.origin.c_str());
   std::printf("bifurcations:\n");
   print_equilibrium_events(branch);
   std::printf("  run time %.3f s\n", clock.seconds());

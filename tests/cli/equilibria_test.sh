@@ -105,6 +105,38 @@ check "... its equilibrium at p3 = 1.55 the p1 run's at 0.3 (1e-9)" test "$(json
   > /dev/null 2> "$work/bad_point.err"
 check "... an event it does not have exits 2, listing its events" grep -qF -- "--from-point XY1: $work/uz.json has no such point or event; expected a point's index or one of its events: HB1, HB2, HB3, UZ1, HB4" "$work/bad_point.err"
 
+# Switching at a branch point of equilibria (AUTO's lrz.auto): the Lorenz origin loses stability
+# at rho = 1, where the nonzero equilibria x = y = +-sqrt(beta (rho - 1)), z = rho - 1 are born
+# (a pitchfork); both halves from one switch, each with its Hopf point at rho = sigma (sigma +
+# beta + 3) / (sigma - beta - 1) = 24.736842105 (1e-8; every point on the closed form to 1e-9).
+lrz=$src/cases/examples/lrz.toml
+"$bin" equilibria "$lrz" --param rho --from 0 --to 30 --initial x=0 --initial y=0 --initial z=0 \
+  --quiet --json "$work/lrz0.json" > /dev/null
+"$bin" equilibria "$lrz" --param rho --from 0 --to 30 --switch-at BP1 --parent "$work/lrz0.json" \
+  --quiet --json "$work/lrz1.json" > "$work/lrz1.out"
+check "equilibria --switch-at BP1 exits 0, naming the branch point" grep -q "born at the parent branch's BP at rho = 1" "$work/lrz1.out"
+check "... both halves on the closed form (1e-9) to rho = 30" test "$(json "$work/lrz1.json" "
+all(abs(p['state'][0]**2 - 8/3*(p['value'] - 1)) < 1e-9 and abs(p['state'][2] - p['value'] + 1) < 1e-9
+    for p in j['points']) and max(p['value'] for p in j['points']) == 30 and
+min(p['state'][0] for p in j['points']) < -8 < 8 < max(p['state'][0] for p in j['points'])")" = True
+check "... a Hopf point on each half at the exact rho_H (1e-8)" test "$(json "$work/lrz1.json" "
+[round(e['state'][0]) for e in j['events']] == [-8, 8] and
+all(e['type'] == 'HB' and abs(e['value'] - 24.736842105263158) < 1e-8 for e in j['events'])")" = True
+"$bin" equilibria "$lrz" --param rho --from 0 --to 30 --initial x=0 --initial y=0 --initial z=0 \
+  --switch-at BP1 --quiet --json "$work/lrz1c.json" > /dev/null
+check "... the same with the parent computed on the way" test "$(json "$work/lrz1c.json" "
+[e['value'] for e in j['events']] == [e['value'] for e in json.load(open('$work/lrz1.json'))['events']]")" = True
+"$bin" equilibria "$lrz" --param rho --from 0 --to 30 --switch-at HB1 > /dev/null 2> "$work/bad.err"
+check "equilibria --switch-at HB1 exits 2, pointing to continue" grep -q -- "--switch-at HB1: expected a branch point of the equilibria.*continue --switch-at HB1" "$work/bad.err"
+"$bin" equilibria "$lrz" --param rho --from 0 --to 30 --switch-at BP2 --parent "$work/lrz0.json" \
+  > /dev/null 2> "$work/bad.err"
+check "a BP the parent lacks exits 2, counting its BPs" grep -qF -- "--switch-at BP2: --parent $work/lrz0.json has 1 branch point(s); expected BP1 .. BP1" "$work/bad.err"
+"$bin" equilibria "$lrz" --param sigma --from 5 --to 15 --switch-at BP1 --parent "$work/lrz0.json" \
+  > /dev/null 2> "$work/bad.err"
+check "a parent in another parameter exits 2" grep -q -- "equilibria in rho; expected them in --param sigma" "$work/bad.err"
+"$bin" equilibria "$lrz" --param rho --from 0 --to 30 --at 10 --switch-at BP1 > /dev/null 2> "$work/bad.err"
+check "--at beside --switch-at exits 2" grep -q -- "--at: not with --switch-at BP1" "$work/bad.err"
+
 # Bad requests: named, exit 2, before any work.
 "$bin" equilibria "$abc" --param p9 --from 0 --to 1 > /dev/null 2> "$work/bad.err"
 check "an unknown parameter exits 2" test $? -eq 2

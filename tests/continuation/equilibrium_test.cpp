@@ -117,6 +117,101 @@ TEST(EquilibriumBranch, BranchPointLocatedExactly) {
   EXPECT_EQ(branch.points.back().unstable, 1);
 }
 
+// Moore's regular system puts the turned normal forms' branch points (exact: p = 0, z = 0; no
+// eigenvector on an axis) within its stated uncertainty, itself below 1e-8 (measured: errors
+// below 4e-14, uncertainties below 1e-13), from either branch through them.
+TEST(EquilibriumBranch, BranchPointsOnTheRegularSystemWithinTheirUncertainty) {
+  using testing::TurnedBranchPoint;
+  for (const auto kind :
+       {TurnedBranchPoint::Kind::Transcritical, TurnedBranchPoint::Kind::Pitchfork})
+    for (const bool trivial : {true, false}) {
+      if (kind == TurnedBranchPoint::Kind::Pitchfork && !trivial) continue;  // one-sided: no BP
+      SCOPED_TRACE(
+          std::string(kind == TurnedBranchPoint::Kind::Pitchfork ? "pitchfork" : "transcritical") +
+          (trivial ? ", from z = 0" : ", from z = R (p, 0)"));
+      const TurnedBranchPoint system(kind);
+      const Eigen::VectorXd start =
+          trivial ? Eigen::Vector2d::Zero() : TurnedBranchPoint::turned(-1.0, 0.0);
+      const auto branch = continue_equilibria(system, problem_of(system, -1.0, 1.0, start), {});
+      const auto bps = events_of(branch, EquilibriumEventType::BranchPoint);
+      ASSERT_EQ(bps.size(), 1u) << branch.stop_reason;
+      EXPECT_TRUE(bps[0].located) << bps[0].note;
+      EXPECT_LE(bps[0].uncertainty, 1e-8);
+      EXPECT_LE(std::abs(bps[0].parameter), bps[0].uncertainty + 1e-15);
+      EXPECT_LE(bps[0].state.lpNorm<Eigen::Infinity>(), 1e-10);
+    }
+}
+
+// The branch born at a branch point (continue_from_branch_point), both ways from it, lies on the
+// other exact branch of the turned normal forms: from z = 0 the transcritical's u = p (both sides
+// of p = 0) and the pitchfork's two halves u = +-sqrt(p); from u = p, back the trivial z = 0. Each
+// point to 1e-10 (Newton's tolerance is 1e-12 relative; the measured error is below 4e-14).
+TEST(EquilibriumBranch, SwitchAtABranchPointFollowsTheOtherBranchBothWays) {
+  using testing::TurnedBranchPoint;
+  struct Case {
+    TurnedBranchPoint::Kind kind;
+    bool trivial;
+  };
+  for (const Case c : {Case{TurnedBranchPoint::Kind::Transcritical, true},
+                       Case{TurnedBranchPoint::Kind::Transcritical, false},
+                       Case{TurnedBranchPoint::Kind::Pitchfork, true}}) {
+    const bool pitchfork = c.kind == TurnedBranchPoint::Kind::Pitchfork;
+    SCOPED_TRACE(std::string(pitchfork ? "pitchfork" : "transcritical") +
+                 (c.trivial ? ", from z = 0" : ", from z = R (p, 0)"));
+    const TurnedBranchPoint system(c.kind);
+    const Eigen::VectorXd start =
+        c.trivial ? Eigen::Vector2d::Zero() : TurnedBranchPoint::turned(-1.0, 0.0);
+    const auto problem = problem_of(system, -1.0, 1.0, start);
+    const auto parent = continue_equilibria(system, problem, {});
+    const auto bps = events_of(parent, EquilibriumEventType::BranchPoint);
+    ASSERT_EQ(bps.size(), 1u) << parent.stop_reason;
+    const auto born = continue_from_branch_point(system, problem, bps[0], {});
+    ASSERT_TRUE(born.started()) << born.stop_reason;
+    EXPECT_EQ(born.stop, StopReason::ParameterBound) << born.stop_reason;
+    EXPECT_NE(born.origin.find("BP"), std::string::npos);
+    int below = 0, above = 0;
+    double lowest = 1.0, highest = -1.0, u_min = 1.0, u_max = -1.0;
+    for (const auto& pt : born.points) {
+      const Eigen::Vector2d w = TurnedBranchPoint::normal(pt.state);
+      const double p = pt.parameter;
+      EXPECT_NEAR(w[1], 0.0, 1e-10) << pt.index;
+      if (pitchfork)
+        EXPECT_NEAR(w[0] * w[0], p, 1e-10) << pt.index;
+      else if (c.trivial)
+        EXPECT_NEAR(w[0], p, 1e-10) << pt.index;
+      else
+        EXPECT_NEAR(w[0], 0.0, 1e-10) << pt.index;
+      (pt.index < 0 ? below : above) += pt.index != 0;
+      lowest = std::min(lowest, p);
+      highest = std::max(highest, p);
+      u_min = std::min(u_min, w[0]);
+      u_max = std::max(u_max, w[0]);
+    }
+    EXPECT_GT(below, 3);
+    EXPECT_GT(above, 3);
+    // Indices run from the branch point outwards: -k .. -1, 0, 1 .. m in order.
+    for (std::size_t i = 1; i < born.points.size(); ++i)
+      EXPECT_EQ(born.points[i].index, born.points[i - 1].index + 1);
+    EXPECT_NEAR(highest, 1.0, 1e-12);  // both halves reach the window's edges
+    if (pitchfork) {
+      EXPECT_NEAR(u_max, 1.0, 1e-10);  // u = +sqrt(1) and -sqrt(1): both halves
+      EXPECT_NEAR(u_min, -1.0, 1e-10);
+    } else {
+      EXPECT_NEAR(lowest, -1.0, 1e-12);
+    }
+  }
+}
+
+// A switch needs a branch point.
+TEST(EquilibriumBranch, SwitchRefusesOtherEvents) {
+  Equilibria1D system(Equilibria1D::Kind::SaddleNode);
+  const auto problem = problem_of(system, 1.0, -1.0, Eigen::Vector2d(1.0, 0.0));
+  const auto branch = continue_equilibria(system, problem, {});
+  const auto folds = events_of(branch, EquilibriumEventType::Fold);
+  ASSERT_EQ(folds.size(), 1u);
+  EXPECT_THROW(continue_from_branch_point(system, problem, folds[0], {}), std::invalid_argument);
+}
+
 // Two eigenvalues through zero at once, which no test function sees (both pitchforks of the
 // DoublePitchfork form at p = 0): the count of unstable eigenvalues goes from 0 to 2, and the
 // step is reported unresolved around p = 0 (not located), never passed silently.

@@ -451,4 +451,44 @@ class Equilibria1D final : public AutoDiffSystem<Equilibria1D> {
   Kind kind_;
 };
 
+// A branch point of equilibria with no eigenvector on a coordinate axis: in w = R^T z (R a
+// rotation by 0.6 rad) the normal form u' = p u - u^2 (Transcritical) or p u - u^3 (Pitchfork),
+// v' = -v, turned back by R and multiplied by M(z) = [1 + 0.2 z1, 0.1 z0; -0.15 z1, 1 + 0.2 z0]
+// (invertible for |z| < 1.5: det > 0.4), which moves every Jacobian but no equilibrium. So the
+// equilibria are exactly R (u, 0) with u = 0 or u = p (u^2 = p), and the branch point is at
+// p = 0, z = 0, as in the normal form.
+class TurnedBranchPoint final : public AutoDiffSystem<TurnedBranchPoint> {
+ public:
+  enum class Kind { Transcritical, Pitchfork };
+  explicit TurnedBranchPoint(Kind kind, double p = -1.0) : kind_(kind) {
+    set_parameter_layout({{"p", {0}}}, {p});
+  }
+  int dimension() const override { return 2; }
+  std::vector<std::string> state_names() const override { return {"z0", "z1"}; }
+  // z = R (u, v).
+  static Eigen::Vector2d turned(double u, double v) {
+    return {kCos * u - kSin * v, kSin * u + kCos * v};
+  }
+  // (u, v) = R^T z.
+  static Eigen::Vector2d normal(const Eigen::VectorXd& z) {
+    return {kCos * z[0] + kSin * z[1], -kSin * z[0] + kCos * z[1]};
+  }
+  template <class T, class P>
+  void evaluate(double, const T* z, const P* p, T* dz) const {
+    const T u = kCos * z[0] + kSin * z[1];
+    const T v = -kSin * z[0] + kCos * z[1];
+    const T gu = kind_ == Kind::Transcritical ? T(p[0] * u - u * u) : T(p[0] * u - u * u * u);
+    const T gv = -v;
+    const T h0 = kCos * gu - kSin * gv;
+    const T h1 = kSin * gu + kCos * gv;
+    dz[0] = (1.0 + 0.2 * z[1]) * h0 + 0.1 * z[0] * h1;
+    dz[1] = -0.15 * z[1] * h0 + (1.0 + 0.2 * z[0]) * h1;
+  }
+
+ private:
+  static constexpr double kCos = 0.82533561490967829724;  // cos 0.6
+  static constexpr double kSin = 0.56464247339503535720;  // sin 0.6
+  Kind kind_;
+};
+
 }  // namespace sympathy::testing

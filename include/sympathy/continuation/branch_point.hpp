@@ -1,5 +1,5 @@
-// A simple branch point of cycles (and of equilibria) located on a regular system instead of by its crossing
-// multiplier alone.
+// A simple branch point of cycles (and of equilibria) located on a regular system instead of by its
+// crossing multiplier alone.
 //
 // Why: at a branch point the shooting Jacobian [F_x F_p] loses rank, so the branch's points near
 // it are corrected only to the residual over a vanishing singular value. Where the branch is not
@@ -64,19 +64,19 @@ struct BranchPointSolution {
 // and of F_y's entries, for the uncertainty.
 struct MooreLinearization {
   bool ok = false;
-  std::string failure;        // why not
-  Eigen::VectorXd residual;   // F(y)
-  Eigen::MatrixXd jacobian;   // N x (N + 1): [F_x F_p]
+  std::string failure;       // why not
+  Eigen::VectorXd residual;  // F(y)
+  Eigen::MatrixXd jacobian;  // N x (N + 1): [F_x F_p]
 };
 using MooreLinearize = std::function<MooreLinearization(const Eigen::VectorXd& y)>;
 
 struct MooreSolution {
   bool converged = false;
-  std::string reason;      // why not
-  Eigen::VectorXd y;       // at the branch point
-  Eigen::VectorXd psi;     // F_y's left null vector there, |psi| = 1
+  std::string reason;        // why not
+  Eigen::VectorXd y;         // at the branch point
+  Eigen::VectorXd psi;       // F_y's left null vector there, |psi| = 1
   Eigen::MatrixXd jacobian;  // F_y at y
-  double residual = 0.0;   // |F(y)|_inf
+  double residual = 0.0;     // |F(y)|_inf
   double beta = 0.0;
   double uncertainty = 0.0;  // of y's parameter (as BranchPointSolution's)
   int iterations = 0;

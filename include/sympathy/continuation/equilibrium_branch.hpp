@@ -95,6 +95,7 @@ struct EquilibriumBranch {
   std::string stop_reason;
   EquilibriumOptions options;
   ParameterValues start_values;
+  std::string origin;  // a switched branch's: the branch point it was born at
   double seconds = 0.0;
   bool started() const { return stop != StopReason::StartFailed; }
 };
@@ -126,5 +127,23 @@ struct EquilibriumCallbacks {
 EquilibriumBranch continue_equilibria(const OdeSystem& system, const EquilibriumProblem& problem,
                                       EquilibriumOptions options,
                                       const EquilibriumCallbacks& callbacks = {});
+
+// The other branch through the simple branch point `bp` (an event of a branch in
+// problem.parameter: its state and parameter, a guess that Moore's system refines, and its
+// `tangent`, the old branch's direction there, which tells the two roots of the branching
+// equation apart; empty: the root least parallel to nothing, either), continued both ways within
+// problem.from .. problem.to (problem.values: the other parameters; problem.start_state and `at`
+// are not used). Its points are numbered from the branch point (0) outwards, negative on one
+// side, as a switched branch of cycles; its origin names the branch point. The direction is the
+// root of the algebraic branching equation psi^T F_yy[t, t] = 0 on the null vectors of [f_x f_p]
+// not along the old branch (F_yy by differences of the exact Jacobian), the first step off each
+// way corrected onto the new branch (refused where it falls back onto the old one). A start that
+// fails (no simple branch point near bp, no step off it) is a StartFailed branch with the reason.
+// Throws std::invalid_argument for a problem or options out of their domain or a bp that is not
+// a BP.
+EquilibriumBranch continue_from_branch_point(const OdeSystem& system,
+                                             const EquilibriumProblem& problem,
+                                             const EquilibriumEvent& bp, EquilibriumOptions options,
+                                             const EquilibriumCallbacks& callbacks = {});
 
 }  // namespace sympathy
