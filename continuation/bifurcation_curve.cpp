@@ -644,4 +644,15 @@ BifurcationCurve continue_curve(const OdeSystem& system, const Branch& branch,
   return finish(joined.stop, joined.message);
 }
 
+PeriodicOrbit curve_point_orbit(const OdeSystem& system, const ParameterValues& base, int first,
+                                int second, const CurvePoint& point) {
+  PeriodicOrbit orbit;
+  orbit.state0 = point.state0;
+  orbit.period = point.period;
+  orbit.parameters =
+      system.with_parameter(system.with_parameter(base, first, point.first), second, point.second);
+  orbit.floquet = point.floquet;
+  return orbit;
+}
+
 }  // namespace sympathy

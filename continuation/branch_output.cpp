@@ -119,10 +119,6 @@ nlohmann::json hopf_json(const HopfPoint& h) {
   return j;
 }
 
-namespace {
-
-// A describer's numbers as its groups (JSON key per group, a list of numbers each); nothing when
-// the orbit was not described.
 void add_description(nlohmann::json& j, const std::vector<OrbitDescriber::Group>& layout,
                      const std::vector<double>& description) {
   if (description.empty()) return;
@@ -134,8 +130,6 @@ void add_description(nlohmann::json& j, const std::vector<OrbitDescriber::Group>
     j[g.name] = numbers;
   }
 }
-
-}  // namespace
 
 nlohmann::json branch_json(const Branch& branch, const OrbitDescriber* describer) {
   nlohmann::json j;

@@ -38,7 +38,13 @@ nlohmann::json point_json(const CurvePoint& p) {
 
 }  // namespace
 
-nlohmann::json curve_json(const BifurcationCurve& curve) {
+nlohmann::json curve_json(const BifurcationCurve& curve, const OrbitDescriber* describer) {
+  const auto layout = describer ? describer->layout() : std::vector<OrbitDescriber::Group>();
+  const auto described = [&](const CurvePoint& p) {
+    nlohmann::json j = point_json(p);
+    add_description(j, layout, p.description);
+    return j;
+  };
   nlohmann::json j;
   j["kind"] = to_string(curve.kind);
   j["first"] = curve.first_name;
@@ -55,7 +61,7 @@ nlohmann::json curve_json(const BifurcationCurve& curve) {
   j["window"] = {{curve.first_name, {curve.options.first_lower, curve.options.first_upper}},
                  {curve.second_name, {curve.options.second_lower, curve.options.second_upper}}};
   nlohmann::json points = nlohmann::json::array();
-  for (const auto& p : curve.points) points.push_back(point_json(p));
+  for (const auto& p : curve.points) points.push_back(described(p));
   j["points"] = points;
   nlohmann::json events = nlohmann::json::array();
   for (const auto& e : curve.events)
@@ -67,7 +73,7 @@ nlohmann::json curve_json(const BifurcationCurve& curve) {
                       {"located", e.located},
                       {"after_point", e.after_point},
                       {"note", e.note},
-                      {"point", point_json(e.at)}});
+                      {"point", described(e.at)}});
   j["events"] = events;
   j["seconds"] = curve.seconds;
   j["monodromies"] = curve.evaluations;
@@ -77,7 +83,8 @@ nlohmann::json curve_json(const BifurcationCurve& curve) {
 }
 
 CurveCsvWriter::CurveCsvWriter(const std::string& path, const OdeSystem& system,
-                               const std::string& first, const std::string& second)
+                               const std::string& first, const std::string& second,
+                               const OrbitDescriber* describer)
     : csv_(path, [&] {
         std::vector<std::string> h{"index",        first,
                                    second,         "period",
@@ -88,13 +95,19 @@ CurveCsvWriter::CurveCsvWriter(const std::string& path, const OdeSystem& system,
                                    "residual",     "trivial_multiplier_error",
                                    "uncertainty",  "iterations",
                                    "step"};
+        if (describer)
+          for (const auto& g : describer->layout())
+            for (const auto& label : g.labels) h.push_back(g.csv_prefix + label);
         for (int i = 0; i < system.dimension(); ++i) {
           h.push_back("mu" + std::to_string(i + 1) + "_re");
           h.push_back("mu" + std::to_string(i + 1) + "_im");
         }
         for (const auto& n : system.state_names()) h.push_back(n);
         return h;
-      }()) {}
+      }()) {
+  if (describer)
+    for (const auto& g : describer->layout()) described_ += g.labels.size();
+}
 
 void CurveCsvWriter::write(const CurvePoint& p) {
   const auto& f = p.floquet;
@@ -109,6 +122,8 @@ void CurveCsvWriter::write(const CurvePoint& p) {
                                format_double(p.residual),    format_double(f.trivial_error),
                                format_double(p.uncertainty), std::to_string(p.iterations),
                                format_double(p.step)};
+  for (std::size_t k = 0; k < described_; ++k)
+    row.push_back(k < p.description.size() ? format_double(p.description[k]) : "");
   for (const auto& m : f.multipliers) {
     row.push_back(format_double(m.value.real()));
     row.push_back(format_double(m.value.imag()));

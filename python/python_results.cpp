@@ -182,6 +182,30 @@ py::object event_result(const Bifurcation& e) {
   return with_fields(fields);
 }
 
+namespace {
+
+// The describer's groups along `points` (branch or curve points, each with its `description`):
+// a dict of arrays by label each (phase_differences["th2"], max["x"]); NaN where a point was not
+// described.
+template <class Point>
+void add_described_columns(py::dict& arrays, const std::vector<Point>& points,
+                           const OrbitDescriber& describer) {
+  std::size_t offset = 0;
+  for (const auto& group : describer.layout()) {
+    py::dict values;
+    for (const auto& label : group.labels) {
+      std::vector<double> c;
+      for (const auto& p : points)
+        c.push_back(offset < p.description.size() ? p.description[offset] : std::nan(""));
+      values[py::str(label)] = py::array(py::cast(c));
+      ++offset;
+    }
+    arrays[py::str(group.name)] = values;
+  }
+}
+
+}  // namespace
+
 py::object branch_result(const Branch& branch, const OrbitDescriber& describer) {
   const auto& points = branch.points;
   const std::size_t n = points.size();
@@ -233,19 +257,7 @@ py::object branch_result(const Branch& branch, const OrbitDescriber& describer) 
                     : std::complex<double>(std::nan(""), std::nan(""));
     }
   arrays["multipliers"] = mu;
-  // The describer's groups: a dict of arrays by label each (phase_differences["th2"]).
-  std::size_t offset = 0;
-  for (const auto& group : describer.layout()) {
-    py::dict values;
-    for (const auto& label : group.labels) {
-      std::vector<double> c;
-      for (const auto& p : points)
-        c.push_back(offset < p.description.size() ? p.description[offset] : std::nan(""));
-      values[py::str(label)] = py::array(py::cast(c));
-      ++offset;
-    }
-    arrays[py::str(group.name)] = values;
-  }
+  add_described_columns(arrays, points, describer);
   py::list events;
   for (const auto& e : branch.events) events.append(event_result(e));
   py::dict rejected;
@@ -278,7 +290,7 @@ py::object curve_point_result(const CurvePoint& p) {
   return with_fields(fields);
 }
 
-py::object curve_result(const BifurcationCurve& curve) {
+py::object curve_result(const BifurcationCurve& curve, const OrbitDescriber* describer) {
   using P = CurvePoint;
   const auto& points = curve.points;
   py::dict arrays;
@@ -300,6 +312,7 @@ py::object curve_result(const BifurcationCurve& curve) {
   arrays["state0"] = matrix_array(states, static_cast<int>(curve.state_names.size()));
   arrays["multipliers"] = complex_rows(points, [](const P& p) { return values_of(p.floquet); });
   arrays["critical"] = complex_rows(points, [](const P& p) { return p.critical; });
+  if (describer) add_described_columns(arrays, points, *describer);
   py::list events;
   for (const auto& e : curve.events) {
     py::dict f;

@@ -50,7 +50,7 @@ py::object curve_point_result(const CurvePoint& p);
 // step, state0, multipliers, critical), events (type, description, first, second, uncertainty,
 // located, crossing_symmetry, note, after_point), stop, stop_reason, origin, symmetry, subspace,
 // seconds, evaluations, state_names.
-py::object curve_result(const BifurcationCurve& curve);
+py::object curve_result(const BifurcationCurve& curve, const OrbitDescriber* describer = nullptr);
 // parameter, points (arrays along the branch: index, value, state, eigenvalues, unstable,
 // residual, step, iterations), events (type, value, uncertainty, located, state, eigenvalues,
 // note, after_point, and for HB omega, period, lyapunov), stop, stop_reason, seconds, state_names.

@@ -342,14 +342,14 @@ class Case {
       parent = app::curve_branch(request, c, source, nullptr);
       if (parent.started() && !hooks.interrupted()) {
         const Bifurcation& event = app::find_event(parent, request.event, "--event");
-        curve = app::follow_curve(request, c.system(), parent, event, callbacks);
+        curve = app::follow_curve(request, c.system(), parent, event, callbacks, &c.describer());
       } else {
         curve.stop = hooks.interrupted() ? StopReason::Interrupted : StopReason::StartFailed;
         curve.stop_reason = "the branch: " + parent.stop_reason;
       }
     }
     hooks.raise_kept();
-    py::object result = curve_result(curve);
+    py::object result = curve_result(curve, &c.describer());
     result.attr("branch") = branch_result(parent, c.describer());
     return result;
   }

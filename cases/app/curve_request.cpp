@@ -6,6 +6,7 @@
 
 #include <algorithm>
 #include <cmath>
+#include <map>
 #include <memory>
 #include <optional>
 
@@ -102,20 +103,39 @@ Branch curve_branch(const CurveRequest& r, const LoadedSystem& c, const BranchSo
 }
 
 BifurcationCurve follow_curve(const CurveRequest& r, const OdeSystem& system, const Branch& parent,
-                              const Bifurcation& event, const CurveCallbacks& callbacks) {
-  // Each point streamed to the CSV as it is found, before the caller's hook sees it.
+                              const Bifurcation& event, const CurveCallbacks& callbacks,
+                              const OrbitDescriber* describer) {
+  // Each point described and streamed to the CSV as it is found, before the caller's hook sees
+  // it; its description kept by its index for the curve's points.
   std::unique_ptr<CurveCsvWriter> csv;
   if (!r.csv_path.empty())
-    csv = std::make_unique<CurveCsvWriter>(r.csv_path, system, r.branch.parameter, r.second);
+    csv = std::make_unique<CurveCsvWriter>(r.csv_path, system, r.branch.parameter, r.second,
+                                           describer);
+  const ParameterValues base =
+      system.with_parameter(parent.start_values, parent.parameter, event.parameter);
+  const int first = parent.parameter;
+  const auto describe = [&](const CurvePoint& p) {
+    return describer->describe(curve_point_orbit(system, base, first, r.second_index, p));
+  };
+  std::map<int, std::vector<double>> descriptions;
   CurveCallbacks streamed = callbacks;
   streamed.on_point = [&](const CurvePoint& p) {
-    if (csv) csv->write(p);
-    if (callbacks.on_point) callbacks.on_point(p);
+    CurvePoint q = p;
+    if (describer) q.description = describe(q);
+    if (csv) csv->write(q);
+    if (callbacks.on_point) callbacks.on_point(q);
+    descriptions[q.index] = std::move(q.description);
   };
   try {
     BifurcationCurve curve =
         continue_curve(system, parent, event, r.second_index, r.options, streamed);
     if (csv) csv->close();
+    if (describer) {
+      for (auto& p : curve.points)
+        if (auto it = descriptions.find(p.index); it != descriptions.end())
+          p.description = std::move(it->second);
+      for (auto& e : curve.events) e.at.description = describe(e.at);
+    }
     return curve;
   } catch (const std::invalid_argument& e) {
     throw InputError("--event " + r.event.text + ": " + e.what());
@@ -124,7 +144,7 @@ BifurcationCurve follow_curve(const CurveRequest& r, const OdeSystem& system, co
 
 void write_curve_json(const CurveRequest& r, const BifurcationCurve& curve, const LoadedSystem& c,
                       double seconds) {
-  nlohmann::json j = curve_json(curve);
+  nlohmann::json j = curve_json(curve, &c.describer());
   j["case"] = c.path();
   j["params_set"] = c.params();
   j["start"] = r.branch.start;

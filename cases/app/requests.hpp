@@ -63,10 +63,14 @@ struct CurveRequest {
 CurveRequest curve_request(const Arguments& args, const LoadedSystem& c);
 Branch curve_branch(const CurveRequest& r, const LoadedSystem& c, const BranchSource& source,
                     const std::atomic<bool>* stop);
+// The curve, its points streamed to r.csv_path; with a describer each point and located event
+// described (its maxima, minima, ...: one integration of its period each).
 BifurcationCurve follow_curve(const CurveRequest& r, const OdeSystem& system, const Branch& parent,
-                              const Bifurcation& event, const CurveCallbacks& callbacks);
+                              const Bifurcation& event, const CurveCallbacks& callbacks,
+                              const OrbitDescriber* describer = nullptr);
 // The curve's JSON to r.json_path, with the case's path and set, the start, the event's name and
 // the run time.
+// With the case's describer's groups for the points follow_curve described.
 void write_curve_json(const CurveRequest& r, const BifurcationCurve& curve, const LoadedSystem& c,
                       double seconds);
 

@@ -95,7 +95,7 @@ int run_curve(const std::vector<std::string>& argv) {
                    request.parameter.c_str(), e.first, second.c_str(), e.second);
   };
   callbacks.stop_requested = [] { return interrupt_flag()->load(); };
-  const BifurcationCurve curve = follow_curve(r, model, parent, event, callbacks);
+  const BifurcationCurve curve = follow_curve(r, model, parent, event, callbacks, &c.describer());
   progress.clear();
   std::printf("  %zu points; stopped: %s\n", curve.points.size(), curve.stop_reason.c_str());
   std::printf("codimension-two points and turns:\n");

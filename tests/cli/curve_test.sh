@@ -63,9 +63,16 @@ TOML
 "$bin" continue "$work/bautin.toml" --param mu --from 0 --to -2 --quiet --json "$work/bautin.json" > /dev/null
 "$bin" curve "$work/bautin.toml" --parent "$work/bautin.json" --event LP1 --param mu --from -2 --to 0 \
   --second w --second-from 0.5 --second-to 2 --user-value period=5 --stop-at period=4 --quiet \
-  --json "$work/bautin_fold.json" > "$work/bautin_fold.out"
+  --json "$work/bautin_fold.json" --csv "$work/bautin_fold.csv" > "$work/bautin_fold.out"
 check "a curve's --user-value and --stop-at on the period: exit 0, stopped there" grep -qF "reached the value asked for: stop at period = 4" "$work/bautin_fold.out"
 check "... UZ at w = 2 pi / 5 and pi / 2 (1e-9 relative), mu = -1 (1e-9)" test "$(json "$work/bautin_fold.json" "[e['type'] for e in j['events']] == ['UZ', 'UZ'] and all(e['located'] and abs(e['second'] - w) < 1e-9 * w and abs(e['first'] + 1) < 1e-9 for e, w in zip(j['events'], (2 * math.pi / 5, math.pi / 2)))")" = True
+# Every orbit on the fold is the circle r = 1: each point's and event's largest and smallest x
+# are +-1 (1e-9; AUTO's MAX U per point of a curve), in the JSON and the CSV.
+check "... each point's max and min of x and y +-1 (1e-9), events' too" test "$(json "$work/bautin_fold.json" "all(abs(p[k][s] - (1 if k == 'max' else -1)) < 1e-9 for p in j['points'] + [e['point'] for e in j['events']] for k in ('max', 'min') for s in (0, 1))")" = True
+check "... the CSV's max_x column" test "$(/usr/bin/python3 -c "
+import csv, sys
+rows = list(csv.DictReader(open(sys.argv[1])))
+print(len(rows) > 5 and all(abs(float(r['max_x']) - 1) < 1e-9 and abs(float(r['min_y']) + 1) < 1e-9 for r in rows))" "$work/bautin_fold.csv")" = True
 "$bin" curve "$work/bautin.toml" --parent "$work/bautin.json" --event LP1 --param mu --from -2 --to 0 \
   --second w --second-from 0.5 --second-to 2 --stop-at max_x=1 > /dev/null 2> "$work/bautin_bad.err"
 check "... on another quantity: refused, saying what a curve takes" grep -qF -- "--stop-at max_x=1: a curve's points carry their period only; expected period=VALUE" "$work/bautin_bad.err"

@@ -245,6 +245,11 @@ def test_curve_equals_the_program():
     assert f"  {n} points; stopped: {curve.stop_reason}\n" in stdout
     assert curve.points.second[-1] == 0.021
     assert len(seen) == n
+    # Each point described by the model, as a branch's are: the orbits on the anti-phase BP
+    # curve keep th2 = -th1, so both pendula swing equally (1e-9).
+    amplitudes = curve.points.amplitudes
+    assert len(amplitudes["th1"]) == n and min(amplitudes["th1"]) > 0.1
+    assert max(abs(amplitudes["th1"] - amplitudes["th2"])) < 1e-9
     printed = re.findall(r"^  turn in k\s+(\S+)\s+(\S+)", stdout, re.M)
     assert [("%.12g" % e.first, "%.12g" % e.second) for e in curve.events] == printed
     # k falls steadily as c grows here: no turn in k (the tangent's k component, 2e-3 of it in

@@ -90,6 +90,9 @@ struct CurvePoint {
   int iterations = 0;
   Eigen::VectorXd unknowns;  // U = (y, T, p1, p2)
   Eigen::VectorXd tangent;   // unit, scaled norm
+  // What the model's OrbitDescriber says of the orbit (its maxima, minima, ...), where the
+  // caller described it (curve_point_orbit); empty otherwise.
+  std::vector<double> description;
 };
 
 struct CurveEvent {
@@ -147,5 +150,10 @@ struct BifurcationCurve {
 BifurcationCurve continue_curve(const OdeSystem& system, const Branch& branch,
                                 const Bifurcation& event, int second, const CurveOptions& options,
                                 const CurveCallbacks& callbacks = {});
+
+// The orbit of a curve's point, for an OrbitDescriber: its state and period at the point's two
+// parameter values (`base` the other parameters', the curve's start_values).
+PeriodicOrbit curve_point_orbit(const OdeSystem& system, const ParameterValues& base, int first,
+                                int second, const CurvePoint& point);
 
 }  // namespace sympathy

@@ -42,6 +42,10 @@ nlohmann::json orbit_json(const OdeSystem& system, const PeriodicOrbit& orbit,
 // lists, from each point's description), located events, run time, integration work and the
 // stiffness measured at its start (where it was).
 nlohmann::json branch_json(const Branch& branch, const OrbitDescriber* describer = nullptr);
+// A describer's numbers as its groups (JSON key per group, a list of numbers each); nothing when
+// the orbit was not described.
+void add_description(nlohmann::json& j, const std::vector<OrbitDescriber::Group>& layout,
+                     const std::vector<double>& description);
 
 // The JSON written to `path` whole and atomically; throws OutputError.
 void write_json(const std::string& path, const nlohmann::json& j);
