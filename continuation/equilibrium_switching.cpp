@@ -8,6 +8,7 @@
 #include <Eigen/SVD>
 
 #include "equilibrium_continuation.hpp"
+#include "sympathy/core/csv.hpp"
 #include "sympathy/core/text.hpp"
 
 namespace sympathy {

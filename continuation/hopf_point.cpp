@@ -27,7 +27,8 @@ Eigen::VectorXcd eigenvector_near(const Eigen::MatrixXd& a, Complex target, Comp
 // Derivatives of f_x along directions, by central differences of the exact f_x (f's second and
 // third derivatives are not in the OdeSystem interface). D(w) = sum_j w_j d(f_x)/dx_j and
 // E(u, w) = sum_jk u_j w_k d2(f_x)/dx_j dx_k, for real directions, at steps h_b and h_c: their
-// truncation errors are O(h^2) and their rounding errors O(eps / h) and O(eps / h^2).
+// truncation errors are O(h_b^2) and (extrapolated) O(h_c^4), their rounding errors O(eps / h).
+// and O(eps / h^2).
 class JacobianDerivatives {
  public:
   JacobianDerivatives(const OdeSystem& system, const ParameterValues& p, const Eigen::VectorXd& x)
@@ -44,8 +45,13 @@ class JacobianDerivatives {
   Eigen::MatrixXd D(const Eigen::VectorXd& w) const {
     return (jacobian(x_ + h_b_ * w) - jacobian(x_ - h_b_ * w)) / (2 * h_b_);
   }
+  // Richardson's extrapolation of the h and h / 2 differences: O(h^4) (the h difference alone,
+  // O(h^2) = 1e-6 of f's fifth derivative, put the Bautin normal form's generalized Hopf point
+  // 3e-6 off; rounding is eps / (h / 2)^2, about 1e-9).
   Eigen::MatrixXd E(const Eigen::VectorXd& u, const Eigen::VectorXd& w) const {
-    const double h = h_c_;
+    return (4 * E_at(u, w, 0.5 * h_c_) - E_at(u, w, h_c_)) / 3;
+  }
+  Eigen::MatrixXd E_at(const Eigen::VectorXd& u, const Eigen::VectorXd& w, double h) const {
     return (jacobian(x_ + h * (u + w)) - jacobian(x_ + h * (u - w)) - jacobian(x_ - h * (u - w)) +
             jacobian(x_ - h * (u + w))) /
            (4 * h * h);

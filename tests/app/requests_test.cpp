@@ -156,8 +156,8 @@ TEST_F(Requests, CurveIsTheProgramsToTheLastDigit) {
   const app::CurveRequest r = app::curve_request(args, c);
   const Branch parent =
       app::curve_branch(r, c, c.source(r.branch.start, r.branch.initial), nullptr);
-  const BifurcationCurve curve =
-      app::follow_curve(r, c.system(), parent, app::find_event(parent, r.event, "--event"), {});
+  const BifurcationCurve curve = app::follow_curve(
+      r, c.system(), parent, app::find_event(parent, r.event, "--event"), {}, &c.describer());
   ASSERT_GT(curve.points.size(), 1u);
   app::write_curve_json(r, curve, c, 0.0);
   std::vector<std::string> argv = {"curve", kRow2};

@@ -1,0 +1,207 @@
+// Fold and Hopf curves of equilibria in two parameters (equilibrium_curve.hpp), each against its
+// closed form: the cusp's folds 27 b1^2 = 4 b2^3, the Bogdanov-Takens normal form's fold
+// b1 = b2^2 / 4 and Hopf line b1 = 0 (omega^2 = -b2, a neutral saddle for b2 > 0), Lorenz's Hopf
+// curve rho_H(sigma) = sigma (sigma + beta + 3) / (sigma - beta - 1), and the Bautin normal form's
+// generalized Hopf point.
+#include "sympathy/continuation/equilibrium_curve.hpp"
+
+#include <gtest/gtest.h>
+
+#include <cmath>
+
+#include "cases/bench/hand_written_systems.hpp"
+#include "sympathy/core/autodiff_system.hpp"
+
+namespace sympathy {
+namespace {
+
+// x' = b1 + b2 x - x^3, y' = -y: folds where b2 = 3 x^2, b1 = -2 x^3 (27 b1^2 = 4 b2^3), the cusp
+// at the origin.
+class Cusp final : public AutoDiffSystem<Cusp> {
+ public:
+  Cusp() { set_parameter_layout({{"b1", {0}}, {"b2", {1}}}, {-1.0, 1.0}); }
+  int dimension() const override { return 2; }
+  std::vector<std::string> state_names() const override { return {"x", "y"}; }
+  template <class T, class P>
+  void evaluate(double, const T* z, const P* p, T* dz) const {
+    dz[0] = p[0] + p[1] * z[0] - z[0] * z[0] * z[0];
+    dz[1] = -z[1];
+  }
+};
+
+// x' = y, y' = b1 + b2 x + x^2 - x y: equilibria (x, 0) with x^2 + b2 x + b1 = 0, Jacobian
+// [0 1; b2 + 2x, -x]: folds on b1 = b2^2 / 4 (x = -b2 / 2), trace zero at x = 0 (b1 = 0) with
+// det = -b2: Hopf for b2 < 0 (omega^2 = -b2), a neutral saddle for b2 > 0, Bogdanov-Takens at the
+// origin.
+class BogdanovTakens final : public AutoDiffSystem<BogdanovTakens> {
+ public:
+  BogdanovTakens() { set_parameter_layout({{"b1", {0}}, {"b2", {1}}}, {0.1, -1.0}); }
+  int dimension() const override { return 2; }
+  std::vector<std::string> state_names() const override { return {"x", "y"}; }
+  template <class T, class P>
+  void evaluate(double, const T* z, const P* p, T* dz) const {
+    dz[0] = z[1];
+    dz[1] = p[0] + p[1] * z[0] + z[0] * z[0] - z[0] * z[1];
+  }
+};
+
+// The Bautin normal form in Cartesian coordinates: r' = r (mu + beta r^2 - r^4), theta' = 1. Its
+// Hopf points lie on mu = 0, with l1 proportional to beta: generalized Hopf at beta = 0.
+class Bautin final : public AutoDiffSystem<Bautin> {
+ public:
+  Bautin() { set_parameter_layout({{"mu", {0}}, {"beta", {1}}}, {-0.5, -1.0}); }
+  int dimension() const override { return 2; }
+  std::vector<std::string> state_names() const override { return {"x", "y"}; }
+  template <class T, class P>
+  void evaluate(double, const T* z, const P* p, T* dz) const {
+    const T r2 = z[0] * z[0] + z[1] * z[1];
+    const T g = p[0] + p[1] * r2 - r2 * r2;
+    dz[0] = g * z[0] - z[1];
+    dz[1] = g * z[1] + z[0];
+  }
+};
+
+EquilibriumBranch branch_of(const OdeSystem& system, int parameter, double from, double to,
+                            Eigen::VectorXd start) {
+  EquilibriumProblem p;
+  p.parameter = parameter;
+  p.values = system.default_parameters();
+  p.from = from;
+  p.to = to;
+  p.start_state = std::move(start);
+  return continue_equilibria(system, p, {});
+}
+
+const EquilibriumEvent& first_of(const EquilibriumBranch& b, EquilibriumEventType type) {
+  for (const auto& e : b.events)
+    if (e.type == type) return e;
+  throw std::runtime_error("no such event");
+}
+
+EquilibriumCurveOptions window(double a0, double a1, double b0, double b1) {
+  EquilibriumCurveOptions o;
+  o.first_lower = a0;
+  o.first_upper = a1;
+  o.second_lower = b0;
+  o.second_upper = b1;
+  return o;
+}
+
+std::vector<EquilibriumCurveEvent> events_named(const EquilibriumCurve& c, const std::string& t) {
+  std::vector<EquilibriumCurveEvent> out;
+  for (const auto& e : c.events)
+    if (e.type == t) out.push_back(e);
+  return out;
+}
+
+// The cusp's fold curve from the fold at b2 = 1: every point on 27 b1^2 = 4 b2^3 with b2 = 3 x^2
+// (1e-9), through the cusp point at the origin (located to 1e-8), both halves to b2 = 2.
+TEST(EquilibriumCurve, CuspFoldsOnTheirClosedFormAndTheCuspPoint) {
+  const Cusp system;
+  const auto branch = branch_of(system, 0, -1.0, 1.0, Eigen::Vector2d(-1.3247, 0.0));
+  const auto& lp = first_of(branch, EquilibriumEventType::Fold);
+  const auto curve = continue_equilibrium_curve(system, branch, lp, 1, window(-2, 2, -0.5, 2));
+  ASSERT_TRUE(curve.started()) << curve.stop_reason;
+  EXPECT_EQ(curve.stop, StopReason::ParameterBound) << curve.stop_reason;
+  for (const auto& p : curve.points) {
+    const double x = p.state[0];
+    EXPECT_NEAR(p.second, 3 * x * x, 1e-9) << p.index;
+    EXPECT_NEAR(p.first, -2 * x * x * x, 1e-9) << p.index;
+  }
+  EXPECT_NEAR(curve.points.front().second, 2.0, 1e-12);
+  EXPECT_NEAR(curve.points.back().second, 2.0, 1e-12);
+  const auto cusps = events_named(curve, "CP");
+  ASSERT_EQ(cusps.size(), 1u) << curve.events.size();
+  EXPECT_TRUE(cusps[0].located) << cusps[0].note;
+  EXPECT_NEAR(cusps[0].first, 0.0, 1e-8);
+  EXPECT_NEAR(cusps[0].second, 0.0, 1e-8);
+  EXPECT_TRUE(events_named(curve, "BT").empty());
+}
+
+// The Bogdanov-Takens normal form: its Hopf line b1 = 0 with omega^2 = -b2, through the BT point
+// at the origin (1e-8) into neutral saddles (kappa = -b2 < 0, labelled); its fold curve
+// b1 = b2^2 / 4 through the same BT point. Each point to 1e-9.
+TEST(EquilibriumCurve, BogdanovTakensHopfAndFoldCurvesMeetAtTheOrigin) {
+  const BogdanovTakens system;
+  // At b2 = -1: equilibria x^2 - x + b1 = 0; the one near x = 0.11 at b1 = 0.1 has its Hopf point
+  // at b1 = 0 (x = 0) and meets the other at the fold b1 = 1/4 (x = 1/2).
+  const auto branch = branch_of(system, 0, 0.1, -0.1, Eigen::Vector2d(0.1127, 0.0));
+  const auto hopf = continue_equilibrium_curve(
+      system, branch, first_of(branch, EquilibriumEventType::Hopf), 1, window(-1, 1, -1.5, 1));
+  ASSERT_TRUE(hopf.started()) << hopf.stop_reason;
+  for (const auto& p : hopf.points) {
+    EXPECT_NEAR(p.first, 0.0, 1e-9) << p.index;
+    EXPECT_NEAR(p.kappa, -p.second, 1e-9) << p.index;
+    EXPECT_EQ(p.neutral_saddle, p.second > 0) << p.index;
+  }
+  const auto bt = events_named(hopf, "BT");
+  ASSERT_EQ(bt.size(), 1u);
+  EXPECT_TRUE(bt[0].located);
+  EXPECT_NEAR(bt[0].second, 0.0, 1e-8);
+  EXPECT_NEAR(bt[0].first, 0.0, 1e-8);
+
+  const auto up = branch_of(system, 0, 0.1, 0.3, Eigen::Vector2d(0.1127, 0.0));
+  const auto fold = continue_equilibrium_curve(system, up, first_of(up, EquilibriumEventType::Fold),
+                                               1, window(-1, 1, -1.5, 1));
+  ASSERT_TRUE(fold.started()) << fold.stop_reason;
+  for (const auto& p : fold.points) {
+    EXPECT_NEAR(p.first, p.second * p.second / 4, 1e-9) << p.index;
+    EXPECT_NEAR(p.state[0], -p.second / 2, 1e-9) << p.index;
+  }
+  const auto bt_fold = events_named(fold, "BT");
+  ASSERT_EQ(bt_fold.size(), 1u);
+  EXPECT_NEAR(bt_fold[0].second, 0.0, 1e-8);
+}
+
+// Lorenz's Hopf curve in (rho, sigma) at beta = 8/3: rho_H = sigma (sigma + beta + 3) /
+// (sigma - beta - 1), each point to 1e-9 relative, omega^2 = kappa positive throughout.
+TEST(EquilibriumCurve, LorenzHopfCurveIsTheClosedForm) {
+  const bench::HandLorenz system;
+  const double beta = 8.0 / 3.0, rho = 30.0;
+  const double x = std::sqrt(beta * (rho - 1));
+  const auto branch = branch_of(system, 0, 30, 2, Eigen::Vector3d(x, x, rho - 1));
+  const auto curve = continue_equilibrium_curve(
+      system, branch, first_of(branch, EquilibriumEventType::Hopf), 1, window(0, 200, 6, 20));
+  ASSERT_TRUE(curve.started()) << curve.stop_reason;
+  EXPECT_GT(curve.points.size(), 10u);
+  for (const auto& p : curve.points) {
+    const double s = p.second;
+    EXPECT_NEAR(p.first, s * (s + beta + 3) / (s - beta - 1), 1e-9 * p.first) << p.index;
+    EXPECT_GT(p.kappa, 0.0);
+  }
+  EXPECT_NEAR(curve.points.front().second, 6.0, 1e-12);
+  EXPECT_NEAR(curve.points.back().second, 20.0, 1e-12);
+}
+
+// The Bautin normal form's Hopf line mu = 0: l1 changes sign with beta, the generalized Hopf point
+// at beta = 0 (1e-8).
+TEST(EquilibriumCurve, BautinGeneralizedHopfPoint) {
+  const Bautin system;
+  const auto branch = branch_of(system, 0, -0.5, 0.5, Eigen::Vector2d(0.0, 0.0));
+  const auto curve = continue_equilibrium_curve(
+      system, branch, first_of(branch, EquilibriumEventType::Hopf), 1, window(-1, 1, -1, 1));
+  ASSERT_TRUE(curve.started()) << curve.stop_reason;
+  for (const auto& p : curve.points) EXPECT_NEAR(p.first, 0.0, 1e-10) << p.index;
+  const auto gh = events_named(curve, "GH");
+  ASSERT_EQ(gh.size(), 1u);
+  EXPECT_TRUE(gh[0].located) << gh[0].note;
+  EXPECT_NEAR(gh[0].second, 0.0, 1e-8);
+}
+
+// A curve from an event of the wrong kind, or in the branch's own parameter, is refused.
+TEST(EquilibriumCurve, BadRequestsRefused) {
+  const Cusp system;
+  const auto branch = branch_of(system, 0, -1.0, 1.0, Eigen::Vector2d(-1.3247, 0.0));
+  const auto& lp = first_of(branch, EquilibriumEventType::Fold);
+  EXPECT_THROW(continue_equilibrium_curve(system, branch, lp, 0, window(-2, 2, -0.5, 2)),
+               std::invalid_argument);
+  EXPECT_THROW(continue_equilibrium_curve(system, branch, lp, 1, window(-2, 2, 1.5, 2)),
+               std::invalid_argument);
+  EquilibriumEvent bp = lp;
+  bp.type = EquilibriumEventType::BranchPoint;
+  EXPECT_THROW(continue_equilibrium_curve(system, branch, bp, 1, window(-2, 2, -0.5, 2)),
+               std::invalid_argument);
+}
+
+}  // namespace
+}  // namespace sympathy
