@@ -566,6 +566,7 @@ EquilibriumCurve continue_equilibrium_curve(const OdeSystem& system,
   curve.points = std::move(joined.points);
   curve.events = std::move(joined.events);
   curve.stop = joined.stop;
+  curve.backward_stop = joined.backward_stop;
   curve.stop_reason = std::move(joined.message);
   curve.seconds = started.seconds();
   return curve;

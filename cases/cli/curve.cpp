@@ -8,6 +8,7 @@
 
 #include "cases/app/branch_run.hpp"
 #include "cases/app/case_arguments.hpp"
+#include "cases/app/equilibrium_curve_run.hpp"
 #include "cases/app/requests.hpp"
 #include "cases/app/start_data.hpp"
 #include "cases/cli/commands.hpp"
@@ -31,12 +32,75 @@ void print_curve_events(std::FILE* out, const BifurcationCurve& curve) {
                  e.note.c_str());
 }
 
+// The fold or Hopf curve of equilibria from an event of --parent EQUILIBRIA.json.
+int run_equilibrium_curve(const Arguments& args, const LoadedSystem& c, const Stopwatch& clock) {
+  const EquilibriumCurveRequest r = equilibrium_curve_request(args, c);
+  const OdeSystem& system = c.system();
+  const std::string first = r.parent.parameter_name;
+  const std::string second = system.parameter_names()[r.second];
+  std::printf("sympathy curve %s  params %s  %s of the equilibria in %s (%s) in %s (%g to %g)\n",
+              c.path().c_str(), c.params().empty() ? "(none)" : c.params().c_str(),
+              r.event_name.c_str(), first.c_str(), r.parent_path.c_str(), second.c_str(),
+              r.options.second_lower, r.options.second_upper);
+  if (c.equations()) std::printf("  %s\n", c.build_note().c_str());
+  std::fflush(stdout);
+  const bool quiet = args.flag("--quiet");
+  ProgressLine progress(quiet);
+  std::FILE* log = progress.log();
+  int points = 0;
+  EquilibriumCurveCallbacks callbacks;
+  callbacks.on_point = [&](const EquilibriumCurvePoint& p) {
+    ++points;
+    if (!quiet) {
+      std::fprintf(log, "  [%4d] %s = %-14.9g %s = %-14.9g", p.index, first.c_str(), p.first,
+                   second.c_str(), p.second);
+      if (std::isfinite(p.kappa))
+        std::fprintf(log, "  %s %.6g", p.neutral_saddle ? "k^2" : "omega^2", std::abs(p.kappa));
+      std::fprintf(log, "  (%d it)\n", p.iterations);
+    }
+    progress.show("curve " + r.event_name + ": " + first + " = " + format_number(p.first) + ", " +
+                  second + " = " + format_number(p.second) + ", " + std::to_string(points) +
+                  " points, " + duration_text(clock.seconds()));
+  };
+  callbacks.on_event = [&](const EquilibriumCurveEvent& e) {
+    if (!quiet)
+      std::fprintf(log, "  >> %s at %s = %.10g, %s = %.10g\n", e.type.c_str(), first.c_str(),
+                   e.first, second.c_str(), e.second);
+  };
+  callbacks.stop_requested = [] { return interrupt_flag()->load(); };
+  const EquilibriumCurve curve = run_equilibrium_curve(r, system, callbacks);
+  progress.clear();
+  if (!curve.started()) {
+    std::printf("  %s\n  run time %.3f s\n", curve.stop_reason.c_str(), clock.seconds());
+    return 4;
+  }
+  int saddles = 0;
+  for (const auto& p : curve.points) saddles += p.neutral_saddle;
+  std::printf("  %zu points; stopped: %s\n", curve.points.size(), curve.stop_reason.c_str());
+  if (saddles)
+    std::printf("  %d of them neutral saddles (real eigenvalues +-k, not Hopf points)\n", saddles);
+  std::printf("codimension-two points:\n");
+  if (curve.events.empty())
+    std::printf("  none\n");
+  else
+    std::printf("  %-4s %-20s %-20s %-11s %s\n", "type", first.c_str(), second.c_str(),
+                "uncertainty", "note");
+  for (const auto& e : curve.events)
+    std::printf("  %-4s %-20.12g %-20.12g %-11.1e %s%s%s\n",
+                (e.type + (e.located ? "" : "?")).c_str(), e.first, e.second, e.uncertainty,
+                e.description.c_str(), e.note.empty() ? "" : "; ", e.note.c_str());
+  std::printf("  run time %.3f s\n", clock.seconds());
+  if (!r.json_path.empty()) write_equilibrium_curve_json(r, curve, c, clock.seconds());
+  return exit_code_of(curve);
+}
+
 }  // namespace
 
 int run_curve(const std::vector<std::string>& argv) {
   Arguments args("curve", argv, curve_options(), {"CASE"});
   Stopwatch clock;
   const LoadedSystem c = load_system(args);
+  if (wants_equilibrium_curve(args)) return run_equilibrium_curve(args, c, clock);
   const CurveRequest r = curve_request(args, c);
   const BranchRequest& request = r.branch;
   const EventName& name = r.event;

@@ -137,6 +137,31 @@ check "a parent in another parameter exits 2" grep -q -- "equilibria in rho; exp
 "$bin" equilibria "$lrz" --param rho --from 0 --to 30 --at 10 --switch-at BP1 > /dev/null 2> "$work/bad.err"
 check "--at beside --switch-at exits 2" grep -q -- "--at: not with --switch-at BP1" "$work/bad.err"
 
+# The Hopf curve of Lorenz's nonzero equilibria in (rho, sigma) from the switched run's HB2:
+# rho_H(sigma) = sigma (sigma + beta + 3) / (sigma - beta - 1) at every point (1e-9 relative),
+# omega^2 = kappa; CSV a row per point.
+"$bin" curve "$lrz" --parent "$work/lrz1.json" --event HB2 --param rho --from 0 --to 200 \
+  --second sigma --second-from 5 --second-to 30 --quiet --json "$work/lrz_h.json" \
+  --csv "$work/lrz_h.csv" > "$work/lrz_h.out"
+check "curve --parent EQUILIBRIA.json --event HB2 exits 0" test $? -eq 0
+check "... every point on rho_H(sigma) (1e-9 relative), both ends on the sigma window" test "$(json "$work/lrz_h.json" "
+all(abs(p['first'] - p['second'] * (p['second'] + 8/3 + 3) / (p['second'] - 8/3 - 1)) < 1e-9 * p['first'] and
+    abs(p['omega']**2 - p['kappa']) < 1e-9 * p['kappa'] for p in j['points']) and
+sorted(p['second'] for p in j['points'])[::len(j['points']) - 1] == [5, 30] and j['of'] == 'equilibria'")" = True
+check "... CSV a row per point" test "$(($(wc -l < "$work/lrz_h.csv") - 1))" -eq "$(json "$work/lrz_h.json" "len(j['points'])")"
+"$bin" curve "$lrz" --parent "$work/lrz1.json" --event BP1 --param rho --from 0 --to 200 \
+  --second sigma --second-from 5 --second-to 30 > /dev/null 2> "$work/bad.err"
+check "a curve from an equilibria BP exits 2" grep -q -- "--event BP1: expected a fold or Hopf point of the equilibria" "$work/bad.err"
+"$bin" curve "$lrz" --parent "$work/lrz1.json" --event HB3 --param rho --from 0 --to 200 \
+  --second sigma --second-from 5 --second-to 30 > /dev/null 2> "$work/bad.err"
+check "... from a Hopf point they lack exits 2" grep -qF -- "--event HB3: --parent $work/lrz1.json has 2 HB point(s)" "$work/bad.err"
+"$bin" curve "$lrz" --parent "$work/lrz1.json" --event HB1 --param rho --from 0 --to 200 \
+  --second rho --second-from 5 --second-to 30 > /dev/null 2> "$work/bad.err"
+check "... in its own parameter exits 2" grep -q -- "--second rho: expected a parameter other than --param" "$work/bad.err"
+"$bin" curve "$lrz" --parent "$work/lrz1.json" --event HB1 --param rho --from 0 --to 200 \
+  --second sigma --second-from 12 --second-to 30 > /dev/null 2> "$work/bad.err"
+check "... with a window that does not hold the start exits 2" grep -q -- "the window does not hold the equilibria's sigma = 10" "$work/bad.err"
+
 # Bad requests: named, exit 2, before any work.
 "$bin" equilibria "$abc" --param p9 --from 0 --to 1 > /dev/null 2> "$work/bad.err"
 check "an unknown parameter exits 2" test $? -eq 2

@@ -98,6 +98,7 @@ struct EquilibriumCurve {
   std::vector<EquilibriumCurvePoint> points;
   std::vector<EquilibriumCurveEvent> events;
   StopReason stop = StopReason::ParameterBound;
+  std::optional<StopReason> backward_stop;  // the backward half's
   std::string stop_reason;
   std::string origin;  // "HB at rho = 24.7368421053"
   ParameterValues start_values;

@@ -9,6 +9,7 @@
 #include <nlohmann/json.hpp>
 
 #include "sympathy/continuation/equilibrium_branch.hpp"
+#include "sympathy/continuation/equilibrium_curve.hpp"
 #include "sympathy/core/csv.hpp"
 
 namespace sympathy {
@@ -21,6 +22,26 @@ class EquilibriumCsvWriter {
   EquilibriumCsvWriter(const std::string& path, const OdeSystem& system,
                        const std::string& parameter_name);
   void write(const EquilibriumPoint& point);  // throws OutputError
+  void close() { csv_.close(); }
+
+ private:
+  CsvWriter csv_;
+  int n_;
+};
+
+// A fold or Hopf curve of equilibria: `of` "equilibria", kind (LP, HB), both parameters, origin,
+// stop, points (values, state, eigenvalues; kappa, omega, neutral_saddle and l1 on a Hopf curve)
+// and its codimension-two points.
+nlohmann::json equilibrium_curve_json(const EquilibriumCurve& curve);
+
+// One CSV row per curve point: index, both parameters, the states, kappa, omega, neutral_saddle,
+// lyapunov (NaN where they do not apply), residual and the eigenvalues (re, im).
+class EquilibriumCurveCsvWriter {
+ public:
+  // Throws OutputError if `path` cannot be opened.
+  EquilibriumCurveCsvWriter(const std::string& path, const OdeSystem& system,
+                            const std::string& first, const std::string& second);
+  void write(const EquilibriumCurvePoint& point);  // throws OutputError
   void close() { csv_.close(); }
 
  private:
