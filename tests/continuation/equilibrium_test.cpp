@@ -340,6 +340,11 @@ TEST(EquilibriumBranch, AbcHopfPoints) {
   for (const auto& e : hopf) found.push_back(e.parameter);
   std::sort(found.begin(), found.end());
   for (int k = 0; k < 4; ++k) EXPECT_NEAR(found[k], expected[k], 1e-8) << k;
+  // The first one's l1 against Kuznetsov's formula with exact (symbolic) derivatives at 40
+  // digits: -0.031037085095 (sympy and mpmath, 2026-11-28); the differences of f_x give it to
+  // 1e-6 relative (measured 4e-9; before their extrapolation, 7.7e-5).
+  ASSERT_TRUE(hopf[0].hopf && hopf[0].hopf->lyapunov);
+  EXPECT_NEAR(*hopf[0].hopf->lyapunov, -0.031037085095, 1e-6 * 0.031037085095);
 }
 
 // A two-way run from the middle: one branch in parameter order, the start once.
