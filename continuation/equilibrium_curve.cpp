@@ -29,6 +29,8 @@ OptionCheck EquilibriumCurveOptions::validate() const {
     return OptionProblem{"min_tangent_cosine", "a number between 0 and 1"};
   if (!positive(location_tolerance) || location_tolerance >= 0.1)
     return OptionProblem{"location_tolerance", "a positive number below 0.1"};
+  for (const Value& v : user_values)
+    if (!std::isfinite(v.value)) return OptionProblem{"user_values", "finite values"};
   return std::nullopt;
 }
 
@@ -340,7 +342,10 @@ class CurveProblem {
   }
   driver::Found<Event> detect(const Point*, const Point& a, const Point& b) const {
     driver::Found<Event> found;
-    if (!o_.detect) return found;
+    if (!o_.detect) {
+      user_points(a, b, found);
+      return found;
+    }
     const Eigen::VectorXd ya = y_of(a);
     const auto probe = [&](double s, std::string& why) {
       const Eigen::VectorXd row = weights_.cwiseProduct(weights_).cwiseProduct(a.tangent);
@@ -377,11 +382,21 @@ class CurveProblem {
       found.unlocated |= !e.located;
       found.events.push_back(std::move(e));
     }
+    user_points(a, b, found);
     std::sort(found.events.begin(), found.events.end(),
               [](const Event& x, const Event& y) { return x.arclength < y.arclength; });
     return found;
   }
-  std::optional<driver::Ending> ends(const Point&, const Point&, std::vector<Event>&) const {
+  // A value asked to stop at, passed in this step: the curve ends there, the events beyond it
+  // dropped and b not kept (the point there is the event's).
+  std::optional<driver::Ending> ends(const Point&, const Point&, std::vector<Event>& events) const {
+    for (std::size_t i = 0; i < events.size(); ++i)
+      if (events[i].type == "UZ" && events[i].note.rfind("stop at", 0) == 0) {
+        const std::string note = events[i].note;
+        events.resize(i + 1);
+        return driver::Ending{driver::Stop::UserValue, "reached the value asked for: " + note,
+                              false};
+      }
     return std::nullopt;
   }
   void accept(Point& b) {
@@ -391,6 +406,33 @@ class CurveProblem {
   }
 
  private:
+  // The user values passed between a and b, each solved with its parameter held there (from the
+  // point interpolated linearly between them).
+  void user_points(const Point& a, const Point& b, driver::Found<Event>& found) const {
+    const Eigen::VectorXd ya = y_of(a), yb = y_of(b);
+    for (const auto& v : o_.user_values) {
+      const int k = v.second ? n_ + 1 : n_;
+      if (!((ya[k] - v.value) * (yb[k] - v.value) < 0.0 || yb[k] == v.value)) continue;
+      const double w = (v.value - ya[k]) / (yb[k] - ya[k]);
+      Event e;
+      e.type = "UZ";
+      const std::string name = system_.parameter_names()[v.second ? second_ : first_];
+      e.note = (v.stop ? "stop at " : "user value ") + name + " = " + format_double(v.value);
+      e.description = "the value asked for";
+      e.after_point = a.index;
+      e.arclength = w * b.step;
+      std::string why;
+      auto p = correct((1 - w) * ya + w * yb, Eigen::VectorXd::Unit(size_, k), v.value, a,
+                       a.tangent, why);
+      e.located = p.has_value();
+      e.at = p ? *p : b;
+      if (!p) e.note += "; not located: " + why;
+      e.first = e.at.first;
+      e.second = e.at.second;
+      found.events.push_back(std::move(e));
+    }
+  }
+
   std::vector<std::pair<std::string, std::string>> tests() const {
     if (hopf_)
       return {{"BT", "Bogdanov-Takens: omega -> 0, the Hopf curve turns into neutral saddles"},

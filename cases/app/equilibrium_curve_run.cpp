@@ -28,8 +28,8 @@ EquilibriumCurveRequest equilibrium_curve_request(const Arguments& args, const L
   const OdeSystem& system = c.system();
   EquilibriumCurveRequest r;
   r.parent_path = args.text("--parent", "");
-  for (const char* own : {"--start", "--initial", "--start-data", "--user-value", "--stop-at",
-                          "--transient", "--set", "--params"})
+  for (const char* own :
+       {"--start", "--initial", "--start-data", "--transient", "--set", "--params"})
     if (args.has(own))
       throw InputError(std::string(own) + ": not with --parent " + r.parent_path +
                        " (equilibria: the curve starts at their event, at their parameter "
@@ -76,6 +76,17 @@ EquilibriumCurveRequest equilibrium_curve_request(const Arguments& args, const L
   o.initial_step = args.number("--step", o.initial_step);
   o.max_step = args.number("--max-step", o.max_step);
   o.max_points = args.integer("--max-points", o.max_points);
+  // Values of either parameter: UZ there (and the curve's end with --stop-at).
+  for (const bool stop : {false, true}) {
+    const std::string option = stop ? "--stop-at" : "--user-value";
+    for (const Assignment& a : args.assignments(option)) {
+      if (a.key != window.parameter && a.key != second)
+        throw InputError(option + " " + a.key + "=" + format_number(a.value) +
+                         ": a curve of equilibria reports values of its parameters; expected " +
+                         window.parameter + "=VALUE or " + second + "=VALUE");
+      o.user_values.push_back({a.key == second, a.value, stop});
+    }
+  }
   check_options(o.validate(), "");
   if (r.event.parameter < o.first_lower || r.event.parameter > o.first_upper)
     throw InputError("--from, --to: the window does not hold " + r.event_name + " at " +

@@ -38,7 +38,9 @@ HERE = os.path.dirname(os.path.abspath(__file__))
 
 # AUTO's label -> the event type sympathy reports for it.
 KIND_TO_EVENT = {"HB": "HB", "LP": "LP", "BP": "BP", "PD": "PD", "TR": "NS", "NS": "NS",
-                 "UZ": "UZ", "PT": "UZ"}
+                 "UZ": "UZ", "PT": "UZ",
+                 # codimension-two points on curves of equilibria (AUTO's and MatCont's labels)
+                 "BT": "BT", "CP": "CP", "GH": "GH", "ZH": "ZH", "HH": "HH"}
 
 
 def usage(message):

@@ -54,6 +54,14 @@ struct EquilibriumCurveOptions {
   double min_tangent_cosine = 0.95;
   double location_tolerance = 1e-9;  // relative, in the second parameter
   bool detect = true;                // codimension-two points
+  // Values of either parameter at which to report the curve's point (AUTO's UZ), exact (solved
+  // with that parameter held), and, with `stop`, end the curve there (AUTO's UZSTOP).
+  struct Value {
+    bool second = true;  // of the second parameter, else the first
+    double value = 0.0;
+    bool stop = false;
+  };
+  std::vector<Value> user_values;
 
   OptionCheck validate() const;
 };
@@ -79,7 +87,7 @@ struct EquilibriumCurvePoint {
 };
 
 struct EquilibriumCurveEvent {
-  std::string type;         // "BT", "CP", "GH", "ZH", "HH"
+  std::string type;         // "BT", "CP", "GH", "ZH", "HH"; "UZ" a user value
   std::string description;  // for people
   double first = 0.0, second = 0.0;
   double uncertainty = 0.0;  // in the second parameter: the final bracket
