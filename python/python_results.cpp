@@ -346,6 +346,14 @@ py::object curve_result(const BifurcationCurve& curve, const OrbitDescriber* des
   return with_fields(fields);
 }
 
+py::object equilibrium_curve_point_result(const EquilibriumCurvePoint& p) {
+  py::dict fields;
+  fields["index"] = p.index;
+  fields["first"] = p.first;
+  fields["second"] = p.second;
+  return with_fields(fields);
+}
+
 py::object equilibria_result(const EquilibriumBranch& branch) {
   using P = EquilibriumPoint;
   const auto& points = branch.points;

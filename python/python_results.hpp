@@ -14,6 +14,7 @@
 #include "sympathy/continuation/bifurcation_curve.hpp"
 #include "sympathy/continuation/branch.hpp"
 #include "sympathy/continuation/equilibrium_branch.hpp"
+#include "sympathy/continuation/equilibrium_curve.hpp"
 #include "sympathy/continuation/orbit_describer.hpp"
 #include "sympathy/core/trajectory_fit.hpp"
 
@@ -55,6 +56,8 @@ py::object curve_result(const BifurcationCurve& curve, const OrbitDescriber* des
 // residual, step, iterations), events (type, value, uncertainty, located, state, eigenvalues,
 // note, after_point, and for HB omega, period, lyapunov), stop, stop_reason, seconds, state_names.
 py::object equilibria_result(const EquilibriumBranch& branch);
+// A point of a curve of equilibria, for progress: index, first, second.
+py::object equilibrium_curve_point_result(const EquilibriumCurvePoint& p);
 // names (the unknowns: "d", "th1(0)"), start, values, errors, covariance, correlation, rss_start,
 // rss, residuals, sigma2, column_rms (by recorded column), rank, condition, evaluations,
 // converged, stop_reason, seconds, parameters (every parameter of the model at the fitted values).

@@ -25,6 +25,7 @@
 #include "case_dict.hpp"
 #include "cases/app/basins_run.hpp"
 #include "cases/app/case_arguments.hpp"
+#include "cases/app/equilibrium_curve_run.hpp"
 #include "cases/app/fit_run.hpp"
 #include "cases/app/map_run.hpp"
 #include "cases/app/orbit_run.hpp"
@@ -319,12 +320,39 @@ class Case {
     return fit_result(*run->fit.model, run->fit, run->result);
   }
 
+  // The fold or Hopf curve of equilibria from parent=EQUILIBRIA.json: the object sympathy.load
+  // gives for its JSON (one reader of the one output, not a second description of it).
+  py::object equilibrium_curve_with(const app::Arguments& args, const app::LoadedSystem& c,
+                                    const py::object& progress) const {
+    const app::EquilibriumCurveRequest r = app::equilibrium_curve_request(args, c);
+    const ProgressBar shown(progress, "curve " + r.event_name);
+    PythonHooks hooks(shown.callback);
+    EquilibriumCurveCallbacks callbacks;
+    callbacks.on_point = [&](const EquilibriumCurvePoint& p) {
+      hooks.report([&] { return equilibrium_curve_point_result(p); });
+    };
+    callbacks.stop_requested = [&] { return hooks.stop_requested(); };
+    EquilibriumCurve curve;
+    {
+      py::gil_scoped_release release;
+      curve = app::run_equilibrium_curve(r, c.system(), callbacks);
+    }
+    hooks.raise_kept();
+    const py::object parsed =
+        py::module_::import("json").attr("loads")(equilibrium_curve_json(curve).dump(
+            -1, ' ', false, nlohmann::json::error_handler_t::replace));
+    py::object result = py::module_::import("sympathy._load").attr("_object")(parsed);
+    result.attr("kind") = "curve";
+    return result;
+  }
+
   py::object curve(const py::dict& keywords, const py::object& progress) const {
     return with_keywords("curve", [&] { return curve_with(keywords, progress); });
   }
   py::object curve_with(const py::dict& keywords, const py::object& progress) const {
     const app::Arguments args = typed_arguments("curve", line_, keywords);
     const app::LoadedSystem c = app::load_system(args);
+    if (app::wants_equilibrium_curve(args)) return equilibrium_curve_with(args, c, progress);
     app::CurveRequest request = app::curve_request(args, c);
     const app::BranchSource source = c.source(request.branch.start, request.branch.initial);
     const ProgressBar shown(progress, "curve " + request.event.text);

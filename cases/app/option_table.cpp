@@ -237,8 +237,11 @@ std::vector<OptionSpec> curve_options() {
        {"--to", "B", false, "the branch's last value, the window's other end", true},
        {"--initial", "VAR=VALUE", true, "initial state value (on top of --start)"},
        {"--transient", "SECONDS", false, "integration before the first Newton (default 60)"},
-       {"--parent", "FILE", false, "the branch from this JSON (continue --json) instead"},
-       {"--event", "EVENT", false, "the event whose curve to follow: LP1, BP1, NS2, ...", true},
+       {"--parent", "FILE", false,
+        "the branch from this JSON (continue --json) instead; or equilibria (equilibria --json): "
+        "then the fold or Hopf curve of equilibria from their LPn or HBn"},
+       {"--event", "EVENT", false,
+        "the event whose curve to follow: LP1, BP1, NS2, ... (of equilibria: LP1, HB1, ...)", true},
        {"--second", "Q", false, "the second parameter", true},
        {"--second-from", "A", false, "the window in the second parameter ...", true},
        {"--second-to", "B", false, "... and its other end", true},
@@ -247,7 +250,7 @@ std::vector<OptionSpec> curve_options() {
        {"--max-points", "N", false, "point limit per direction (default 200)"},
        {"--user-value", "period=VALUE", true,
         "report the curve's orbit where its period takes this value, as an event UZ (AUTO's UZ "
-        "on PERIOD)"},
+        "on PERIOD); on a curve of equilibria, NAME=VALUE of either of its parameters"},
        {"--stop-at", "period=VALUE", true, "the same, and the curve ends there (AUTO's UZSTOP)"},
        {"--csv", "FILE", false, "stream every curve point to this CSV"},
        {"--json", "FILE", false, "write the curve and its codimension-two points as JSON"},

@@ -229,6 +229,32 @@ def test_equation_case_file_orbit_simulation_and_parameters():
     assert list(run.states[0]) == [1.0, 0.0]
 
 
+def test_hopf_curve_of_equilibria_equals_the_program(tmp_path):
+    # Lorenz's Hopf curve in (rho, sigma) from an equilibria JSON: the same object as
+    # sympathy.load gives for the program's JSON, on rho_H(sigma) = sigma (sigma + beta + 3) /
+    # (sigma - beta - 1) (1e-9 relative), stopped at sigma = 20 as asked.
+    lrz = os.path.join(SOURCE, "cases/examples/lrz.toml")
+    eq = str(tmp_path / "eq.json")
+    cli("equilibria", lrz, "--param", "rho", "--from", "30", "--to", "2", "--start",
+        "near-equilibrium", "--quiet", "--json", eq)
+    words = dict(parent=eq, event="HB1", param="rho", from_=0, to=200, second="sigma",
+                 second_from=5, second_to=30)
+    curve = sympathy.Case(lrz).curve(stop_at={"sigma": 20}, **words)
+    assert curve.kind == "curve" and curve.of == "equilibria" and curve.first == "rho"
+    s, beta = curve.points.second, 8 / 3
+    assert np.all(abs(curve.points.first - s * (s + beta + 3) / (s - beta - 1))
+                  < 1e-9 * curve.points.first)
+    assert [(e.type, e.second) for e in curve.events] == [("UZ", 20.0)]
+    saved = str(tmp_path / "hopf.json")
+    cli("curve", lrz, "--parent", eq, "--event", "HB1", "--param", "rho", "--from", "0", "--to",
+        "200", "--second", "sigma", "--second-from", "5", "--second-to", "30", "--stop-at",
+        "sigma=20", "--quiet", "--json", saved)
+    loaded = sympathy.load(saved)
+    assert list(loaded.points.first) == list(curve.points.first)
+    with pytest.raises(sympathy.InputError, match=r"^event BP1: expected a fold or Hopf point"):
+        sympathy.Case(lrz).curve(**dict(words, event="BP1"))
+
+
 def test_curve_equals_the_program():
     # A short stretch of the anti-phase BP curve in (k, c) (tests/cli/curve_test.sh's, at the
     # fast preset to keep it short): Python and the program, the same points, stop and events.
