@@ -69,13 +69,35 @@ MapStudy load_map(const std::string& path) {
   for (const auto& entry : *list->as_array()) {
     const std::string prefix = "orbits[" + std::to_string(++index) + "].";
     const auto& t = *entry.as_table();
-    in.only(t, prefix, {"name", "start", "at"});
+    in.only(t, prefix, {"name", "start", "at", "parent", "from_point"});
     if (!t.get("name")) throw InputError(in.where(entry) + ": key '" + prefix + "name' is missing");
     MapOrbit o;
     o.name = in.string(*t.get("name"), prefix + "name");
     // Required for a metronome case file (checked with the case); an equation case file's
     // default start is its [states].
     if (const toml::node* start = t.get("start")) o.start = in.string(*start, prefix + "start");
+    if (t.get("parent") || t.get("from_point")) {
+      // A saved run's point or event (a path relative to the map file), as continue's --parent
+      // and --from-point; read with the case, before any work.
+      for (const char* key : {"parent", "from_point"})
+        if (!t.get(key))
+          throw InputError(in.where(entry) + ": key '" + prefix + key +
+                           "' is missing; expected parent (a branch or curve JSON) and "
+                           "from_point (a point's index or an event, UZ1) together");
+      if (t.get("start"))
+        in.fail(*t.get("start"), prefix + "start",
+                "no start beside parent and from_point (the saved point is the start)");
+      const toml::node& n = *t.get("from_point");
+      if (!n.is_integer() && !n.is_string())
+        in.fail(n, prefix + "from_point", "a point's index or an event's name (UZ1, PD2)");
+      const std::string what = n.is_integer() ? std::to_string(in.integer(n, prefix + "from_point"))
+                                              : in.string(n, prefix + "from_point");
+      o.saved = SavedStart{(std::filesystem::path(path).parent_path() /
+                            in.string(*t.get("parent"), prefix + "parent"))
+                               .lexically_normal()
+                               .string(),
+                           what};
+    }
     if (o.name.empty() || o.name.find_first_of("/\\") != std::string::npos)
       in.fail(*t.get("name"), prefix + "name", "a name without slashes (it names files)");
     if (const toml::node* at = t.get("at")) {

@@ -8,6 +8,7 @@
 #include <vector>
 
 #include "cases/app/case_loading.hpp"
+#include "cases/app/saved_start.hpp"
 
 namespace sympathy::app {
 
@@ -20,6 +21,9 @@ struct MapAxis {
 struct MapOrbit {
   std::string name, start;
   std::optional<double> at;  // the branch found here and followed both ways (else from `from`)
+  // `parent` and `from_point`: a point or event of a saved run as the start (its state, period,
+  // segments and every parameter value: AUTO's IRS), instead of `start`.
+  std::optional<SavedStart> saved;
 };
 
 struct MapStudy {

@@ -45,10 +45,25 @@ MapRun prepare_map(const MapRequest& request) {
                      format_double(map.second.to) + " does not contain " + map.second.parameter +
                      " = " + format_double(base_second) + ", the value the branches start at");
   for (const auto& o : map.orbits) {
+    if (o.saved) {
+      // A saved orbit: its own parameter values, its second one inside the window.
+      const SavedOrbit saved = read_saved_orbit(*o.saved, c.system());
+      const double second =
+          c.system().parameter(saved.values, index_of(c.system(), map.second.parameter));
+      if (second < map.second.from || second > map.second.to)
+        throw InputError(map.path + ": orbit '" + o.name + "': its saved orbit has " +
+                         map.second.parameter + " = " + format_double(second) +
+                         ", outside the second window");
+      run.sources.push_back({c.system(), c.describer(), saved.values, saved.state0,
+                             InvariantSubspace(), "saved " + saved.description, saved.period});
+      run.saved_segments.push_back(saved.segments);
+      continue;
+    }
     if (o.start.empty() && !c.equations())
       throw InputError(map.path + ": orbit '" + o.name +
                        "': key 'start' is missing: expected one of the case's starts");
     run.sources.push_back(c.source(o.start, {}));  // throws naming the start if there is none
+    run.saved_segments.push_back(0);
   }
   run.marks = nlohmann::json::array();
   for (const auto& set : map.marks) {
@@ -115,7 +130,9 @@ void run_map(MapRun& run, const std::atomic<bool>* stop, const JobCallbacks& cal
         // The branch starts at the orbit's `at`, else at the case's own value where the window
         // holds it (the orbit the case's start reaches there, as the curves' seeds should be),
         // else at the window's `from`.
-        const double own = c.value_of(map.first.parameter);
+        const double own = o.saved ? c.system().parameter(run.sources[i].values,
+                                                          index_of(c.system(), map.first.parameter))
+                                   : c.value_of(map.first.parameter);
         request.at = o.at;
         if (!request.at && own > map.first.from && own < map.first.to) request.at = own;
         request.progress = nullptr;
@@ -125,6 +142,8 @@ void run_map(MapRun& run, const std::atomic<bool>* stop, const JobCallbacks& cal
                 o.name + ": branch, " + map.first.parameter + " = " + format_number(p.parameter));
           };
         apply_accuracy(run.request.accuracy.value_or(map.accuracy), request.continuation);
+        if (run.saved_segments[i] > 0)  // on the segments it was resolved on
+          request.continuation.orbit.shooting.segments = run.saved_segments[i];
         r.branch = run_branch(run.sources[i], request, stop);
         char line[256];
         std::snprintf(line, sizeof line, "  %s: branch of %zu points, %zu events in %.1f s\n",
@@ -196,7 +215,7 @@ int write_map(const MapRun& run, double seconds) {
     const MapOrbitResult& r = run.results[i];
     nlohmann::json o;
     o["name"] = map.orbits[i].name;
-    o["start"] = map.orbits[i].start;
+    o["start"] = map.orbits[i].saved ? run.sources[i].start_name : map.orbits[i].start;
     o["seconds"] = r.seconds;
     if (!r.error.empty()) o["error"] = r.error;
     o["branch"] = branch_json(r.branch);

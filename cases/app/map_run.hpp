@@ -46,6 +46,7 @@ struct MapRun {
   MapStudy map;
   std::unique_ptr<LoadedSystem> system;
   std::vector<BranchSource> sources;  // per orbit
+  std::vector<int> saved_segments;    // per orbit: a saved start's shooting segments, else 0
   nlohmann::json marks;               // the marked parameter sets, in the map's plane or not
   std::string json_path;
   std::vector<MapOrbitResult> results;  // per orbit, after run_map

@@ -180,6 +180,24 @@ for c in o['curves']:
     rows = list(csv.DictReader(open(sys.argv[2] + '/' + c['csv'])))
     ok = ok and any(abs(float(r['p3']) - 1.55) < 1e-12 and min(abs(float(r['p1']) - f) for f in folds) < 1e-9 for r in rows)
 print(ok)" "$work/abc_map.json" "$work")" = True
+# The same orbit from a saved run's point (map files' parent and from_point, AUTO's IRS): the
+# branch JSON's point 0 at p1 = 0.215, continued on the map as the case's start is: the same
+# two folds (1e-9).
+SYMPATHY_CACHE_DIR="$work/cache" "$bin" continue "$src/cases/examples/abc.toml" --param p1 \
+  --from 0.21 --to 0.22 --at 0.215 --quiet --json "$work/abc_saved.json" > /dev/null 2>&1
+sed 's|^at = 0.215$|parent = "abc_saved.json"\nfrom_point = 0|' "$work/abc_map.toml" > "$work/abc_map_saved.toml"
+SYMPATHY_CACHE_DIR="$work/cache" "$bin" map "$work/abc_map_saved.toml" --out "$work" --quiet > "$work/abc_map_saved.out" 2>&1
+check "a map orbit from parent and from_point exits 0, its start the saved point" test "$(/usr/bin/python3 -c "
+import json, sys
+a = json.load(open(sys.argv[1]))['orbits'][0]
+b = json.load(open(sys.argv[2]))['orbits'][0]
+fa = sorted(e['value'] for e in a['branch']['events'] if e['type'] == 'LP')
+fb = sorted(e['value'] for e in b['branch']['events'] if e['type'] == 'LP')
+print(b['start'].startswith('saved ') and len(fb) == 2 and len(b['curves']) == 2 and
+      all(abs(x - y) < 1e-9 for x, y in zip(fa, fb)))" "$work/abc_map.json" "$work/abc_map_saved.json")" = True
+sed 's|^at = 0.215$|parent = "abc_saved.json"|' "$work/abc_map.toml" > "$work/abc_map_bad.toml"
+"$bin" map "$work/abc_map_bad.toml" --out "$work" > /dev/null 2> "$work/bad.err"
+check "... parent without from_point refused, naming the key" grep -q "key 'orbits\[1\].from_point' is missing" "$work/bad.err"
 # A forced system has no curves: refused before any work.
 sed "s|abc.toml|ffn.toml|; s|p1|a|g; s|p3|amp|; s|0.21|0.3|; s|0.22|0.5|; s|0.215|0.4|; s|1.54|0.05|; s|1.56|0.2|" \
   "$work/abc_map.toml" > "$work/ffn_map.toml"
