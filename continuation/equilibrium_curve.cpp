@@ -6,6 +6,7 @@
 
 #include <Eigen/SVD>
 
+#include "codim2_coefficients.hpp"
 #include "sympathy/continuation/crossing_locator.hpp"
 #include "sympathy/core/csv.hpp"
 #include "sympathy/core/text.hpp"
@@ -375,6 +376,7 @@ class CurveProblem {
       e.at = c.point;
       e.arclength = c.s;
       e.after_point = a.index;
+      if (e.located) add_coefficients(e);
       if (!e.located)
         e.note = c.outcome == driver::LocatorOutcome::ProbeFailed
                      ? "a probe of the bracket could not be corrected: " + c.why
@@ -406,6 +408,23 @@ class CurveProblem {
   }
 
  private:
+  void add_coefficients(Event& e) const {
+    const Eigen::VectorXd y = y_of(e.at);
+    const ParameterValues p = values_at(y);
+    if (e.type == "BT") {
+      if (const auto c = detail::bogdanov_takens_coefficients(system_, p, e.at.state)) {
+        e.coefficients = {{"a", c->a}, {"b", c->b}};
+        e.note = "a = " + format_double(c->a) + ", b = " + format_double(c->b) +
+                 (c->a * c->b < 0 ? " (a b < 0)" : " (a b > 0)");
+      }
+    } else if (e.type == "CP") {
+      if (const auto c = detail::cusp_coefficient(system_, p, e.at.state)) {
+        e.coefficients = {{"c", *c}};
+        e.note = "c = " + format_double(*c);
+      }
+    }
+  }
+
   // The user values passed between a and b, each solved with its parameter held there (from the
   // point interpolated linearly between them).
   void user_points(const Point& a, const Point& b, driver::Found<Event>& found) const {

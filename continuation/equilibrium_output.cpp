@@ -88,6 +88,12 @@ nlohmann::json number_or_null(double v) {
   return std::isfinite(v) ? nlohmann::json(v) : nullptr;
 }
 
+nlohmann::json coefficients_json(const std::vector<std::pair<std::string, double>>& c) {
+  nlohmann::json j = nlohmann::json::object();
+  for (const auto& [name, value] : c) j[name] = value;
+  return j;
+}
+
 double omega_of(const EquilibriumCurvePoint& p) {
   return p.kappa > 0.0 ? std::sqrt(p.kappa) : std::nan("");
 }
@@ -133,6 +139,7 @@ nlohmann::json equilibrium_curve_json(const EquilibriumCurve& curve) {
                       {"located", e.located},
                       {"after_point", e.after_point},
                       {"note", e.note},
+                      {"coefficients", coefficients_json(e.coefficients)},
                       {"point", curve_point_json(e.at)}});
   j["events"] = events;
   j["seconds"] = curve.seconds;

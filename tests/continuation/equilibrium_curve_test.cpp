@@ -61,6 +61,65 @@ class Bautin final : public AutoDiffSystem<Bautin> {
   }
 };
 
+// The normal forms above turned and bent, so that no eigenvector is a coordinate axis and f has
+// quadratic terms the normal form does not: z = R phi(w), R the rotation by 0.6 rad, phi(w) =
+// w + Q(w) with Q(w) = (0.3 w0 w1 - 0.2 w1^2, 0.25 w0^2 + 0.1 w0 w1), a near-identity change of
+// coordinates; z' = R Dphi(w) g(w) with w = phi^-1(R^T z) (a fixed-point iteration, converged to
+// rounding for |w| < 1). Conjugate to g: the same curves in the parameters, and the same
+// normal-form coefficients in MatCont's normalisation (|q0| = 1 is kept by R, and phi's linear
+// part is the identity).
+template <class Normal>
+class Bent final : public AutoDiffSystem<Bent<Normal>> {
+ public:
+  Bent() { this->set_parameter_layout({{"b1", {0}}, {"b2", {1}}}, {0.0, 0.0}); }
+  int dimension() const override { return 2; }
+  std::vector<std::string> state_names() const override { return {"z0", "z1"}; }
+  static Eigen::Vector2d forward(const Eigen::Vector2d& w) {
+    const Eigen::Vector2d bent(w[0] + 0.3 * w[0] * w[1] - 0.2 * w[1] * w[1],
+                               w[1] + 0.25 * w[0] * w[0] + 0.1 * w[0] * w[1]);
+    return {kCos * bent[0] - kSin * bent[1], kSin * bent[0] + kCos * bent[1]};
+  }
+  template <class T, class P>
+  void evaluate(double, const T* z, const P* p, T* dz) const {
+    const T u0 = kCos * z[0] + kSin * z[1], u1 = -kSin * z[0] + kCos * z[1];
+    T w0 = u0, w1 = u1;
+    for (int k = 0; k < 80; ++k) {
+      const T n0 = u0 - (0.3 * w0 * w1 - 0.2 * w1 * w1);
+      const T n1 = u1 - (0.25 * w0 * w0 + 0.1 * w0 * w1);
+      w0 = n0;
+      w1 = n1;
+    }
+    T g[2];
+    Normal::field(w0, w1, p, g);
+    const T d0 = (1.0 + 0.3 * w1) * g[0] + (0.3 * w0 - 0.4 * w1) * g[1];
+    const T d1 = (0.5 * w0 + 0.1 * w1) * g[0] + (1.0 + 0.1 * w0) * g[1];
+    dz[0] = kCos * d0 - kSin * d1;
+    dz[1] = kSin * d0 + kCos * d1;
+  }
+
+ private:
+  static constexpr double kCos = 0.82533561490967829724;  // cos 0.6
+  static constexpr double kSin = 0.56464247339503535720;  // sin 0.6
+};
+
+// w0' = w1, w1' = b1 + b2 w0 + w0^2 - w0 w1: a = 1, b = -1 in MatCont's normalisation at the
+// origin (q0 = (1, 0), q1 = (0, 1), p0 = (1, 0), p1 = (0, 1)).
+struct BogdanovTakensField {
+  template <class T, class P>
+  static void field(const T& w0, const T& w1, const P* p, T* g) {
+    g[0] = w1;
+    g[1] = p[0] + p[1] * w0 + w0 * w0 - w0 * w1;
+  }
+};
+// w0' = b1 + b2 w0 - w0^3, w1' = -w1: c = -1 (q = p = (1, 0), C(q, q, q) = -6).
+struct CuspField {
+  template <class T, class P>
+  static void field(const T& w0, const T& w1, const P* p, T* g) {
+    g[0] = p[0] + p[1] * w0 - w0 * w0 * w0;
+    g[1] = -w1;
+  }
+};
+
 EquilibriumBranch branch_of(const OdeSystem& system, int parameter, double from, double to,
                             Eigen::VectorXd start) {
   EquilibriumProblem p;
@@ -186,6 +245,68 @@ TEST(EquilibriumCurve, BautinGeneralizedHopfPoint) {
   ASSERT_EQ(gh.size(), 1u);
   EXPECT_TRUE(gh[0].located) << gh[0].note;
   EXPECT_NEAR(gh[0].second, 0.0, 1e-8);
+}
+
+// The bent Bogdanov-Takens normal form: its Hopf line and fold parabola as before (1e-9), the BT
+// point at the origin on both, with a = 1 and b = -1 (1e-6 relative; measured 3e-11; q0's sign
+// fixed by its largest component, as the coefficients flip with it).
+TEST(EquilibriumCurve, BentBogdanovTakensCoefficients) {
+  const Bent<BogdanovTakensField> system;
+  ParameterValues p = system.default_parameters();
+  // At b2 = -1 the equilibrium w = (0.1127, 0) at b1 = 0.1, bent.
+  EquilibriumProblem problem;
+  problem.parameter = 0;
+  problem.values = system.with_parameter(p, 1, -1.0);
+  problem.from = 0.1;
+  problem.to = -0.1;
+  problem.start_state = Bent<BogdanovTakensField>::forward({0.1127016653792583, 0.0});
+  const auto branch = continue_equilibria(system, problem, {});
+  const auto hopf = continue_equilibrium_curve(
+      system, branch, first_of(branch, EquilibriumEventType::Hopf), 1, window(-1, 1, -1.5, 1));
+  ASSERT_TRUE(hopf.started()) << hopf.stop_reason;
+  for (const auto& pt : hopf.points) EXPECT_NEAR(pt.first, 0.0, 1e-9) << pt.index;
+  const auto bt = events_named(hopf, "BT");
+  ASSERT_EQ(bt.size(), 1u);
+  EXPECT_NEAR(bt[0].second, 0.0, 1e-8);
+  ASSERT_EQ(bt[0].coefficients.size(), 2u) << bt[0].note;
+  EXPECT_NEAR(bt[0].coefficients[0].second, 1.0, 1e-6) << bt[0].note;
+  EXPECT_NEAR(bt[0].coefficients[1].second, -1.0, 1e-6) << bt[0].note;
+
+  problem.to = 0.3;
+  const auto up = continue_equilibria(system, problem, {});
+  const auto fold = continue_equilibrium_curve(system, up, first_of(up, EquilibriumEventType::Fold),
+                                               1, window(-1, 1, -1.5, 1));
+  ASSERT_TRUE(fold.started()) << fold.stop_reason;
+  for (const auto& pt : fold.points)
+    EXPECT_NEAR(pt.first, pt.second * pt.second / 4, 1e-9) << pt.index;
+  const auto bt_fold = events_named(fold, "BT");
+  ASSERT_EQ(bt_fold.size(), 1u);
+  ASSERT_EQ(bt_fold[0].coefficients.size(), 2u);
+  EXPECT_NEAR(bt_fold[0].coefficients[0].second, 1.0, 1e-6);
+  EXPECT_NEAR(bt_fold[0].coefficients[1].second, -1.0, 1e-6);
+}
+
+// The bent cusp: its folds on 27 b1^2 = 4 b2^3 (1e-9) and the cusp point with c = -1 (1e-6; measured 2e-10).
+TEST(EquilibriumCurve, BentCuspCoefficient) {
+  const Bent<CuspField> system;
+  EquilibriumProblem problem;
+  problem.parameter = 0;
+  problem.values = system.with_parameter(system.default_parameters(), 1, 0.5);
+  problem.from = -1.0;
+  problem.to = 1.0;
+  // w0^3 - 0.5 w0 + 1 = 0 at b1 = -1: w0 = -1.1915.
+  problem.start_state = Bent<CuspField>::forward({-1.1914878, 0.0});
+  const auto branch = continue_equilibria(system, problem, {});
+  const auto curve = continue_equilibrium_curve(
+      system, branch, first_of(branch, EquilibriumEventType::Fold), 1, window(-2, 2, -0.3, 0.6));
+  ASSERT_TRUE(curve.started()) << curve.stop_reason;
+  for (const auto& pt : curve.points)
+    EXPECT_NEAR(27 * pt.first * pt.first, 4 * pt.second * pt.second * pt.second, 1e-9) << pt.index;
+  const auto cusps = events_named(curve, "CP");
+  ASSERT_EQ(cusps.size(), 1u);
+  EXPECT_NEAR(cusps[0].second, 0.0, 1e-8);
+  ASSERT_EQ(cusps[0].coefficients.size(), 1u) << cusps[0].note;
+  EXPECT_NEAR(cusps[0].coefficients[0].second, -1.0, 1e-6);
 }
 
 // A curve from an event of the wrong kind, or in the branch's own parameter, is refused.

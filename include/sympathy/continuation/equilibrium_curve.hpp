@@ -25,7 +25,8 @@
 //   on an HB curve: BT (kappa = 0, where the Hopf curve turns into a neutral-saddle one), GH
 //       (generalized Hopf: the first Lyapunov coefficient l1 = 0, on the Hopf part), ZH (a real
 //       eigenvalue through zero: det A / kappa), HH (double Hopf: another pair through the axis).
-// Their normal-form coefficients are not computed yet.
+// At BT and CP their normal-form coefficients (codim2_coefficients.hpp); GH's l2 and ZH's and
+// HH's coefficients are not computed yet.
 #pragma once
 
 #include <complex>
@@ -95,6 +96,9 @@ struct EquilibriumCurveEvent {
   int after_point = 0;
   double arclength = 0.0;
   EquilibriumCurvePoint at;
+  // Normal-form coefficients in MatCont's normalisation: BT's "a" and "b" (w0' = w1,
+  // w1' = a w0^2 + b w0 w1; only sign(a b) does not depend on it), CP's "c" (w' = c w^3).
+  std::vector<std::pair<std::string, double>> coefficients;
   std::string note;
 };
 

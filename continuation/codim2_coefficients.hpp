@@ -1,0 +1,33 @@
+// Normal-form coefficients of codimension-two points of equilibria (Kuznetsov, Elements of
+// Applied Bifurcation Theory, 3rd ed., ch. 8; MatCont's nf_BT and nf_CP normalisations), from
+// f's second and third derivatives by differences of the exact f_x (jacobian_derivatives.hpp).
+// Internal to the continuation layer: the curves of equilibria report them at their BT and CP.
+#pragma once
+
+#include <optional>
+
+#include <Eigen/Dense>
+
+#include "sympathy/core/ode_system.hpp"
+
+namespace sympathy::detail {
+
+// Bogdanov-Takens: w0' = w1, w1' = a w0^2 + b w0 w1, with A q0 = 0, A q1 = q0, A^T p1 = 0,
+// A^T p0 = p1 normalised as MatCont does (<q0, q0> = 1, <q0, q1> = 0, <p0, q0> = <p1, q1> = 1,
+// <p0, q1> = <p1, q0> = 0): a = <p1, B(q0, q0)> / 2, b = <p0, B(q0, q0)> + <p1, B(q0, q1)>.
+// q0's sign is free and flips both: sign(a b) is what the unfolding depends on; here q0's largest
+// component is positive. nullopt where A has no double zero eigenvalue.
+struct BogdanovTakensCoefficients {
+  double a = 0.0, b = 0.0;
+};
+std::optional<BogdanovTakensCoefficients> bogdanov_takens_coefficients(const OdeSystem& system,
+                                                                       const ParameterValues& p,
+                                                                       const Eigen::VectorXd& x);
+
+// Cusp: w' = c w^3 on the centre manifold, c = <p, C(q, q, q) + 3 B(q, h2)> / 6 with h2 the
+// bordered solution of A h2 = -B(q, q), <q, h2> = 0, |q| = 1, <p, q> = 1 (MatCont's nf_CP; even
+// in q's sign).
+std::optional<double> cusp_coefficient(const OdeSystem& system, const ParameterValues& p,
+                                       const Eigen::VectorXd& x);
+
+}  // namespace sympathy::detail
