@@ -53,7 +53,7 @@ Study load_study(const std::string& path) {
     in.only(t, prefix,
             {"name", "start", "from", "to", "at", "set", "initial", "max_points", "step",
              "max_step", "transient", "switch_at", "user_points", "start_data", "user_value",
-             "stop_at", "parent", "from_point"});
+             "stop_at", "parent", "from_point", "equilibria"});
     StudyBranch b;
     // The start may be left out: a branch switched at another's event takes the parent's, an
     // equation case file's branch its [states] (a metronome case file's needs one: study_run).
@@ -120,7 +120,30 @@ Study load_study(const std::string& path) {
         }
       }
       b.request.switch_at = text;
-      parse_event_name(b.request.switch_at, in.where(*n) + ": key '" + prefix + "switch_at'");
+      // HBn: the family of orbits born at the n-th Hopf point of the equilibria through the
+      // start over the window, or of the saved ones `equilibria` names.
+      const bool hopf = text.size() > 2 && text.compare(0, 2, "HB") == 0 && text[2] != '0' &&
+                        text.find_first_not_of("0123456789", 2) == std::string::npos &&
+                        text.size() <= 8;
+      if (hopf && !b.parent.empty())
+        in.fail(*n, prefix + "switch_at",
+                "a Hopf point of the equilibria (HB1, with equilibria = \"FILE.json\" for saved "
+                "ones), not of another branch");
+      if (!hopf)
+        parse_event_name(b.request.switch_at, in.where(*n) + ": key '" + prefix + "switch_at'",
+                         {BifurcationType::BranchPoint, BifurcationType::PeriodDoubling},
+                         "a branch point or period doubling (BP1, PD1, or NAME:BP1), or a Hopf "
+                         "point of the equilibria (HB1): only there is a branch born");
+    }
+    if (const toml::node* n = t.get("equilibria")) {
+      // Saved equilibria (equilibria --json, relative to the study file) whose HBn switch_at
+      // takes.
+      if (b.request.switch_at.rfind("HB", 0) != 0)
+        in.fail(*n, prefix + "equilibria", "only with switch_at = \"HB1\" (or HB2, ...)");
+      b.request.parent_path =
+          (std::filesystem::path(path).parent_path() / in.string(*n, prefix + "equilibria"))
+              .lexically_normal()
+              .string();
     }
     auto& o = b.request.continuation;
     apply_accuracy(accuracy, o);

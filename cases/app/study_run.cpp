@@ -9,6 +9,7 @@
 #include <thread>
 
 #include "cases/app/case_arguments.hpp"
+#include "cases/app/hopf_switch.hpp"
 #include "cases/app/requests.hpp"
 #include "cases/app/start_data.hpp"
 #include "sympathy/continuation/branch_output.hpp"
@@ -41,6 +42,14 @@ StudyRun study_run(const Arguments& args) {
       b.request.continuation.orbit.shooting.segments = c->saved_orbit()->segments;
     if (!c->system().autonomous() && !b.transient_given) b.request.continuation.orbit.transient = 0;
     if (!b.request.switch_at.empty()) c->require_autonomous("switch_at (branch switching)");
+    if (!b.request.parent_path.empty()) {
+      // Saved equilibria for an HBn switch: read and checked now, before any work.
+      const EquilibriumBranch saved = read_equilibria_json(b.request.parent_path, c->system());
+      if (saved.parameter_name != study.parameter)
+        throw InputError(study.path + ": branch '" + b.name + "': equilibria " +
+                         b.request.parent_path + " are in " + saved.parameter_name +
+                         "; expected them in " + study.parameter);
+    }
     const auto names = c->system().parameter_names();
     if (std::find(names.begin(), names.end(), study.parameter) == names.end())
       throw InputError(study.path + ": parameter '" + study.parameter + "' is not one of " +

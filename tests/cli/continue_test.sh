@@ -259,4 +259,26 @@ printf 'start = "x"\n' >> "$work/from_saved.toml"
 "$bin" study "$work/from_saved.toml" --out "$work/from_saved" > /dev/null 2> "$work/from_saved.err"
 check "... beside start: refused, key named" grep -qF "key 'branches[1].from_point': expected no start beside it" "$work/from_saved.err"
 
+# A study branch born at a Hopf point of saved equilibria (switch_at = "HB1" with equilibria, the
+# file relative to the study file): abc's family with AUTO's two folds of cycles (six digits), as
+# continue --switch-at HB1 --parent finds them; equilibria beside another switch refused by key.
+abc=$src/cases/examples/abc.toml
+"$bin" equilibria "$abc" --param p1 --from 0 --to 0.4 --quiet --json "$work/abc_eq.json" > /dev/null
+cat > "$work/hopf_study.toml" << TOML
+title = "born at a Hopf point"
+case = "$abc"
+parameter = "p1"
+[[branches]]
+name = "hb1"
+switch_at = "HB1"
+equilibria = "abc_eq.json"
+from = 0.2
+to = 0.25
+TOML
+"$bin" study "$work/hopf_study.toml" --out "$work/hopf_study" > /dev/null 2>&1
+check "a study branch from switch_at HB1 of saved equilibria: AUTO's folds 0.211903, 0.213697" test "$(json "$work/hopf_study/hopf_study.json" "sorted(round(e['value'], 6) for e in j['branches'][0]['events'] if e['type'] == 'LP') == [0.211903, 0.213697]")" = True
+sed -i 's/switch_at = "HB1"/switch_at = "BP1"/' "$work/hopf_study.toml"
+"$bin" study "$work/hopf_study.toml" --out "$work/hopf_study" > /dev/null 2> "$work/hopf_study.err"
+check "... equilibria beside a BP switch refused, key named" grep -qF "key 'branches[1].equilibria': expected only with switch_at" "$work/hopf_study.err"
+
 exit $failures
