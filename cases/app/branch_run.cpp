@@ -87,6 +87,22 @@ Branch run_branch(const BranchSource& source, const BranchRequest& request,
   callbacks.stop_requested = [&] {
     return (stop && stop->load()) || (request.stop_requested && request.stop_requested());
   };
+  if (request.hopf_point) {
+    // The family born at a point of a saved Hopf curve: its points described as they come.
+    ContinuationCallbacks described = callbacks;
+    described.on_point = [&](const ContinuationPoint& p) {
+      ContinuationPoint q = p;
+      q.description = describer.describe(q.orbit);
+      callbacks.on_point(q);
+    };
+    Branch born =
+        run_hopf_family(model, request, *request.hopf_point, request.hopf_point_name, described);
+    for (auto& p : born.points) p.description = describer.describe(p.orbit);
+    describe_events(born, model, describer, request.hopf_point->values);
+    if (csv) csv->close();
+    if (events) events->close();
+    return born;
+  }
   if (request.switch_at.empty()) {
     Branch branch = continue_branch(model, problem, request.continuation, callbacks, &describer);
     if (csv) csv->close();

@@ -41,6 +41,10 @@ struct BranchRequest {
   std::optional<double> period_guess;
   // With switch_at a Hopf point (HBn): how the family's first orbit is found there.
   HopfStartOptions hopf_start;
+  // The family born at this Hopf point instead (a point of a saved Hopf curve of equilibria,
+  // --parent HOPF.json --from-point N), named `hopf_point_name`.
+  std::optional<HopfPoint> hopf_point;
+  std::string hopf_point_name;
   // With switch_at: the parent branch read from this JSON (written by continue --json) instead
   // of computed ...
   std::string parent_path;

@@ -4,6 +4,7 @@
 #include <string>
 #include <thread>
 
+#include "cases/app/hopf_switch.hpp"
 #include "cases/app/start_data.hpp"
 #include "sympathy/core/errors.hpp"
 #include "sympathy/core/option_check.hpp"
@@ -22,9 +23,12 @@ LoadedEquations load_equations(const Arguments& args) {
 LoadedSystem load_system(const Arguments& args) {
   const auto period = data_period(args);  // checked before anything is compiled
   // A saved orbit for the orbit commands; equilibria read their saved point in their request.
+  // A Hopf curve's point is no orbit: continue reads it in its request (the family born there).
+  std::optional<SavedStart> saved =
+      args.command() == "equilibria" ? std::nullopt : saved_start(args);
+  if (saved && holds_hopf_curve(saved->path)) saved.reset();
   LoadedSystem c(args.positional(0), args.text("--params", ""), args.assignments("--set"),
-                 start_data_path(args), args.command(),
-                 args.command() == "equilibria" ? std::nullopt : saved_start(args));
+                 start_data_path(args), args.command(), saved);
   if (period) c.scale_data_time(*period);
   return c;
 }

@@ -150,17 +150,78 @@ Branch run_hopf_branch(const BranchSource& source, const BranchRequest& request,
     std::fprintf(request.progress, "  switching at %s: %s = %.10g (%s)\n",
                  request.switch_at.c_str(), request.parameter.c_str(), hopf->parameter,
                  describe_criticality(hopf->hopf->lyapunov).c_str());
+  return run_hopf_family(system, request, *hopf->hopf, request.switch_at, callbacks);
+}
+
+Branch run_hopf_family(const OdeSystem& system, const BranchRequest& request, const HopfPoint& hopf,
+                       const std::string& name, const ContinuationCallbacks& callbacks) {
+  const int parameter = system.parameter_index(request.parameter);
+  Branch born;
+  born.parameter_name = request.parameter;
+  born.parameter = parameter;
+  born.state_names = system.state_names();
   ContinuationOptions window = request.continuation;
   window.lower = std::min(request.from, request.to);
   window.upper = std::max(request.from, request.to);
   try {
-    born =
-        continue_from_hopf(system, parameter, *hopf->hopf, window, callbacks, request.hopf_start);
+    born = continue_from_hopf(system, parameter, hopf, window, callbacks, request.hopf_start);
   } catch (const std::runtime_error& e) {
     born.stop = StopReason::StartFailed;
-    born.stop_reason = "no family born at " + request.switch_at + ": " + e.what();
+    born.stop_reason = "no family born at " + name + ": " + e.what();
   }
   return born;
+}
+
+bool holds_hopf_curve(const std::string& path) {
+  const JsonReader file(path, "a branch, curve or equilibria JSON the program wrote");
+  const nlohmann::json& j = file.root();
+  return j.is_object() && j.contains("of") && j["of"] == "equilibria" && j.contains("kind") &&
+         j["kind"] == "HB";
+}
+
+HopfPoint read_hopf_curve_point(const SavedStart& start, const OdeSystem& system, int parameter) {
+  const JsonReader in(start.path, "a Hopf curve of equilibria written by sympathy curve --json");
+  const int n = system.dimension();
+  return in.read([&](const nlohmann::json& j) {
+    const auto index_of = [&](const std::string& key) {
+      const std::string name = in.key(j, key, start.path).get<std::string>();
+      try {
+        return system.parameter_index(name);
+      } catch (const std::invalid_argument& e) {
+        throw InputError(start.path + ": key '" + key + "': " + e.what());
+      }
+    };
+    const int first = index_of("first"), second = index_of("second");
+    const ParameterValues base =
+        in.numbers(in.key(j, "parameter_values", start.path),
+                   start.path + ": key 'parameter_values'", system.parameter_values_size());
+    std::size_t digits = 0;
+    int wanted = 0;
+    try {
+      wanted = std::stoi(start.what, &digits);
+    } catch (const std::exception&) {
+      digits = 0;
+    }
+    if (digits == 0 || digits != start.what.size())
+      throw InputError("--from-point " + start.what + ": " + start.path +
+                       " is a Hopf curve of equilibria; expected the index of one of its points");
+    for (const nlohmann::json& q : in.key(j, "points", start.path)) {
+      if (q.at("index").get<int>() != wanted) continue;
+      const std::string where = start.path + ": point " + start.what;
+      if (q.at("neutral_saddle").get<bool>() || !q.at("omega").is_number())
+        throw InputError("--from-point " + start.what + ": " + where +
+                         " is a neutral saddle (real eigenvalues +-k): no orbits are born there");
+      ParameterValues values =
+          system.with_parameter(system.with_parameter(base, first, q.at("first").get<double>()),
+                                second, q.at("second").get<double>());
+      const Eigen::VectorXd state = in.numbers(q.at("state"), where + ".state", n);
+      HopfPoint h = describe_hopf(system, values, state, q.at("omega").get<double>());
+      h.parameter = system.parameter(values, parameter);
+      return h;
+    }
+    throw InputError("--from-point " + start.what + ": " + start.path +
+                     " has no point of that index");
+  });
 }
 
 }  // namespace sympathy::app

@@ -8,6 +8,7 @@
 #include <string>
 
 #include "cases/app/branch_run.hpp"
+#include "cases/app/saved_start.hpp"
 #include "sympathy/continuation/equilibrium_branch.hpp"
 
 namespace sympathy::app {
@@ -20,10 +21,23 @@ std::optional<int> parse_hopf_name(const std::string& text, const std::string& o
 // file and key for anything missing or of the wrong size for `system`.
 EquilibriumBranch read_equilibria_json(const std::string& path, const OdeSystem& system);
 
+// Whether `path` holds a Hopf curve of equilibria (curve --parent EQUILIBRIA.json --event HBn
+// --json): its points are Hopf points, each the birth of a family of orbits.
+bool holds_hopf_curve(const std::string& path);
+// The Hopf point of such a curve's point `start.what` (its index), for `system`, at its state and
+// both its parameters' values (the curve's others), its pair's eigenvector and l1 described anew;
+// InputError naming the file and the point for one that is not there or is a neutral saddle.
+HopfPoint read_hopf_curve_point(const SavedStart& start, const OdeSystem& system, int parameter);
+
 // The family born at the `ordinal`-th Hopf point of the equilibria of `source` over the request's
 // window; points and events reach `callbacks` (the CSV and progress of run_branch), whose stop
 // check stops the equilibria too.
 Branch run_hopf_branch(const BranchSource& source, const BranchRequest& request, int ordinal,
                        const ContinuationCallbacks& callbacks);
+
+// The family born at `hopf` (named `name` in a failure), continued in request.parameter over its
+// window.
+Branch run_hopf_family(const OdeSystem& system, const BranchRequest& request, const HopfPoint& hopf,
+                       const std::string& name, const ContinuationCallbacks& callbacks);
 
 }  // namespace sympathy::app

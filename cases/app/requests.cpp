@@ -94,10 +94,25 @@ BranchRequest continue_request(const Arguments& args, const LoadedSystem& c) {
   BranchRequest request;
   request.start_data = c.start_data();
   c.require_orbits();
-  if (!c.equations() && !args.has("--start") && !request.start_data && !c.saved_orbit())
+  const auto saved = saved_start(args);
+  if (saved && !c.saved_orbit()) {
+    // A point of a saved Hopf curve of equilibria: the family of orbits born there.
+    if (args.command() != "continue")
+      throw InputError("--parent " + saved->path +
+                       ": a Hopf curve of equilibria; its points start families of orbits "
+                       "(continue --parent FILE --from-point N), not one orbit");
+    request.hopf_point =
+        read_hopf_curve_point(*saved, c.system(), c.system().parameter_index(window.parameter));
+    request.hopf_point_name = "point " + saved->what + " of the Hopf curve " + saved->path;
+  }
+  if (!c.equations() && !args.has("--start") && !request.start_data && !c.saved_orbit() &&
+      !request.hopf_point)
     throw InputError(
         "--start is required (or --start-data FILE.csv, or --parent FILE --from-point POINT)");
   request.start = args.text("--start", "");
+  // A Hopf curve's family needs no start; a metronome case's source still names one (unused).
+  if (request.hopf_point && request.start.empty() && !c.equations() && !c.start_names().empty())
+    request.start = c.start_names().front();
   request.parameter = window.parameter;
   request.from = window.from;
   request.to = window.to;
@@ -124,7 +139,8 @@ BranchRequest continue_request(const Arguments& args, const LoadedSystem& c) {
                        ": expected a positive amplitude (state units)");
   }
   request.parent_path = args.text("--parent", "");
-  if (c.saved_orbit()) request.parent_path.clear();  // the start's file, not a parent to switch in
+  // The start's file (a saved orbit's, a Hopf curve's), not a parent to switch in.
+  if (c.saved_orbit() || request.hopf_point) request.parent_path.clear();
   if (!request.parent_path.empty() && request.switch_at.empty())
     throw InputError("--parent " + request.parent_path +
                      ": expected --switch-at EVENT (the event of the parent to switch at) or "

@@ -36,6 +36,7 @@ int run_continue(const std::vector<std::string>& argv) {
   const BranchSource source = c.source(request.start, request.initial, request.start_data);
   const auto json_path = args.value("--json");
   const std::string start_name = request.start_data      ? describe_start_data(*request.start_data)
+                                 : request.hopf_point    ? "the Hopf " + request.hopf_point_name
                                  : c.saved_orbit()       ? source.start_name
                                  : request.start.empty() ? "(the file's [states])"
                                                          : request.start;

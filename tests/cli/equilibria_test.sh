@@ -162,6 +162,36 @@ check "... in its own parameter exits 2" grep -q -- "--second rho: expected a pa
   --second sigma --second-from 12 --second-to 30 > /dev/null 2> "$work/bad.err"
 check "... with a window that does not hold the start exits 2" grep -q -- "the window does not hold the equilibria's sigma = 10" "$work/bad.err"
 
+# The family of orbits born at any point of a Hopf curve (continue --parent HOPF.json
+# --from-point N): the Hopf normal form's Hopf curve mu = 0 in (mu, w), its point N at w = w_N
+# starts the circles of period 2 pi / w_N (1e-8 relative; measured 1.4e-10) and radius sqrt(mu)
+# (1e-7; measured 4e-8 at mu = 2.5e-3, where the orbits are 0.05 across).
+cat > "$work/hopf_free.toml" <<'TOML'
+kind = "equations"
+name = "hopf_free"
+[states]
+x = 0.0
+y = 0.0
+[parameters]
+mu = -0.5
+w = 1.0
+[intermediates]
+r2 = "x^2 + y^2"
+[equations]
+x = "mu*x - w*y - x*r2"
+y = "w*x + mu*y - y*r2"
+TOML
+"$bin" equilibria "$work/hopf_free.toml" --param mu --from -0.5 --to 0.5 --quiet --json "$work/hf_eq.json" > /dev/null
+"$bin" curve "$work/hopf_free.toml" --parent "$work/hf_eq.json" --event HB1 --param mu --from -1 --to 1 \
+  --second w --second-from 0.5 --second-to 3 --quiet --json "$work/hf_curve.json" > /dev/null
+n=$(json "$work/hf_curve.json" "max(j['points'], key=lambda p: p['second'])['index']")
+"$bin" continue "$work/hopf_free.toml" --parent "$work/hf_curve.json" --from-point "$n" --param mu \
+  --from 0 --to 0.5 --quiet --json "$work/hf_family.json" > "$work/hf_family.out"
+check "continue --parent HOPF_CURVE.json --from-point N: the family born there, named" grep -q "start the Hopf point $n of the Hopf curve" "$work/hf_family.out"
+check "... circles of period 2 pi / w_N (1e-8) and radius sqrt(mu) (1e-7)" test "$(json "$work/hf_family.json" "
+(lambda math: len(j['points']) > 5 and all(abs(p['period'] - 2 * math.pi / 3) < 1e-8 * p['period'] and
+abs(math.hypot(*p['state0']) - math.sqrt(p['value'])) < 1e-7 for p in j['points'] if p['value'] > 1e-3))(__import__('math'))")" = True
+
 # Bad requests: named, exit 2, before any work.
 "$bin" equilibria "$abc" --param p9 --from 0 --to 1 > /dev/null 2> "$work/bad.err"
 check "an unknown parameter exits 2" test $? -eq 2
