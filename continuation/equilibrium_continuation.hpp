@@ -14,6 +14,7 @@
 
 #include <Eigen/Dense>
 
+#include "bordered_newton.hpp"
 #include "sympathy/continuation/branch_point.hpp"
 #include "sympathy/continuation/crossing_locator.hpp"
 #include "sympathy/continuation/driver.hpp"
@@ -87,31 +88,14 @@ class EquilibriumContinuation {
                                           double s, Eigen::VectorXd y, std::string& why) const {
     const Eigen::VectorXd row = weights_.cwiseProduct(weights_).cwiseProduct(t);
     for (int it = 1; it <= o_.max_iterations; ++it) {
-      Eigen::VectorXd g(n_ + 1);
-      g.head(n_) = f(y);
-      g[n_] = row.dot(y - from) - s;
-      if (!g.allFinite()) {
-        why = "the right-hand side is not finite at a Newton iterate";
-        return std::nullopt;
-      }
-      Eigen::MatrixXd m(n_ + 1, n_ + 1);
-      m.topRows(n_) = jacobian(y);
-      m.row(n_) = row.transpose();
-      Eigen::FullPivLU<Eigen::MatrixXd> lu(m);
-      if (!lu.isInvertible()) {
-        why = "the bordered Jacobian is singular";
-        return std::nullopt;
-      }
-      const Eigen::VectorXd dy = lu.solve(-g);
-      y += dy;
-      if (!y.allFinite()) {
-        why = "a Newton iterate is not finite";
-        return std::nullopt;
-      }
+      const auto dy = bordered_newton_step(jacobian(y), row, f(y), row.dot(y - from) - s,
+                                           "equilibrium system", why);
+      if (!dy) return std::nullopt;
+      y += *dy;
       const double x_size = std::max(1.0, y.head(n_).lpNorm<Eigen::Infinity>());
       const double p_size = std::max(1.0, std::abs(y[n_]));
-      if (dy.head(n_).lpNorm<Eigen::Infinity>() <= o_.tolerance * x_size &&
-          std::abs(dy[n_]) <= o_.tolerance * p_size)
+      if (dy->head(n_).lpNorm<Eigen::Infinity>() <= o_.tolerance * x_size &&
+          std::abs((*dy)[n_]) <= o_.tolerance * p_size)
         return make_point(y, t, it);
     }
     why = "Newton did not converge in " + std::to_string(o_.max_iterations) + " iterations";

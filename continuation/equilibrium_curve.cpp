@@ -6,6 +6,7 @@
 
 #include <Eigen/SVD>
 
+#include "bordered_newton.hpp"
 #include "codim2_coefficients.hpp"
 #include "sympathy/continuation/crossing_locator.hpp"
 #include "sympathy/core/csv.hpp"
@@ -202,28 +203,11 @@ class CurveProblem {
                                const Point& borders, const Eigen::VectorXd& previous,
                                std::string& why) const {
     for (int it = 1; it <= o_.max_iterations; ++it) {
-      Eigen::VectorXd g(size_);
-      g.head(equations_) = residual(y, borders);
-      g[size_ - 1] = row.dot(y) - value;
-      if (!g.allFinite()) {
-        why = "the augmented system is not finite at a Newton iterate";
-        return std::nullopt;
-      }
-      Eigen::MatrixXd m(size_, size_);
-      m.topRows(equations_) = jacobian(y, borders);
-      m.row(size_ - 1) = row.transpose();
-      const Eigen::FullPivLU<Eigen::MatrixXd> lu(m);
-      if (!lu.isInvertible()) {
-        why = "the augmented system's Jacobian is singular";
-        return std::nullopt;
-      }
-      const Eigen::VectorXd dy = lu.solve(-g);
-      y += dy;
-      if (!y.allFinite()) {
-        why = "a Newton iterate is not finite";
-        return std::nullopt;
-      }
-      if (dy.cwiseAbs().maxCoeff() <= o_.tolerance * std::max(1.0, y.lpNorm<Eigen::Infinity>()))
+      const auto dy = detail::bordered_newton_step(jacobian(y, borders), row, residual(y, borders),
+                                                   row.dot(y) - value, "augmented system", why);
+      if (!dy) return std::nullopt;
+      y += *dy;
+      if (dy->cwiseAbs().maxCoeff() <= o_.tolerance * std::max(1.0, y.lpNorm<Eigen::Infinity>()))
         return make_point(y, borders, previous, it);
     }
     why = "Newton did not converge in " + std::to_string(o_.max_iterations) + " iterations";

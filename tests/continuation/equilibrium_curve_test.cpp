@@ -286,7 +286,8 @@ TEST(EquilibriumCurve, BentBogdanovTakensCoefficients) {
   EXPECT_NEAR(bt_fold[0].coefficients[1].second, -1.0, 1e-6);
 }
 
-// The bent cusp: its folds on 27 b1^2 = 4 b2^3 (1e-9) and the cusp point with c = -1 (1e-6; measured 2e-10).
+// The bent cusp: its folds on 27 b1^2 = 4 b2^3 (1e-9) and the cusp point with c = -1 (1e-6;
+// measured 2e-10).
 TEST(EquilibriumCurve, BentCuspCoefficient) {
   const Bent<CuspField> system;
   EquilibriumProblem problem;
