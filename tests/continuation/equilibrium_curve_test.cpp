@@ -120,6 +120,42 @@ struct CuspField {
   }
 };
 
+// A Hopf pair beside a third eigenvalue. Fold-Hopf (Kuznetsov's normal form, theta = 1):
+// z' = b1 + z^2, (x, y) a Hopf pair with mu = b2 + z and omega = 1: equilibria (0, 0, z) with
+// z^2 = -b1, Hopf where b2 = -z, so the Hopf curve is b1 = -b2^2, the real eigenvalue 2 z = -2 b2
+// passing zero at the zero-Hopf point b1 = b2 = 0. Double Hopf: (u, v) a second pair with
+// mu = b2 and omega = sqrt 2 beside the first with mu = b1: the Hopf curve b1 = 0 meets the
+// second pair's at the double Hopf point b2 = 0.
+class TwoCrossings final : public AutoDiffSystem<TwoCrossings> {
+ public:
+  explicit TwoCrossings(bool double_hopf) : double_hopf_(double_hopf) {
+    set_parameter_layout({{"b1", {0}}, {"b2", {1}}}, {-0.5, -0.5});
+  }
+  int dimension() const override { return double_hopf_ ? 4 : 3; }
+  std::vector<std::string> state_names() const override {
+    return double_hopf_ ? std::vector<std::string>{"x", "y", "u", "v"}
+                        : std::vector<std::string>{"x", "y", "z"};
+  }
+  template <class T, class P>
+  void evaluate(double, const T* z, const P* p, T* dz) const {
+    const T r2 = z[0] * z[0] + z[1] * z[1];
+    const T mu = double_hopf_ ? T(p[0]) : T(p[1] + z[2]);
+    dz[0] = mu * z[0] - z[1] - z[0] * r2;
+    dz[1] = z[0] + mu * z[1] - z[1] * r2;
+    if (!double_hopf_) {
+      dz[2] = p[0] + z[2] * z[2];
+      return;
+    }
+    const double w = std::sqrt(2.0);
+    const T s2 = z[2] * z[2] + z[3] * z[3];
+    dz[2] = p[1] * z[2] - w * z[3] - z[2] * s2;
+    dz[3] = w * z[2] + p[1] * z[3] - z[3] * s2;
+  }
+
+ private:
+  bool double_hopf_;
+};
+
 EquilibriumBranch branch_of(const OdeSystem& system, int parameter, double from, double to,
                             Eigen::VectorXd start) {
   EquilibriumProblem p;
@@ -308,6 +344,31 @@ TEST(EquilibriumCurve, BentCuspCoefficient) {
   EXPECT_NEAR(cusps[0].second, 0.0, 1e-8);
   ASSERT_EQ(cusps[0].coefficients.size(), 1u) << cusps[0].note;
   EXPECT_NEAR(cusps[0].coefficients[0].second, -1.0, 1e-6);
+}
+
+// The zero-Hopf point of the fold-Hopf normal form's Hopf curve b1 = -b2^2 and the double Hopf
+// point of the two pairs' curve b1 = 0, each at b1 = b2 = 0 (1e-8) and the only codimension-two
+// point found; every point on the closed form (1e-10).
+TEST(EquilibriumCurve, ZeroHopfAndDoubleHopfPoints) {
+  for (const bool double_hopf : {false, true}) {
+    SCOPED_TRACE(double_hopf ? "double Hopf" : "zero-Hopf");
+    const TwoCrossings system(double_hopf);
+    // Equilibria in b1 at b2 = -0.5: the fold-Hopf's z = sqrt(-b1) has its Hopf point at
+    // z = 0.5 (b1 = -0.25); the double Hopf's origin at b1 = 0.
+    Eigen::VectorXd start = Eigen::VectorXd::Zero(system.dimension());
+    if (!double_hopf) start[2] = std::sqrt(0.5);
+    const auto branch = branch_of(system, 0, -0.5, double_hopf ? 0.5 : -0.01, start);
+    const auto curve = continue_equilibrium_curve(
+        system, branch, first_of(branch, EquilibriumEventType::Hopf), 1, window(-1, 1, -0.5, 0.5));
+    ASSERT_TRUE(curve.started()) << curve.stop_reason;
+    for (const auto& p : curve.points)
+      EXPECT_NEAR(p.first, double_hopf ? 0.0 : -p.second * p.second, 1e-10) << p.index;
+    ASSERT_EQ(curve.events.size(), 1u) << curve.stop_reason;
+    EXPECT_EQ(curve.events[0].type, double_hopf ? "HH" : "ZH");
+    EXPECT_TRUE(curve.events[0].located) << curve.events[0].note;
+    EXPECT_NEAR(curve.events[0].second, 0.0, 1e-8);
+    EXPECT_NEAR(curve.events[0].first, 0.0, 1e-8);
+  }
 }
 
 // A curve from an event of the wrong kind, or in the branch's own parameter, is refused.
