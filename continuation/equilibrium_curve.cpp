@@ -347,6 +347,7 @@ class CurveProblem {
       lo.tolerance = o_.location_tolerance;
       lo.floor = 0.01 * (o_.second_upper - o_.second_lower);
       lo.max_probes = 60;
+      lo.probe_beside = true;  // a singular probe (a branch point of the curve) tried beside
       const auto c = driver::locate_crossing(
           a, driver::Sample<int>{at_a, 0}, b, driver::Sample<int>{at_b, 0}, b.step, test, probe,
           [](const Point& p) { return p.second; }, lo);

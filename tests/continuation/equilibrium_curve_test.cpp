@@ -120,30 +120,37 @@ struct CuspField {
   }
 };
 
-// A Hopf pair beside a third eigenvalue. Fold-Hopf (Kuznetsov's normal form, theta = 1):
+// A Hopf pair beside a third eigenvalue. FoldHopf (Kuznetsov's normal form, theta = 1):
 // z' = b1 + z^2, (x, y) a Hopf pair with mu = b2 + z and omega = 1: equilibria (0, 0, z) with
 // z^2 = -b1, Hopf where b2 = -z, so the Hopf curve is b1 = -b2^2, the real eigenvalue 2 z = -2 b2
-// passing zero at the zero-Hopf point b1 = b2 = 0. Double Hopf: (u, v) a second pair with
-// mu = b2 and omega = sqrt 2 beside the first with mu = b1: the Hopf curve b1 = 0 meets the
-// second pair's at the double Hopf point b2 = 0.
+// passing zero at the zero-Hopf point b1 = b2 = 0. TranscriticalHopf: the pair with mu = b1 and
+// z' = b2 z - z^2, whose equilibria cross at b2 = 0 (AUTO's pp3 has such a point): the Hopf curve
+// b1 = 0 has a zero-Hopf point at b2 = 0 where its augmented system is singular (the equilibria's
+// branch point). DoubleHopf: (u, v) a second pair with mu = b2 and omega = sqrt 2 beside the
+// first with mu = b1: the Hopf curve b1 = 0 meets the second pair's at b2 = 0.
 class TwoCrossings final : public AutoDiffSystem<TwoCrossings> {
  public:
-  explicit TwoCrossings(bool double_hopf) : double_hopf_(double_hopf) {
+  enum class Kind { FoldHopf, TranscriticalHopf, DoubleHopf };
+  explicit TwoCrossings(Kind kind) : kind_(kind) {
     set_parameter_layout({{"b1", {0}}, {"b2", {1}}}, {-0.5, -0.5});
   }
-  int dimension() const override { return double_hopf_ ? 4 : 3; }
+  int dimension() const override { return kind_ == Kind::DoubleHopf ? 4 : 3; }
   std::vector<std::string> state_names() const override {
-    return double_hopf_ ? std::vector<std::string>{"x", "y", "u", "v"}
-                        : std::vector<std::string>{"x", "y", "z"};
+    return kind_ == Kind::DoubleHopf ? std::vector<std::string>{"x", "y", "u", "v"}
+                                     : std::vector<std::string>{"x", "y", "z"};
   }
   template <class T, class P>
   void evaluate(double, const T* z, const P* p, T* dz) const {
     const T r2 = z[0] * z[0] + z[1] * z[1];
-    const T mu = double_hopf_ ? T(p[0]) : T(p[1] + z[2]);
+    const T mu = kind_ == Kind::FoldHopf ? T(p[1] + z[2]) : T(p[0]);
     dz[0] = mu * z[0] - z[1] - z[0] * r2;
     dz[1] = z[0] + mu * z[1] - z[1] * r2;
-    if (!double_hopf_) {
+    if (kind_ == Kind::FoldHopf) {
       dz[2] = p[0] + z[2] * z[2];
+      return;
+    }
+    if (kind_ == Kind::TranscriticalHopf) {
+      dz[2] = p[1] * z[2] - z[2] * z[2];
       return;
     }
     const double w = std::sqrt(2.0);
@@ -153,7 +160,7 @@ class TwoCrossings final : public AutoDiffSystem<TwoCrossings> {
   }
 
  private:
-  bool double_hopf_;
+  Kind kind_;
 };
 
 EquilibriumBranch branch_of(const OdeSystem& system, int parameter, double from, double to,
@@ -346,25 +353,27 @@ TEST(EquilibriumCurve, BentCuspCoefficient) {
   EXPECT_NEAR(cusps[0].coefficients[0].second, -1.0, 1e-6);
 }
 
-// The zero-Hopf point of the fold-Hopf normal form's Hopf curve b1 = -b2^2 and the double Hopf
-// point of the two pairs' curve b1 = 0, each at b1 = b2 = 0 (1e-8) and the only codimension-two
-// point found; every point on the closed form (1e-10).
+// The zero-Hopf point of the fold-Hopf normal form's Hopf curve b1 = -b2^2, the one where the
+// equilibria cross (its probe at the singular point tried beside it) and the double Hopf point of
+// two pairs, each at b1 = b2 = 0 (1e-8) and the only codimension-two point found; every point on
+// the closed form (1e-10).
 TEST(EquilibriumCurve, ZeroHopfAndDoubleHopfPoints) {
-  for (const bool double_hopf : {false, true}) {
-    SCOPED_TRACE(double_hopf ? "double Hopf" : "zero-Hopf");
-    const TwoCrossings system(double_hopf);
+  using Kind = TwoCrossings::Kind;
+  for (const Kind kind : {Kind::FoldHopf, Kind::TranscriticalHopf, Kind::DoubleHopf}) {
+    SCOPED_TRACE(static_cast<int>(kind));
+    const TwoCrossings system(kind);
     // Equilibria in b1 at b2 = -0.5: the fold-Hopf's z = sqrt(-b1) has its Hopf point at
-    // z = 0.5 (b1 = -0.25); the double Hopf's origin at b1 = 0.
+    // z = 0.5 (b1 = -0.25); the others' origin at b1 = 0.
     Eigen::VectorXd start = Eigen::VectorXd::Zero(system.dimension());
-    if (!double_hopf) start[2] = std::sqrt(0.5);
-    const auto branch = branch_of(system, 0, -0.5, double_hopf ? 0.5 : -0.01, start);
+    if (kind == Kind::FoldHopf) start[2] = std::sqrt(0.5);
+    const auto branch = branch_of(system, 0, -0.5, kind == Kind::FoldHopf ? -0.01 : 0.5, start);
     const auto curve = continue_equilibrium_curve(
         system, branch, first_of(branch, EquilibriumEventType::Hopf), 1, window(-1, 1, -0.5, 0.5));
     ASSERT_TRUE(curve.started()) << curve.stop_reason;
     for (const auto& p : curve.points)
-      EXPECT_NEAR(p.first, double_hopf ? 0.0 : -p.second * p.second, 1e-10) << p.index;
+      EXPECT_NEAR(p.first, kind == Kind::FoldHopf ? -p.second * p.second : 0.0, 1e-10) << p.index;
     ASSERT_EQ(curve.events.size(), 1u) << curve.stop_reason;
-    EXPECT_EQ(curve.events[0].type, double_hopf ? "HH" : "ZH");
+    EXPECT_EQ(curve.events[0].type, kind == Kind::DoubleHopf ? "HH" : "ZH");
     EXPECT_TRUE(curve.events[0].located) << curve.events[0].note;
     EXPECT_NEAR(curve.events[0].second, 0.0, 1e-8);
     EXPECT_NEAR(curve.events[0].first, 0.0, 1e-8);
