@@ -12,19 +12,13 @@
 namespace sympathy {
 
 OptionCheck EquilibriumOptions::validate() const {
-  if (!positive(initial_step)) return OptionProblem{"initial_step", "a positive number"};
-  if (!positive(min_step) || min_step > initial_step)
-    return OptionProblem{"min_step", "a positive number no larger than initial_step"};
-  if (!positive(max_step) || max_step < initial_step)
-    return OptionProblem{"max_step", "a number no smaller than initial_step"};
-  if (max_points < 2) return OptionProblem{"max_points", "an integer of at least 2"};
+  // The steps, their point limit and the turn: the driver's own checks.
+  if (auto wrong = driver::step_options(*this).validate()) return wrong;
   if (max_iterations < 2 || max_iterations > 50)
     return OptionProblem{"max_iterations", "an integer from 2 to 50"};
   if (!positive(tolerance) || tolerance >= 1e-3)
     return OptionProblem{"tolerance", "a positive number below 1e-3"};
   if (!positive(state_scale_floor)) return OptionProblem{"state_scale_floor", "a positive number"};
-  if (!(min_tangent_cosine > 0.0 && min_tangent_cosine < 1.0))
-    return OptionProblem{"min_tangent_cosine", "a number between 0 and 1"};
   if (!positive(location_tolerance) || location_tolerance >= 0.1)
     return OptionProblem{"location_tolerance", "a positive number below 0.1"};
   for (double v : user_points)

@@ -197,7 +197,7 @@ abs(math.hypot(*p['state0']) - math.sqrt(p['value'])) < 1e-7 for p in j['points'
 check "an unknown parameter exits 2" test $? -eq 2
 check "... naming the known ones" grep -q -- "--param p9: not a parameter of .*abc.toml; expected one of: p1" "$work/bad.err"
 "$bin" equilibria "$abc" --param p1 --from 0 --to 0.4 --max-step 0.001 > /dev/null 2> "$work/bad.err"
-check "a largest step below the first exits 2" grep -q -- "--max-step: expected a number no smaller than" "$work/bad.err"
+check "a largest step below the first exits 2" grep -q -- "--max-step: expected a number at least the initial step" "$work/bad.err"
 "$bin" continue "$abc" --param p1 --from 0.2 --to 0.25 --switch-at HB0 > /dev/null 2> "$work/bad.err"
 check "HB0 exits 2 saying what is expected" grep -q -- "--switch-at HB0: expected HB followed by a positive number" "$work/bad.err"
 "$bin" continue "$abc" --param p1 --from 0.2 --to 0.25 --switch-at HB7 --parent "$work/eq.json" \
