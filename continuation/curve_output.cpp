@@ -47,19 +47,11 @@ nlohmann::json curve_json(const BifurcationCurve& curve, const OrbitDescriber* d
   };
   nlohmann::json j;
   j["kind"] = to_string(curve.kind);
-  j["first"] = curve.first_name;
-  j["second"] = curve.second_name;
-  j["origin"] = curve.origin;
+  add_curve_frame(j, curve);
   if (!curve.subspace.empty()) {
     j["subspace"] = curve.subspace;
     j["symmetry"] = to_string(curve.symmetry);  // the critical multipliers: "breaks", "keeps"
   }
-  j["stop"] = to_string(curve.stop);
-  j["stop_reason"] = curve.stop_reason;
-  j["state_names"] = curve.state_names;
-  j["parameter_values"] = as_vector(curve.start_values);
-  j["window"] = {{curve.first_name, {curve.options.first_lower, curve.options.first_upper}},
-                 {curve.second_name, {curve.options.second_lower, curve.options.second_upper}}};
   nlohmann::json points = nlohmann::json::array();
   for (const auto& p : curve.points) points.push_back(described(p));
   j["points"] = points;

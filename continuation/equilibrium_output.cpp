@@ -117,15 +117,7 @@ nlohmann::json equilibrium_curve_json(const EquilibriumCurve& curve) {
   nlohmann::json j;
   j["kind"] = to_string(curve.kind);
   j["of"] = "equilibria";
-  j["first"] = curve.first_name;
-  j["second"] = curve.second_name;
-  j["origin"] = curve.origin;
-  j["stop"] = to_string(curve.stop);
-  j["stop_reason"] = curve.stop_reason;
-  j["state_names"] = curve.state_names;
-  j["parameter_values"] = as_vector(curve.start_values);
-  j["window"] = {{curve.first_name, {curve.options.first_lower, curve.options.first_upper}},
-                 {curve.second_name, {curve.options.second_lower, curve.options.second_upper}}};
+  add_curve_frame(j, curve);
   nlohmann::json points = nlohmann::json::array();
   for (const auto& p : curve.points) points.push_back(curve_point_json(p));
   j["points"] = points;

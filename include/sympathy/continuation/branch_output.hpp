@@ -42,6 +42,20 @@ nlohmann::json orbit_json(const OdeSystem& system, const PeriodicOrbit& orbit,
 // lists, from each point's description), located events, run time, integration work and the
 // stiffness measured at its start (where it was).
 nlohmann::json branch_json(const Branch& branch, const OrbitDescriber* describer = nullptr);
+// The fields every two-parameter curve's JSON has, a curve of cycles or of equilibria: both
+// parameters' names, origin, stop, state names, parameter values and the window.
+template <class Curve>
+void add_curve_frame(nlohmann::json& j, const Curve& curve) {
+  j["first"] = curve.first_name;
+  j["second"] = curve.second_name;
+  j["origin"] = curve.origin;
+  j["stop"] = to_string(curve.stop);
+  j["stop_reason"] = curve.stop_reason;
+  j["state_names"] = curve.state_names;
+  j["parameter_values"] = as_vector(curve.start_values);
+  j["window"] = {{curve.first_name, {curve.options.first_lower, curve.options.first_upper}},
+                 {curve.second_name, {curve.options.second_lower, curve.options.second_upper}}};
+}
 // A describer's numbers as its groups (JSON key per group, a list of numbers each); nothing when
 // the orbit was not described.
 void add_description(nlohmann::json& j, const std::vector<OrbitDescriber::Group>& layout,
