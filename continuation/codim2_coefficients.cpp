@@ -1,5 +1,8 @@
 #include "codim2_coefficients.hpp"
 
+#include <complex>
+
+#include <Eigen/Eigenvalues>
 #include <Eigen/SVD>
 
 #include "jacobian_derivatives.hpp"
@@ -85,6 +88,71 @@ std::optional<double> cusp_coefficient(const OdeSystem& system, const ParameterV
   const double c = pl.dot(d.C(q, q, q) + 3.0 * d.B(q, h2)) / 6.0;
   if (!std::isfinite(c)) return std::nullopt;
   return c;
+}
+
+std::optional<double> second_lyapunov_coefficient(const OdeSystem& system, const ParameterValues& p,
+                                                  const Eigen::VectorXd& x, double omega) {
+  using Complex = std::complex<double>;
+  using V = Eigen::VectorXcd;
+  const JacobianDerivatives d(system, p, x);
+  if (d.highest_order() < 5 || !(omega > 0.0)) return std::nullopt;
+  const Eigen::MatrixXd a = jacobian_at(system, p, x);
+  const int n = static_cast<int>(a.rows());
+  const Eigen::MatrixXcd A = a.cast<Complex>(), I = Eigen::MatrixXcd::Identity(n, n);
+  const Complex iw(0.0, omega);
+  // q and p from the eigenvectors nearest +-i omega.
+  const auto nearest = [&](const Eigen::MatrixXd& m, Complex target) {
+    Eigen::ComplexEigenSolver<Eigen::MatrixXcd> solver(m.cast<Complex>());
+    Eigen::Index best = 0;
+    for (Eigen::Index i = 1; i < solver.eigenvalues().size(); ++i)
+      if (std::abs(solver.eigenvalues()[i] - target) <
+          std::abs(solver.eigenvalues()[best] - target))
+        best = i;
+    return V(solver.eigenvectors().col(best));
+  };
+  const V q = nearest(a, iw).normalized();
+  V pv = nearest(a.transpose(), -iw);  // A^T p = -i omega p
+  const Complex pq = pv.dot(q);        // <p, q> = p^H q
+  if (!(std::abs(pq) > 0.0)) return std::nullopt;
+  pv /= std::conj(pq);
+  const V qb = q.conjugate();
+  const auto T = [&](std::initializer_list<V> args) { return *d.form(args); };
+  const auto solve = [](const Eigen::MatrixXcd& m, const V& r) {
+    return V(m.fullPivLu().solve(r));
+  };
+  // The homological equations order by order (Kuznetsov 1999), h_jk the coefficient of
+  // z^j conj(z)^k / (j! k!) in the centre manifold's expansion, g21 = 2 c1 = <p, r21>; the
+  // normal form's z' = c1 z^2 conj(z) in d(h20 z^2 / 2)/dt gives h31's 3 g21 h20.
+  const V h20 = solve(2.0 * iw * I - A, T({q, q}));
+  const V h11 = solve(-A, T({q, qb}));
+  const V h02 = h20.conjugate();
+  const V h30 = solve(3.0 * iw * I - A, T({q, q, q}) + 3.0 * T({q, h20}));
+  const V r21 = T({q, q, qb}) + T({qb, h20}) + 2.0 * T({q, h11});
+  const Complex g21 = pv.dot(r21);
+  // (i omega - A) h21 = r21 - g21 q, solvable since <p, r21 - g21 q> = 0; <p, h21> = 0.
+  Eigen::MatrixXcd bordered = Eigen::MatrixXcd::Zero(n + 1, n + 1);
+  bordered.topLeftCorner(n, n) = iw * I - A;
+  bordered.topRightCorner(n, 1) = q;
+  bordered.bottomLeftCorner(1, n) = pv.adjoint();
+  V rhs(n + 1);
+  rhs << r21 - g21 * q, 0.0;
+  const V h21 = solve(bordered, rhs).head(n);
+  const V h12 = h21.conjugate();
+  const V h31 = solve(2.0 * iw * I - A, T({q, q, q, qb}) + 3.0 * T({q, q, h11}) +
+                                            3.0 * T({q, qb, h20}) + 3.0 * T({h20, h11}) +
+                                            3.0 * T({q, h21}) + T({qb, h30}) - 3.0 * g21 * h20);
+  // (At l1 = 0, Re g21 = 0: the term 4 Re(g21) h11 of the z^2 conj(z)^2 equation vanishes.)
+  const V h22 =
+      solve(-A, T({q, q, qb, qb}) + 4.0 * T({q, qb, h11}) + T({qb, qb, h20}) + T({q, q, h02}) +
+                    2.0 * T({h11, h11}) + 2.0 * T({q, h12}) + 2.0 * T({qb, h21}) + T({h20, h02}));
+  const V r32 = T({q, q, q, qb, qb}) + T({q, q, q, h02}) + 3.0 * T({q, qb, qb, h20}) +
+                6.0 * T({q, q, qb, h11}) + T({qb, qb, h30}) + 3.0 * T({q, q, h12}) +
+                6.0 * T({q, qb, h21}) + 3.0 * T({q, h20, h02}) + 6.0 * T({q, h11, h11}) +
+                6.0 * T({qb, h20, h11}) + 2.0 * T({qb, h31}) + 3.0 * T({q, h22}) + T({h30, h02}) +
+                3.0 * T({h20, h12}) + 6.0 * T({h11, h21});
+  const double l2 = pv.dot(r32).real() / (12.0 * omega);
+  if (!std::isfinite(l2)) return std::nullopt;
+  return l2;
 }
 
 }  // namespace sympathy::detail

@@ -30,4 +30,14 @@ std::optional<BogdanovTakensCoefficients> bogdanov_takens_coefficients(const Ode
 std::optional<double> cusp_coefficient(const OdeSystem& system, const ParameterValues& p,
                                        const Eigen::VectorXd& x);
 
+// Generalized Hopf: the second Lyapunov coefficient l2 = Re c2 / omega of the Poincare normal
+// form z' = i omega z + c1 z |z|^2 + c2 z |z|^4 (Kuznetsov, "Numerical normalization techniques
+// for all codim 2 bifurcations of equilibria in ODEs", SIAM J. Numer. Anal. 36, 1999: c2 =
+// G32 / 12 at l1 = 0), with A q = i omega q, |q| = 1, <p, q> = 1: in the units of l1 =
+// Re c1 / omega (describe_hopf), so that near the point the Hopf family's parameter moves as
+// l1 r^2 + l2 r^4 (MatCont prints Re c2 itself, omega l2). Needs f's fourth and fifth
+// derivatives: nullopt for a system without Taylor jets, or without a pair +-i omega.
+std::optional<double> second_lyapunov_coefficient(const OdeSystem& system, const ParameterValues& p,
+                                                  const Eigen::VectorXd& x, double omega);
+
 }  // namespace sympathy::detail

@@ -401,6 +401,16 @@ class CurveProblem {
         e.coefficients = {{"c", *c}};
         e.note = "c = " + format_double(*c);
       }
+    } else if (e.type == "GH" && e.at.kappa > 0.0) {
+      if (const auto l2 =
+              detail::second_lyapunov_coefficient(system_, p, e.at.state, std::sqrt(e.at.kappa))) {
+        e.coefficients = {{"l2", *l2}};
+        e.note =
+            "l2 = " + format_double(*l2) +
+            (*l2 < 0 ? " (a fold of cycles where l1 > 0)" : " (a fold of cycles where l1 < 0)");
+      } else {
+        e.note = "l2 needs f's fifth derivatives, which this system does not give";
+      }
     }
   }
 

@@ -10,6 +10,7 @@
 #include <cmath>
 
 #include "cases/bench/hand_written_systems.hpp"
+#include "continuation/jacobian_derivatives.hpp"
 #include "sympathy/core/autodiff_system.hpp"
 
 namespace sympathy {
@@ -117,6 +118,21 @@ struct CuspField {
   static void field(const T& w0, const T& w1, const P* p, T* g) {
     g[0] = p[0] + p[1] * w0 - w0 * w0 * w0;
     g[1] = -w1;
+  }
+};
+
+// The Bautin normal form as a field of w: r' = r (b1 + b2 r^2 - r^4), theta' = 1 + r^2 / 2. With
+// |q| = 1, q = (1, -i) / sqrt 2, so r^2 = 2 |z|^2 and z' = (b1 + i) z + (2 b2 + i) z |z|^2 -
+// 4 z |z|^4: at the generalized Hopf point b1 = b2 = 0, l1 = 2 b2 = 0 and l2 = Re c2 / omega = -4.
+// (c1's imaginary part is not zero, so that the terms of l2's formula with it count.)
+struct BautinField {
+  template <class T, class P>
+  static void field(const T& w0, const T& w1, const P* p, T* g) {
+    const T r2 = w0 * w0 + w1 * w1;
+    const T a = p[0] + p[1] * r2 - r2 * r2;
+    const T turn = 1.0 + 0.5 * r2;
+    g[0] = a * w0 - turn * w1;
+    g[1] = a * w1 + turn * w0;
   }
 };
 
@@ -351,6 +367,75 @@ TEST(EquilibriumCurve, BentCuspCoefficient) {
   EXPECT_NEAR(cusps[0].second, 0.0, 1e-8);
   ASSERT_EQ(cusps[0].coefficients.size(), 1u) << cusps[0].note;
   EXPECT_NEAR(cusps[0].coefficients[0].second, -1.0, 1e-6);
+}
+
+// The bent Bautin normal form: its Hopf curve b1 = 0 (1e-9), the generalized Hopf point at b2 = 0
+// (1e-8) with l2 = -4 (1e-6 relative; a wrong factor of h31's g21 term gives -4.0425), from f's
+// fourth and fifth derivatives on Taylor jets.
+TEST(EquilibriumCurve, BentBautinSecondLyapunovCoefficient) {
+  const Bent<BautinField> system;
+  EquilibriumProblem problem;
+  problem.parameter = 0;
+  problem.values = system.with_parameter(system.default_parameters(), 1, -1.0);
+  problem.from = -0.5;
+  problem.to = 0.5;
+  problem.start_state = Eigen::Vector2d::Zero();
+  const auto branch = continue_equilibria(system, problem, {});
+  const auto curve = continue_equilibrium_curve(
+      system, branch, first_of(branch, EquilibriumEventType::Hopf), 1, window(-1, 1, -1, 1));
+  ASSERT_TRUE(curve.started()) << curve.stop_reason;
+  for (const auto& pt : curve.points) EXPECT_NEAR(pt.first, 0.0, 1e-9) << pt.index;
+  const auto gh = events_named(curve, "GH");
+  ASSERT_EQ(gh.size(), 1u);
+  EXPECT_NEAR(gh[0].second, 0.0, 1e-8);
+  ASSERT_EQ(gh[0].coefficients.size(), 1u) << gh[0].note;
+  EXPECT_EQ(gh[0].coefficients[0].first, "l2");
+  EXPECT_NEAR(gh[0].coefficients[0].second, -4.0, 4e-6) << gh[0].note;  // measured 1e-15
+  // l1 on the curve: 2 b2 (1e-8).
+  for (const auto& pt : curve.points) {
+    if (pt.kappa > 0.0) {
+      EXPECT_NEAR(pt.lyapunov, 2 * pt.second, 1e-8) << pt.index;
+    }
+  }
+}
+
+// The derivative tensors from Taylor jets are symmetric and agree with central differences of
+// the lower orders' (step 1e-4: truncation 1e-8, rounding 1e-12 relative), on the bent Bautin
+// field away from its equilibrium, complex arguments throughout.
+TEST(EquilibriumCurve, DerivativeTensorsAgreeWithDifferences) {
+  using C = std::complex<double>;
+  const Bent<BautinField> system;
+  const ParameterValues p = system.with_parameter(system.default_parameters(), 1, 0.7);
+  const Eigen::VectorXd x = Eigen::Vector2d(0.31, -0.22);
+  const Eigen::VectorXd y = Eigen::Vector2d(0.6, 0.8);  // the differences' direction, real
+  const Eigen::VectorXcd a = Eigen::Vector2cd(C(0.3, 0.5), C(-0.7, 0.1));
+  const Eigen::VectorXcd b = Eigen::Vector2cd(C(-0.2, 0.9), C(0.4, -0.3));
+  const Eigen::VectorXcd c = Eigen::Vector2cd(C(1.1, 0.0), C(0.0, 0.6));
+  const Eigen::VectorXcd d = Eigen::Vector2cd(C(0.5, -0.5), C(0.2, 0.2));
+  const detail::JacobianDerivatives at(system, p, x);
+  ASSERT_TRUE(at.exact());
+  const double h = 1e-4;
+  const Eigen::VectorXd up = x + h * y, down = x - h * y;
+  const detail::JacobianDerivatives above(system, p, up), below(system, p, down);
+  const Eigen::VectorXcd yc = y.cast<C>();
+  const auto check = [](const Eigen::VectorXcd& exact, const Eigen::VectorXcd& differenced,
+                        const char* what) {
+    EXPECT_LT((exact - differenced).norm(), 1e-7 * std::max(1.0, exact.norm())) << what;
+  };
+  check(*at.form({a, yc}), (*above.form({a}) - *below.form({a})) / (2 * h), "order 2");
+  check(*at.form({a, b, yc}), (*above.form({a, b}) - *below.form({a, b})) / (2 * h), "order 3");
+  check(*at.form({a, b, c, yc}), (*above.form({a, b, c}) - *below.form({a, b, c})) / (2 * h),
+        "order 4");
+  check(*at.form({a, b, c, d, yc}),
+        (*above.form({a, b, c, d}) - *below.form({a, b, c, d})) / (2 * h), "order 5");
+  // Symmetric in its arguments, and complex linear in each.
+  const Eigen::VectorXcd abcd = *at.form({a, b, c, d, yc});
+  EXPECT_LT((abcd - *at.form({yc, d, c, b, a})).norm(), 1e-13 * abcd.norm());
+  EXPECT_LT((C(0, 2) * abcd - *at.form({C(0, 2) * a, b, c, d, yc})).norm(), 1e-13 * abcd.norm());
+  // The first order is the Jacobian's product.
+  Eigen::MatrixXd jac;
+  system.jacobian(0.0, x.data(), p.data(), jac);
+  EXPECT_LT((*at.form({a}) - jac.cast<C>() * a).norm(), 1e-14);
 }
 
 // The zero-Hopf point of the fold-Hopf normal form's Hopf curve b1 = -b2^2, the one where the

@@ -25,8 +25,8 @@
 //   on an HB curve: BT (kappa = 0, where the Hopf curve turns into a neutral-saddle one), GH
 //       (generalized Hopf: the first Lyapunov coefficient l1 = 0, on the Hopf part), ZH (a real
 //       eigenvalue through zero: det A / kappa), HH (double Hopf: another pair through the axis).
-// At BT and CP their normal-form coefficients (codim2_coefficients.hpp); GH's l2 and ZH's and
-// HH's coefficients are not computed yet.
+// At BT, CP and GH their normal-form coefficients (codim2_coefficients.hpp); ZH's and HH's are
+// not computed yet.
 #pragma once
 
 #include <complex>
@@ -97,7 +97,8 @@ struct EquilibriumCurveEvent {
   double arclength = 0.0;
   EquilibriumCurvePoint at;
   // Normal-form coefficients in MatCont's normalisation: BT's "a" and "b" (w0' = w1,
-  // w1' = a w0^2 + b w0 w1; only sign(a b) does not depend on it), CP's "c" (w' = c w^3).
+  // w1' = a w0^2 + b w0 w1; only sign(a b) does not depend on it), CP's "c" (w' = c w^3), GH's
+  // "l2" (Re c2 / omega, in l1's units: codim2_coefficients.hpp).
   std::vector<std::pair<std::string, double>> coefficients;
   std::string note;
 };

@@ -18,6 +18,7 @@
 #include <vector>
 
 #include "sympathy/core/dual.hpp"
+#include "sympathy/core/jet.hpp"
 #include "sympathy/core/ode_system.hpp"
 
 namespace sympathy {
@@ -92,6 +93,24 @@ class AutoDiffSystem : public OdeSystem {
       return;
     }
     variational(t, z, p, columns, S, out, parameters, dz);
+  }
+
+  // The right-hand side on jets (core/jet.hpp) seeded with z + s v.
+  bool taylor_coefficients(double t, const double* z, const double* p,
+                           const std::complex<double>* v, int order,
+                           std::complex<double>* out) const override {
+    using J = Jet<OdeSystem::kMaxTaylorOrder>;
+    if (order < 0 || order > OdeSystem::kMaxTaylorOrder) return false;
+    const int n = dimension();
+    std::vector<J> zj(n), dzj(n);
+    for (int i = 0; i < n; ++i) {
+      zj[i] = J(z[i]);
+      zj[i].c[1] = v[i];
+    }
+    derived().evaluate(t, zj.data(), p, dzj.data());
+    for (int k = 0; k <= order; ++k)
+      for (int i = 0; i < n; ++i) out[k * n + i] = dzj[i].c[k];
+    return true;
   }
 
   void parameter_derivative(double t, const double* z, const double* p, int parameter,

@@ -6,6 +6,7 @@
 // many columns at once (the variational equations), and df/dp for one named parameter.
 #pragma once
 
+#include <complex>
 #include <memory>
 #include <optional>
 #include <span>
@@ -68,6 +69,16 @@ class OdeSystem {
   virtual bool differentiable() const { return true; }
   // df/dz, n x n.
   virtual void jacobian(double t, const double* z, const double* p, Eigen::MatrixXd& jac) const = 0;
+  // f(z + s v)'s Taylor coefficients in s up to `order` (at most kMaxTaylorOrder), for a complex
+  // direction v: out[k * n + i] = (D^k f(z)(v, ..., v))_i / k!. The normal-form coefficients of
+  // equilibria are made of these (continuation/multilinear_forms.hpp). False where the system
+  // cannot: then continuation differences f_x, up to f's third derivative only.
+  static constexpr int kMaxTaylorOrder = 5;
+  virtual bool taylor_coefficients(double /*t*/, const double* /*z*/, const double* /*p*/,
+                                   const std::complex<double>* /*v*/, int /*order*/,
+                                   std::complex<double>* /*out*/) const {
+    return false;
+  }
   // out[j] = J * S[j] for j < columns. The last parameters.size() columns are parameter
   // columns: column columns - parameters.size() + k also gets df/dp for parameters[k] (the
   // forward-sensitivity right-hand side of a parameter).

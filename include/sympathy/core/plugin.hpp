@@ -43,7 +43,7 @@
 
 namespace sympathy {
 
-constexpr int kPluginAbi = 2;  // 2: with sympathy_equations_binary_interface
+constexpr int kPluginAbi = 3;  // 2: with sympathy_equations_binary_interface; 3: Taylor jets
 
 template <class Derived>
 class PluginSystem : public AutoDiffSystem<Derived> {
