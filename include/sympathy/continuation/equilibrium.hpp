@@ -63,8 +63,9 @@ struct HopfPoint {
   Eigen::VectorXcd eigenvector;
   // The first Lyapunov coefficient (Kuznetsov's l1, in the normalization <p, q> = 1 with the
   // adjoint p): negative, supercritical (the small orbits are stable where the equilibrium is
-  // not); positive, subcritical. From second and third derivatives of f by central differences
-  // of the exact f_x (relative error about 1e-6); nullopt where they are not finite.
+  // not); positive, subcritical. From f's exact second and third derivatives (Taylor jets),
+  // where the system has none by differences of the exact f_x (relative error about 1e-6);
+  // nullopt where they are not finite.
   std::optional<double> lyapunov;
   // Kuznetsov's c1 in the same normalization (l1 = Re c1 / omega): its imaginary part is how the
   // frequency changes with the orbits' amplitude. nullopt where l1 is.
