@@ -29,6 +29,9 @@ OptionCheck CurveOptions::validate() const {
   if (!positive(tolerance)) return OptionProblem{"tolerance", "a positive number"};
   if (!positive(location_tolerance))
     return OptionProblem{"location_tolerance", "a positive number"};
+  if (!(std::isfinite(end_radius) && end_radius >= 0.0 && std::isfinite(end_first) &&
+        std::isfinite(end_second)))
+    return OptionProblem{"end_radius", "a number >= 0 (0: none) and a finite end point"};
   return nested("orbit.", orbit.validate());
 }
 
@@ -198,6 +201,16 @@ std::optional<driver::Ending> CurveContinuation::ends(const Point& a, const Poin
     stop_at_.reset();
     return driver::Ending{driver::Stop::UserValue, "reached the value asked for: " + note, false};
   }
+  // Near the point the curve was born from, where it degenerates (CurveOptions::end_radius): b
+  // kept, the last point before it.
+  if (options_.end_radius > 0.0 &&
+      window_distance(system_, b, {options_.end_first, options_.end_second}) <= options_.end_radius)
+    return driver::Ending{driver::Stop::HopfPoint,
+                          "ended near " + options_.end_name + " at " + curve_.first_name + " = " +
+                              format_number(options_.end_first) + ", " + curve_.second_name +
+                              " = " + format_number(options_.end_second) +
+                              ", where its orbits shrink into the equilibrium",
+                          true};
   // Back at the start: the curve went away from it and the last step passed through it
   // (driver::on_chord). A point merely near the start in the scaled norm is not enough: two NS
   // points 6 N/m apart on a 1-100 N/m window are 0.06 apart, about one step.

@@ -2,6 +2,7 @@
 
 #include <algorithm>
 #include <cmath>
+#include <limits>
 #include <stdexcept>
 
 #include <Eigen/SVD>
@@ -65,7 +66,10 @@ class CurveProblem {
   int size() const { return size_; }
   const Eigen::VectorXd& weights() const { return weights_; }
   void widen_scale(const Eigen::VectorXd& x, double kappa) {
-    scale_ = std::max({scale_, 1e-3, x.lpNorm<Eigen::Infinity>()});
+    widen_scale(x.lpNorm<Eigen::Infinity>(), kappa);
+  }
+  void widen_scale(double x, double kappa) {
+    scale_ = std::max({scale_, 1e-3, x});
     weights_.head(n_).setConstant(1.0 / scale_);
     if (hopf_) {
       kappa_scale_ = std::max({kappa_scale_, 1e-3, std::abs(kappa)});
@@ -355,6 +359,13 @@ class CurveProblem {
       e.at = c.point;
       e.arclength = c.s;
       e.after_point = a.index;
+      // The point the curve starts at, if it is one of these (a switch at a codimension-two
+      // point): its test is zero there, and the first step sees it change sign. Its origin
+      // names it.
+      if (a.index == 0 && e.located && start_ &&
+          std::hypot((e.first - start_->first) / (o_.first_upper - o_.first_lower),
+                     (e.second - start_->second) / (o_.second_upper - o_.second_lower)) <= 1e-6)
+        continue;
       if (e.located) add_coefficients(e);
       if (!e.located)
         e.note = c.outcome == driver::LocatorOutcome::ProbeFailed
@@ -380,6 +391,7 @@ class CurveProblem {
       }
     return std::nullopt;
   }
+  void set_start(const Point& p) { start_ = std::pair{p.first, p.second}; }
   void accept(Point& b) {
     widen_scale(b.state, hopf_ ? b.kappa : 0.0);
     renew(b, y_of(b));
@@ -406,7 +418,7 @@ class CurveProblem {
               detail::second_lyapunov_coefficient(system_, p, e.at.state, std::sqrt(e.at.kappa))) {
         e.coefficients = {{"l2", *l2}};
         e.note =
-            "l2 = " + format_double(*l2) +
+            "l2 = " + format_number(*l2) +
             (*l2 < 0 ? " (a fold of cycles where l1 > 0)" : " (a fold of cycles where l1 < 0)");
       } else {
         e.note = "l2 needs f's fifth derivatives, which this system does not give";
@@ -506,6 +518,7 @@ class CurveProblem {
   int first_, second_;
   ParameterValues base_;
   const EquilibriumCurveOptions& o_;
+  std::optional<std::pair<double, double>> start_;  // the curve's first point's parameters
   int n_, size_, equations_;
   double scale_ = 0.0, kappa_scale_ = 0.0;
   Eigen::VectorXd weights_;
@@ -513,69 +526,63 @@ class CurveProblem {
 
 }  // namespace
 
-EquilibriumCurve continue_equilibrium_curve(const OdeSystem& system,
-                                            const EquilibriumBranch& branch,
-                                            const EquilibriumEvent& event, int second,
-                                            EquilibriumCurveOptions options,
-                                            const EquilibriumCurveCallbacks& callbacks) {
+namespace {
+
+// `scales`: the state's and kappa's sizes to scale the arclength by at least (a switch at a
+// codimension-two point at the origin: the curve it came from), else those of the start.
+EquilibriumCurve start_curve(const OdeSystem& system, EquilibriumEventType kind, int first,
+                             int second, const ParameterValues& base, const Eigen::VectorXd& state,
+                             double kappa, const std::string& origin,
+                             EquilibriumCurveOptions options,
+                             const EquilibriumCurveCallbacks& callbacks,
+                             std::pair<double, double> scales = {0.0, 0.0}) {
   const Stopwatch started;
-  const bool hopf = event.type == EquilibriumEventType::Hopf;
-  if (!hopf && event.type != EquilibriumEventType::Fold)
-    throw std::invalid_argument(
-        "a curve of equilibria starts at a fold (LP) or a Hopf point (HB), "
-        "not at " +
-        to_string(event.type));
-  const int first = branch.parameter;
-  if (second < 0 || second >= system.parameter_count())
-    throw std::invalid_argument("second: expected the index of a named parameter");
-  if (second == first)
-    throw std::invalid_argument("the second parameter is the branch's own (" +
-                                branch.parameter_name + "); expected another");
-  if (auto wrong = options.validate()) throw std::invalid_argument(wrong->message());
-  const ParameterValues base = system.with_parameter(branch.start_values, first, event.parameter);
-  const double p2 = system.parameter(base, second);
-  if (event.parameter < options.first_lower || event.parameter > options.first_upper ||
-      p2 < options.second_lower || p2 > options.second_upper)
-    throw std::invalid_argument("the window does not hold the event (" + branch.parameter_name +
-                                " = " + format_double(event.parameter) + ", " +
+  const bool hopf = kind == EquilibriumEventType::Hopf;
+  const double p1 = system.parameter(base, first), p2 = system.parameter(base, second);
+  if (p1 < options.first_lower || p1 > options.first_upper || p2 < options.second_lower ||
+      p2 > options.second_upper)
+    throw std::invalid_argument("the window does not hold the event (" +
+                                system.parameter_names()[first] + " = " + format_double(p1) + ", " +
                                 system.parameter_names()[second] + " = " + format_double(p2) + ")");
   EquilibriumCurve curve;
-  curve.kind = event.type;
+  curve.kind = kind;
   curve.first = first;
   curve.second = second;
-  curve.first_name = branch.parameter_name;
+  curve.first_name = system.parameter_names()[first];
   curve.second_name = system.parameter_names()[second];
   curve.state_names = system.state_names();
   curve.start_values = base;
   curve.options = options;
-  curve.origin =
-      to_string(event.type) + " at " + curve.first_name + " = " + format_double(event.parameter);
+  curve.origin = origin;
   const int n = system.dimension();
 
   CurveProblem probe(system, hopf, first, second, base, options);
   Eigen::VectorXd y0(probe.size());
-  y0.head(n) = event.state;
-  y0[n] = event.parameter;
+  y0.head(n) = state;
+  y0[n] = p1;
   y0[n + 1] = p2;
-  double kappa = 0.0;
-  if (hopf) {
-    // omega^2 from the event's pair (its Hopf description, or the eigenvalue nearest the axis).
-    double omega = event.hopf ? event.hopf->omega : 0.0;
-    if (!(omega > 0.0))
-      for (const auto& l : event.eigenvalues)
-        if (l.imag() > 0 && (omega == 0.0 || std::abs(l.real()) < 1e-3)) omega = l.imag();
-    kappa = omega * omega;
+  if (hopf)
     y0[n + 2] = kappa;
-  }
-  probe.widen_scale(event.state, kappa);
-  // The event corrected onto the augmented system with the second parameter held.
+  else
+    kappa = 0.0;
+  probe.widen_scale(state, kappa);
+  probe.widen_scale(scales.first, scales.second);
+  // The event corrected onto the augmented system with a parameter held: the second, unless the
+  // curve moves less in it than in the first (at a codimension-two switch the new curve may lie
+  // in a level of the second: the double Hopf form's other Hopf curve is b2 = 0). The curve's
+  // direction from its null vector, oriented by the second parameter where it moves in it.
   Point borders;
   probe.renew(borders, y0);
   std::string why;
-  Eigen::VectorXd along = Eigen::VectorXd::Zero(probe.size());
-  along[n + 1] = 1.0 / probe.weights()[n + 1];
+  const Eigen::MatrixXd j0 = probe.jacobian(y0, borders);
+  const Eigen::JacobiSVD<Eigen::MatrixXd> svd(j0, Eigen::ComputeFullV);
+  Eigen::VectorXd along = svd.matrixV().col(probe.size() - 1);
+  const double moves1 = std::abs(along[n] * probe.weights()[n]);
+  const double moves2 = std::abs(along[n + 1] * probe.weights()[n + 1]);
+  const int held = moves2 >= 0.1 * moves1 ? n + 1 : n;
+  if (along[held] < 0.0) along = -along;
   auto start =
-      probe.correct(y0, Eigen::VectorXd::Unit(probe.size(), n + 1), p2, borders, along, why);
+      probe.correct(y0, Eigen::VectorXd::Unit(probe.size(), held), y0[held], borders, along, why);
   if (!start) {
     curve.stop = StopReason::StartFailed;
     curve.stop_reason = "the event could not be corrected onto the curve's system: " + why;
@@ -592,10 +599,10 @@ EquilibriumCurve continue_equilibrium_curve(const OdeSystem& system,
   const auto half = [&](int direction) {
     CurveProblem run(system, hopf, first, second, base, options);
     run.widen_scale(start->state, start->kappa);
+    run.widen_scale(scales.first, scales.second);
+    run.set_start(*start);
     Point from = *start;
-    Eigen::VectorXd toward = Eigen::VectorXd::Zero(run.size());
-    toward[n + 1] = direction;
-    from.tangent = run.tangent(run.jacobian(run.y_of(from), from), toward);
+    from.tangent = run.tangent(run.jacobian(run.y_of(from), from), direction * along);
     driver::Callbacks<Point, Event> cb;
     if (callbacks.on_point)
       cb.on_point = [&](const Point& p) {
@@ -620,6 +627,124 @@ EquilibriumCurve continue_equilibrium_curve(const OdeSystem& system,
   curve.stop_reason = std::move(joined.message);
   curve.seconds = started.seconds();
   return curve;
+}
+
+}  // namespace
+
+EquilibriumCurve continue_equilibrium_curve(const OdeSystem& system,
+                                            const EquilibriumBranch& branch,
+                                            const EquilibriumEvent& event, int second,
+                                            EquilibriumCurveOptions options,
+                                            const EquilibriumCurveCallbacks& callbacks) {
+  const bool hopf = event.type == EquilibriumEventType::Hopf;
+  if (!hopf && event.type != EquilibriumEventType::Fold)
+    throw std::invalid_argument(
+        "a curve of equilibria starts at a fold (LP) or a Hopf point (HB), "
+        "not at " +
+        to_string(event.type));
+  const int first = branch.parameter;
+  if (second < 0 || second >= system.parameter_count())
+    throw std::invalid_argument("second: expected the index of a named parameter");
+  if (second == first)
+    throw std::invalid_argument("the second parameter is the branch's own (" +
+                                branch.parameter_name + "); expected another");
+  if (auto wrong = options.validate()) throw std::invalid_argument(wrong->message());
+  const ParameterValues base = system.with_parameter(branch.start_values, first, event.parameter);
+  double kappa = std::nan("");
+  if (hopf) {
+    // omega^2 from the event's pair (its Hopf description, or the eigenvalue nearest the axis).
+    double omega = event.hopf ? event.hopf->omega : 0.0;
+    if (!(omega > 0.0))
+      for (const auto& l : event.eigenvalues)
+        if (l.imag() > 0 && (omega == 0.0 || std::abs(l.real()) < 1e-3)) omega = l.imag();
+    kappa = omega * omega;
+  }
+  return start_curve(system, event.type, first, second, base, event.state, kappa,
+                     to_string(event.type) + " at " + branch.parameter_name + " = " +
+                         format_double(event.parameter),
+                     std::move(options), callbacks);
+}
+
+CodimensionTwoPoint codimension_two_point(const OdeSystem& system, const EquilibriumCurve& curve,
+                                          const EquilibriumCurveEvent& event) {
+  CodimensionTwoPoint p;
+  p.type = event.type;
+  p.on = curve.kind;
+  p.first = curve.first;
+  p.second = curve.second;
+  p.values =
+      system.with_parameter(system.with_parameter(curve.start_values, curve.first, event.first),
+                            curve.second, event.second);
+  p.state = event.at.state;
+  p.kappa = event.at.kappa;
+  for (const auto& q : curve.points) {
+    p.state_scale = std::max(p.state_scale, q.state.lpNorm<Eigen::Infinity>());
+    if (std::isfinite(q.kappa)) p.kappa_scale = std::max(p.kappa_scale, std::abs(q.kappa));
+  }
+  return p;
+}
+
+EquilibriumCurve continue_from_codimension_two(const OdeSystem& system,
+                                               const CodimensionTwoPoint& point,
+                                               EquilibriumCurveOptions options,
+                                               const EquilibriumCurveCallbacks& callbacks) {
+  const bool on_hopf = point.on == EquilibriumEventType::Hopf;
+  EquilibriumEventType kind;
+  if (point.type == "BT" || point.type == "ZH")
+    kind = on_hopf ? EquilibriumEventType::Fold : EquilibriumEventType::Hopf;
+  else if (point.type == "HH" && on_hopf)
+    kind = EquilibriumEventType::Hopf;
+  else if (point.type == "CP" && !on_hopf)
+    kind = EquilibriumEventType::Fold;
+  else
+    throw std::invalid_argument(
+        "a curve of equilibria switches at a BT, ZH or CP of a fold curve, or at a BT, ZH or HH "
+        "of a Hopf curve; not at " +
+        point.type + " of a " + (on_hopf ? "Hopf" : "fold") + " curve");
+  const int count = system.parameter_count();
+  if (point.first < 0 || point.first >= count || point.second < 0 || point.second >= count ||
+      point.first == point.second)
+    throw std::invalid_argument("expected two different parameters");
+  if (point.state.size() != system.dimension())
+    throw std::invalid_argument("the point's state has the wrong size");
+  if (auto wrong = options.validate()) throw std::invalid_argument(wrong->message());
+  // The new Hopf curve's omega^2: 0 at BT (its Hopf part on one side, neutral saddles on the
+  // other); at ZH the pair's; at HH the pair that is not the old curve's.
+  double kappa = std::nan("");
+  if (kind == EquilibriumEventType::Hopf && point.type != "BT") {
+    Eigen::MatrixXd a;
+    system.jacobian(0.0, point.state.data(), point.values.data(), a);
+    const Eigen::VectorXcd lambda = sorted_eigenvalues(a);
+    const double old_omega = on_hopf && point.kappa > 0.0 ? std::sqrt(point.kappa) : 0.0;
+    double best = std::numeric_limits<double>::infinity(), omega = 0.0;
+    for (const auto& l : lambda) {
+      if (!(l.imag() > 0.0)) continue;
+      // Nearest the axis, and (HH) away from the old pair: their frequencies differ.
+      if (old_omega > 0.0 && std::abs(l.imag() - old_omega) <= 1e-6 * old_omega) continue;
+      if (std::abs(l.real()) < best) {
+        best = std::abs(l.real());
+        omega = l.imag();
+      }
+    }
+    if (!(omega > 0.0))
+      throw std::invalid_argument("no pair of eigenvalues for the Hopf curve at the " + point.type +
+                                  " point");
+    kappa = omega * omega;
+  } else if (kind == EquilibriumEventType::Hopf) {
+    kappa = 0.0;
+  }
+  const auto names = system.parameter_names();
+  return start_curve(system, kind, point.first, point.second, point.values, point.state, kappa,
+                     point.type + " at " + names[point.first] + " = " +
+                         format_double(system.parameter(point.values, point.first)) + ", " +
+                         names[point.second] + " = " +
+                         format_double(system.parameter(point.values, point.second)),
+                     std::move(options), callbacks,
+                     // At least 1 for the state: a codimension-two point often sits where a
+                     // state is 0 (the BT form's BT, on a Hopf curve all at x = 0), and a scale
+                     // of 1e-3 there made the fold curve from it 311 points, against 59 from
+                     // the equilibria's own fold.
+                     {std::max(1.0, point.state_scale), point.kappa_scale});
 }
 
 }  // namespace sympathy

@@ -117,8 +117,18 @@ GeneralizedHopfFold fold_of_cycles_from_generalized_hopf(const OdeSystem& system
         " (l1 = " + format_double(*hopf.lyapunov) + ") did not turn: " + out.family.stop_reason);
   out.fold = *fold;
 
-  // 3. The fold's curve in both parameters.
-  out.curve = continue_curve(system, out.family, out.fold, gh.second, options.curve, callbacks);
+  // 3. The fold's curve in both parameters, ended halfway between its start and GH (in the
+  // scaled parameters: the orbits' amplitude there about 0.7 of the start's), where it
+  // degenerates.
+  CurveOptions curve_options = options.curve;
+  const double w1 = curve_options.first_upper - curve_options.first_lower;
+  const double w2 = curve_options.second_upper - curve_options.second_lower;
+  curve_options.end_first = p1;
+  curve_options.end_second = p2;
+  curve_options.end_radius = 0.5 * std::hypot((out.fold.parameter - p1) / w1,
+                                              (system.parameter(hopf.values, gh.second) - p2) / w2);
+  curve_options.end_name = "the generalized Hopf point";
+  out.curve = continue_curve(system, out.family, out.fold, gh.second, curve_options, callbacks);
   out.curve.origin = "LP of the family born near GH at " + where +
                      " (l2 = " + format_double(gh.l2) + "), at " + out.curve.first_name + " = " +
                      format_double(out.fold.parameter) + ", " + out.curve.second_name + " = " +

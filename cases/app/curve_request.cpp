@@ -6,10 +6,12 @@
 
 #include <algorithm>
 #include <cmath>
+#include <functional>
 #include <map>
 #include <memory>
 #include <optional>
 
+#include "cases/app/hopf_switch.hpp"
 #include "cases/app/start_data.hpp"
 #include "sympathy/core/csv.hpp"
 #include "sympathy/core/option_check.hpp"
@@ -22,8 +24,16 @@ CurveRequest curve_request(const Arguments& args, const LoadedSystem& c) {
   const ParameterWindow window = parameter_window(args, c);
   CurveRequest r;
   BranchRequest& request = r.branch;
+  request.parent_path = args.text("--parent", "");
+  // From a generalized Hopf point of a Hopf curve of equilibria: no branch, no start.
+  if (!request.parent_path.empty() && holds_hopf_curve(request.parent_path)) {
+    r.event.text = *args.value("--event");
+    r.event.type = BifurcationType::Fold;
+    r.generalized_hopf =
+        read_generalized_hopf(request.parent_path, r.event.text, "--event", c.system());
+  }
   request.start_data = c.start_data();
-  if (!c.equations() && !args.has("--start") && !request.start_data)
+  if (!r.generalized_hopf && !c.equations() && !args.has("--start") && !request.start_data)
     throw InputError("--start is required (or --start-data FILE.csv)");
   request.start = args.text("--start", "");
   request.parameter = window.parameter;
@@ -32,17 +42,27 @@ CurveRequest curve_request(const Arguments& args, const LoadedSystem& c) {
   const std::string& second = r.second;
   if (second == request.parameter)
     throw InputError("--second " + second + ": expected a parameter other than --param");
-  r.event = parse_event_name(
-      *args.value("--event"), "--event",
-      {BifurcationType::Fold, BifurcationType::BranchPoint, BifurcationType::PeriodDoubling,
-       BifurcationType::NeimarkSacker},
-      "a located bifurcation, LP, BP, PD or NS followed by its number along the branch (e.g. "
-      "BP1)");
+  if (!r.generalized_hopf)
+    r.event = parse_event_name(
+        *args.value("--event"), "--event",
+        {BifurcationType::Fold, BifurcationType::BranchPoint, BifurcationType::PeriodDoubling,
+         BifurcationType::NeimarkSacker},
+        "a located bifurcation, LP, BP, PD or NS followed by its number along the branch (e.g. "
+        "BP1)");
+  const auto names = c.system().parameter_names();
+  if (r.generalized_hopf) {
+    const std::string& first_name = names[r.generalized_hopf->first];
+    const std::string& second_name = names[r.generalized_hopf->second];
+    if (request.parameter != first_name || second != second_name)
+      throw InputError("--param " + request.parameter + ", --second " + second + ": " +
+                       request.parent_path + " is a Hopf curve in " + first_name + " and " +
+                       second_name + "; expected --param " + first_name + " --second " +
+                       second_name);
+  }
   request.from = window.from;
   request.to = window.to;
   request.initial = args.assignments("--initial");
   request.progress = nullptr;
-  request.parent_path = args.text("--parent", "");
   auto& o = request.continuation;
   o.orbit.transient = args.number("--transient", o.orbit.transient);
   apply_accuracy(accuracy(args), o);
@@ -73,14 +93,25 @@ CurveRequest curve_request(const Arguments& args, const LoadedSystem& c) {
   check_options(co.validate(), "");  // names initial_step --step, ...
   c.check_range(request.parameter, {{"--from", request.from}, {"--to", request.to}});
   c.check_range(second, {{"--second-from", co.second_lower}, {"--second-to", co.second_upper}});
-  c.source(request.start, request.initial, request.start_data);  // fails early: the starts
-  // The curve starts at the branch's value of the second parameter: the window must hold it.
-  const double base_second = c.value_of(second);
+  if (!r.generalized_hopf)
+    c.source(request.start, request.initial, request.start_data);  // fails early: the starts
+  // The curve starts at the branch's value of the second parameter (at the GH's, near it): the
+  // window must hold it.
+  const double base_second = r.generalized_hopf ? c.system().parameter(r.generalized_hopf->values,
+                                                                       r.generalized_hopf->second)
+                                                : c.value_of(second);
   if (base_second < co.second_lower || base_second > co.second_upper)
     throw InputError("--second-from, --second-to: the window " + format_double(co.second_lower) +
                      " to " + format_double(co.second_upper) + " does not contain the event (" +
-                     second + " = " + format_double(base_second) + " on the branch)");
-  const auto names = c.system().parameter_names();
+                     second + " = " + format_double(base_second) +
+                     (r.generalized_hopf ? " at " + r.event.text + ")" : " on the branch)"));
+  if (r.generalized_hopf) {
+    const double at = c.system().parameter(r.generalized_hopf->values, r.generalized_hopf->first);
+    if (at < co.first_lower || at > co.first_upper)
+      throw InputError("--from, --to: the window " + format_double(co.first_lower) + " to " +
+                       format_double(co.first_upper) + " does not contain " + r.event.text + " (" +
+                       request.parameter + " = " + format_double(at) + ")");
+  }
   r.second_index = static_cast<int>(std::find(names.begin(), names.end(), second) - names.begin());
   r.csv_path = args.text("--csv", "");
   // Every output checked before any work: writable, and none replacing an input or another.
@@ -102,18 +133,19 @@ Branch curve_branch(const CurveRequest& r, const LoadedSystem& c, const BranchSo
   return parent;
 }
 
-BifurcationCurve follow_curve(const CurveRequest& r, const OdeSystem& system, const Branch& parent,
-                              const Bifurcation& event, const CurveCallbacks& callbacks,
-                              const OrbitDescriber* describer) {
-  // Each point described and streamed to the CSV as it is found, before the caller's hook sees
-  // it; its description kept by its index for the curve's points.
+namespace {
+
+// `run`'s curve (in the parameters first and r.second_index, the others at `base`), each point
+// described and streamed to the CSV as it is found, before the caller's hook sees it; its
+// description kept by its index for the curve's points.
+BifurcationCurve streamed_curve(const CurveRequest& r, const OdeSystem& system,
+                                const ParameterValues& base, int first,
+                                const std::function<BifurcationCurve(const CurveCallbacks&)>& run,
+                                const CurveCallbacks& callbacks, const OrbitDescriber* describer) {
   std::unique_ptr<CurveCsvWriter> csv;
   if (!r.csv_path.empty())
     csv = std::make_unique<CurveCsvWriter>(r.csv_path, system, r.branch.parameter, r.second,
                                            describer);
-  const ParameterValues base =
-      system.with_parameter(parent.start_values, parent.parameter, event.parameter);
-  const int first = parent.parameter;
   const auto describe = [&](const CurvePoint& p) {
     return describer->describe(curve_point_orbit(system, base, first, r.second_index, p));
   };
@@ -127,8 +159,7 @@ BifurcationCurve follow_curve(const CurveRequest& r, const OdeSystem& system, co
     descriptions[q.index] = std::move(q.description);
   };
   try {
-    BifurcationCurve curve =
-        continue_curve(system, parent, event, r.second_index, r.options, streamed);
+    BifurcationCurve curve = run(streamed);
     if (csv) csv->close();
     if (describer) {
       for (auto& p : curve.points)
@@ -140,6 +171,40 @@ BifurcationCurve follow_curve(const CurveRequest& r, const OdeSystem& system, co
   } catch (const std::invalid_argument& e) {
     throw InputError("--event " + r.event.text + ": " + e.what());
   }
+}
+
+}  // namespace
+
+BifurcationCurve follow_curve(const CurveRequest& r, const OdeSystem& system, const Branch& parent,
+                              const Bifurcation& event, const CurveCallbacks& callbacks,
+                              const OrbitDescriber* describer) {
+  const ParameterValues base =
+      system.with_parameter(parent.start_values, parent.parameter, event.parameter);
+  return streamed_curve(
+      r, system, base, parent.parameter,
+      [&](const CurveCallbacks& streamed) {
+        return continue_curve(system, parent, event, r.second_index, r.options, streamed);
+      },
+      callbacks, describer);
+}
+
+BifurcationCurve follow_generalized_hopf_fold(const CurveRequest& r, const OdeSystem& system,
+                                              const CurveCallbacks& callbacks,
+                                              const OrbitDescriber* describer,
+                                              GeneralizedHopfFold& start) {
+  const GeneralizedHopfPoint& gh = *r.generalized_hopf;
+  GeneralizedHopfOptions options;
+  options.curve = r.options;
+  options.family = r.branch.continuation;
+  ContinuationCallbacks family;
+  family.stop_requested = callbacks.stop_requested;
+  return streamed_curve(
+      r, system, gh.values, gh.first,
+      [&](const CurveCallbacks& streamed) {
+        start = fold_of_cycles_from_generalized_hopf(system, gh, options, family, streamed);
+        return start.curve;
+      },
+      callbacks, describer);
 }
 
 void write_curve_json(const CurveRequest& r, const BifurcationCurve& curve, const LoadedSystem& c,

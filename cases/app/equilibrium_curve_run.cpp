@@ -20,8 +20,19 @@ bool wants_equilibrium_curve(const Arguments& args) {
   if (path.empty()) return false;
   const JsonReader file(path, "a branch JSON (continue --json) or equilibria (equilibria --json)");
   const nlohmann::json& j = file.root();
-  return j.is_object() && j.contains("kind") && j["kind"] == "equilibria";
+  if (!j.is_object()) return false;
+  if (j.contains("kind") && j["kind"] == "equilibria") return true;
+  // A curve of equilibria: the curve through one of its codimension-two points; but from a GH of
+  // a Hopf curve the fold of cycles born there, a curve of cycles.
+  const bool generalized_hopf =
+      args.text("--event", "").rfind("GH", 0) == 0 && j.contains("kind") && j["kind"] == "HB";
+  return j.contains("of") && j["of"] == "equilibria" && !generalized_hopf;
 }
+
+namespace {
+EquilibriumCurveRequest finish_request(const Arguments& args, const LoadedSystem& c,
+                                       const ParameterWindow& window, EquilibriumCurveRequest& r);
+}  // namespace
 
 EquilibriumCurveRequest equilibrium_curve_request(const Arguments& args, const LoadedSystem& c) {
   c.require_autonomous("curve (two-parameter curves)");
@@ -35,12 +46,32 @@ EquilibriumCurveRequest equilibrium_curve_request(const Arguments& args, const L
                        " (equilibria: the curve starts at their event, at their parameter "
                        "values)");
   const ParameterWindow window = parameter_window(args, c);
+  r.event_name = *args.value("--event");
+  if (holds_curve_of_equilibria(r.parent_path)) {
+    // The other curve through a codimension-two point of a curve of equilibria: the point's
+    // parameters are the curve's.
+    r.codimension_two =
+        read_curve_of_equilibria_event(r.parent_path, r.event_name, "--event", system).point;
+    const auto names = system.parameter_names();
+    const std::string& first = names[r.codimension_two->first];
+    const std::string& second = names[r.codimension_two->second];
+    if (window.parameter != first || *args.value("--second") != second)
+      throw InputError("--param " + window.parameter + ", --second " + *args.value("--second") +
+                       ": " + r.parent_path + " is a curve in " + first + " and " + second +
+                       "; expected --param " + first + " --second " + second);
+    r.second = r.codimension_two->second;
+    r.parent.parameter = r.codimension_two->first;
+    r.parent.parameter_name = first;
+    r.parent.start_values = r.codimension_two->values;
+    r.event.parameter = system.parameter(r.codimension_two->values, r.codimension_two->first);
+    r.event.state = r.codimension_two->state;
+    return finish_request(args, c, window, r);
+  }
   r.parent = read_equilibria_json(r.parent_path, system);
   if (r.parent.parameter_name != window.parameter)
     throw InputError("--parent " + r.parent_path + ": equilibria in " + r.parent.parameter_name +
                      "; expected them in --param " + window.parameter);
   // LPn or HBn: the n-th of that type along the parent.
-  r.event_name = *args.value("--event");
   std::smatch m;
   if (!std::regex_match(r.event_name, m, std::regex("(LP|HB)([1-9][0-9]{0,5})")))
     throw InputError("--event " + r.event_name +
@@ -65,6 +96,17 @@ EquilibriumCurveRequest equilibrium_curve_request(const Arguments& args, const L
   if (second == window.parameter)
     throw InputError("--second " + second + ": expected a parameter other than --param");
   r.second = system.parameter_index(second);
+  return finish_request(args, c, window, r);
+}
+
+namespace {
+
+// The options, windows and outputs of either start (an event of equilibria, a codimension-two
+// point of a curve of them), checked.
+EquilibriumCurveRequest finish_request(const Arguments& args, const LoadedSystem& c,
+                                       const ParameterWindow& window, EquilibriumCurveRequest& r) {
+  const OdeSystem& system = c.system();
+  const std::string second = system.parameter_names()[r.second];
   EquilibriumCurveOptions& o = r.options;
   o.first_lower = std::min(window.from, window.to);
   o.first_upper = std::max(window.from, window.to);
@@ -93,7 +135,8 @@ EquilibriumCurveRequest equilibrium_curve_request(const Arguments& args, const L
                      window.parameter + " = " + format_double(r.event.parameter));
   const double at = system.parameter(r.parent.start_values, r.second);
   if (at < o.second_lower || at > o.second_upper)
-    throw InputError("--second-from, --second-to: the window does not hold the equilibria's " +
+    throw InputError("--second-from, --second-to: the window does not hold the " +
+                     std::string(r.codimension_two ? r.event_name + "'s " : "equilibria's ") +
                      second + " = " + format_double(at));
   r.csv_path = args.text("--csv", "");
   r.json_path = args.text("--json", "");
@@ -104,6 +147,8 @@ EquilibriumCurveRequest equilibrium_curve_request(const Arguments& args, const L
   check_distinct_outputs({{"--csv", r.csv_path}, {"--json", r.json_path}}, inputs);
   return r;
 }
+
+}  // namespace
 
 EquilibriumCurve run_equilibrium_curve(const EquilibriumCurveRequest& r, const OdeSystem& system,
                                        const EquilibriumCurveCallbacks& callbacks) {
@@ -118,7 +163,9 @@ EquilibriumCurve run_equilibrium_curve(const EquilibriumCurveRequest& r, const O
   };
   try {
     EquilibriumCurve curve =
-        continue_equilibrium_curve(system, r.parent, r.event, r.second, r.options, streamed);
+        r.codimension_two
+            ? continue_from_codimension_two(system, *r.codimension_two, r.options, streamed)
+            : continue_equilibrium_curve(system, r.parent, r.event, r.second, r.options, streamed);
     if (csv) csv->close();
     return curve;
   } catch (const std::invalid_argument& e) {

@@ -3,6 +3,7 @@
 // read and checked before any work, streamed to its CSV, written as JSON.
 #pragma once
 
+#include <optional>
 #include <string>
 
 #include "cases/app/arguments.hpp"
@@ -16,13 +17,17 @@ struct EquilibriumCurveRequest {
   EquilibriumBranch parent;
   std::string event_name;  // "HB1"
   EquilibriumEvent event;
+  // --parent CURVE.json --event BT1|ZH1|HH1|CP1: the other curve through that point (then
+  // `parent` and `event` hold only its parameters, values and state).
+  std::optional<CodimensionTwoPoint> codimension_two;
   int second = -1;
   EquilibriumCurveOptions options;
   std::string csv_path, json_path;  // "" for none
 };
 
-// Whether --parent names an equilibria JSON (equilibria --json): then `curve` follows a curve of
-// equilibria, not of cycles.
+// Whether --parent names an equilibria JSON (equilibria --json), or a curve of equilibria (curve
+// --json) with --event at one of its codimension-two points other than a Hopf curve's GH: then
+// `curve` follows a curve of equilibria, not of cycles.
 bool wants_equilibrium_curve(const Arguments& args);
 // The request, checked: the parent's parameter is --param, the event (LPn or HBn) is one of
 // its, --second another parameter, both windows hold the event, the outputs writable; InputError

@@ -2,6 +2,10 @@
 
 #include "cases/app/json_reader.hpp"
 
+#include <algorithm>
+#include <cmath>
+#include <regex>
+
 #include "sympathy/continuation/hopf.hpp"
 #include "sympathy/core/csv.hpp"
 
@@ -222,6 +226,99 @@ HopfPoint read_hopf_curve_point(const SavedStart& start, const OdeSystem& system
     throw InputError("--from-point " + start.what + ": " + start.path +
                      " has no point of that index");
   });
+}
+
+bool holds_curve_of_equilibria(const std::string& path) {
+  const JsonReader file(path, "a branch, curve or equilibria JSON the program wrote");
+  const nlohmann::json& j = file.root();
+  return j.is_object() && j.contains("of") && j["of"] == "equilibria";
+}
+
+CurveOfEquilibriaEvent read_curve_of_equilibria_event(const std::string& path,
+                                                      const std::string& text,
+                                                      const std::string& option,
+                                                      const OdeSystem& system) {
+  std::smatch m;
+  if (!std::regex_match(text, m, std::regex("(BT|CP|GH|ZH|HH)([1-9][0-9]{0,5})")))
+    throw InputError(option + " " + text + ": " + path +
+                     " is a curve of equilibria; expected one of its codimension-two points, BT, "
+                     "CP, GH, ZH or HH followed by its number along the curve (e.g. BT1)");
+  const std::string type = m[1];
+  const int wanted = std::stoi(m[2]);
+  const JsonReader in(path, "a curve of equilibria written by sympathy curve --json");
+  const int n = system.dimension();
+  return in.read([&](const nlohmann::json& j) {
+    const auto index_of = [&](const std::string& key) {
+      const std::string name = in.key(j, key, path).get<std::string>();
+      try {
+        return system.parameter_index(name);
+      } catch (const std::invalid_argument& e) {
+        throw InputError(path + ": key '" + key + "': " + e.what());
+      }
+    };
+    CurveOfEquilibriaEvent out;
+    CodimensionTwoPoint& p = out.point;
+    p.type = type;
+    p.on = in.key(j, "kind", path).get<std::string>() == "HB" ? EquilibriumEventType::Hopf
+                                                              : EquilibriumEventType::Fold;
+    p.first = index_of("first");
+    p.second = index_of("second");
+    const ParameterValues base =
+        in.numbers(in.key(j, "parameter_values", path), path + ": key 'parameter_values'",
+                   system.parameter_values_size());
+    for (const nlohmann::json& q : in.key(j, "points", path)) {
+      const std::string where = path + ": a point";
+      p.state_scale = std::max(
+          p.state_scale,
+          in.numbers(in.key(q, "state", where), where + ".state", n).lpNorm<Eigen::Infinity>());
+      const nlohmann::json& kappa = in.key(q, "kappa", where);
+      if (kappa.is_number()) p.kappa_scale = std::max(p.kappa_scale, std::abs(kappa.get<double>()));
+    }
+    int seen = 0;
+    for (const nlohmann::json& e : in.key(j, "events", path)) {
+      if (in.key(e, "type", path + ": an event").get<std::string>() != type || ++seen != wanted)
+        continue;
+      const std::string where = path + ": event " + text;
+      if (!in.key(e, "located", where).get<bool>())
+        throw InputError(option + " " + text + ": " + where +
+                         " was not located (its note: " + e.value("note", std::string()) + ")");
+      for (const auto& [name, value] : in.key(e, "coefficients", where).items())
+        if (value.is_number()) out.coefficients.emplace_back(name, value.get<double>());
+      const nlohmann::json& point = in.key(e, "point", where);
+      p.state = in.numbers(in.key(point, "state", where + ".point"), where + ".point.state", n);
+      const nlohmann::json& kappa = in.key(point, "kappa", where + ".point");
+      p.kappa = kappa.is_number() ? kappa.get<double>() : std::nan("");
+      p.values = system.with_parameter(
+          system.with_parameter(base, p.first, in.key(e, "first", where).get<double>()), p.second,
+          in.key(e, "second", where).get<double>());
+      return out;
+    }
+    throw InputError(option + " " + text + ": " + path + " has " + std::to_string(seen) + " " +
+                     type + " point" + (seen == 1 ? "" : "s"));
+  });
+}
+
+GeneralizedHopfPoint read_generalized_hopf(const std::string& path, const std::string& text,
+                                           const std::string& option, const OdeSystem& system) {
+  if (text.rfind("GH", 0) != 0)
+    throw InputError(option + " " + text + ": " + path +
+                     " is a Hopf curve of equilibria; expected GH followed by a positive number "
+                     "(e.g. GH1): only at a generalized Hopf point is a fold of cycles born");
+  const CurveOfEquilibriaEvent e = read_curve_of_equilibria_event(path, text, option, system);
+  GeneralizedHopfPoint gh;
+  gh.first = e.point.first;
+  gh.second = e.point.second;
+  gh.values = e.point.values;
+  gh.state = e.point.state;
+  gh.omega = e.point.kappa > 0.0 ? std::sqrt(e.point.kappa) : 0.0;
+  gh.l2 = std::nan("");
+  for (const auto& [name, value] : e.coefficients)
+    if (name == "l2") gh.l2 = value;
+  if (!std::isfinite(gh.l2))
+    throw InputError(option + " " + text + ": " + path + ": event " + text +
+                     " has no l2 (the system gave no fifth derivatives): which side has the fold "
+                     "of cycles is not known");
+  return gh;
 }
 
 }  // namespace sympathy::app

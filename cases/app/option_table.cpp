@@ -239,9 +239,12 @@ std::vector<OptionSpec> curve_options() {
        {"--transient", "SECONDS", false, "integration before the first Newton (default 60)"},
        {"--parent", "FILE", false,
         "the branch from this JSON (continue --json) instead; or equilibria (equilibria --json): "
-        "then the fold or Hopf curve of equilibria from their LPn or HBn"},
+        "then the fold or Hopf curve of equilibria from their LPn or HBn; or a Hopf curve of "
+        "equilibria (curve --json): then the fold of cycles born at its GHn"},
        {"--event", "EVENT", false,
-        "the event whose curve to follow: LP1, BP1, NS2, ... (of equilibria: LP1, HB1, ...)", true},
+        "the event whose curve to follow: LP1, BP1, NS2, ... (of equilibria: LP1, HB1, ...; of a "
+        "Hopf curve: GH1, ...)",
+        true},
        {"--second", "Q", false, "the second parameter", true},
        {"--second-from", "A", false, "the window in the second parameter ...", true},
        {"--second-to", "B", false, "... and its other end", true},

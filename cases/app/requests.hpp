@@ -8,6 +8,7 @@
 #include <atomic>
 #include <cstdio>
 #include <memory>
+#include <optional>
 #include <string>
 #include <vector>
 
@@ -19,6 +20,7 @@
 #include "sympathy/cases/parameter_fit.hpp"
 #include "sympathy/continuation/bifurcation_curve.hpp"
 #include "sympathy/continuation/equilibrium_branch.hpp"
+#include "sympathy/continuation/generalized_hopf.hpp"
 #include "sympathy/continuation/periodic_orbit.hpp"
 #include "sympathy/core/flow.hpp"
 
@@ -54,6 +56,8 @@ void write_branch_json(const std::string& path, const Branch& branch, const Bran
 struct CurveRequest {
   BranchRequest branch;  // its progress off
   EventName event;
+  // --parent HOPF_CURVE.json --event GHn: the fold of cycles born there (no branch, no start).
+  std::optional<GeneralizedHopfPoint> generalized_hopf;
   std::string second;
   int second_index = -1;
   CurveOptions options;
@@ -68,6 +72,12 @@ Branch curve_branch(const CurveRequest& r, const LoadedSystem& c, const BranchSo
 BifurcationCurve follow_curve(const CurveRequest& r, const OdeSystem& system, const Branch& parent,
                               const Bifurcation& event, const CurveCallbacks& callbacks,
                               const OrbitDescriber* describer = nullptr);
+// The fold of cycles born at r.generalized_hopf (fold_of_cycles_from_generalized_hopf), streamed
+// and described as follow_curve's; the Hopf point, family and fold it started from in `start`.
+BifurcationCurve follow_generalized_hopf_fold(const CurveRequest& r, const OdeSystem& system,
+                                              const CurveCallbacks& callbacks,
+                                              const OrbitDescriber* describer,
+                                              GeneralizedHopfFold& start);
 // The curve's JSON to r.json_path, with the case's path and set, the start, the event's name and
 // the run time.
 // With the case's describer's groups for the points follow_curve described.

@@ -38,10 +38,22 @@ int run_equilibrium_curve(const Arguments& args, const LoadedSystem& c, const St
   const OdeSystem& system = c.system();
   const std::string first = r.parent.parameter_name;
   const std::string second = system.parameter_names()[r.second];
-  std::printf("sympathy curve %s  params %s  %s of the equilibria in %s (%s) in %s (%g to %g)\n",
-              c.path().c_str(), c.params().empty() ? "(none)" : c.params().c_str(),
-              r.event_name.c_str(), first.c_str(), r.parent_path.c_str(), second.c_str(),
-              r.options.second_lower, r.options.second_upper);
+  if (r.codimension_two)
+    std::printf(
+        "sympathy curve %s  params %s  the %s curve through %s of %s, in %s and %s (%g to "
+        "%g)\n",
+        c.path().c_str(), c.params().empty() ? "(none)" : c.params().c_str(),
+        r.codimension_two->type == "HH" || (r.codimension_two->on == EquilibriumEventType::Fold &&
+                                            r.codimension_two->type != "CP")
+            ? "Hopf"
+            : "fold",
+        r.event_name.c_str(), r.parent_path.c_str(), first.c_str(), second.c_str(),
+        r.options.second_lower, r.options.second_upper);
+  else
+    std::printf("sympathy curve %s  params %s  %s of the equilibria in %s (%s) in %s (%g to %g)\n",
+                c.path().c_str(), c.params().empty() ? "(none)" : c.params().c_str(),
+                r.event_name.c_str(), first.c_str(), r.parent_path.c_str(), second.c_str(),
+                r.options.second_lower, r.options.second_upper);
   if (c.equations()) std::printf("  %s\n", c.build_note().c_str());
   std::fflush(stdout);
   const bool quiet = args.flag("--quiet");
@@ -94,6 +106,53 @@ int run_equilibrium_curve(const Arguments& args, const LoadedSystem& c, const St
   return exit_code_of(curve);
 }
 
+// The fold of cycles born at a generalized Hopf point of --parent HOPF_CURVE.json.
+int run_generalized_hopf_fold(const Arguments& args, const LoadedSystem& c, const CurveRequest& r,
+                              const Stopwatch& clock) {
+  const std::string& first = r.branch.parameter;
+  const std::string& second = r.second;
+  std::printf(
+      "sympathy curve %s  params %s  the fold of cycles born at %s of the Hopf curve in %s "
+      "in %s (%g to %g) and %s (%g to %g)\n",
+      c.path().c_str(), c.params().empty() ? "(none)" : c.params().c_str(), r.event.text.c_str(),
+      r.branch.parent_path.c_str(), first.c_str(), r.options.first_lower, r.options.first_upper,
+      second.c_str(), r.options.second_lower, r.options.second_upper);
+  if (c.equations()) std::printf("  %s\n", c.build_note().c_str());
+  std::fflush(stdout);
+  const bool quiet = args.flag("--quiet");
+  ProgressLine progress(quiet);
+  int points = 0;
+  CurveCallbacks callbacks;
+  callbacks.on_point = [&](const CurvePoint& p) {
+    progress.show("fold of cycles from " + r.event.text + ": " + first + " = " +
+                  format_number(p.first) + ", " + second + " = " + format_number(p.second) + ", " +
+                  std::to_string(++points) + " points, " + duration_text(clock.seconds()));
+  };
+  callbacks.stop_requested = [] { return interrupt_flag()->load(); };
+  GeneralizedHopfFold start;
+  const BifurcationCurve curve =
+      follow_generalized_hopf_fold(r, c.system(), callbacks, &c.describer(), start);
+  progress.clear();
+  const GeneralizedHopfPoint& gh = *r.generalized_hopf;
+  std::printf("  %s at %s = %.10g, %s = %.10g: l2 = %.6g, a fold of cycles where l1 %s 0\n",
+              r.event.text.c_str(), first.c_str(), c.system().parameter(gh.values, gh.first),
+              second.c_str(), c.system().parameter(gh.values, gh.second), gh.l2,
+              gh.l2 < 0 ? ">" : "<");
+  std::printf(
+      "  the family born at the Hopf point %s = %.10g, %s = %.10g (l1 = %.6g): %zu points "
+      "to its fold at %s = %.10g (T = %.10g)\n",
+      first.c_str(), start.hopf.parameter, second.c_str(),
+      c.system().parameter(start.hopf.values, gh.second), *start.hopf.lyapunov,
+      start.family.points.size(), first.c_str(), start.fold.parameter, start.fold.period);
+  std::printf("  %zu points; stopped: %s\n", curve.points.size(), curve.stop_reason.c_str());
+  std::printf("codimension-two points and turns:\n");
+  print_curve_events(stdout, curve);
+  std::printf("  run time %.3f s (the curve %.3f s: %d monodromies, %ld steps; noise %.1e)\n",
+              clock.seconds(), curve.seconds, curve.evaluations, curve.flow.steps, curve.noise);
+  if (!r.json_path.empty()) write_curve_json(r, curve, c, clock.seconds());
+  return exit_code_of(curve);
+}
+
 }  // namespace
 
 int run_curve(const std::vector<std::string>& argv) {
@@ -102,6 +161,7 @@ int run_curve(const std::vector<std::string>& argv) {
   const LoadedSystem c = load_system(args);
   if (wants_equilibrium_curve(args)) return run_equilibrium_curve(args, c, clock);
   const CurveRequest r = curve_request(args, c);
+  if (r.generalized_hopf) return run_generalized_hopf_fold(args, c, r, clock);
   const BranchRequest& request = r.branch;
   const EventName& name = r.event;
   const std::string& second = r.second;

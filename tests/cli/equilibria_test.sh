@@ -192,6 +192,85 @@ check "... circles of period 2 pi / w_N (1e-8) and radius sqrt(mu) (1e-7)" test 
 (lambda math: len(j['points']) > 5 and all(abs(p['period'] - 2 * math.pi / 3) < 1e-8 * p['period'] and
 abs(math.hypot(*p['state0']) - math.sqrt(p['value'])) < 1e-7 for p in j['points'] if p['value'] > 1e-3))(__import__('math'))")" = True
 
+# The Bautin normal form (cases/examples/bautin.toml): the generalized Hopf point of its Hopf
+# curve b1 = 0 at the origin with l2 = -4 (1e-6), and the fold of cycles born there (curve
+# --parent HOPF_CURVE.json --event GH1) on b1 = -b2^2 / 4 (1e-8), ended near GH on one side and
+# at the window on the other.
+bautin=$src/cases/examples/bautin.toml
+"$bin" equilibria "$bautin" --param b1 --from -0.5 --to 0.5 --quiet --json "$work/ba_eq.json" > /dev/null
+"$bin" curve "$bautin" --parent "$work/ba_eq.json" --event HB1 --param b1 --from -1 --to 1 \
+  --second b2 --second-from -1 --second-to 1 --quiet --json "$work/ba_hb.json" > /dev/null
+check "the Bautin form's GH at the origin with l2 = -4 (1e-6)" test "$(json "$work/ba_hb.json" "
+[(abs(e['first']) < 1e-8 and abs(e['second']) < 1e-8 and abs(e['coefficients']['l2'] + 4) < 4e-6)
+ for e in j['events'] if e['type'] == 'GH'] == [True]")" = True
+"$bin" curve "$bautin" --parent "$work/ba_hb.json" --event GH1 --param b1 --from -1 --to 0.1 \
+  --second b2 --second-from -1 --second-to 0.5 --quiet --json "$work/ba_lpc.json" \
+  --csv "$work/ba_lpc.csv" > "$work/ba_lpc.out"
+check "curve --event GH1: the fold of cycles born there, exit 0" test $? -eq 0
+check "... the family it started from named, l2's side" grep -q "l2 = -4, a fold of cycles where l1 > 0" "$work/ba_lpc.out"
+check "... every point on b1 = -b2^2 / 4 (1e-8), from near GH to the window" test "$(json "$work/ba_lpc.json" "
+j['kind'] == 'LP' and all(abs(p['first'] + p['second']**2 / 4) < 1e-8 for p in j['points']) and
+min(p['second'] for p in j['points']) < 0.02 and max(p['second'] for p in j['points']) == 0.5")" = True
+check "... ended near the generalized Hopf point" grep -q "backward: ended near the generalized Hopf point at b1 = 0, b2 = 0" "$work/ba_lpc.out"
+check "... CSV a row per point" test "$(($(wc -l < "$work/ba_lpc.csv") - 1))" -eq "$(json "$work/ba_lpc.json" "len(j['points'])")"
+"$bin" curve "$bautin" --parent "$work/ba_hb.json" --event GH2 --param b1 --from -1 --to 0.1 \
+  --second b2 --second-from -1 --second-to 0.5 > /dev/null 2> "$work/bad.err"
+check "a GH the Hopf curve lacks exits 2" grep -qF -- "--event GH2: $work/ba_hb.json has 1 GH point" "$work/bad.err"
+"$bin" curve "$bautin" --parent "$work/ba_hb.json" --event HB1 --param b1 --from -1 --to 0.1 \
+  --second b2 --second-from -1 --second-to 0.5 > /dev/null 2> "$work/bad.err"
+check "... an HB of a Hopf curve exits 2, listing what is expected" grep -q -- "--event HB1: .* is a curve of equilibria; expected one of its codimension-two points, BT, CP, GH, ZH or HH" "$work/bad.err"
+"$bin" curve "$bautin" --parent "$work/ba_hb.json" --event GH1 --param b2 --from -1 --to 0.1 \
+  --second b1 --second-from -1 --second-to 0.5 > /dev/null 2> "$work/bad.err"
+check "... parameters swapped exits 2" grep -q -- "is a Hopf curve in b1 and b2; expected --param b1 --second b2" "$work/bad.err"
+
+# The curve through a codimension-two point (curve --parent CURVE.json --event BT1): the
+# Bogdanov-Takens form's BT on its Hopf curve b1 = 0 starts the fold curve b1 = b2^2 / 4 (1e-9).
+bt=$src/cases/examples/bt.toml
+"$bin" equilibria "$bt" --param b1 --from 0.1 --to -0.1 --quiet --json "$work/bt_eq.json" > /dev/null
+"$bin" curve "$bt" --parent "$work/bt_eq.json" --event HB1 --param b1 --from -1 --to 1 \
+  --second b2 --second-from -1.5 --second-to 1 --quiet --json "$work/bt_hb.json" > /dev/null
+"$bin" curve "$bt" --parent "$work/bt_hb.json" --event BT1 --param b1 --from -1 --to 1 \
+  --second b2 --second-from -1.5 --second-to 1 --quiet --json "$work/bt_lp.json" > "$work/bt_lp.out"
+check "curve --parent HOPF_CURVE.json --event BT1: the fold curve, exit 0" test $? -eq 0
+check "... on b1 = b2^2 / 4 (1e-9) across the window, its start not reported again" test "$(json "$work/bt_lp.json" "
+j['kind'] == 'LP' and all(abs(p['first'] - p['second']**2 / 4) < 1e-9 for p in j['points']) and
+sorted(p['second'] for p in j['points'])[::len(j['points']) - 1] == [-1.5, 1] and j['events'] == []")" = True
+"$bin" curve "$bt" --parent "$work/bt_hb.json" --event BT2 --param b1 --from -1 --to 1 \
+  --second b2 --second-from -1.5 --second-to 1 > /dev/null 2> "$work/bad.err"
+check "... a BT the curve lacks exits 2" grep -qF -- "--event BT2: $work/bt_hb.json has 1 BT point" "$work/bad.err"
+
+# The reference normal forms of cases/examples, each on its closed form: the cusp's folds on
+# 27 b1^2 = 4 b2^3 (1e-9) with CP at the origin, c = -1 (1e-6); the fold-Hopf form's Hopf curve
+# b1 = -b2^2 with ZH at the origin, and the fold curve b1 = 0 from it; the two oscillators' Hopf
+# curve b1 = 0 with HH at the origin, and the other pair's b2 = 0 (omega sqrt 2) from it.
+ex=$src/cases/examples
+two="--from -2 --to 2 --second b2 --quiet"
+"$bin" equilibria "$ex/cusp.toml" --param b1 --from -1 --to 1 --quiet --json "$work/cu_eq.json" > /dev/null
+"$bin" curve "$ex/cusp.toml" --parent "$work/cu_eq.json" --event LP1 --param b1 $two \
+  --second-from -0.3 --second-to 0.6 --json "$work/cu_lp.json" > /dev/null
+check "cusp: folds on 27 b1^2 = 4 b2^3, CP at the origin with c = -1" test "$(json "$work/cu_lp.json" "
+all(abs(27 * p['first']**2 - 4 * p['second']**3) < 1e-9 for p in j['points']) and
+[(abs(e['first']) < 1e-8 and abs(e['second']) < 1e-8 and abs(e['coefficients']['c'] + 1) < 1e-6)
+ for e in j['events']] == [True]")" = True
+"$bin" equilibria "$ex/fold_hopf.toml" --param b1 --from -0.5 --to -0.01 --quiet --json "$work/fh_eq.json" > /dev/null
+"$bin" curve "$ex/fold_hopf.toml" --parent "$work/fh_eq.json" --event HB1 --param b1 $two \
+  --second-from -0.5 --second-to 0.5 --json "$work/fh_hb.json" > /dev/null
+"$bin" curve "$ex/fold_hopf.toml" --parent "$work/fh_hb.json" --event ZH1 --param b1 $two \
+  --second-from -0.5 --second-to 0.5 --json "$work/fh_lp.json" > /dev/null
+check "fold-Hopf: Hopf curve b1 = -b2^2, ZH at the origin, the fold curve b1 = 0 from it" test "$(json "$work/fh_hb.json" "
+all(abs(p['first'] + p['second']**2) < 1e-9 for p in j['points']) and
+[(e['type'], abs(e['first']) < 1e-8 and abs(e['second']) < 1e-8) for e in j['events']] == [('ZH', True)]")$(json "$work/fh_lp.json" "
+j['kind'] == 'LP' and len(j['points']) > 5 and all(abs(p['first']) < 1e-9 for p in j['points'])")" = TrueTrue
+"$bin" equilibria "$ex/double_hopf.toml" --param b1 --from -0.5 --to 0.5 --quiet --json "$work/dh_eq.json" > /dev/null
+"$bin" curve "$ex/double_hopf.toml" --parent "$work/dh_eq.json" --event HB1 --param b1 $two \
+  --second-from -0.5 --second-to 0.5 --json "$work/dh_hb.json" > /dev/null
+"$bin" curve "$ex/double_hopf.toml" --parent "$work/dh_hb.json" --event HH1 --param b1 $two \
+  --second-from -0.5 --second-to 0.5 --json "$work/dh_hb2.json" > /dev/null
+check "double Hopf: HH at the origin, the other pair's Hopf curve b2 = 0 with omega sqrt 2" test "$(json "$work/dh_hb.json" "
+[(e['type'], abs(e['first']) < 1e-8 and abs(e['second']) < 1e-8) for e in j['events']] == [('HH', True)]")$(json "$work/dh_hb2.json" "
+j['kind'] == 'HB' and len(j['points']) > 5 and
+all(abs(p['second']) < 1e-9 and abs(p['omega'] - 2**0.5) < 1e-9 for p in j['points'])")" = TrueTrue
+
 # Bad requests: named, exit 2, before any work.
 "$bin" equilibria "$abc" --param p9 --from 0 --to 1 > /dev/null 2> "$work/bad.err"
 check "an unknown parameter exits 2" test $? -eq 2

@@ -402,8 +402,9 @@ TEST(EquilibriumCurve, BentBautinSecondLyapunovCoefficient) {
 
 // The fold of cycles born at the bent Bautin normal form's generalized Hopf point: r' = r (b1 +
 // b2 r^2 - r^4) turns where b1 = -b2^2 / 4 (b2 > 0, at r^2 = b2 / 2), a relation the bending
-// keeps. Every point of the curve on it (1e-8; measured 9e-11 over 132 points), the curve reaching
-// towards GH (b2 < 0.05; measured 4e-6) and out to b2 = 0.5; and the folds that continue locates
+// keeps. Every point of the curve on it (1e-8; measured 9e-11), the curve reaching towards GH
+// (b2 < 0.05: it ends halfway from its start, b2 = 0.02, where it degenerates) and out to
+// b2 = 0.5; and the folds that continue locates
 // on the families born at b2 = 0.2 and 0.4 on it within their uncertainties plus 1e-9 (measured
 // 1e-13 and 6e-11: a fold's uncertainty counts its bracket, not the corrector's tolerance): the
 // curve and the one-parameter folds meet.
@@ -444,6 +445,7 @@ TEST(EquilibriumCurve, FoldOfCyclesFromGeneralizedHopf) {
     highest = std::max(highest, pt.second);
   }
   EXPECT_LT(lowest, 0.05) << fold.curve.stop_reason;
+  EXPECT_EQ(fold.curve.backward_stop, StopReason::HopfPoint) << fold.curve.stop_reason;
   EXPECT_NEAR(highest, 0.5, 1e-12) << fold.curve.stop_reason;
   for (double b2 : {0.2, 0.4}) {
     std::string why;
@@ -527,6 +529,91 @@ TEST(EquilibriumCurve, ZeroHopfAndDoubleHopfPoints) {
     EXPECT_TRUE(curve.events[0].located) << curve.events[0].note;
     EXPECT_NEAR(curve.events[0].second, 0.0, 1e-8);
     EXPECT_NEAR(curve.events[0].first, 0.0, 1e-8);
+  }
+}
+
+// The switches at codimension-two points, each new curve on its closed form (1e-9): the
+// fold-Hopf form's ZH on its Hopf curve to the fold curve b1 = 0 (z = 0 double); the two Hopf
+// pairs' HH to the other pair's Hopf curve b2 = 0 (omega = sqrt 2); the bent BT form's BT from the
+// Hopf curve to the fold curve b1 = b2^2 / 4, and a fold curve's BT to the Hopf curve b1 = 0
+// (Hopf points for b2 < 0, neutral saddles for b2 > 0). A GH switches to no curve of equilibria.
+// (A point a curve starts at is not found on it again: its test is zero there.)
+TEST(EquilibriumCurve, SwitchesAtCodimensionTwoPoints) {
+  using Kind = TwoCrossings::Kind;
+  const auto only = [](const EquilibriumCurve& c, const std::string& type) {
+    const auto found = events_named(c, type);
+    EXPECT_EQ(found.size(), 1u) << type << ": " << c.stop_reason;
+    return found.empty() ? EquilibriumCurveEvent{} : found[0];
+  };
+  {
+    const TwoCrossings system(Kind::FoldHopf);
+    Eigen::VectorXd start = Eigen::VectorXd::Zero(3);
+    start[2] = std::sqrt(0.5);
+    const auto branch = branch_of(system, 0, -0.5, -0.01, start);
+    const auto hopf = continue_equilibrium_curve(
+        system, branch, first_of(branch, EquilibriumEventType::Hopf), 1, window(-1, 1, -0.5, 0.5));
+    const auto fold = continue_from_codimension_two(
+        system, codimension_two_point(system, hopf, only(hopf, "ZH")), window(-1, 1, -0.5, 0.5));
+    ASSERT_TRUE(fold.started()) << fold.stop_reason;
+    EXPECT_EQ(fold.kind, EquilibriumEventType::Fold);
+    EXPECT_GT(fold.points.size(), 5u);
+    for (const auto& p : fold.points) EXPECT_NEAR(p.first, 0.0, 1e-9) << p.index;
+  }
+  {
+    const TwoCrossings system(Kind::DoubleHopf);
+    const auto branch = branch_of(system, 0, -0.5, 0.5, Eigen::VectorXd::Zero(4));
+    const auto hopf = continue_equilibrium_curve(
+        system, branch, first_of(branch, EquilibriumEventType::Hopf), 1, window(-1, 1, -0.5, 0.5));
+    const auto other = continue_from_codimension_two(
+        system, codimension_two_point(system, hopf, only(hopf, "HH")), window(-1, 1, -0.5, 0.5));
+    ASSERT_TRUE(other.started()) << other.stop_reason;
+    EXPECT_EQ(other.kind, EquilibriumEventType::Hopf);
+    EXPECT_GT(other.points.size(), 5u);
+    for (const auto& p : other.points) {
+      EXPECT_NEAR(p.second, 0.0, 1e-9) << p.index;
+      EXPECT_NEAR(p.kappa, 2.0, 1e-9) << p.index;
+    }
+  }
+  {
+    const Bent<BogdanovTakensField> system;
+    EquilibriumProblem problem;
+    problem.parameter = 0;
+    problem.values = system.with_parameter(system.default_parameters(), 1, -1.0);
+    problem.from = 0.1;
+    problem.to = -0.1;
+    problem.start_state = Bent<BogdanovTakensField>::forward({0.1127016653792583, 0.0});
+    const auto branch = continue_equilibria(system, problem, {});
+    const auto hopf = continue_equilibrium_curve(
+        system, branch, first_of(branch, EquilibriumEventType::Hopf), 1, window(-1, 1, -1.5, 1));
+    const auto fold = continue_from_codimension_two(
+        system, codimension_two_point(system, hopf, only(hopf, "BT")), window(-1, 1, -1.5, 1));
+    ASSERT_TRUE(fold.started()) << fold.stop_reason;
+    EXPECT_EQ(fold.kind, EquilibriumEventType::Fold);
+    EXPECT_GT(fold.points.size(), 5u);
+    for (const auto& p : fold.points)
+      EXPECT_NEAR(p.first, p.second * p.second / 4, 1e-9) << p.index;
+    // The fold curve from the equilibria's own fold (its BT is not at its start), and its BT.
+    problem.to = 0.3;
+    const auto up = continue_equilibria(system, problem, {});
+    const auto fold_from_lp = continue_equilibrium_curve(
+        system, up, first_of(up, EquilibriumEventType::Fold), 1, window(-1, 1, -1.5, 1));
+    const auto back = continue_from_codimension_two(
+        system, codimension_two_point(system, fold_from_lp, only(fold_from_lp, "BT")),
+        window(-1, 1, -1.5, 1));
+    ASSERT_TRUE(back.started()) << back.stop_reason;
+    EXPECT_EQ(back.kind, EquilibriumEventType::Hopf);
+    int hopf_points = 0, saddles = 0;
+    for (const auto& p : back.points) {
+      EXPECT_NEAR(p.first, 0.0, 1e-9) << p.index;
+      if (p.second < -1e-3) hopf_points += p.kappa > 0.0 && !p.neutral_saddle;
+      if (p.second > 1e-3) saddles += p.neutral_saddle;
+    }
+    EXPECT_GT(hopf_points, 3);
+    EXPECT_GT(saddles, 3);
+    auto gh = codimension_two_point(system, hopf, only(hopf, "BT"));
+    gh.type = "GH";
+    EXPECT_THROW(continue_from_codimension_two(system, gh, window(-1, 1, -1.5, 1)),
+                 std::invalid_argument);
   }
 }
 

@@ -64,7 +64,14 @@ struct CurveOptions {
   // the one locator; one with `stop` ends the curve there (UZSTOP). Period only: a curve's
   // points carry no samples of their orbits.
   std::vector<UserValue> user_values;
-  OrbitOptions orbit;  // the shooting flow, Floquet options
+  // The point of the parameter plane the curve was born from where its orbits shrink into an
+  // equilibrium (a fold of cycles from a generalized Hopf point: generalized_hopf.hpp). The
+  // curve ends when it comes within end_radius of it, in the parameters scaled by the window's
+  // widths: there the fold degenerates, and its corrector crawls (AUTO's fhn: 200 points over
+  // the last 0.3% of c). end_radius 0: none.
+  double end_first = 0.0, end_second = 0.0, end_radius = 0.0;
+  std::string end_name;  // for the message: "the generalized Hopf point"
+  OrbitOptions orbit;    // the shooting flow, Floquet options
 
   OptionCheck validate() const;
 };

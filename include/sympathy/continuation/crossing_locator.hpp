@@ -136,6 +136,14 @@ Crossing<Point, Tag> locate_crossing(const Point& a, const Sample<Tag>& at_a, co
       c.s = s;
       c.sample = at;
     }
+    if (f == 0.0) {
+      // The root itself (a normal form's test linear in the arclength: the first secant lands
+      // on it): the bracket is the probe, not the side it would have replaced (the Bautin
+      // form's Hopf point at b1 = 0 was reported +-0.02, a whole step).
+      lo = hi = {s, at};
+      p_lo = p_hi = p_at;
+      continue;
+    }
     if ((f > 0) == (f_hi > 0)) {
       s_old = hi.s;
       g_old = hi.sample.value;

@@ -136,4 +136,34 @@ EquilibriumCurve continue_equilibrium_curve(const OdeSystem& system,
                                             EquilibriumCurveOptions options,
                                             const EquilibriumCurveCallbacks& callbacks = {});
 
+// A located codimension-two point of a curve of equilibria (its type and the curve's kind), at
+// both its parameters' values.
+struct CodimensionTwoPoint {
+  std::string type;                                      // "BT", "CP", "ZH", "HH"
+  EquilibriumEventType on = EquilibriumEventType::Fold;  // the curve it lies on
+  int first = -1, second = -1;
+  ParameterValues values;  // both parameters set
+  Eigen::VectorXd state;
+  double kappa = std::numeric_limits<double>::quiet_NaN();  // the Hopf curve's there
+  // The largest |x|_inf and |kappa| along the curve it lies on: the new curve's arclength is
+  // scaled by them at least (and the state by 1 at least).
+  double state_scale = 0.0, kappa_scale = 0.0;
+};
+
+// The point of `event`, a located codimension-two point of `curve`.
+CodimensionTwoPoint codimension_two_point(const OdeSystem& system, const EquilibriumCurve& curve,
+                                          const EquilibriumCurveEvent& event);
+
+// The other curve through `point` in the same two parameters (AUTO's and MatCont's switches at
+// codimension-two points): at BT the Hopf curve from a fold curve (from omega = 0: Hopf points
+// one way, neutral saddles the other) or the fold curve from a Hopf curve; at ZH likewise (the
+// Hopf curve of the pair beside the zero eigenvalue); at HH the Hopf curve of the other pair; at
+// CP the fold curve through the cusp. Both ways from the point. Throws std::invalid_argument for
+// another type, parameters that are not two different ones, a window that does not hold the
+// point, or options out of their domain.
+EquilibriumCurve continue_from_codimension_two(const OdeSystem& system,
+                                               const CodimensionTwoPoint& point,
+                                               EquilibriumCurveOptions options,
+                                               const EquilibriumCurveCallbacks& callbacks = {});
+
 }  // namespace sympathy
