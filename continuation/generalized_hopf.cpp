@@ -6,6 +6,7 @@
 #include <stdexcept>
 
 #include "sympathy/core/csv.hpp"
+#include "sympathy/core/text.hpp"
 
 namespace sympathy {
 
@@ -130,7 +131,7 @@ GeneralizedHopfFold fold_of_cycles_from_generalized_hopf(const OdeSystem& system
   curve_options.end_name = "the generalized Hopf point";
   out.curve = continue_curve(system, out.family, out.fold, gh.second, curve_options, callbacks);
   out.curve.origin = "LP of the family born near GH at " + where +
-                     " (l2 = " + format_double(gh.l2) + "), at " + out.curve.first_name + " = " +
+                     " (l2 = " + format_number(gh.l2) + "), at " + out.curve.first_name + " = " +
                      format_double(out.fold.parameter) + ", " + out.curve.second_name + " = " +
                      format_double(system.parameter(hopf.values, gh.second));
   return out;

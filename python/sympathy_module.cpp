@@ -354,9 +354,29 @@ class Case {
     const app::LoadedSystem c = app::load_system(args);
     if (app::wants_equilibrium_curve(args)) return equilibrium_curve_with(args, c, progress);
     app::CurveRequest request = app::curve_request(args, c);
-    const app::BranchSource source = c.source(request.branch.start, request.branch.initial);
     const ProgressBar shown(progress, "curve " + request.event.text);
     PythonHooks hooks(shown.callback);
+    if (request.generalized_hopf) {
+      // The fold of cycles born at a GH of parent=HOPF_CURVE.json; its `branch` the family that
+      // was continued to the fold it starts from.
+      CurveCallbacks callbacks;
+      callbacks.on_point = [&](const CurvePoint& p) {
+        hooks.report([&] { return curve_point_result(p); });
+      };
+      callbacks.stop_requested = [&] { return hooks.stop_requested(); };
+      GeneralizedHopfFold start;
+      BifurcationCurve curve;
+      {
+        py::gil_scoped_release release;
+        curve = app::follow_generalized_hopf_fold(request, c.system(), callbacks, &c.describer(),
+                                                  start);
+      }
+      hooks.raise_kept();
+      py::object result = curve_result(curve, &c.describer());
+      result.attr("branch") = branch_result(start.family, c.describer());
+      return result;
+    }
+    const app::BranchSource source = c.source(request.branch.start, request.branch.initial);
     request.branch.stop_requested = [&] { return hooks.stop_requested(); };
     CurveCallbacks callbacks;
     callbacks.on_point = [&](const CurvePoint& p) {

@@ -255,6 +255,34 @@ def test_hopf_curve_of_equilibria_equals_the_program(tmp_path):
         sympathy.Case(lrz).curve(**dict(words, event="BP1"))
 
 
+def test_switches_at_codimension_two_points(tmp_path):
+    # The Bautin form's GH -> its fold of cycles on b1 = -b2^2 / 4 (1e-8), with the family it
+    # started from as `branch`; the BT form's BT on its Hopf curve -> the fold curve
+    # b1 = b2^2 / 4 (1e-9), the object sympathy.load gives.
+    bautin = os.path.join(SOURCE, "cases/examples/bautin.toml")
+    eq, hb = str(tmp_path / "eq.json"), str(tmp_path / "hb.json")
+    cli("equilibria", bautin, "--param", "b1", "--from", "-0.5", "--to", "0.5", "--quiet",
+        "--json", eq)
+    cli("curve", bautin, "--parent", eq, "--event", "HB1", "--param", "b1", "--from", "-1",
+        "--to", "1", "--second", "b2", "--second-from", "-1", "--second-to", "1", "--quiet",
+        "--json", hb)
+    lpc = sympathy.curve(bautin, parent=hb, event="GH1", param="b1", from_=-1, to=0.1,
+                         second="b2", second_from=-1, second_to=0.5)
+    a, b = lpc.points.first, lpc.points.second
+    assert lpc.kind == "LP" and len(a) > 10 and np.all(abs(a + b * b / 4) < 1e-8)
+    assert lpc.branch.origin == "HB at b1 = 0"
+    bt = os.path.join(SOURCE, "cases/examples/bt.toml")
+    cli("equilibria", bt, "--param", "b1", "--from", "0.1", "--to", "-0.1", "--quiet",
+        "--json", eq)
+    cli("curve", bt, "--parent", eq, "--event", "HB1", "--param", "b1", "--from", "-1",
+        "--to", "1", "--second", "b2", "--second-from", "-1.5", "--second-to", "1", "--quiet",
+        "--json", hb)
+    fold = sympathy.curve(bt, parent=hb, event="BT1", param="b1", from_=-1, to=1, second="b2",
+                          second_from=-1.5, second_to=1)
+    assert fold.of == "equilibria" and fold.origin.startswith("BT at b1 = ")
+    assert np.all(abs(fold.points.first - fold.points.second ** 2 / 4) < 1e-9)
+
+
 def test_curve_equals_the_program():
     # A short stretch of the anti-phase BP curve in (k, c) (tests/cli/curve_test.sh's, at the
     # fast preset to keep it short): Python and the program, the same points, stop and events.
