@@ -1,6 +1,8 @@
 #include "codim2_coefficients.hpp"
 
 #include <complex>
+#include <initializer_list>
+#include <limits>
 
 #include <Eigen/Eigenvalues>
 #include <Eigen/SVD>
@@ -87,6 +89,136 @@ std::optional<double> cusp_coefficient(const OdeSystem& system, const ParameterV
   const Eigen::VectorXd h2 = bordered_solve(a, pl, q, -b, 0.0, false);
   const double c = pl.dot(d.C(q, q, q) + 3.0 * d.B(q, h2)) / 6.0;
   if (!std::isfinite(c)) return std::nullopt;
+  return c;
+}
+
+namespace {
+
+using Complex = std::complex<double>;
+
+// The eigenvector of `m` for its eigenvalue nearest `target` (unit length), and that eigenvalue.
+Eigen::VectorXcd eigenvector_nearest(const Eigen::MatrixXd& m, Complex target, Complex* value) {
+  Eigen::ComplexEigenSolver<Eigen::MatrixXcd> solver(m.cast<Complex>());
+  Eigen::Index best = 0;
+  for (Eigen::Index i = 1; i < solver.eigenvalues().size(); ++i)
+    if (std::abs(solver.eigenvalues()[i] - target) < std::abs(solver.eigenvalues()[best] - target))
+      best = i;
+  if (value) *value = solver.eigenvalues()[best];
+  return solver.eigenvectors().col(best).normalized();
+}
+
+// q with A q = lambda q (|q| = 1) and p with A^T p = conj(lambda) p, <p, q> = p^H q = 1, for the
+// eigenvalue nearest `target`; nullopt where <p, q> vanishes.
+struct EigenPair {
+  Complex lambda;
+  Eigen::VectorXcd q, p;
+};
+std::optional<EigenPair> eigen_pair(const Eigen::MatrixXd& a, Complex target) {
+  EigenPair e;
+  e.q = eigenvector_nearest(a, target, &e.lambda);
+  Eigen::VectorXcd p = eigenvector_nearest(a.transpose(), std::conj(e.lambda), nullptr);
+  const Complex pq = p.dot(e.q);
+  if (!(std::abs(pq) > 0.0)) return std::nullopt;
+  e.p = p / std::conj(pq);
+  return e;
+}
+
+// The pair nearest the imaginary axis with imaginary part above zero, other than near `besides`
+// (within 1e-6 of it, relative); omega 0 where there is none.
+double pair_frequency(const Eigen::MatrixXd& a, double besides) {
+  const Eigen::ComplexEigenSolver<Eigen::MatrixXd> solver(a, false);
+  double best = std::numeric_limits<double>::infinity(), omega = 0.0;
+  for (const Complex& l : solver.eigenvalues()) {
+    if (!(l.imag() > 0.0)) continue;
+    if (besides > 0.0 && std::abs(l.imag() - besides) <= 1e-6 * besides) continue;
+    if (std::abs(l.real()) < best) {
+      best = std::abs(l.real());
+      omega = l.imag();
+    }
+  }
+  return omega;
+}
+
+}  // namespace
+
+std::optional<ZeroHopfCoefficients> zero_hopf_coefficients(const OdeSystem& system,
+                                                           const ParameterValues& p,
+                                                           const Eigen::VectorXd& x) {
+  using V = Eigen::VectorXcd;
+  const Eigen::MatrixXd a = jacobian_at(system, p, x);
+  const double omega = pair_frequency(a, 0.0);
+  if (!(omega > 0.0)) return std::nullopt;
+  auto zero = eigen_pair(a, 0.0);
+  auto pair = eigen_pair(a, Complex(0.0, omega));
+  if (!zero || !pair) return std::nullopt;
+  // The zero eigenvalue's vectors real: their phase is free, so each is turned by its largest
+  // component's before the real part is taken; q0's largest component positive.
+  const auto real_of = [](const V& v) {
+    Eigen::Index k = 0;
+    v.cwiseAbs().maxCoeff(&k);
+    return Eigen::VectorXd((v * (std::abs(v[k]) / v[k])).real());
+  };
+  const V q0 = real_of(zero->q).normalized().cast<Complex>();
+  V p0 = real_of(zero->p).cast<Complex>();
+  if (!(std::abs(p0.dot(q0)) > 0.0)) return std::nullopt;
+  p0 /= std::conj(p0.dot(q0));
+  const JacobianDerivatives d(system, p, x);
+  const V q1 = pair->q, q1b = q1.conjugate();
+  ZeroHopfCoefficients z;
+  z.b = 0.5 * p0.dot(d.B(q0, q0)).real();
+  z.c = p0.dot(d.B(q1, q1b)).real();
+  z.a = pair->p.dot(d.B(q0, q1)).real();
+  if (!(std::isfinite(z.b) && std::isfinite(z.c) && std::isfinite(z.a)) || z.b == 0.0)
+    return std::nullopt;
+  z.s = z.b * z.c > 0 ? 1.0 : z.b * z.c < 0 ? -1.0 : 0.0;
+  z.theta = z.a / (2.0 * z.b);
+  return z;
+}
+
+std::optional<DoubleHopfCoefficients> double_hopf_coefficients(const OdeSystem& system,
+                                                               const ParameterValues& p,
+                                                               const Eigen::VectorXd& x,
+                                                               double omega0) {
+  using V = Eigen::VectorXcd;
+  const Eigen::MatrixXd a = jacobian_at(system, p, x);
+  const double omega1 = pair_frequency(a, omega0);
+  if (!(omega0 > 0.0) || !(omega1 > 0.0)) return std::nullopt;
+  const auto first = eigen_pair(a, Complex(0.0, omega0));
+  const auto second = eigen_pair(a, Complex(0.0, omega1));
+  if (!first || !second) return std::nullopt;
+  const int n = static_cast<int>(a.rows());
+  const Eigen::MatrixXcd A = a.cast<Complex>(), I = Eigen::MatrixXcd::Identity(n, n);
+  const Complex i0(0.0, first->lambda.imag()), i1(0.0, second->lambda.imag());
+  const JacobianDerivatives d(system, p, x);
+  const V q0 = first->q, q0b = q0.conjugate(), q1 = second->q, q1b = q1.conjugate();
+  const auto solve = [](const Eigen::MatrixXcd& m, const V& r) {
+    return V(m.fullPivLu().solve(r));
+  };
+  // The second-order terms h_jklm of w0^j conj(w0)^k w1^l conj(w1)^m (Kuznetsov 1999).
+  const V h1100 = solve(-A, d.B(q0, q0b)), h2000 = solve(2.0 * i0 * I - A, d.B(q0, q0));
+  const V h1010 = solve((i0 + i1) * I - A, d.B(q0, q1));
+  const V h1001 = solve((i0 - i1) * I - A, d.B(q0, q1b));
+  const V h0020 = solve(2.0 * i1 * I - A, d.B(q1, q1)), h0011 = solve(-A, d.B(q1, q1b));
+  const auto T = [&](std::initializer_list<V> args) { return *d.form(args); };
+  const Complex g2100 =
+      first->p.dot(0.5 * T({q0, q0, q0b}) + d.B(q0, h1100) + 0.5 * d.B(h2000, q0b));
+  const Complex g1011 =
+      first->p.dot(T({q0, q1, q1b}) + d.B(q0, h0011) + d.B(q1, h1001) + d.B(q1b, h1010));
+  const Complex h1110 = second->p.dot(T({q1, q0, q0b}) + d.B(q1, h1100) +
+                                      d.B(q0, V(h1001.conjugate())) + d.B(q0b, h1010));
+  const Complex h0021 =
+      second->p.dot(0.5 * T({q1, q1, q1b}) + d.B(q1, h0011) + 0.5 * d.B(h0020, q1b));
+  DoubleHopfCoefficients c;
+  c.p11 = g2100.real();
+  c.p12 = g1011.real();
+  c.p21 = h1110.real();
+  c.p22 = h0021.real();
+  if (!(std::isfinite(c.p11) && std::isfinite(c.p12) && std::isfinite(c.p21) &&
+        std::isfinite(c.p22)) ||
+      c.p11 == 0.0 || c.p22 == 0.0)
+    return std::nullopt;
+  c.theta = c.p12 / c.p22;
+  c.delta = c.p21 / c.p11;
   return c;
 }
 

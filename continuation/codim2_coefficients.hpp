@@ -30,6 +30,33 @@ std::optional<BogdanovTakensCoefficients> bogdanov_takens_coefficients(const Ode
 std::optional<double> cusp_coefficient(const OdeSystem& system, const ParameterValues& p,
                                        const Eigen::VectorXd& x);
 
+// Zero-Hopf: xi' = b xi^2 + c |zeta|^2 + ..., zeta' = i omega zeta + a xi zeta + ... on the centre
+// manifold (Kuznetsov 1999; MatCont's nf_ZH), with A q0 = 0, A q1 = i omega q1, |q0| = |q1| = 1,
+// <p0, q0> = <p1, q1> = 1: b = <p0, B(q0, q0)> / 2, c = <p0, B(q1, conj q1)>, a = <p1, B(q0,
+// q1)>. Which unfolding applies: s = sign(b c) and theta = Re a / (2 b) (MatCont's), both even in
+// q0's sign (b, c and a flip with it). nullopt without a zero eigenvalue and a pair.
+struct ZeroHopfCoefficients {
+  double b = 0.0, c = 0.0, a = 0.0;  // a: its real part
+  double s = 0.0, theta = 0.0;
+};
+std::optional<ZeroHopfCoefficients> zero_hopf_coefficients(const OdeSystem& system,
+                                                           const ParameterValues& p,
+                                                           const Eigen::VectorXd& x);
+
+// Double Hopf: the amplitudes of w0' = i omega0 w0 + G2100 w0 |w0|^2 + G1011 w0 |w1|^2 + ... and
+// w1' = i omega1 w1 + H1110 w1 |w0|^2 + H0021 w1 |w1|^2 + ... (Kuznetsov 1999; MatCont's nf_HH)
+// obey r0' = r0 (p11 r0^2 + p12 r1^2), r1' = r1 (p21 r0^2 + p22 r1^2), p11 = Re G2100, p12 = Re
+// G1011, p21 = Re H1110, p22 = Re H0021 (|q| = 1, <p, q> = 1 for each pair); the unfolding by
+// sign(p11 p22), theta = p12 / p22 and delta = p21 / p11. Pair 0 is the one at +-i omega0 (the
+// Hopf curve's own), pair 1 the other nearest the imaginary axis.
+struct DoubleHopfCoefficients {
+  double p11 = 0.0, p12 = 0.0, p21 = 0.0, p22 = 0.0, theta = 0.0, delta = 0.0;
+};
+std::optional<DoubleHopfCoefficients> double_hopf_coefficients(const OdeSystem& system,
+                                                               const ParameterValues& p,
+                                                               const Eigen::VectorXd& x,
+                                                               double omega0);
+
 // Generalized Hopf: the second Lyapunov coefficient l2 = Re c2 / omega of the Poincare normal
 // form z' = i omega z + c1 z |z|^2 + c2 z |z|^4 (Kuznetsov, "Numerical normalization techniques
 // for all codim 2 bifurcations of equilibria in ODEs", SIAM J. Numer. Anal. 36, 1999: c2 =

@@ -413,6 +413,19 @@ class CurveProblem {
         e.coefficients = {{"c", *c}};
         e.note = "c = " + format_double(*c);
       }
+    } else if (e.type == "ZH") {
+      if (const auto z = detail::zero_hopf_coefficients(system_, p, e.at.state)) {
+        e.coefficients = {{"b", z->b}, {"c", z->c}, {"a", z->a}, {"s", z->s}, {"theta", z->theta}};
+        e.note = "s = " + format_number(z->s) + ", theta = " + format_number(z->theta);
+      }
+    } else if (e.type == "HH" && e.at.kappa > 0.0) {
+      if (const auto h =
+              detail::double_hopf_coefficients(system_, p, e.at.state, std::sqrt(e.at.kappa))) {
+        e.coefficients = {{"p11", h->p11}, {"p12", h->p12},     {"p21", h->p21},
+                          {"p22", h->p22}, {"theta", h->theta}, {"delta", h->delta}};
+        e.note = "p11 p22 " + std::string(h->p11 * h->p22 > 0 ? "> 0" : "< 0") +
+                 ", theta = " + format_number(h->theta) + ", delta = " + format_number(h->delta);
+      }
     } else if (e.type == "GH" && e.at.kappa > 0.0) {
       if (const auto l2 =
               detail::second_lyapunov_coefficient(system_, p, e.at.state, std::sqrt(e.at.kappa))) {

@@ -180,6 +180,91 @@ class TwoCrossings final : public AutoDiffSystem<TwoCrossings> {
   Kind kind_;
 };
 
+// A field of w in N dimensions turned and bent, as Bent does in two: z = R (w + Q(w)) with
+// Q_i(w) = 0.2 w_i w_(i+1) + 0.15 w_(i+1)^2 - 0.1 w_i w_(i+2) (indices mod N) and R the product
+// of rotations by 0.6, 0.5, ... rad in the planes (0, 1), (1, 2), ...; z' = R (I + DQ(w)) g(w),
+// DQ(w) g = Q(w + g) - Q(w) - Q(g), w from z by a fixed-point iteration. Its normal-form
+// coefficients are g's: R keeps |q| = 1 and Q has no linear part. (A Q with only w_i w_(i+1)
+// left B(q0, conj q0) of a pair in the plane (0, 1) zero, and the terms with it untested.)
+template <class Field, int N>
+class Warped final : public AutoDiffSystem<Warped<Field, N>> {
+ public:
+  Warped() { this->set_parameter_layout({{"b1", {0}}, {"b2", {1}}}, {-0.5, -0.5}); }
+  int dimension() const override { return N; }
+  std::vector<std::string> state_names() const override {
+    std::vector<std::string> names;
+    for (int i = 0; i < N; ++i) names.push_back(std::string(1, 'z').append(std::to_string(i)));
+    return names;
+  }
+  template <class T>
+  static void rotate(T* v, bool inverse) {
+    for (int m = 0; m < N - 1; ++m) {
+      const int k = inverse ? N - 2 - m : m;
+      const double angle = (inverse ? -1.0 : 1.0) * (0.6 - 0.1 * k);
+      const double c = std::cos(angle), s = std::sin(angle);
+      const T a = v[k], b = v[k + 1];
+      v[k] = c * a - s * b;
+      v[k + 1] = s * a + c * b;
+    }
+  }
+  template <class T>
+  static void bend(const T* w, T* q) {
+    for (int i = 0; i < N; ++i) {
+      const T& a = w[i];
+      const T& b = w[(i + 1) % N];
+      const T& c = w[(i + 2) % N];
+      q[i] = 0.2 * a * b + 0.15 * b * b - 0.1 * a * c;
+    }
+  }
+  template <class T, class P>
+  void evaluate(double, const T* z, const P* p, T* dz) const {
+    T u[N], w[N], g[N], sum[N], qw[N], qg[N], qs[N];
+    for (int i = 0; i < N; ++i) u[i] = z[i];
+    rotate(u, true);
+    for (int i = 0; i < N; ++i) w[i] = u[i];
+    for (int it = 0; it < 150; ++it) {
+      bend(w, qw);
+      for (int i = 0; i < N; ++i) w[i] = u[i] - qw[i];
+    }
+    Field::field(w, p, g);
+    for (int i = 0; i < N; ++i) sum[i] = w[i] + g[i];
+    bend(w, qw);
+    bend(g, qg);
+    bend(sum, qs);
+    for (int i = 0; i < N; ++i) dz[i] = g[i] + qs[i] - qw[i] - qg[i];
+    rotate(dz, false);
+  }
+};
+
+// A fold-Hopf normal form, w = (z, x, y): z' = b1 + z^2 - r2, the pair with mu = b2 + 0.8 z and
+// omega 1, r2 = x^2 + y^2. ZH at the origin with b = 1, c = <p0, B(q1, conj q1)> = -2 (|q1| = 1:
+// B's z-part 2 (-1) |q1|^2), a = 0.8: s = -1, theta = 0.4 (b, c, a flip with q0's sign).
+struct ZeroHopfField {
+  template <class T, class P>
+  static void field(const T* w, const P* p, T* g) {
+    const T r2 = w[1] * w[1] + w[2] * w[2];
+    const T mu = p[1] + 0.8 * w[0];
+    g[0] = p[0] + w[0] * w[0] - r2;
+    g[1] = mu * w[1] - w[2] - w[1] * r2;
+    g[2] = w[1] + mu * w[2] - w[2] * r2;
+  }
+};
+// Two pairs, w = (x, y, u, v), omega 1 and sqrt 2, with mu = b1 and b2 and the amplitudes'
+// cubic coupling P = [[-1, -0.5], [0.7, -2]] in r1 = x^2 + y^2, r2 = u^2 + v^2. With |q| = 1,
+// r = 2 |w|^2: p11 = -2, p12 = -1, p21 = 1.4, p22 = -4, theta = 0.25, delta = -0.7.
+struct DoubleHopfField {
+  template <class T, class P>
+  static void field(const T* w, const P* p, T* g) {
+    const T r1 = w[0] * w[0] + w[1] * w[1], r2 = w[2] * w[2] + w[3] * w[3];
+    const T f = -1.0 * r1 - 0.5 * r2, h = 0.7 * r1 - 2.0 * r2;
+    const double omega = std::sqrt(2.0);
+    g[0] = p[0] * w[0] - w[1] + w[0] * f;
+    g[1] = w[0] + p[0] * w[1] + w[1] * f;
+    g[2] = p[1] * w[2] - omega * w[3] + w[2] * h;
+    g[3] = omega * w[2] + p[1] * w[3] + w[3] * h;
+  }
+};
+
 EquilibriumBranch branch_of(const OdeSystem& system, int parameter, double from, double to,
                             Eigen::VectorXd start) {
   EquilibriumProblem p;
@@ -614,6 +699,52 @@ TEST(EquilibriumCurve, SwitchesAtCodimensionTwoPoints) {
     gh.type = "GH";
     EXPECT_THROW(continue_from_codimension_two(system, gh, window(-1, 1, -1.5, 1)),
                  std::invalid_argument);
+  }
+}
+
+// The zero-Hopf and double Hopf coefficients on the turned and bent normal forms above (1e-6
+// relative): ZH's sign-free b c = -2, a / b = 0.8, s = -1, theta = 0.4; HH's p11 = -2, p12 = -1,
+// p21 = 1.4, p22 = -4, theta = 0.25, delta = -0.7.
+TEST(EquilibriumCurve, WarpedZeroHopfAndDoubleHopfCoefficients) {
+  const auto coefficient = [](const EquilibriumCurveEvent& e, const std::string& name) {
+    for (const auto& [key, value] : e.coefficients)
+      if (key == name) return value;
+    ADD_FAILURE() << name << " missing: " << e.note;
+    return std::nan("");
+  };
+  {
+    const Warped<ZeroHopfField, 3> system;
+    // Equilibria z = sqrt(-b1) at b2 = -0.5: the Hopf point where b2 + 0.8 z = 0, z = 0.625.
+    Eigen::VectorXd start = Eigen::VectorXd::Zero(3);
+    start[0] = 0.8;
+    Warped<ZeroHopfField, 3>::rotate(start.data(), false);  // Q(w) = 0 on the z axis
+    const auto branch = branch_of(system, 0, -0.64, -0.2, start);
+    const auto curve = continue_equilibrium_curve(
+        system, branch, first_of(branch, EquilibriumEventType::Hopf), 1, window(-1, 1, -0.6, 0.3));
+    ASSERT_TRUE(curve.started()) << curve.stop_reason;
+    const auto zh = events_named(curve, "ZH");
+    ASSERT_EQ(zh.size(), 1u) << curve.stop_reason;
+    EXPECT_NEAR(zh[0].second, 0.0, 1e-8);
+    const double b = coefficient(zh[0], "b"), c = coefficient(zh[0], "c");
+    EXPECT_NEAR(b * c, -2.0, 2e-6) << zh[0].note;
+    EXPECT_NEAR(std::abs(b), 1.0, 1e-6) << zh[0].note;
+    EXPECT_NEAR(coefficient(zh[0], "a") / b, 0.8, 1e-6) << zh[0].note;
+    EXPECT_EQ(coefficient(zh[0], "s"), -1.0);
+    EXPECT_NEAR(coefficient(zh[0], "theta"), 0.4, 1e-6) << zh[0].note;
+  }
+  {
+    const Warped<DoubleHopfField, 4> system;
+    const auto branch = branch_of(system, 0, -0.5, 0.5, Eigen::VectorXd::Zero(4));
+    const auto curve = continue_equilibrium_curve(
+        system, branch, first_of(branch, EquilibriumEventType::Hopf), 1, window(-1, 1, -0.5, 0.5));
+    ASSERT_TRUE(curve.started()) << curve.stop_reason;
+    const auto hh = events_named(curve, "HH");
+    ASSERT_EQ(hh.size(), 1u) << curve.stop_reason;
+    const double expected[][2] = {{-2.0, 0}, {-1.0, 0}, {1.4, 0}, {-4.0, 0}, {0.25, 0}, {-0.7, 0}};
+    const char* names[] = {"p11", "p12", "p21", "p22", "theta", "delta"};
+    for (int k = 0; k < 6; ++k)
+      EXPECT_NEAR(coefficient(hh[0], names[k]), expected[k][0], 1e-6 * std::abs(expected[k][0]))
+          << names[k] << ": " << hh[0].note;
   }
 }
 

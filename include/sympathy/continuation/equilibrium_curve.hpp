@@ -25,8 +25,7 @@
 //   on an HB curve: BT (kappa = 0, where the Hopf curve turns into a neutral-saddle one), GH
 //       (generalized Hopf: the first Lyapunov coefficient l1 = 0, on the Hopf part), ZH (a real
 //       eigenvalue through zero: det A / kappa), HH (double Hopf: another pair through the axis).
-// At BT, CP and GH their normal-form coefficients (codim2_coefficients.hpp); ZH's and HH's are
-// not computed yet.
+// At each its normal-form coefficients (codim2_coefficients.hpp).
 #pragma once
 
 #include <complex>
@@ -98,7 +97,8 @@ struct EquilibriumCurveEvent {
   EquilibriumCurvePoint at;
   // Normal-form coefficients in MatCont's normalisation: BT's "a" and "b" (w0' = w1,
   // w1' = a w0^2 + b w0 w1; only sign(a b) does not depend on it), CP's "c" (w' = c w^3), GH's
-  // "l2" (Re c2 / omega, in l1's units: codim2_coefficients.hpp).
+  // "l2" (Re c2 / omega, in l1's units), ZH's "b", "c", "a", "s", "theta" and HH's "p11",
+  // "p12", "p21", "p22", "theta", "delta" (codim2_coefficients.hpp).
   std::vector<std::pair<std::string, double>> coefficients;
   std::string note;
 };
