@@ -22,8 +22,12 @@ OptionCheck CurveOptions::validate() const {
   if (!(std::isfinite(second_lower) && std::isfinite(second_upper) && second_lower < second_upper))
     return OptionProblem{"second window", "finite bounds, the lower below the upper"};
   for (const UserValue& v : user_values)
-    if (v.quantity != UserValue::Quantity::Period || !(v.value > 0.0))
-      return OptionProblem{"user_values", "positive periods (a curve's points carry no others)"};
+    if (!(v.quantity == UserValue::Quantity::Period && v.value > 0.0) &&
+        !(v.quantity == UserValue::Quantity::Parameter && v.parameter >= 0 &&
+          std::isfinite(v.value)))
+      return OptionProblem{"user_values",
+                           "positive periods or values of a parameter (a curve's points carry no "
+                           "others)"};
   if (auto wrong = driver::step_options(*this).validate()) return wrong;  // the step fields
   if (max_iterations < 1) return OptionProblem{"max_iterations", "a positive integer"};
   if (!positive(tolerance)) return OptionProblem{"tolerance", "a positive number"};
@@ -411,13 +415,20 @@ driver::Found<CurveEvent> CurveContinuation::detect(const Point*, const Point& f
   // AUTO's UZ and UZSTOP on the period, on the locator of the codimension-two points.
   stop_at_.reset();
   for (const UserValue& v : options_.user_values) {
-    const double f0 = from.period - v.value, f1 = to.period - v.value;
+    // The period, or the curve's first or second parameter (continue_curve checked it is one).
+    const bool first = v.parameter == curve_.first;
+    const auto quantity = [&v, first](const CurvePoint& p) {
+      if (v.quantity == UserValue::Quantity::Period) return p.period;
+      return first ? p.first : p.second;
+    };
+    const double f0 = quantity(from) - v.value, f1 = quantity(to) - v.value;
     if (f0 == 0.0 || (f1 != 0.0 && (f0 < 0.0) == (f1 < 0.0))) continue;
     const std::string note =
         (v.stop ? "stop at " : "user value ") + v.name + " = " + format_number(v.value);
     const double value = v.value;
-    CurveEvent e = locate({"UZ", note, [value](const CurvePoint& p) { return p.period - value; }},
-                          from, to, f0, f1);
+    CurveEvent e =
+        locate({"UZ", note, [value, quantity](const CurvePoint& p) { return quantity(p) - value; }},
+               from, to, f0, f1);
     e.after_point = from.index;
     if (v.stop && !stop_at_) stop_at_ = note;
     events.push_back(std::move(e));
@@ -518,6 +529,10 @@ BifurcationCurve continue_curve(const OdeSystem& system, const Branch& branch,
   if (second == branch.parameter)
     throw std::invalid_argument("curve: the second parameter (" + names[second] +
                                 ") is the branch's own; expected another one");
+  for (const UserValue& v : options.user_values)
+    if (v.quantity == UserValue::Quantity::Parameter && v.parameter != branch.parameter &&
+        v.parameter != second)
+      throw std::invalid_argument("curve: a user value of a parameter the curve does not vary");
   if (!event.located())
     throw std::invalid_argument("curve: the " + to_string(event.type) + " at " +
                                 branch.parameter_name + " = " + format_number(event.parameter) +

@@ -80,12 +80,25 @@ CurveRequest curve_request(const Arguments& args, const LoadedSystem& c) {
   co.initial_step = args.number("--step", co.initial_step);
   co.max_step = args.number("--max-step", co.max_step);
   co.max_points = args.integer("--max-points", co.max_points);
+  // The period, or either parameter's value: UZ there (and the curve's end with --stop-at).
   for (const bool stop : {false, true}) {
     const std::string option = stop ? "--stop-at" : "--user-value";
     for (const Assignment& a : args.assignments(option)) {
+      if (a.key == request.parameter || a.key == second) {
+        UserValue v;
+        v.quantity = UserValue::Quantity::Parameter;
+        v.parameter = c.system().parameter_index(a.key);
+        v.value = a.value;
+        v.stop = stop;
+        v.name = a.key;
+        co.user_values.push_back(v);
+        continue;
+      }
       if (a.key != "period")
         throw InputError(option + " " + a.key + "=" + format_number(a.value) +
-                         ": a curve's points carry their period only; expected period=VALUE");
+                         ": a curve's points carry their period and parameters only; expected "
+                         "period=VALUE, " +
+                         request.parameter + "=VALUE or " + second + "=VALUE");
       co.user_values.push_back(user_value(a, stop, c.system(), option));
     }
   }

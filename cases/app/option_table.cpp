@@ -251,10 +251,11 @@ std::vector<OptionSpec> curve_options() {
        {"--step", "DS", false, "initial arclength step, scaled (default 0.01)"},
        {"--max-step", "DS", false, "largest arclength step, scaled (default 0.05)"},
        {"--max-points", "N", false, "point limit per direction (default 200)"},
-       {"--user-value", "period=VALUE", true,
-        "report the curve's orbit where its period takes this value, as an event UZ (AUTO's UZ "
-        "on PERIOD); on a curve of equilibria, NAME=VALUE of either of its parameters"},
-       {"--stop-at", "period=VALUE", true, "the same, and the curve ends there (AUTO's UZSTOP)"},
+       {"--user-value", "QUANTITY=VALUE", true,
+        "report the curve's point where its period (period=VALUE) or either of its parameters "
+        "(NAME=VALUE) takes this value, as an event UZ (AUTO's UZ); a curve of equilibria's, its "
+        "parameters only"},
+       {"--stop-at", "QUANTITY=VALUE", true, "the same, and the curve ends there (AUTO's UZSTOP)"},
        {"--csv", "FILE", false, "stream every curve point to this CSV"},
        {"--json", "FILE", false, "write the curve and its codimension-two points as JSON"},
        {"--quiet", "", false, "no progress lines"}});

@@ -213,6 +213,12 @@ j['kind'] == 'LP' and all(abs(p['first'] + p['second']**2 / 4) < 1e-8 for p in j
 min(p['second'] for p in j['points']) < 0.02 and max(p['second'] for p in j['points']) == 0.5")" = True
 check "... ended near the generalized Hopf point" grep -q "backward: ended near the generalized Hopf point at b1 = 0, b2 = 0" "$work/ba_lpc.out"
 check "... CSV a row per point" test "$(($(wc -l < "$work/ba_lpc.csv") - 1))" -eq "$(json "$work/ba_lpc.json" "len(j['points'])")"
+"$bin" curve "$bautin" --parent "$work/ba_hb.json" --event GH1 --param b1 --from -1 --to 0.1 \
+  --second b2 --second-from -1 --second-to 0.5 --user-value b1=-0.01 --stop-at b2=0.3 --quiet \
+  --json "$work/ba_stop.json" > /dev/null
+check "... --user-value b1=-0.01 and --stop-at b2=0.3: UZ at b2 = 0.2 and the end at b1 = -0.0225 (1e-8)" test "$(json "$work/ba_stop.json" "
+[e['type'] for e in j['events']] == ['UZ', 'UZ'] and all(abs(e['first'] - a) < 1e-8 and abs(e['second'] - b) < 1e-8
+for e, (a, b) in zip(j['events'], [(-0.01, 0.2), (-0.0225, 0.3)])) and max(p['second'] for p in j['points']) <= 0.3 + 1e-8")" = True
 "$bin" curve "$bautin" --parent "$work/ba_hb.json" --event GH2 --param b1 --from -1 --to 0.1 \
   --second b2 --second-from -1 --second-to 0.5 > /dev/null 2> "$work/bad.err"
 check "a GH the Hopf curve lacks exits 2" grep -qF -- "--event GH2: $work/ba_hb.json has 1 GH point" "$work/bad.err"

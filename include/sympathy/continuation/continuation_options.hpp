@@ -15,9 +15,12 @@ namespace sympathy {
 struct UserValue {
   // AtSection: a state's value at the orbit's point on its phase section (state0; for a forced
   // system, at t = 0), AUTO's U(i) at the start of the period.
-  enum class Quantity { Period, Maximum, Minimum, AtSection };
+  // Parameter: one of a two-parameter curve's parameters (a branch's own values are its
+  // user_points).
+  enum class Quantity { Period, Maximum, Minimum, AtSection, Parameter };
   Quantity quantity = Quantity::Period;
-  int state = -1;  // Maximum, Minimum, AtSection: the state's index
+  int state = -1;      // Maximum, Minimum, AtSection: the state's index
+  int parameter = -1;  // Parameter: the parameter's index
   double value = 0.0;
   bool stop = false;
   std::string name;  // as the outputs name the quantity: "period", "max_x", "min_x", "x"
