@@ -13,8 +13,12 @@ namespace sympathy::detail {
 
 namespace {
 
-// Forward-difference step in the scaled norm: g carries the monodromy's error of about 1e-9, so
-// its differences are good to about 1e-4, enough for a chord that only has to converge.
+// Difference step in the scaled norm: g carries the monodromy's error of about 1e-9, so its
+// differences are good to about 1e-4, enough for a chord that only has to converge. On fold
+// curves forward differences at this step left plp's fold-of-cycles locus a Jacobian 17% off (its
+// chord contracting by 0.17 an iteration: 9-10 iterations a point, steps kept small, 200 points
+// short of AUTO's stops); central ones, two monodromies a column, converge in 3-5 and reach them
+// in 0.6 s.
 constexpr double kDifferenceStep = 1e-5;
 // A corrected point: the scaled Newton step below this. The chord contracts by about a tenth
 // per step, so the point is then within about 1e-9 of the curve in the scaled norm (the first
@@ -194,14 +198,27 @@ std::optional<Eigen::MatrixXd> CurveSystem::jacobian(const Eigen::VectorXd& u,
   j.topLeftCorner(m_, m_) = v_.transpose() * e.monodromy * v_ - Eigen::MatrixXd::Identity(m_, m_);
   j.block(0, m_, m_, 1) = v_.transpose() * e.end_rate;
   j.block(m_, 0, 1, m_) = normal_.transpose();
+  // Central differences on fold curves (see kDifferenceStep); forward ones elsewhere: on BP
+  // curves central ones lost the BP parabola's turn and the start at a 1:1 resonance
+  // (bifurcation_curve_test), which is not understood yet.
+  const bool central = kind_ == BifurcationType::Fold;
   for (int c = 0; c < cols; ++c) {
-    // Forward differences lose the noise over the step: the step grows as its square root.
+    // Differences lose the noise over the step: the step grows as its square root.
     const double h = kDifferenceStep * std::sqrt(noise_factor()) / weights_[c];
-    Eigen::VectorXd shifted = u;
-    shifted[c] += h;
-    const Evaluation d = evaluate(shifted);
-    if (!d.ok) return std::nullopt;
-    const Eigen::VectorXd column = (d.residual - e.residual) / h;
+    Eigen::VectorXd up = u;
+    up[c] += h;
+    const Evaluation du = evaluate(up);
+    if (!du.ok) return std::nullopt;
+    Eigen::VectorXd column;
+    if (central) {
+      Eigen::VectorXd down = u;
+      down[c] -= h;
+      const Evaluation dd = evaluate(down);
+      if (!dd.ok) return std::nullopt;
+      column = (du.residual - dd.residual) / (2 * h);
+    } else {
+      column = (du.residual - e.residual) / h;
+    }
     j(rows - 1, c) = column[rows - 1];
     if (c > m_) j.block(0, c, m_, 1) = column.head(m_);
   }

@@ -75,7 +75,7 @@ rows = list(csv.DictReader(open(sys.argv[1])))
 print(len(rows) > 5 and all(abs(float(r['max_x']) - 1) < 1e-9 and abs(float(r['min_y']) + 1) < 1e-9 for r in rows))" "$work/bautin_fold.csv")" = True
 "$bin" curve "$work/bautin.toml" --parent "$work/bautin.json" --event LP1 --param mu --from -2 --to 0 \
   --second w --second-from 0.5 --second-to 2 --stop-at max_x=1 > /dev/null 2> "$work/bautin_bad.err"
-check "... on another quantity: refused, saying what a curve takes" grep -qF -- "--stop-at max_x=1: a curve's points carry their period only; expected period=VALUE" "$work/bautin_bad.err"
+check "... on another quantity: refused, saying what a curve takes" grep -qF -- "--stop-at max_x=1: a curve's points carry their period and parameters only; expected period=VALUE, mu=VALUE or w=VALUE" "$work/bautin_bad.err"
 
 # The fast preset's BP curve at looser tolerances: the corrector's tolerances and difference
 # step follow the integration's measured noise (CurveSystem::measure_noise). Before, the chord
