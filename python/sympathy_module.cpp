@@ -356,14 +356,14 @@ class Case {
     app::CurveRequest request = app::curve_request(args, c);
     const ProgressBar shown(progress, "curve " + request.event.text);
     PythonHooks hooks(shown.callback);
+    CurveCallbacks callbacks;
+    callbacks.on_point = [&](const CurvePoint& p) {
+      hooks.report([&] { return curve_point_result(p); });
+    };
+    callbacks.stop_requested = [&] { return hooks.stop_requested(); };
     if (request.generalized_hopf) {
       // The fold of cycles born at a GH of parent=HOPF_CURVE.json; its `branch` the family that
       // was continued to the fold it starts from.
-      CurveCallbacks callbacks;
-      callbacks.on_point = [&](const CurvePoint& p) {
-        hooks.report([&] { return curve_point_result(p); });
-      };
-      callbacks.stop_requested = [&] { return hooks.stop_requested(); };
       GeneralizedHopfFold start;
       BifurcationCurve curve;
       {
@@ -378,11 +378,6 @@ class Case {
     }
     const app::BranchSource source = c.source(request.branch.start, request.branch.initial);
     request.branch.stop_requested = [&] { return hooks.stop_requested(); };
-    CurveCallbacks callbacks;
-    callbacks.on_point = [&](const CurvePoint& p) {
-      hooks.report([&] { return curve_point_result(p); });
-    };
-    callbacks.stop_requested = [&] { return hooks.stop_requested(); };
     Branch parent;
     BifurcationCurve curve;
     {

@@ -32,6 +32,19 @@ void print_curve_events(std::FILE* out, const BifurcationCurve& curve) {
                  e.note.c_str());
 }
 
+// A curve of cycles' summary (its points, stop, codimension-two points and turns, run time), its
+// JSON, and the exit code.
+int finish_curve(const CurveRequest& r, const BifurcationCurve& curve, const LoadedSystem& c,
+                 const Stopwatch& clock) {
+  std::printf("  %zu points; stopped: %s\n", curve.points.size(), curve.stop_reason.c_str());
+  std::printf("codimension-two points and turns:\n");
+  print_curve_events(stdout, curve);
+  std::printf("  run time %.3f s (the curve %.3f s: %d monodromies, %ld steps; noise %.1e)\n",
+              clock.seconds(), curve.seconds, curve.evaluations, curve.flow.steps, curve.noise);
+  if (!r.json_path.empty()) write_curve_json(r, curve, c, clock.seconds());
+  return exit_code_of(curve);
+}
+
 // The fold or Hopf curve of equilibria from an event of --parent EQUILIBRIA.json.
 int run_equilibrium_curve(const Arguments& args, const LoadedSystem& c, const Stopwatch& clock) {
   const EquilibriumCurveRequest r = equilibrium_curve_request(args, c);
@@ -144,13 +157,7 @@ int run_generalized_hopf_fold(const Arguments& args, const LoadedSystem& c, cons
       first.c_str(), start.hopf.parameter, second.c_str(),
       c.system().parameter(start.hopf.values, gh.second), *start.hopf.lyapunov,
       start.family.points.size(), first.c_str(), start.fold.parameter, start.fold.period);
-  std::printf("  %zu points; stopped: %s\n", curve.points.size(), curve.stop_reason.c_str());
-  std::printf("codimension-two points and turns:\n");
-  print_curve_events(stdout, curve);
-  std::printf("  run time %.3f s (the curve %.3f s: %d monodromies, %ld steps; noise %.1e)\n",
-              clock.seconds(), curve.seconds, curve.evaluations, curve.flow.steps, curve.noise);
-  if (!r.json_path.empty()) write_curve_json(r, curve, c, clock.seconds());
-  return exit_code_of(curve);
+  return finish_curve(r, curve, c, clock);
 }
 
 }  // namespace
@@ -221,13 +228,7 @@ int run_curve(const std::vector<std::string>& argv) {
   callbacks.stop_requested = [] { return interrupt_flag()->load(); };
   const BifurcationCurve curve = follow_curve(r, model, parent, event, callbacks, &c.describer());
   progress.clear();
-  std::printf("  %zu points; stopped: %s\n", curve.points.size(), curve.stop_reason.c_str());
-  std::printf("codimension-two points and turns:\n");
-  print_curve_events(stdout, curve);
-  std::printf("  run time %.3f s (the curve %.3f s: %d monodromies, %ld steps; noise %.1e)\n",
-              clock.seconds(), curve.seconds, curve.evaluations, curve.flow.steps, curve.noise);
-  if (!r.json_path.empty()) write_curve_json(r, curve, c, clock.seconds());
-  return exit_code_of(curve);
+  return finish_curve(r, curve, c, clock);
 }
 
 }  // namespace sympathy::cli

@@ -455,11 +455,8 @@ TEST(EquilibriumCurve, BentCuspCoefficient) {
   EXPECT_NEAR(cusps[0].coefficients[0].second, -1.0, 1e-6);
 }
 
-// The bent Bautin normal form: its Hopf curve b1 = 0 (1e-9), the generalized Hopf point at b2 = 0
-// (1e-8) with l2 = -4 (1e-6 relative; a wrong factor of h31's g21 term gives -4.0425), from f's
-// fourth and fifth derivatives on Taylor jets.
-TEST(EquilibriumCurve, BentBautinSecondLyapunovCoefficient) {
-  const Bent<BautinField> system;
+// The bent Bautin form's Hopf curve in b2 from the Hopf point of its equilibria in b1 at b2 = -1.
+EquilibriumCurve bautin_hopf_curve(const Bent<BautinField>& system) {
   EquilibriumProblem problem;
   problem.parameter = 0;
   problem.values = system.with_parameter(system.default_parameters(), 1, -1.0);
@@ -467,8 +464,16 @@ TEST(EquilibriumCurve, BentBautinSecondLyapunovCoefficient) {
   problem.to = 0.5;
   problem.start_state = Eigen::Vector2d::Zero();
   const auto branch = continue_equilibria(system, problem, {});
-  const auto curve = continue_equilibrium_curve(
-      system, branch, first_of(branch, EquilibriumEventType::Hopf), 1, window(-1, 1, -1, 1));
+  return continue_equilibrium_curve(system, branch, first_of(branch, EquilibriumEventType::Hopf), 1,
+                                    window(-1, 1, -1, 1));
+}
+
+// The bent Bautin normal form: its Hopf curve b1 = 0 (1e-9), the generalized Hopf point at b2 = 0
+// (1e-8) with l2 = -4 (1e-6 relative; a wrong factor of h31's g21 term gives -4.0425), from f's
+// fourth and fifth derivatives on Taylor jets.
+TEST(EquilibriumCurve, BentBautinSecondLyapunovCoefficient) {
+  const Bent<BautinField> system;
+  const auto curve = bautin_hopf_curve(system);
   ASSERT_TRUE(curve.started()) << curve.stop_reason;
   for (const auto& pt : curve.points) EXPECT_NEAR(pt.first, 0.0, 1e-9) << pt.index;
   const auto gh = events_named(curve, "GH");
@@ -495,23 +500,15 @@ TEST(EquilibriumCurve, BentBautinSecondLyapunovCoefficient) {
 // curve and the one-parameter folds meet.
 TEST(EquilibriumCurve, FoldOfCyclesFromGeneralizedHopf) {
   const Bent<BautinField> system;
-  EquilibriumProblem problem;
-  problem.parameter = 0;
-  problem.values = system.with_parameter(system.default_parameters(), 1, -1.0);
-  problem.from = -0.5;
-  problem.to = 0.5;
-  problem.start_state = Eigen::Vector2d::Zero();
-  const auto branch = continue_equilibria(system, problem, {});
-  const auto hopf_curve = continue_equilibrium_curve(
-      system, branch, first_of(branch, EquilibriumEventType::Hopf), 1, window(-1, 1, -1, 1));
+  const auto hopf_curve = bautin_hopf_curve(system);
   const auto gh = events_named(hopf_curve, "GH");
   ASSERT_EQ(gh.size(), 1u);
   ASSERT_EQ(gh[0].coefficients.size(), 1u);
   GeneralizedHopfPoint point;
   point.first = 0;
   point.second = 1;
-  point.values =
-      system.with_parameter(system.with_parameter(problem.values, 0, gh[0].first), 1, gh[0].second);
+  point.values = system.with_parameter(
+      system.with_parameter(hopf_curve.start_values, 0, gh[0].first), 1, gh[0].second);
   point.state = gh[0].at.state;
   point.omega = std::sqrt(gh[0].at.kappa);
   point.l2 = gh[0].coefficients[0].second;
@@ -534,7 +531,7 @@ TEST(EquilibriumCurve, FoldOfCyclesFromGeneralizedHopf) {
   EXPECT_NEAR(highest, 0.5, 1e-12) << fold.curve.stop_reason;
   for (double b2 : {0.2, 0.4}) {
     std::string why;
-    const auto h = hopf_point_near(system, 0, system.with_parameter(problem.values, 1, b2),
+    const auto h = hopf_point_near(system, 0, system.with_parameter(hopf_curve.start_values, 1, b2),
                                    Eigen::Vector2d::Zero(), 1.0, 1e-3, why);
     ASSERT_TRUE(h) << why;
     ContinuationOptions family;
