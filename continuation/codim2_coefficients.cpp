@@ -8,6 +8,7 @@
 #include <Eigen/SVD>
 
 #include "jacobian_derivatives.hpp"
+#include "nearest_eigen.hpp"
 
 namespace sympathy::detail {
 
@@ -95,49 +96,6 @@ std::optional<double> cusp_coefficient(const OdeSystem& system, const ParameterV
 namespace {
 
 using Complex = std::complex<double>;
-
-// The eigenvector of `m` for its eigenvalue nearest `target` (unit length), and that eigenvalue.
-Eigen::VectorXcd eigenvector_nearest(const Eigen::MatrixXd& m, Complex target, Complex* value) {
-  Eigen::ComplexEigenSolver<Eigen::MatrixXcd> solver(m.cast<Complex>());
-  Eigen::Index best = 0;
-  for (Eigen::Index i = 1; i < solver.eigenvalues().size(); ++i)
-    if (std::abs(solver.eigenvalues()[i] - target) < std::abs(solver.eigenvalues()[best] - target))
-      best = i;
-  if (value) *value = solver.eigenvalues()[best];
-  return solver.eigenvectors().col(best).normalized();
-}
-
-// q with A q = lambda q (|q| = 1) and p with A^T p = conj(lambda) p, <p, q> = p^H q = 1, for the
-// eigenvalue nearest `target`; nullopt where <p, q> vanishes.
-struct EigenPair {
-  Complex lambda;
-  Eigen::VectorXcd q, p;
-};
-std::optional<EigenPair> eigen_pair(const Eigen::MatrixXd& a, Complex target) {
-  EigenPair e;
-  e.q = eigenvector_nearest(a, target, &e.lambda);
-  Eigen::VectorXcd p = eigenvector_nearest(a.transpose(), std::conj(e.lambda), nullptr);
-  const Complex pq = p.dot(e.q);
-  if (!(std::abs(pq) > 0.0)) return std::nullopt;
-  e.p = p / std::conj(pq);
-  return e;
-}
-
-// The pair nearest the imaginary axis with imaginary part above zero, other than near `besides`
-// (within 1e-6 of it, relative); omega 0 where there is none.
-double pair_frequency(const Eigen::MatrixXd& a, double besides) {
-  const Eigen::ComplexEigenSolver<Eigen::MatrixXd> solver(a, false);
-  double best = std::numeric_limits<double>::infinity(), omega = 0.0;
-  for (const Complex& l : solver.eigenvalues()) {
-    if (!(l.imag() > 0.0)) continue;
-    if (besides > 0.0 && std::abs(l.imag() - besides) <= 1e-6 * besides) continue;
-    if (std::abs(l.real()) < best) {
-      best = std::abs(l.real());
-      omega = l.imag();
-    }
-  }
-  return omega;
-}
 
 }  // namespace
 
@@ -233,20 +191,10 @@ std::optional<double> second_lyapunov_coefficient(const OdeSystem& system, const
   const Eigen::MatrixXcd A = a.cast<Complex>(), I = Eigen::MatrixXcd::Identity(n, n);
   const Complex iw(0.0, omega);
   // q and p from the eigenvectors nearest +-i omega.
-  const auto nearest = [&](const Eigen::MatrixXd& m, Complex target) {
-    Eigen::ComplexEigenSolver<Eigen::MatrixXcd> solver(m.cast<Complex>());
-    Eigen::Index best = 0;
-    for (Eigen::Index i = 1; i < solver.eigenvalues().size(); ++i)
-      if (std::abs(solver.eigenvalues()[i] - target) <
-          std::abs(solver.eigenvalues()[best] - target))
-        best = i;
-    return V(solver.eigenvectors().col(best));
-  };
-  const V q = nearest(a, iw).normalized();
-  V pv = nearest(a.transpose(), -iw);  // A^T p = -i omega p
-  const Complex pq = pv.dot(q);        // <p, q> = p^H q
-  if (!(std::abs(pq) > 0.0)) return std::nullopt;
-  pv /= std::conj(pq);
+  const auto pair = eigen_pair(a, iw);
+  if (!pair) return std::nullopt;
+  const V& q = pair->q;
+  const V& pv = pair->p;
   const V qb = q.conjugate();
   const auto T = [&](std::initializer_list<V> args) { return *d.form(args); };
   const auto solve = [](const Eigen::MatrixXcd& m, const V& r) {

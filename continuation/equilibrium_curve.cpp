@@ -9,6 +9,7 @@
 
 #include "bordered_newton.hpp"
 #include "codim2_coefficients.hpp"
+#include "nearest_eigen.hpp"
 #include "sympathy/continuation/crossing_locator.hpp"
 #include "sympathy/core/csv.hpp"
 #include "sympathy/core/text.hpp"
@@ -727,18 +728,9 @@ EquilibriumCurve continue_from_codimension_two(const OdeSystem& system,
   if (kind == EquilibriumEventType::Hopf && point.type != "BT") {
     Eigen::MatrixXd a;
     system.jacobian(0.0, point.state.data(), point.values.data(), a);
-    const Eigen::VectorXcd lambda = sorted_eigenvalues(a);
+    // Nearest the axis, and (HH) away from the old pair: their frequencies differ.
     const double old_omega = on_hopf && point.kappa > 0.0 ? std::sqrt(point.kappa) : 0.0;
-    double best = std::numeric_limits<double>::infinity(), omega = 0.0;
-    for (const auto& l : lambda) {
-      if (!(l.imag() > 0.0)) continue;
-      // Nearest the axis, and (HH) away from the old pair: their frequencies differ.
-      if (old_omega > 0.0 && std::abs(l.imag() - old_omega) <= 1e-6 * old_omega) continue;
-      if (std::abs(l.real()) < best) {
-        best = std::abs(l.real());
-        omega = l.imag();
-      }
-    }
+    const double omega = detail::pair_frequency(a, old_omega);
     if (!(omega > 0.0))
       throw std::invalid_argument("no pair of eigenvalues for the Hopf curve at the " + point.type +
                                   " point");

@@ -7,6 +7,7 @@
 #include <Eigen/Eigenvalues>
 
 #include "jacobian_derivatives.hpp"
+#include "nearest_eigen.hpp"
 #include "sympathy/continuation/equilibrium.hpp"
 
 namespace sympathy {
@@ -15,17 +16,7 @@ namespace {
 
 using Complex = std::complex<double>;
 
-// The eigenvector of `a` for its eigenvalue nearest `target`, unit length.
-Eigen::VectorXcd eigenvector_near(const Eigen::MatrixXd& a, Complex target, Complex& value) {
-  Eigen::ComplexEigenSolver<Eigen::MatrixXcd> solver(a.cast<Complex>());
-  Eigen::Index best = 0;
-  for (Eigen::Index i = 1; i < solver.eigenvalues().size(); ++i)
-    if (std::abs(solver.eigenvalues()[i] - target) < std::abs(solver.eigenvalues()[best] - target))
-      best = i;
-  value = solver.eigenvalues()[best];
-  return solver.eigenvectors().col(best).normalized();
-}
-
+using detail::eigenvector_nearest;
 using detail::JacobianDerivatives;
 
 }  // namespace
@@ -46,7 +37,7 @@ HopfPoint describe_hopf(const OdeSystem& system, const ParameterValues& p, const
     target = Complex(0.0, largest);
   }
   Complex value;
-  Eigen::VectorXcd q = eigenvector_near(a, target, value);
+  Eigen::VectorXcd q = eigenvector_nearest(a, target, &value);
   if (value.imag() < 0) {
     q = q.conjugate().eval();
     value = std::conj(value);
@@ -64,7 +55,7 @@ HopfPoint describe_hopf(const OdeSystem& system, const ParameterValues& p, const
   // / (2 w), with A^T p = -i w p and <p, q> = conj(p)^T q = 1 (Kuznetsov, Elements of Applied
   // Bifurcation Theory, 3rd ed., eq. (3.20)).
   Complex adjoint_value;
-  const Eigen::VectorXcd v = eigenvector_near(a.transpose(), value, adjoint_value);
+  const Eigen::VectorXcd v = eigenvector_nearest(a.transpose(), value, &adjoint_value);
   // A^T v = i w v, so p = conj(v) c has A^T p = -i w p; <p, q> = conj(c) v^T q = 1.
   const Complex vq = v.transpose() * q;
   if (std::abs(vq) == 0.0) return h;
