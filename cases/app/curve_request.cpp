@@ -51,8 +51,8 @@ CurveRequest curve_request(const Arguments& args, const LoadedSystem& c) {
         "BP1)");
   const auto names = c.system().parameter_names();
   if (r.generalized_hopf) {
-    const std::string& first_name = names[r.generalized_hopf->first];
-    const std::string& second_name = names[r.generalized_hopf->second];
+    const std::string& first_name = names[r.generalized_hopf->at.first];
+    const std::string& second_name = names[r.generalized_hopf->at.second];
     if (request.parameter != first_name || second != second_name)
       throw InputError("--param " + request.parameter + ", --second " + second + ": " +
                        request.parent_path + " is a Hopf curve in " + first_name + " and " +
@@ -110,16 +110,18 @@ CurveRequest curve_request(const Arguments& args, const LoadedSystem& c) {
     c.source(request.start, request.initial, request.start_data);  // fails early: the starts
   // The curve starts at the branch's value of the second parameter (at the GH's, near it): the
   // window must hold it.
-  const double base_second = r.generalized_hopf ? c.system().parameter(r.generalized_hopf->values,
-                                                                       r.generalized_hopf->second)
-                                                : c.value_of(second);
+  const double base_second =
+      r.generalized_hopf
+          ? c.system().parameter(r.generalized_hopf->at.values, r.generalized_hopf->at.second)
+          : c.value_of(second);
   if (base_second < co.second_lower || base_second > co.second_upper)
     throw InputError("--second-from, --second-to: the window " + format_double(co.second_lower) +
                      " to " + format_double(co.second_upper) + " does not contain the event (" +
                      second + " = " + format_double(base_second) +
                      (r.generalized_hopf ? " at " + r.event.text + ")" : " on the branch)"));
   if (r.generalized_hopf) {
-    const double at = c.system().parameter(r.generalized_hopf->values, r.generalized_hopf->first);
+    const double at =
+        c.system().parameter(r.generalized_hopf->at.values, r.generalized_hopf->at.first);
     if (at < co.first_lower || at > co.first_upper)
       throw InputError("--from, --to: the window " + format_double(co.first_lower) + " to " +
                        format_double(co.first_upper) + " does not contain " + r.event.text + " (" +
@@ -212,7 +214,7 @@ BifurcationCurve follow_generalized_hopf_fold(const CurveRequest& r, const OdeSy
   ContinuationCallbacks family;
   family.stop_requested = callbacks.stop_requested;
   return streamed_curve(
-      r, system, gh.values, gh.first,
+      r, system, gh.at.values, gh.at.first,
       [&](const CurveCallbacks& streamed) {
         start = fold_of_cycles_from_generalized_hopf(system, gh, options, family, streamed);
         return start.curve;

@@ -306,11 +306,7 @@ GeneralizedHopfPoint read_generalized_hopf(const std::string& path, const std::s
                      "(e.g. GH1): only at a generalized Hopf point is a fold of cycles born");
   const CurveOfEquilibriaEvent e = read_curve_of_equilibria_event(path, text, option, system);
   GeneralizedHopfPoint gh;
-  gh.first = e.point.first;
-  gh.second = e.point.second;
-  gh.values = e.point.values;
-  gh.state = e.point.state;
-  gh.omega = e.point.kappa > 0.0 ? std::sqrt(e.point.kappa) : 0.0;
+  gh.at = e.point;
   gh.l2 = std::nan("");
   for (const auto& [name, value] : e.coefficients)
     if (name == "l2") gh.l2 = value;

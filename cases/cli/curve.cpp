@@ -148,14 +148,14 @@ int run_generalized_hopf_fold(const Arguments& args, const LoadedSystem& c, cons
   progress.clear();
   const GeneralizedHopfPoint& gh = *r.generalized_hopf;
   std::printf("  %s at %s = %.10g, %s = %.10g: l2 = %.6g, a fold of cycles where l1 %s 0\n",
-              r.event.text.c_str(), first.c_str(), c.system().parameter(gh.values, gh.first),
-              second.c_str(), c.system().parameter(gh.values, gh.second), gh.l2,
+              r.event.text.c_str(), first.c_str(), c.system().parameter(gh.at.values, gh.at.first),
+              second.c_str(), c.system().parameter(gh.at.values, gh.at.second), gh.l2,
               gh.l2 < 0 ? ">" : "<");
   std::printf(
       "  the family born at the Hopf point %s = %.10g, %s = %.10g (l1 = %.6g): %zu points "
       "to its fold at %s = %.10g (T = %.10g)\n",
       first.c_str(), start.hopf.parameter, second.c_str(),
-      c.system().parameter(start.hopf.values, gh.second), *start.hopf.lyapunov,
+      c.system().parameter(start.hopf.values, gh.at.second), *start.hopf.lyapunov,
       start.family.points.size(), first.c_str(), start.fold.parameter, start.fold.period);
   return finish_curve(r, curve, c, clock);
 }

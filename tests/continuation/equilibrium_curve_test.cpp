@@ -505,12 +505,7 @@ TEST(EquilibriumCurve, FoldOfCyclesFromGeneralizedHopf) {
   ASSERT_EQ(gh.size(), 1u);
   ASSERT_EQ(gh[0].coefficients.size(), 1u);
   GeneralizedHopfPoint point;
-  point.first = 0;
-  point.second = 1;
-  point.values = system.with_parameter(
-      system.with_parameter(hopf_curve.start_values, 0, gh[0].first), 1, gh[0].second);
-  point.state = gh[0].at.state;
-  point.omega = std::sqrt(gh[0].at.kappa);
+  point.at = codimension_two_point(system, hopf_curve, gh[0]);
   point.l2 = gh[0].coefficients[0].second;
   GeneralizedHopfOptions options;
   options.curve.first_lower = -0.2;

@@ -18,18 +18,17 @@
 
 #include "sympathy/continuation/bifurcation_curve.hpp"
 #include "sympathy/continuation/continuation.hpp"
+#include "sympathy/continuation/equilibrium_curve.hpp"
 #include "sympathy/continuation/hopf.hpp"
 
 namespace sympathy {
 
+// A located GH point of a Hopf curve of equilibria (its omega^2 the point's kappa) and its second
+// Lyapunov coefficient (codim2_coefficients: Re c2 / omega).
 struct GeneralizedHopfPoint {
-  int first = -1, second = -1;  // the Hopf curve's parameters
-  ParameterValues values;       // at the point, both parameters set
-  Eigen::VectorXd state;
-  double omega = 0.0;
-  double l2 = 0.0;  // the second Lyapunov coefficient (codim2_coefficients: Re c2 / omega)
+  CodimensionTwoPoint at;
+  double l2 = 0.0;
 };
-
 struct GeneralizedHopfOptions {
   // The fold's orbits where the family is started, along Re q in state units; 0: 0.1 max(1,
   // |x|_inf). Small enough for the normal form to place the fold, large enough for the family to
