@@ -148,6 +148,7 @@ struct BautinField {
 class TwoCrossings final : public AutoDiffSystem<TwoCrossings> {
  public:
   enum class Kind { FoldHopf, TranscriticalHopf, DoubleHopf };
+  Kind kind() const { return kind_; }
   explicit TwoCrossings(Kind kind) : kind_(kind) {
     set_parameter_layout({{"b1", {0}}, {"b2", {1}}}, {-0.5, -0.5});
   }
@@ -582,6 +583,18 @@ TEST(EquilibriumCurve, DerivativeTensorsAgreeWithDifferences) {
   EXPECT_LT((*at.form({a}) - jac.cast<C>() * a).norm(), 1e-14);
 }
 
+// The Hopf curve in b2 of a TwoCrossings system from its equilibria in b1 at b2 = -0.5: the
+// fold-Hopf's z = sqrt(-b1) has its Hopf point at z = 0.5 (b1 = -0.25); the others' origin at
+// b1 = 0.
+EquilibriumCurve two_crossings_hopf_curve(const TwoCrossings& system) {
+  const bool fold_hopf = system.kind() == TwoCrossings::Kind::FoldHopf;
+  Eigen::VectorXd start = Eigen::VectorXd::Zero(system.dimension());
+  if (fold_hopf) start[2] = std::sqrt(0.5);
+  const auto branch = branch_of(system, 0, -0.5, fold_hopf ? -0.01 : 0.5, start);
+  return continue_equilibrium_curve(system, branch, first_of(branch, EquilibriumEventType::Hopf), 1,
+                                    window(-1, 1, -0.5, 0.5));
+}
+
 // The zero-Hopf point of the fold-Hopf normal form's Hopf curve b1 = -b2^2, the one where the
 // equilibria cross (its probe at the singular point tried beside it) and the double Hopf point of
 // two pairs, each at b1 = b2 = 0 (1e-8) and the only codimension-two point found; every point on
@@ -591,13 +604,7 @@ TEST(EquilibriumCurve, ZeroHopfAndDoubleHopfPoints) {
   for (const Kind kind : {Kind::FoldHopf, Kind::TranscriticalHopf, Kind::DoubleHopf}) {
     SCOPED_TRACE(static_cast<int>(kind));
     const TwoCrossings system(kind);
-    // Equilibria in b1 at b2 = -0.5: the fold-Hopf's z = sqrt(-b1) has its Hopf point at
-    // z = 0.5 (b1 = -0.25); the others' origin at b1 = 0.
-    Eigen::VectorXd start = Eigen::VectorXd::Zero(system.dimension());
-    if (kind == Kind::FoldHopf) start[2] = std::sqrt(0.5);
-    const auto branch = branch_of(system, 0, -0.5, kind == Kind::FoldHopf ? -0.01 : 0.5, start);
-    const auto curve = continue_equilibrium_curve(
-        system, branch, first_of(branch, EquilibriumEventType::Hopf), 1, window(-1, 1, -0.5, 0.5));
+    const auto curve = two_crossings_hopf_curve(system);
     ASSERT_TRUE(curve.started()) << curve.stop_reason;
     for (const auto& p : curve.points)
       EXPECT_NEAR(p.first, kind == Kind::FoldHopf ? -p.second * p.second : 0.0, 1e-10) << p.index;
@@ -624,11 +631,7 @@ TEST(EquilibriumCurve, SwitchesAtCodimensionTwoPoints) {
   };
   {
     const TwoCrossings system(Kind::FoldHopf);
-    Eigen::VectorXd start = Eigen::VectorXd::Zero(3);
-    start[2] = std::sqrt(0.5);
-    const auto branch = branch_of(system, 0, -0.5, -0.01, start);
-    const auto hopf = continue_equilibrium_curve(
-        system, branch, first_of(branch, EquilibriumEventType::Hopf), 1, window(-1, 1, -0.5, 0.5));
+    const auto hopf = two_crossings_hopf_curve(system);
     const auto fold = continue_from_codimension_two(
         system, codimension_two_point(system, hopf, only(hopf, "ZH")), window(-1, 1, -0.5, 0.5));
     ASSERT_TRUE(fold.started()) << fold.stop_reason;
@@ -638,9 +641,7 @@ TEST(EquilibriumCurve, SwitchesAtCodimensionTwoPoints) {
   }
   {
     const TwoCrossings system(Kind::DoubleHopf);
-    const auto branch = branch_of(system, 0, -0.5, 0.5, Eigen::VectorXd::Zero(4));
-    const auto hopf = continue_equilibrium_curve(
-        system, branch, first_of(branch, EquilibriumEventType::Hopf), 1, window(-1, 1, -0.5, 0.5));
+    const auto hopf = two_crossings_hopf_curve(system);
     const auto other = continue_from_codimension_two(
         system, codimension_two_point(system, hopf, only(hopf, "HH")), window(-1, 1, -0.5, 0.5));
     ASSERT_TRUE(other.started()) << other.stop_reason;
