@@ -327,9 +327,23 @@ TEST(Locator, RootOfACurvedFunctionToTheTolerance) {
                               1.0, test, probe, parameter, o);
   EXPECT_TRUE(c.located());
   EXPECT_NEAR(c.point, root, 1e-12);
-  // Narrowed, or a probe hit the root to the last bit (then the bracket is wider but moot).
-  EXPECT_TRUE(c.bracket <= 1e-12 || c.sample.value == 0.0) << c.bracket;
-  EXPECT_LE(c.probes, 12);  // inverse quadratic steps: superlinear
+  EXPECT_LE(c.bracket, 1e-12);  // narrowed, or collapsed onto a probe at the root
+  EXPECT_LE(c.probes, 12);      // inverse quadratic steps: superlinear
+
+  // A test linear in s: the first secant lands on the root exactly (0.25, a binary fraction),
+  // and the bracket is that probe, not the side it would have replaced (a normal form's Hopf
+  // point was reported +-0.02, a whole step).
+  const auto linear = [](const double& p, double, const driver::End<Tag>&,
+                         const driver::End<Tag>&) {
+    return driver::Sample<Tag>{p - 0.25, 0};
+  };
+  const auto e =
+      driver::locate_crossing(0.0, driver::Sample<Tag>{-0.25, 0}, 1.0, driver::Sample<Tag>{0.75, 0},
+                              1.0, linear, probe, parameter, o);
+  EXPECT_TRUE(e.located());
+  EXPECT_EQ(e.point, 0.25);
+  EXPECT_EQ(e.bracket, 0.0);
+  EXPECT_EQ(e.probes, 1);
 
   // A probe that fails ends the location with its reason.
   const auto failing = [](double s, std::string& why) {
