@@ -347,6 +347,11 @@ class CurveProblem {
       lo.floor = 0.01 * (o_.second_upper - o_.second_lower);
       lo.max_probes = 60;
       lo.probe_beside = true;  // a singular probe (a branch point of the curve) tried beside
+      // Where the curve runs more along the first parameter than the second (relative to their
+      // windows), a bracket narrow in the second says little: the arclength must narrow too.
+      // (On the line b2 = 0.25 of two Hopf pairs its HH was "located" 0.076 off in b1.)
+      lo.fold = std::abs(b.second - a.second) * (o_.first_upper - o_.first_lower) <
+                std::abs(b.first - a.first) * (o_.second_upper - o_.second_lower);
       const auto c = driver::locate_crossing(
           a, driver::Sample<int>{at_a, 0}, b, driver::Sample<int>{at_b, 0}, b.step, test, probe,
           [](const Point& p) { return p.second; }, lo);
@@ -698,18 +703,16 @@ CodimensionTwoPoint codimension_two_point(const OdeSystem& system, const Equilib
   return p;
 }
 
-EquilibriumCurve continue_from_codimension_two(const OdeSystem& system,
-                                               const CodimensionTwoPoint& point,
-                                               EquilibriumCurveOptions options,
-                                               const EquilibriumCurveCallbacks& callbacks) {
+CurveFromCodimensionTwo curve_from_codimension_two(const OdeSystem& system,
+                                                   const CodimensionTwoPoint& point) {
   const bool on_hopf = point.on == EquilibriumEventType::Hopf;
-  EquilibriumEventType kind;
+  CurveFromCodimensionTwo next;
   if (point.type == "BT" || point.type == "ZH")
-    kind = on_hopf ? EquilibriumEventType::Fold : EquilibriumEventType::Hopf;
+    next.kind = on_hopf ? EquilibriumEventType::Fold : EquilibriumEventType::Hopf;
   else if (point.type == "HH" && on_hopf)
-    kind = EquilibriumEventType::Hopf;
+    next.kind = EquilibriumEventType::Hopf;
   else if (point.type == "CP" && !on_hopf)
-    kind = EquilibriumEventType::Fold;
+    next.kind = EquilibriumEventType::Fold;
   else
     throw std::invalid_argument(
         "a curve of equilibria switches at a BT, ZH or CP of a fold curve, or at a BT, ZH or HH "
@@ -721,11 +724,9 @@ EquilibriumCurve continue_from_codimension_two(const OdeSystem& system,
     throw std::invalid_argument("expected two different parameters");
   if (point.state.size() != system.dimension())
     throw std::invalid_argument("the point's state has the wrong size");
-  if (auto wrong = options.validate()) throw std::invalid_argument(wrong->message());
   // The new Hopf curve's omega^2: 0 at BT (its Hopf part on one side, neutral saddles on the
   // other); at ZH the pair's; at HH the pair that is not the old curve's.
-  double kappa = std::nan("");
-  if (kind == EquilibriumEventType::Hopf && point.type != "BT") {
+  if (next.kind == EquilibriumEventType::Hopf && point.type != "BT") {
     Eigen::MatrixXd a;
     system.jacobian(0.0, point.state.data(), point.values.data(), a);
     // Nearest the axis, and (HH) away from the old pair: their frequencies differ.
@@ -734,22 +735,31 @@ EquilibriumCurve continue_from_codimension_two(const OdeSystem& system,
     if (!(omega > 0.0))
       throw std::invalid_argument("no pair of eigenvalues for the Hopf curve at the " + point.type +
                                   " point");
-    kappa = omega * omega;
-  } else if (kind == EquilibriumEventType::Hopf) {
-    kappa = 0.0;
+    next.kappa = omega * omega;
+  } else if (next.kind == EquilibriumEventType::Hopf) {
+    next.kappa = 0.0;
   }
+  return next;
+}
+
+EquilibriumCurve continue_from_codimension_two(const OdeSystem& system,
+                                               const CodimensionTwoPoint& point,
+                                               EquilibriumCurveOptions options,
+                                               const EquilibriumCurveCallbacks& callbacks) {
+  const CurveFromCodimensionTwo next = curve_from_codimension_two(system, point);
+  if (auto wrong = options.validate()) throw std::invalid_argument(wrong->message());
   const auto names = system.parameter_names();
-  return start_curve(system, kind, point.first, point.second, point.values, point.state, kappa,
-                     point.type + " at " + names[point.first] + " = " +
-                         format_double(system.parameter(point.values, point.first)) + ", " +
-                         names[point.second] + " = " +
-                         format_double(system.parameter(point.values, point.second)),
-                     std::move(options), callbacks,
-                     // At least 1 for the state: a codimension-two point often sits where a
-                     // state is 0 (the BT form's BT, on a Hopf curve all at x = 0), and a scale
-                     // of 1e-3 there made the fold curve from it 311 points, against 59 from
-                     // the equilibria's own fold.
-                     {std::max(1.0, point.state_scale), point.kappa_scale});
+  return start_curve(
+      system, next.kind, point.first, point.second, point.values, point.state, next.kappa,
+      point.type + " at " + names[point.first] + " = " +
+          format_double(system.parameter(point.values, point.first)) + ", " + names[point.second] +
+          " = " + format_double(system.parameter(point.values, point.second)),
+      std::move(options), callbacks,
+      // At least 1 for the state: a codimension-two point often sits where a
+      // state is 0 (the BT form's BT, on a Hopf curve all at x = 0), and a scale
+      // of 1e-3 there made the fold curve from it 311 points, against 59 from
+      // the equilibria's own fold.
+      {std::max(1.0, point.state_scale), point.kappa_scale});
 }
 
 }  // namespace sympathy

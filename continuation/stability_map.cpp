@@ -8,6 +8,7 @@
 #include <stdexcept>
 #include <utility>
 
+#include "curve_crossing.hpp"
 #include "sympathy/core/text.hpp"
 
 namespace sympathy {
@@ -23,19 +24,12 @@ double rotation_of(const Bifurcation& e) {
 
 bool curve_passes_through(const BifurcationCurve& curve, double first, double value,
                           double rotation) {
-  for (std::size_t i = 0; i + 1 < curve.points.size(); ++i) {
-    const CurvePoint &a = curve.points[i], &b = curve.points[i + 1];
-    if ((a.second - value) * (b.second - value) > 0.0) continue;
-    const double t = a.second == b.second ? 0.0 : (value - a.second) / (b.second - a.second);
-    const double at = a.first + t * (b.first - a.first);
-    const double tolerance =
-        std::max(1e-4 * std::max(1.0, std::abs(first)), 0.5 * std::abs(b.first - a.first));
-    if (std::abs(at - first) > tolerance) continue;
-    if (std::isnan(rotation)) return true;
-    const double turn = a.rotation + t * (b.rotation - a.rotation);
-    if (std::abs(turn - rotation) <= 2e-3) return true;
-  }
-  return false;
+  return detail::passes_through(curve.points, first, value,
+                                [&](const CurvePoint& a, const CurvePoint& b, double t) {
+                                  if (std::isnan(rotation)) return true;
+                                  const double turn = a.rotation + t * (b.rotation - a.rotation);
+                                  return std::abs(turn - rotation) <= 2e-3;
+                                });
 }
 
 std::vector<BifurcationCurve> event_curves(const OdeSystem& system, const Branch& branch,

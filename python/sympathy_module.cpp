@@ -537,8 +537,9 @@ py::object study(const std::string& path, const py::dict& keywords, const py::ob
   return py::module_::import("types").attr("SimpleNamespace")(**fields);
 }
 
-// sympathy map: the map file's orbits, their branches, event curves and stability grids, computed
-// side by side as the program computes them, the JSON and CSV files written to `out`.
+// sympathy map: the map file's orbits, their branches, event curves and stability grids, and its
+// equilibria entries' branches and curves, computed side by side as the program computes them,
+// the JSON and CSV files written to `out`.
 py::object map(const std::string& path, const py::dict& keywords, const py::object& progress) {
   app::MapRun run = with_keywords("map", [&] {
     const app::Arguments args = typed_arguments("map", CaseLine{path, "", {}}, keywords);
@@ -550,9 +551,9 @@ py::object map(const std::string& path, const py::dict& keywords, const py::obje
     return app::prepare_map(request);
   });
   const Stopwatch clock;
-  JobsProgress shown(progress, "map", "orbits");
+  JobsProgress shown(progress, "map", "jobs");
   JobCount count;
-  count.total = run.map.orbits.size();
+  count.total = run.jobs();
   app::JobCallbacks callbacks;
   callbacks.finished = [&](std::size_t) { ++count.done; };
   on_worker_thread([&](const std::atomic<bool>* stop) { app::run_map(run, stop, callbacks); },
@@ -587,7 +588,13 @@ py::object map(const std::string& path, const py::dict& keywords, const py::obje
   fields["first"] = run.map.first.parameter;
   fields["second"] = run.map.second.parameter;
   fields["json"] = run.json_path;
+  fields["window"] = py::make_tuple(py::make_tuple(run.map.first.from, run.map.first.to),
+                                    py::make_tuple(run.map.second.from, run.map.second.to));
   fields["orbits"] = orbits;
+  // The equilibria entries (branch, curves) as sympathy.load reads them from the JSON just
+  // written: one reader of that shape.
+  fields["equilibria"] =
+      py::module_::import("sympathy._load").attr("load")(run.json_path).attr("equilibria");
   // The case's parameter sets marked (as the JSON has them: name, first, second, in_plane, ...).
   fields["marks"] = py::module_::import("json").attr("loads")(run.marks.dump());
   return py::module_::import("types").attr("SimpleNamespace")(**fields);

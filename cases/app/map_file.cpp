@@ -32,12 +32,59 @@ MapAxis read_axis(const TomlReader& in, const toml::table& root, const std::stri
   return a;
 }
 
+// An [[orbits]] or [[equilibria]] entry's keys, the same for both: its name (unique across both
+// lists: it names files), start, at, or a saved point (parent and from_point).
+template <class Entry>
+void read_entry(const TomlReader& in, const MapStudy& s, const std::string& path,
+                const toml::node& entry, const std::string& prefix, std::set<std::string>& names,
+                Entry& o) {
+  const auto& t = *entry.as_table();
+  if (!t.get("name")) throw InputError(in.where(entry) + ": key '" + prefix + "name' is missing");
+  o.name = in.string(*t.get("name"), prefix + "name");
+  // Required for a metronome case file (checked with the case); an equation case file's
+  // default start is its [states].
+  if (const toml::node* start = t.get("start")) o.start = in.string(*start, prefix + "start");
+  if (t.get("parent") || t.get("from_point")) {
+    // A saved run's point or event (a path relative to the map file), as continue's --parent
+    // and --from-point; read with the case, before any work.
+    for (const char* key : {"parent", "from_point"})
+      if (!t.get(key))
+        throw InputError(in.where(entry) + ": key '" + prefix + key +
+                         "' is missing; expected parent (a saved run's JSON) and from_point (a "
+                         "point's index or an event, UZ1) together");
+    if (t.get("start"))
+      in.fail(*t.get("start"), prefix + "start",
+              "no start beside parent and from_point (the saved point is the start)");
+    const toml::node& n = *t.get("from_point");
+    if (!n.is_integer() && !n.is_string())
+      in.fail(n, prefix + "from_point", "a point's index or an event's name (UZ1, PD2)");
+    const std::string what = n.is_integer() ? std::to_string(in.integer(n, prefix + "from_point"))
+                                            : in.string(n, prefix + "from_point");
+    o.saved = SavedStart{
+        (std::filesystem::path(path).parent_path() / in.string(*t.get("parent"), prefix + "parent"))
+            .lexically_normal()
+            .string(),
+        what};
+  }
+  if (o.name.empty() || o.name.find_first_of("/\\") != std::string::npos)
+    in.fail(*t.get("name"), prefix + "name", "a name without slashes (it names files)");
+  if (const toml::node* at = t.get("at")) {
+    o.at = in.number(*at, prefix + "at");
+    if (!(*o.at > s.first.from && *o.at < s.first.to))
+      in.fail(*at, prefix + "at", "a value between first.from and first.to");
+  }
+  if (!names.insert(o.name).second)
+    in.fail(*t.get("name"), prefix + "name", "a name no other orbit or equilibria entry has");
+}
+
 }  // namespace
 
 MapStudy load_map(const std::string& path) {
   const toml::table root = read_toml(path, "map file");
   const TomlReader in(path);
-  in.only(root, "", {"title", "case", "params", "accuracy", "first", "second", "orbits", "marks"});
+  in.only(
+      root, "",
+      {"title", "case", "params", "accuracy", "first", "second", "orbits", "equilibria", "marks"});
   MapStudy s;
   s.path = path;
   s.name = std::filesystem::path(path).stem().string();
@@ -61,54 +108,37 @@ MapStudy load_map(const std::string& path) {
   if ((s.first.points == 0) != (s.second.points == 0))
     in.fail(*root.get("second"), "second.points", "0 on both axes or on neither");
   const toml::node* list = root.get("orbits");
-  if (!list) throw InputError(path + ": key 'orbits' is missing");
-  if (!list->is_array_of_tables() || list->as_array()->empty())
-    in.fail(*list, "orbits", "one or more [[orbits]] tables");
+  const toml::node* equilibria = root.get("equilibria");
+  if (!list && !equilibria)
+    throw InputError(path +
+                     ": key 'orbits' is missing; expected [[orbits]] tables, "
+                     "[[equilibria]] tables or both");
   std::set<std::string> names;
+  const auto entries = [&](const toml::node* n, const std::string& key) {
+    if (n && (!n->is_array_of_tables() || n->as_array()->empty()))
+      in.fail(*n, key, "one or more [[" + key + "]] tables");
+    return n ? n->as_array() : nullptr;
+  };
   int index = 0;
-  for (const auto& entry : *list->as_array()) {
-    const std::string prefix = "orbits[" + std::to_string(++index) + "].";
-    const auto& t = *entry.as_table();
-    in.only(t, prefix, {"name", "start", "at", "parent", "from_point"});
-    if (!t.get("name")) throw InputError(in.where(entry) + ": key '" + prefix + "name' is missing");
-    MapOrbit o;
-    o.name = in.string(*t.get("name"), prefix + "name");
-    // Required for a metronome case file (checked with the case); an equation case file's
-    // default start is its [states].
-    if (const toml::node* start = t.get("start")) o.start = in.string(*start, prefix + "start");
-    if (t.get("parent") || t.get("from_point")) {
-      // A saved run's point or event (a path relative to the map file), as continue's --parent
-      // and --from-point; read with the case, before any work.
-      for (const char* key : {"parent", "from_point"})
-        if (!t.get(key))
-          throw InputError(in.where(entry) + ": key '" + prefix + key +
-                           "' is missing; expected parent (a branch or curve JSON) and "
-                           "from_point (a point's index or an event, UZ1) together");
-      if (t.get("start"))
-        in.fail(*t.get("start"), prefix + "start",
-                "no start beside parent and from_point (the saved point is the start)");
-      const toml::node& n = *t.get("from_point");
-      if (!n.is_integer() && !n.is_string())
-        in.fail(n, prefix + "from_point", "a point's index or an event's name (UZ1, PD2)");
-      const std::string what = n.is_integer() ? std::to_string(in.integer(n, prefix + "from_point"))
-                                              : in.string(n, prefix + "from_point");
-      o.saved = SavedStart{(std::filesystem::path(path).parent_path() /
-                            in.string(*t.get("parent"), prefix + "parent"))
-                               .lexically_normal()
-                               .string(),
-                           what};
+  if (const toml::array* orbits = entries(list, "orbits"))
+    for (const auto& entry : *orbits) {
+      const std::string prefix = "orbits[" + std::to_string(++index) + "].";
+      const auto& t = *entry.as_table();
+      in.only(t, prefix, {"name", "start", "at", "parent", "from_point"});
+      MapOrbit o;
+      read_entry(in, s, path, entry, prefix, names, o);
+      s.orbits.push_back(o);
     }
-    if (o.name.empty() || o.name.find_first_of("/\\") != std::string::npos)
-      in.fail(*t.get("name"), prefix + "name", "a name without slashes (it names files)");
-    if (const toml::node* at = t.get("at")) {
-      o.at = in.number(*at, prefix + "at");
-      if (!(*o.at > s.first.from && *o.at < s.first.to))
-        in.fail(*at, prefix + "at", "a value between first.from and first.to");
+  index = 0;
+  if (const toml::array* list = entries(equilibria, "equilibria"))
+    for (const auto& entry : *list) {
+      const std::string prefix = "equilibria[" + std::to_string(++index) + "].";
+      const auto& t = *entry.as_table();
+      in.only(t, prefix, {"name", "start", "at", "parent", "from_point"});
+      MapEquilibria e;
+      read_entry(in, s, path, entry, prefix, names, e);
+      s.equilibria.push_back(e);
     }
-    if (!names.insert(o.name).second)
-      in.fail(*t.get("name"), prefix + "name", "a name no other orbit has");
-    s.orbits.push_back(o);
-  }
   if (const toml::node* n = root.get("marks")) {
     if (!n->is_array()) in.fail(*n, "marks", "a list of the case's parameter sets");
     for (const auto& m : *n->as_array()) s.marks.push_back(in.string(m, "marks"));

@@ -26,11 +26,22 @@ struct MapOrbit {
   std::optional<SavedStart> saved;
 };
 
+// [[equilibria]]: a branch of equilibria in the first parameter (as `equilibria --start`), whose
+// fold and Hopf points the map follows in both parameters (equilibrium_map.hpp).
+struct MapEquilibria {
+  std::string name, start;
+  std::optional<double> at;  // the branch found here and followed both ways
+  // `parent` and `from_point`: a saved equilibrium as the start (equilibria --parent F
+  // --from-point P).
+  std::optional<SavedStart> saved;
+};
+
 struct MapStudy {
   std::string path, name, title, case_path, params;
   Accuracy accuracy = Accuracy::Default;
   MapAxis first, second;
   std::vector<MapOrbit> orbits;
+  std::vector<MapEquilibria> equilibria;
   std::vector<std::string> marks;  // parameter sets of the case, marked on the map
 };
 

@@ -166,9 +166,11 @@ study = _file_function("study", (
 map = _file_function("map", (
     "sympathy map: where each orbit of a map file (``cases/figures/map_*.toml``) is stable in two "
     "parameters: its branch, the curve of every event on it in both parameters and its stability "
-    "on a grid, the JSON and CSV files written to out; a namespace with name, title, first, "
-    "second, json (the JSON's path) and orbits (each with name, branch, curves, grid: first, "
-    "second, unstable_count, or None, error). Ctrl-C returns what was computed."))
+    "on a grid, and each equilibria entry's branch with the fold and Hopf curves of its events, "
+    "the JSON and CSV files written to out; a namespace with name, title, first, second, window, "
+    "json (the JSON's path), orbits (each with name, branch, curves, grid: first, second, "
+    "unstable_count, or None, error) and equilibria (each with name, start, branch, curves, "
+    "error). Ctrl-C returns what was computed."))
 basins = _file_function("basins", (
     "sympathy basins: how often each synchronized state wins from random starts over a grid of "
     "one or two parameters, on this machine's threads (under mpirun, use the program), the files "

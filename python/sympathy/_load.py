@@ -5,7 +5,7 @@ AUTO's ``load``: an orbit (``orbit --json``), a branch (``continue --json``), a 
 JSON, as one object
 whose ``kind`` says which, with the JSON's keys as attributes: points along a branch or curve as
 NumPy arrays by key (multipliers and eigenvalues complex, one row a point), events as objects,
-a study's branches as a dict by name, a map's orbits as a list.
+a study's branches as a dict by name, a map's orbits and equilibria entries as lists.
 """
 
 from __future__ import annotations
@@ -56,7 +56,7 @@ def _object(j: dict) -> SimpleNamespace:
             out[k] = [_object(e) for e in v]
         elif k in ("branch",) and isinstance(v, dict):
             out[k] = _object(v)
-        elif k in ("curves", "orbits", "branches") and isinstance(v, list):
+        elif k in ("curves", "orbits", "branches", "equilibria") and isinstance(v, list):
             out[k] = [_object(x) for x in v]
         elif k in _COMPLEX and isinstance(v, list):
             out[k] = _complex(v)

@@ -543,6 +543,8 @@ def _field(obj: Any, key: str, default: Any = None) -> Any:
 
 
 CURVE_COLORS = {"BP": "tab:blue", "NS": "tab:purple", "LP": "black", "PD": "tab:orange"}
+# The equilibria's fold and Hopf curves on a map, dashed beside the cycles' solid curves.
+EQUILIBRIUM_CURVE_COLORS = {"LP": "0.3", "HB": "tab:green"}
 STABLE_SHADE, UNSTABLE_SHADE = "#c8e6c9", "#f4c7c3"
 
 
@@ -652,9 +654,13 @@ def stability_regions(orbit: Any, shape: tuple[int, int] = (300, 400)) -> \
     return codes, window
 
 
-def _map_curves(ax: Any, orbit: Any, drawn: set) -> list:
+def _map_curves(ax: Any, orbit: Any, drawn: set, colors: Optional[dict] = None, of: str = "",
+                style: str = "-") -> list:
     """The orbit's event curves (an NS curve dotted where it is a neutral saddle: its pair is
-    real, no bifurcation), their codimension-two points marked; returns the points' labels."""
+    real, no bifurcation), their codimension-two points marked; returns the points' labels.
+    An equilibria entry's fold and Hopf curves likewise, in `colors` and `style`, their legend
+    entries ending in `of` (a Hopf curve of equilibria dotted where it is a neutral saddle)."""
+    colors = colors or CURVE_COLORS
     labels = []
     for curve in _field(orbit, "curves", []):
         points = curve.points
@@ -663,21 +669,26 @@ def _map_curves(ax: Any, orbit: Any, drawn: set) -> list:
         if len(first) == 0:
             continue
         kind = curve.kind
-        color = CURVE_COLORS.get(kind, "0.4")
+        color = colors.get(kind, "0.4")
         saddle = np.asarray(getattr(points, "neutral_saddle", np.zeros(len(first))), dtype=bool)
         start = 0
         for i in range(1, len(first) + 1):
             if i < len(first) and saddle[i] == saddle[start]:
                 continue
-            name = f"{kind}: neutral saddle" if saddle[start] else f"{kind} curve"
+            name = f"{kind}{of}: neutral saddle" if saddle[start] else f"{kind} curve{of}"
             ax.plot(first[start:i + 1], second[start:i + 1], color=color, lw=1.3,
-                    ls=":" if saddle[start] else "-", gid=f"curve {kind}",
+                    ls=":" if saddle[start] else style, gid=f"curve {kind}{of}",
                     label=None if name in drawn else name)
             drawn.add(name)
             start = i
         for e in curve.events:
-            if str(e.type).startswith("turn"):
+            if str(e.type).startswith("turn") or str(e.type) == "UZ":
                 continue
+            # A point two curves meet at (a BT on the fold and on the Hopf curve) marked once.
+            point = (str(e.type), round(float(e.first), 6), round(float(e.second), 6))
+            if point in drawn:
+                continue
+            drawn.add(point)
             ax.plot([e.first], [e.second], marker="o", ms=3.5, color=color, mfc="white",
                     ls="none", zorder=5, gid=f"event {e.type}")
             labels.append(ax.annotate(str(e.type), (e.first, e.second),
@@ -713,13 +724,33 @@ def _shade(ax: Any, codes: np.ndarray, window: tuple, colors: list) -> None:
               vmax=len(colors) - 0.5, gid="shading", zorder=0)
 
 
+def _equilibria_curves(ax: Any, result: Any, drawn: set) -> list:
+    """Every equilibria entry's fold and Hopf curves (dashed), their codimension-two points
+    marked; returns the points' labels."""
+    labels = []
+    for entry in _field(result, "equilibria", None) or []:
+        labels += _map_curves(ax, entry, drawn, EQUILIBRIUM_CURVE_COLORS, " of equilibria", "--")
+    return labels
+
+
+def _map_window(result: Any) -> Optional[tuple]:
+    """The map's window ((first from, to), (second from, to)): the JSON's axes, or the window
+    sympathy.map returns."""
+    first, second = _field(result, "first"), _field(result, "second")
+    if isinstance(first, str) or first is None:
+        return _field(result, "window")
+    return ((_field(first, "from"), _field(first, "to")),
+            (_field(second, "from"), _field(second, "to")))
+
+
 def stability_map(result: Any, ax: Any = None) -> Any:
     """A stability map (``sympathy map``): per orbit a panel, shaded where it is stable, unstable
     or not found, by the regions its computed curves bound (stability_regions: the shading's
     edges are the curves, not the grid's cells), with those curves (a legend entry per curve
     kind) and their codimension-two points, the case's parameter sets starred; with two or more
-    orbits, a last panel of where only one of the first two, both or neither is stable.
-    Returns the first panel's axes."""
+    orbits, a last panel of where only one of the first two, both or neither is stable. The
+    equilibria entries' fold and Hopf curves dashed on every panel (a map of equilibria alone:
+    one panel of them). Returns the first panel's axes."""
     import matplotlib.pyplot as plt  # type: ignore[import]
     from matplotlib.patches import Patch  # type: ignore[import]
 
@@ -727,6 +758,24 @@ def stability_map(result: Any, ax: Any = None) -> Any:
     first, second = _field(result, "first"), _field(result, "second")
     first_name = first if isinstance(first, str) else _field(first, "parameter")
     second_name = second if isinstance(second, str) else _field(second, "parameter")
+    if not orbits:  # equilibria only: one panel of their curves
+        ax = new_axes(ax)
+        drawn: set = set()
+        labels = _marks(ax, _field(result, "marks", []), _map_window(result)) + \
+            _equilibria_curves(ax, result, drawn)
+        window = _map_window(result)
+        if window:
+            ax.set_xlim(*window[0])
+            ax.set_ylim(*window[1])
+        ax.set_title("equilibria")
+        ax.set_xlabel(axis_label(first_name))
+        ax.set_ylabel(axis_label(second_name))
+        _finish(ax, loc="upper center", bbox_to_anchor=(0.5, -0.2), ncol=2, frameon=False)
+        if _field(result, "title"):
+            import textwrap
+            ax.figure.suptitle(textwrap.fill(_field(result, "title"), 90), fontsize=8)
+        place_labels(ax, labels)
+        return ax
     panels = len(orbits) + (1 if len(orbits) > 1 else 0)
     if ax is None:
         fig, axes = plt.subplots(1, panels, figsize=(min(7.0, 3.4 * panels), 2.8), sharey=True,
@@ -753,7 +802,7 @@ def stability_map(result: Any, ax: Any = None) -> Any:
         drawn: set = set()
         # The parameter sets' labels placed first: fewer and longer than the curves' points'.
         labels = _marks(panel, _field(result, "marks", []), window) + \
-            _map_curves(panel, orbit, drawn)
+            _map_curves(panel, orbit, drawn) + _equilibria_curves(panel, result, drawn)
         if window:  # the map's window: the grid's first and last values
             panel.set_xlim(*window[0])
             panel.set_ylim(*window[1])
@@ -777,6 +826,7 @@ def stability_map(result: Any, ax: Any = None) -> Any:
         labels = []
         for orbit in orbits[:2]:
             labels += _map_curves(panel, orbit, drawn)
+        labels += _equilibria_curves(panel, result, drawn)
         panel.set_xlim(*window[0])
         panel.set_ylim(*window[1])
         names = [_field(o, "name") for o in orbits[:2]]

@@ -204,4 +204,63 @@ sed "s|abc.toml|ffn.toml|; s|p1|a|g; s|p3|amp|; s|0.21|0.3|; s|0.22|0.5|; s|0.21
 SYMPATHY_CACHE_DIR="$work/cache" "$bin" map "$work/ffn_map.toml" --out "$work" > /dev/null 2> "$work/ffn_map.err"
 check "map on a forced system exits 2" test $? -eq 2
 check "... saying why" grep -qF "map (two-parameter curves) is for autonomous systems" "$work/ffn_map.err"
+# Maps of equilibria ([[equilibria]]): the BT normal form's branch in b1 at b2 = -1 has an HB
+# and an LP; their curves are the Hopf line b1 = 0 and the fold parabola b1 = b2^2 / 4 (every
+# CSV row to 1e-9), each through the BT point at the origin (1e-8), and no third curve (the BT
+# on each starts the other).
+cat > "$work/bt_map.toml" <<TOML
+case = "$src/cases/examples/bt.toml"
+[first]
+parameter = "b1"
+from = -0.5
+to = 0.5
+points = 0
+[second]
+parameter = "b2"
+from = -1.5
+to = 1.0
+points = 0
+[[equilibria]]
+name = "rest"
+TOML
+SYMPATHY_CACHE_DIR="$work/cache" "$bin" map "$work/bt_map.toml" --out "$work" --quiet > "$work/bt_map.out" 2>&1
+check "a map of equilibria exits 0" test $? -eq 0
+check "... its HB line and LP parabola on their closed forms, each with the BT at the origin" test "$(/usr/bin/python3 -c "
+import csv, json, sys
+e = json.load(open(sys.argv[1]))['equilibria'][0]
+ok = sorted(c['kind'] for c in e['curves']) == ['HB', 'LP'] and e['branch']['kind'] == 'equilibria'
+for c in e['curves']:
+    rows = list(csv.DictReader(open(sys.argv[2] + '/' + c['csv'])))
+    exact = (lambda b2: b2 * b2 / 4) if c['kind'] == 'LP' else (lambda b2: 0.0)
+    ok = ok and len(rows) > 20 and all(abs(float(r['b1']) - exact(float(r['b2']))) < 1e-9 for r in rows)
+    bt = [x for x in c['events'] if x['type'] == 'BT']
+    ok = ok and len(bt) == 1 and abs(bt[0]['first']) < 1e-8 and abs(bt[0]['second']) < 1e-8
+print(ok)" "$work/bt_map.json" "$work")" = True
+check "... printed as a table per entry" grep -q "^rest (equilibria): " "$work/bt_map.out"
+# Two Hopf pairs (double_hopf.toml): the first pair's Hopf line b1 = 0 and, from its double Hopf
+# point, the second pair's line b2 = 0 (omega sqrt 2), every row to 1e-9.
+sed "s|bt.toml|double_hopf.toml|; s|^from = -1.5|from = -0.6|" "$work/bt_map.toml" > "$work/dh_map.toml"
+SYMPATHY_CACHE_DIR="$work/cache" "$bin" map "$work/dh_map.toml" --out "$work" --quiet > "$work/dh_map.out" 2>&1
+check "the double Hopf map: the other pair's Hopf curve from the HH point" test "$(/usr/bin/python3 -c "
+import csv, json, math, sys
+cs = json.load(open(sys.argv[1]))['equilibria'][0]['curves']
+ok = len(cs) == 2 and cs[1]['origin'].startswith('HH at')
+for c, fixed, omega in ((cs[0], 'b1', 1.0), (cs[1], 'b2', math.sqrt(2))):
+    rows = list(csv.DictReader(open(sys.argv[2] + '/' + c['csv'])))
+    ok = ok and len(rows) > 10 and all(abs(float(r[fixed])) < 1e-9 and abs(float(r['omega']) - omega) < 1e-9 for r in rows)
+print(ok)" "$work/dh_map.json" "$work")" = True
+# Bad [[equilibria]] entries, refused before any work, naming the line and the key.
+sed -n '1,/^name = "rest"$/p' "$work/bt_map.toml" > "$work/bad_map.toml"
+printf 'step = 0.1\n' >> "$work/bad_map.toml"
+"$bin" map "$work/bad_map.toml" --out "$work" 2> "$work/bad.err"
+check "an unknown key of an equilibria entry is refused" grep -q "bad_map.toml:14: key 'equilibria\[1\].step'" "$work/bad.err"
+printf '[[orbits]]\nname = "rest"\n' >> "$work/bt_map.toml"
+"$bin" map "$work/bt_map.toml" --out "$work" 2> "$work/bad.err"
+check "a name an orbit and an equilibria entry share is refused" grep -q "key 'equilibria\[1\].name': expected a name no other orbit or equilibria entry has" "$work/bad.err"
+printf 'case = "%s"\n[first]\nparameter = "k"\nfrom = 1.0\nto = 100.0\n[second]\nparameter = "c"\nfrom = 0.0\nto = 0.5\n' "$row2" > "$work/bad_map.toml"
+"$bin" map "$work/bad_map.toml" --out "$work" 2> "$work/bad.err"
+check "a map with neither orbits nor equilibria is refused" grep -q "key 'orbits' is missing; expected \[\[orbits\]\] tables, \[\[equilibria\]\] tables or both" "$work/bad.err"
+printf '[[equilibria]]\nname = "rest"\n' >> "$work/bad_map.toml"
+"$bin" map "$work/bad_map.toml" --out "$work" 2> "$work/bad.err"
+check "a metronome case's equilibria entry without a start is refused" grep -q "equilibria 'rest': key 'start' is missing" "$work/bad.err"
 exit "$failures"

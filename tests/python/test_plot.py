@@ -570,3 +570,50 @@ def test_fit_figure_has_the_fitted_values_with_units_and_the_residuals():
     residual = next(line for line in axes[3].get_lines() if line.get_gid() == "residual x")
     assert np.allclose(residual.get_ydata(), -1e3 * 1e-3 * t)
     assert axes[2].get_ylabel() == "x (mm)"
+
+
+def test_map_draws_the_equilibria_curves_beside_the_cycles(tmp_path):
+    # The Bautin map (cases/examples/bautin_map.toml): the cycle's panel with its fold of cycles
+    # (LP curve) and the equilibrium's Hopf line b1 = 0 (dashed, every point to 1e-9) with its GH
+    # labelled; the same from sympathy.map and from the JSON read back.
+    path = os.path.join(SOURCE, "cases/examples/bautin_map.toml")
+    result = sympathy.map(path, out=str(tmp_path), accuracy="fast")
+    for m in (result, sympathy.load(tmp_path / "bautin_map.json")):
+        ax = sympathy.plot.stability_map(m)
+        legend = [t.get_text() for t in ax.get_legend().get_texts()]
+        assert "LP curve" in legend and "HB curve of equilibria" in legend
+        hopf = [line for line in ax.lines if line.get_gid() == "curve HB of equilibria"]
+        assert hopf and all(line.get_linestyle() == "--" for line in hopf)
+        assert np.abs(np.concatenate([line.get_xdata() for line in hopf])).max() < 1e-9
+        assert [t.get_text() for t in ax.texts if t.get_gid() == "event label"] == ["GH"]
+        plt.close(ax.figure)
+
+
+def test_map_of_equilibria_alone_is_one_panel_with_each_point_marked_once(tmp_path):
+    # The BT normal form: its fold parabola and Hopf line both pass through the BT point, marked
+    # and labelled once; no orbit, so no shading; the map's window is the axes'.
+    (tmp_path / "bt.toml").write_text(f"""case = "{os.path.join(SOURCE, 'cases/examples/bt.toml')}"
+[first]
+parameter = "b1"
+from = -0.5
+to = 0.5
+points = 0
+[second]
+parameter = "b2"
+from = -1.5
+to = 1.0
+points = 0
+[[equilibria]]
+name = "rest"
+""")
+    result = sympathy.map(tmp_path / "bt.toml", out=str(tmp_path))
+    assert sorted(c.kind for c in result.equilibria[0].curves) == ["HB", "LP"]
+    for m in (result, sympathy.load(tmp_path / "bt.json")):
+        ax = sympathy.plot.stability_map(m)
+        assert len(ax.figure.axes) == 1 and not ax.images
+        assert ax.get_xlim() == (-0.5, 0.5) and ax.get_ylim() == (-1.5, 1.0)
+        assert [t.get_text() for t in ax.texts if t.get_gid() == "event label"] == ["BT"]
+        legend = [t.get_text() for t in ax.get_legend().get_texts()]
+        assert {"LP curve of equilibria", "HB curve of equilibria",
+                "HB of equilibria: neutral saddle"} <= set(legend)
+        plt.close(ax.figure)

@@ -568,6 +568,35 @@ def test_map_equals_the_program(tmp_path):
         sympathy.map(map_file, jobs=0)
 
 
+def test_map_with_equilibria_equals_the_program(tmp_path):
+    # The Bautin map (a cycle and the equilibrium, cases/examples/bautin_map.toml) by the program
+    # and by Python: the same equilibria entry to the last digit of the JSON; its Hopf line's GH
+    # at the origin (1e-8, the closed form) with l2 = -4 (1e-6: the form's r^4 term, |q| = 1).
+    import json
+    path = os.path.join(SOURCE, "cases/examples/bautin_map.toml")
+    # Exit code 7: the fold of cycles stops short (minimum step) where it nears GH.
+    run = subprocess.run([CLI, "map", path, "--out", str(tmp_path / "cli"), "--quiet",
+                          "--accuracy", "fast"], capture_output=True, text=True)
+    assert run.returncode == 7, run.stderr
+    result = sympathy.map(path, out=tmp_path / "py", accuracy="fast")
+
+    def timeless(j):  # run times differ; nothing else may
+        if isinstance(j, dict):
+            return {k: timeless(v) for k, v in j.items() if k != "seconds"}
+        return [timeless(v) for v in j] if isinstance(j, list) else j
+
+    program = timeless(json.load(open(tmp_path / "cli" / "bautin_map.json")))
+    python = timeless(json.load(open(result.json)))
+    assert program["equilibria"] == python["equilibria"]
+    entry = result.equilibria[0]
+    assert entry.name == "origin" and [c.kind for c in entry.curves] == ["HB"]
+    assert entry.branch.kind == "equilibria"
+    [gh] = [e for e in entry.curves[0].events if e.type == "GH"]
+    assert abs(gh.first) < 1e-8 and abs(gh.second) < 1e-8
+    assert gh.coefficients["l2"] == pytest.approx(-4, rel=1e-6)
+    assert [c.kind for c in result.orbits[0].curves] == ["LP"]
+
+
 def test_load_gives_back_what_the_program_wrote(tmp_path):
     # AUTO's load: the JSON `continue --json`, `orbit --json`, `equilibria --json` write, read
     # back; its numbers are the ones the functions return for the same request, to the last bit.

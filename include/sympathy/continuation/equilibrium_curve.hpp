@@ -154,6 +154,16 @@ struct CodimensionTwoPoint {
 CodimensionTwoPoint codimension_two_point(const OdeSystem& system, const EquilibriumCurve& curve,
                                           const EquilibriumCurveEvent& event);
 
+// Which curve continue_from_codimension_two follows from `point` (the kind below) and its kappa
+// there (omega^2 of the new Hopf curve's pair: 0 at BT; NaN for a fold curve). Throws
+// std::invalid_argument as that function does.
+struct CurveFromCodimensionTwo {
+  EquilibriumEventType kind = EquilibriumEventType::Fold;
+  double kappa = std::numeric_limits<double>::quiet_NaN();
+};
+CurveFromCodimensionTwo curve_from_codimension_two(const OdeSystem& system,
+                                                   const CodimensionTwoPoint& point);
+
 // The other curve through `point` in the same two parameters (AUTO's and MatCont's switches at
 // codimension-two points): at BT the Hopf curve from a fold curve (from omega = 0: Hopf points
 // one way, neutral saddles the other) or the fold curve from a Hopf curve; at ZH likewise (the
