@@ -760,9 +760,8 @@ def stability_map(result: Any, ax: Any = None) -> Any:
     second_name = second if isinstance(second, str) else _field(second, "parameter")
     if not orbits:  # equilibria only: one panel of their curves
         ax = new_axes(ax)
-        drawn: set = set()
         labels = _marks(ax, _field(result, "marks", []), _map_window(result)) + \
-            _equilibria_curves(ax, result, drawn)
+            _equilibria_curves(ax, result, set())
         window = _map_window(result)
         if window:
             ax.set_xlim(*window[0])
