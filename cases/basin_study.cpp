@@ -5,6 +5,7 @@
 #include <random>
 #include <stdexcept>
 
+#include "sympathy/continuation/convergence_certificate.hpp"
 #include "sympathy/continuation/task_runner.hpp"
 #include "sympathy/core/csv.hpp"
 #include "sympathy/core/errors.hpp"
@@ -57,8 +58,13 @@ OptionCheck BasinOptions::validate() const {
     return OptionProblem{
         "dt", "at most 1e7 samples a run (t_end / dt = " + format_number(t_end / dt) + ")"};
   if (auto p = nested("classifier.", classifier.validate())) return p;
-  if (confirm)
+  if (confirm || early_stop)
     if (auto p = nested("orbit.", orbit.validate())) return p;
+  if (early_stop) {
+    if (candidate_starts.empty())
+      return OptionProblem{"candidate_starts", "one or more starts to reach candidate orbits from"};
+    if (auto p = nested("certificate.", certificate.validate())) return p;
+  }
   return nested("flow.", flow.validate());
 }
 
@@ -130,12 +136,28 @@ bool is_locked(SyncState state) {
   }
 }
 
-std::optional<BasinRun> BasinStudy::run(const BasinTask& task,
-                                        const std::atomic<bool>* stop) const {
+ModelSpec BasinStudy::spec_at(const std::vector<double>& values) const {
   ModelSpec spec = spec_;
   for (std::size_t a = 0; a < options_.grid.size(); ++a)
-    spec.set(options_.grid[a].parameter, task.values[a]);
-  const MetronomeModel model(spec);
+    spec.set(options_.grid[a].parameter, values[a]);
+  return spec;
+}
+
+std::shared_ptr<const std::vector<BasinCandidate>> BasinStudy::candidates(std::size_t point) const {
+  std::lock_guard<std::mutex> guard(candidates_lock_);
+  auto& found = candidates_[point];
+  if (!found) {
+    const MetronomeModel model(spec_at(values(point)));
+    found = std::make_shared<const std::vector<BasinCandidate>>(
+        basin_candidates(model, options_.candidate_starts, options_.orbit, options_.certificate,
+                         groups_, options_.classifier, options_.dt));
+  }
+  return found;
+}
+
+std::optional<BasinRun> BasinStudy::run(const BasinTask& task,
+                                        const std::atomic<bool>* stop) const {
+  const MetronomeModel model(spec_at(task.values));
   Eigen::VectorXd z0 = initial_;
   for (int i = 0; i < pendula(); ++i) z0[angle_index_[i]] = task.angles[i];
   // A flow of its own per task: nothing carried from one task to the next, whatever thread.
@@ -144,16 +166,32 @@ std::optional<BasinRun> BasinStudy::run(const BasinTask& task,
   const std::vector<double> times = sample_times(options_.t_end, options_.dt);
   std::vector<double> angles(pendula());
   BasinRun run;
+  // With early_stop, a certificate per candidate orbit at this point (each on this task's model).
+  std::shared_ptr<const std::vector<BasinCandidate>> candidates;
+  std::vector<ConvergenceCertificate> certificates;
+  if (options_.early_stop) {
+    candidates = this->candidates(task.point);
+    for (const auto& c : *candidates) certificates.emplace_back(model, c.neighbourhood);
+  }
+  int certified = -1;
+  double t_last = 0.0;
   bool stopped = false;
   try {
-    stopped = flow.sample_until(z0, model.default_parameters(), 0.0, times,
-                                [&](double t, const Eigen::VectorXd& z) {
-                                  for (int i = 0; i < pendula(); ++i)
-                                    angles[i] = z[angle_index_[i]];
-                                  classifier.add(t, angles);
-                                  run.end_state = z;
-                                  return stop && stop->load();
-                                });
+    stopped = flow.sample_until(
+        z0, model.default_parameters(), 0.0, times, [&](double t, const Eigen::VectorXd& z) {
+          for (int i = 0; i < pendula(); ++i) angles[i] = z[angle_index_[i]];
+          classifier.add(t, angles);
+          run.end_state = z;
+          t_last = t;
+          // Certified, and settled: no pendulum's phase can stray by half the phase tolerance
+          // any more (an angle's scaled deviation at its zero crossing is one of its phase, to
+          // first order), so no later crossing moves the time to synchronize.
+          for (std::size_t c = 0; c < certificates.size(); ++c)
+            if (certificates[c].add(t, z) &&
+                certificates[c].bound(angle_index_) <= 0.25 * options_.classifier.phase_tolerance)
+              certified = static_cast<int>(c);
+          return (stop && stop->load()) || certified >= 0;
+        });
   } catch (const IntegrationError&) {
     SyncResult& failed = run.sync;
     failed.state = SyncState::Failed;
@@ -162,7 +200,19 @@ std::optional<BasinRun> BasinStudy::run(const BasinTask& task,
     failed.amplitudes.assign(pendula(), std::nan(""));
     return run;
   }
-  if (stopped) return std::nullopt;
+  if (stopped && certified < 0) return std::nullopt;
+  if (options_.early_stop) run.stopped_at = t_last;
+  if (certified >= 0) {
+    // The run's future is the orbit, from its point at the certified return: one window of it
+    // (or to t_end) for the classifier, at the run's own sampling times.
+    const BasinCandidate& c = (*candidates)[certified];
+    run.certified_by = c.start;
+    const double t_return = certificates[certified].return_times().back();
+    for (double t : times)
+      if (t > t_last &&
+          t <= std::min(options_.t_end, t_last + options_.classifier.window + options_.dt))
+        classifier.add(t, c.angles_at(t - t_return));
+  }
   run.sync = classifier.classify();
   if (options_.confirm && is_locked(run.sync.state)) {
     // Newton from the run's end with the period it measured; its failures are results.

@@ -2,7 +2,10 @@
 
 #include <algorithm>
 #include <cmath>
+#include <limits>
 #include <stdexcept>
+
+#include <Eigen/Eigenvalues>
 
 #include "sympathy/core/flow.hpp"
 
@@ -11,61 +14,103 @@ namespace sympathy {
 OptionCheck CertificateOptions::validate() const {
   if (!(radius > 0.0 && radius <= 0.5)) return OptionProblem{"radius", "a number in (0, 0.5]"};
   if (returns < 1 || returns > 100) return OptionProblem{"returns", "an integer from 1 to 100"};
+  if (!(slack >= 0.0 && slack < 1.0)) return OptionProblem{"slack", "a number in [0, 1)"};
   if (!(margin > 0.0 && margin < 0.5)) return OptionProblem{"margin", "a number in (0, 0.5)"};
   return std::nullopt;
 }
 
-ConvergenceCertificate::ConvergenceCertificate(const OdeSystem& system, const PeriodicOrbit& orbit,
-                                               CertificateOptions options)
-    : system_(system), options_(options), parameters_(orbit.parameters) {
-  if (auto wrong = options_.validate()) throw std::invalid_argument(wrong->message());
+OrbitNeighbourhood::OrbitNeighbourhood(const OdeSystem& system, const PeriodicOrbit& orbit,
+                                       CertificateOptions certificate)
+    : options(certificate), parameters(orbit.parameters) {
+  if (auto wrong = options.validate()) throw std::invalid_argument(wrong->message());
   if (!orbit.converged() || !(orbit.period > 0.0))
     throw std::invalid_argument("a convergence certificate needs a converged periodic orbit");
-  point_ = orbit.state0;
-  period_ = orbit.period;
-  rate_ = orbit.floquet.max_modulus;
-  eligible_ = orbit.floquet.stability == Stability::Stable &&
-              rate_ < 1.0 - std::max(options_.margin, 10.0 * orbit.floquet.trivial_error);
+  point = orbit.state0;
+  period = orbit.period;
+  rate = orbit.floquet.max_modulus;
+  eligible = orbit.floquet.stability == Stability::Stable &&
+             rate < 1.0 - std::max(options.margin, 10.0 * orbit.floquet.trivial_error);
   // The amplitude of each state over one period, sampled at 400 points (a range to 1e-5
   // relative for a smooth orbit).
   const int n = system.dimension();
-  Eigen::VectorXd low = point_, high = point_;
+  Eigen::VectorXd low = point, high = point;
   std::vector<double> times(401);
-  for (int i = 0; i <= 400; ++i) times[i] = period_ * i / 400.0;
+  for (int i = 0; i <= 400; ++i) times[i] = period * i / 400.0;
   Flow flow(system);
-  flow.sample(point_, parameters_, 0.0, times, [&](double, const Eigen::VectorXd& z) {
+  flow.sample(point, parameters, 0.0, times, [&](double, const Eigen::VectorXd& z) {
     low = low.cwiseMin(z);
     high = high.cwiseMax(z);
   });
-  scale_ = 0.5 * (high - low);
-  const double largest = scale_.maxCoeff();
-  for (int i = 0; i < n; ++i) scale_[i] = std::max(scale_[i], 1e-3 * largest);
+  scale = 0.5 * (high - low);
+  const double largest = scale.maxCoeff();
+  for (int i = 0; i < n; ++i) scale[i] = std::max(scale[i], 1e-3 * largest);
   Eigen::VectorXd f(n);
-  system.rhs(0.0, point_.data(), parameters_.data(), f.data());
-  normal_ = f.cwiseQuotient(scale_);
-  normal_.normalize();
+  system.rhs(0.0, point.data(), parameters.data(), f.data());
+  normal = f.cwiseQuotient(scale);
+  normal.normalize();
+  // The monodromy's eigenvectors in the scaled coordinates, each of unit inf-norm; the trivial
+  // one is the best aligned with f.
+  const Eigen::MatrixXd m =
+      flow.advance_with_sensitivities(point, parameters, 0.0, period).transition;
+  const Eigen::MatrixXd scaled = scale.cwiseInverse().asDiagonal() * m * scale.asDiagonal();
+  const Eigen::EigenSolver<Eigen::MatrixXd> solver(scaled);
+  Eigen::MatrixXcd v = solver.eigenvectors();
+  int trivial = 0;
+  double best = -1.0;
+  for (int i = 0; i < n; ++i) {
+    const double aligned = std::abs(v.col(i).normalized().dot(normal.cast<std::complex<double>>()));
+    if (aligned > best) {
+      best = aligned;
+      trivial = i;
+    }
+    v.col(i) /= v.col(i).cwiseAbs().maxCoeff();
+  }
+  const Eigen::MatrixXcd inverse = v.inverse();
+  coordinates.resize(n - 1, n);
+  modes.resize(n, n - 1);
+  for (int i = 0, k = 0; i < n; ++i)
+    if (i != trivial) {
+      coordinates.row(k) = inverse.row(i);
+      modes.col(k++) = v.col(i);
+    }
+}
+
+ConvergenceCertificate::ConvergenceCertificate(
+    const OdeSystem& system, std::shared_ptr<const OrbitNeighbourhood> neighbourhood)
+    : system_(system), orbit_(std::move(neighbourhood)) {
+  if (!orbit_) throw std::invalid_argument("ConvergenceCertificate: no orbit");
 }
 
 double ConvergenceCertificate::side(const Eigen::VectorXd& z) const {
-  return normal_.dot((z - point_).cwiseQuotient(scale_));
+  return orbit_->normal.dot((z - orbit_->point).cwiseQuotient(orbit_->scale));
 }
 
-double ConvergenceCertificate::distance(const Eigen::VectorXd& z) const {
-  return (z - point_).cwiseQuotient(scale_).lpNorm<Eigen::Infinity>();
+double ConvergenceCertificate::near(const Eigen::VectorXd& z) const {
+  return (z - orbit_->point).cwiseQuotient(orbit_->scale).lpNorm<Eigen::Infinity>();
+}
+
+double ConvergenceCertificate::bound(const std::vector<int>& components) const {
+  if (last_.size() == 0) return std::numeric_limits<double>::infinity();
+  double b = 0.0;
+  for (Eigen::Index i = 0; i < last_.size(); ++i) {
+    double largest = components.empty() ? 1.0 : 0.0;
+    for (int j : components) largest = std::max(largest, std::abs(orbit_->modes(j, i)));
+    b += std::abs(last_[i]) * largest;
+  }
+  return b;
 }
 
 bool ConvergenceCertificate::add(double t, const Eigen::VectorXd& z) {
-  if (certified_) return true;
   const double g = side(z);
   const bool crossed = has_previous_ && g_previous_ < 0.0 && g >= 0.0;
   // Only near z*: the hyperplane is crossed far from the orbit too. Half the orbit's amplitude
   // is well beyond the certificate's radius and well short of the orbit's other side.
-  if (crossed && std::min(distance(z_previous_), distance(z)) < 0.5) {
+  if (crossed && std::min(near(z_previous_), near(z)) < 0.5) {
     // Cubic Hermite between the two samples, f at both; the crossing by regula falsi on it.
     const int n = system_.dimension();
     Eigen::VectorXd f0(n), f1(n);
-    system_.rhs(t_previous_, z_previous_.data(), parameters_.data(), f0.data());
-    system_.rhs(t, z.data(), parameters_.data(), f1.data());
+    system_.rhs(t_previous_, z_previous_.data(), orbit_->parameters.data(), f0.data());
+    system_.rhs(t, z.data(), orbit_->parameters.data(), f1.data());
     const double h = t - t_previous_;
     const auto at = [&](double s) -> Eigen::VectorXd {
       const double s2 = s * s, s3 = s2 * s;
@@ -87,18 +132,23 @@ bool ConvergenceCertificate::add(double t, const Eigen::VectorXd& z) {
       }
     }
     times_.push_back(t_previous_ + s * h);
-    distances_.push_back(distance(at(s)));
-    const int m = options_.returns;
+    const Eigen::VectorXcd c =
+        orbit_->coordinates *
+        (at(s) - orbit_->point).cwiseQuotient(orbit_->scale).cast<std::complex<double>>();
+    distances_.push_back(c.cwiseAbs().maxCoeff());
+    last_ = c;
+    const OrbitNeighbourhood& o = *orbit_;
+    const int m = o.options.returns;
     const std::size_t k = distances_.size();
-    if (eligible_ && k > static_cast<std::size_t>(m)) {
-      bool near = true;
-      for (std::size_t j = k - m - 1; j < k; ++j) {
-        near = near && distances_[j] < options_.radius;
-        if (j > k - m - 1)
-          near = near && std::abs(times_[j] - times_[j - 1] - period_) <= 0.05 * period_;
-      }
-      const double first = distances_[k - m - 1], last = distances_[k - 1];
-      certified_ = near && (first == 0.0 || last <= std::pow(rate_, 0.5 * m) * first);
+    if (o.eligible && !certified_ && k > static_cast<std::size_t>(m)) {
+      bool near = distances_[k - m - 1] < o.options.radius;
+      for (std::size_t j = k - m; j < k; ++j)
+        near =
+            near && distances_[j] < o.options.radius &&
+            // (1e-7: the interpolation's floor, where a start on the orbit stays)
+            distances_[j] <= (o.rate + o.options.slack * (1 - o.rate)) * distances_[j - 1] + 1e-7 &&
+            std::abs(times_[j] - times_[j - 1] - o.period) <= 0.05 * o.period;
+      certified_ = certified_ || near;
     }
   }
   has_previous_ = true;

@@ -39,7 +39,7 @@ BasinsFile load_basins_file(const std::string& path) {
   const TomlReader in(path);
   in.only(root, "",
           {"title", "case", "params", "set", "initial", "grid", "starts", "angles", "seed", "t_end",
-           "dt", "classifier", "confirm"});
+           "dt", "classifier", "confirm", "early_stop"});
   BasinsFile f;
   f.path = path;
   BasinOptions& o = f.options;
@@ -106,6 +106,10 @@ BasinsFile load_basins_file(const std::string& path) {
   if (const auto* n = root.get("confirm")) {
     if (!n->is_boolean()) in.fail(*n, "confirm", "true or false");
     o.confirm = **n->as_boolean();
+  }
+  if (const auto* n = root.get("early_stop")) {
+    if (!n->is_boolean()) in.fail(*n, "early_stop", "true or false");
+    o.early_stop = **n->as_boolean();
   }
   if (const auto* n = root.get("dt")) o.dt = in.number(*n, "dt");
   if (const auto* n = root.get("classifier")) {

@@ -23,6 +23,7 @@ std::vector<std::string> journal_header(const BasinStudy& study) {
   for (int i = 1; i <= study.pendula(); ++i) h.push_back("amp_th" + std::to_string(i));
   if (study.options().confirm)
     h.insert(h.end(), {"orbit", "orbit_period", "orbit_stability", "orbit_max_multiplier"});
+  if (study.options().early_stop) h.insert(h.end(), {"stopped_at", "certified_by"});
   return h;
 }
 
@@ -34,7 +35,8 @@ std::vector<std::string> task_fields(const BasinTask& t) {
   return f;
 }
 
-std::vector<std::string> row_of(const BasinTask& t, const BasinRun& run, bool confirm) {
+std::vector<std::string> row_of(const BasinTask& t, const BasinRun& run, const BasinOptions& o) {
+  const bool confirm = o.confirm;
   const SyncResult& r = run.sync;
   auto f = task_fields(t);
   f.insert(f.end(), {r.name, format_double(r.time_to_sync), format_double(r.frequency)});
@@ -50,6 +52,10 @@ std::vector<std::string> row_of(const BasinTask& t, const BasinRun& run, bool co
                          c.converged ? to_string(c.stability) : "-", format_double(c.max_modulus)});
     }
   }
+  // Where the run stopped, and the candidate orbit (its start) that certified it ("-": none).
+  if (o.early_stop)
+    f.insert(f.end(),
+             {format_double(run.stopped_at), run.certified_by.empty() ? "-" : run.certified_by});
   return f;
 }
 
@@ -150,7 +156,7 @@ std::function<std::optional<TaskRow>(std::size_t)> basins_tasks(const BasinStudy
     const BasinTask task = study.task(index);
     const auto result = study.run(task, stop);
     if (!result) return std::nullopt;
-    return row_of(task, *result, study.options().confirm);
+    return row_of(task, *result, study.options());
   };
 }
 
@@ -174,7 +180,7 @@ Basins prepare_basins(const Arguments& args, int ranks) {
     study_file = load_basins_file(input);
     for (const char* option :
          {"--params", "--set", "--grid", "--starts", "--angles", "--initial", "--seed", "--t-end",
-          "--dt", "--window", "--phase-tolerance", "--lock-tolerance", "--confirm"})
+          "--dt", "--window", "--phase-tolerance", "--lock-tolerance", "--confirm", "--early-stop"})
       if (args.has(option))
         throw InputError(std::string(option) + ": given with the basins study file " + input +
                          ", which sets the study; expected it in the file");
@@ -192,6 +198,18 @@ Basins prepare_basins(const Arguments& args, int ranks) {
   }
   o.flow = flow_options(args, BasinOptions::default_flow());
   apply_accuracy(accuracy(args), o.orbit);
+  if (o.early_stop)
+    // The candidate orbits come from every start of the case (each in its invariant subspace).
+    for (const auto& name : b.c.file.start_names()) {
+      const StartSpec& start = b.c.file.start(name);
+      o.candidate_starts.push_back({name, b.c.file.initial_state(&start),
+                                    b.c.file.invariant_subspace(start, MetronomeModel(b.c.spec))});
+    }
+  if (o.early_stop && o.candidate_starts.empty())
+    throw InputError(std::string(study_file ? "early_stop" : "--early-stop") + ": the case file " +
+                     b.c.file.path() +
+                     " has no starts; expected [starts] to reach the candidate "
+                     "orbits from");
   if (const auto problem = o.validate())
     throw InputError(option_of(problem->field) + ": expected " + problem->expected);
   b.run.threads = args.integer("--threads", 0);
@@ -267,6 +285,7 @@ void parse_study_options(const Arguments& args, Basins& b) {
   o.classifier.phase_tolerance = args.number("--phase-tolerance", o.classifier.phase_tolerance);
   o.classifier.lock_tolerance = args.number("--lock-tolerance", o.classifier.lock_tolerance);
   o.confirm = args.flag("--confirm");
+  o.early_stop = args.flag("--early-stop");
   b.initial = args.assignments("--initial");
 }
 

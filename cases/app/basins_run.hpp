@@ -41,12 +41,13 @@ struct Basins {
 
 // The journal's columns after the task index: point, the grid parameters, start, the start
 // angles th1_0 ..., then class, t_sync, frequency, phase_th2 ..., amp_th1 ... (and with
-// confirm: orbit, orbit_period, orbit_stability, orbit_max_multiplier).
+// confirm: orbit, orbit_period, orbit_stability, orbit_max_multiplier; with early_stop:
+// stopped_at, certified_by).
 std::vector<std::string> journal_header(const BasinStudy& study);
 // The fields that say which run a row is: point, grid values, start, start angles.
 std::vector<std::string> task_fields(const BasinTask& t);
 // A run's journal row (the fields after the task index).
-std::vector<std::string> row_of(const BasinTask& t, const BasinRun& run, bool confirm);
+std::vector<std::string> row_of(const BasinTask& t, const BasinRun& run, const BasinOptions& o);
 
 // The options and the study `args` asks for (a basins study file, or the command line's), checked;
 // no file touched. `ranks`: the MPI job's size (1 without).

@@ -329,6 +329,9 @@ std::vector<OptionSpec> basins_options() {
        {"--quiet", "", false, "no progress line on a terminal"},
        {"--confirm", "", false,
         "confirm each locked end by Newton to a periodic orbit (its period and stability)"},
+       {"--early-stop", "", false,
+        "stop a run once it is certified to converge to a stable orbit reached from the case's "
+        "starts"},
        accuracy_option()});
   const auto integrator = integrator_options();
   options.insert(options.end(), integrator.begin(), integrator.end());

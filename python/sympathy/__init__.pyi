@@ -394,6 +394,7 @@ def basins(
     out: str | os.PathLike[str] | None = ...,
     resume: bool | None = ...,
     confirm: bool | None = ...,
+    early_stop: bool | None = ...,
     accuracy: Literal['fast', 'default', 'high'] | None = ...,
     rtol: float | None = ...,
     atol: float | None = ...,

@@ -17,12 +17,16 @@
 
 #include <atomic>
 #include <cstdint>
+#include <map>
+#include <memory>
+#include <mutex>
 #include <optional>
 #include <string>
 #include <vector>
 
 #include <Eigen/Dense>
 
+#include "sympathy/cases/basin_candidates.hpp"
 #include "sympathy/cases/metronome_model.hpp"
 #include "sympathy/cases/sync_classifier.hpp"
 #include "sympathy/continuation/periodic_orbit.hpp"
@@ -57,6 +61,14 @@ struct BasinOptions {
   // near, and its stability. Off by default (it adds a monodromy per locked run).
   bool confirm = false;
   OrbitOptions orbit;
+  // Stop a run once its fate is certain (convergence_certificate.hpp): once it is certified to
+  // converge to one of the stable orbits reached at its grid point from `candidate_starts`
+  // (basin_candidates.hpp, with `orbit`'s options). The classifier is then given that orbit's
+  // motion for one window in place of the rest of the run, so the run gets the class and time
+  // to synchronize a full-length run would. Off by default.
+  bool early_stop = false;
+  std::vector<BasinCandidateStart> candidate_starts;
+  CertificateOptions certificate;
 
   // Simulation's accuracy: BDF at rtol 1e-8, atol 1e-10, as `sympathy simulate`.
   static FlowOptions default_flow();
@@ -83,8 +95,12 @@ struct OrbitConfirmation {
 
 struct BasinRun {
   SyncResult sync;
-  Eigen::VectorXd end_state;               // the state at t_end
+  Eigen::VectorXd end_state;               // the state at t_end (or where it stopped early)
   std::optional<OrbitConfirmation> orbit;  // with BasinOptions::confirm, for a locked state
+  // With BasinOptions::early_stop: where the run stopped (t_end if it was never certified) and
+  // the candidate that certified it (its start's name; empty if none).
+  double stopped_at = std::nan("");
+  std::string certified_by;
 };
 
 // Whether a state is locked (a periodic orbit to confirm): in-phase ... locked.
@@ -112,7 +128,13 @@ class BasinStudy {
   // SyncState::Failed.
   std::optional<BasinRun> run(const BasinTask& task, const std::atomic<bool>* stop = nullptr) const;
 
+  // With early_stop: the candidates at a grid point, computed once (by whichever run asks
+  // first; the same whatever thread or process computes them).
+  std::shared_ptr<const std::vector<BasinCandidate>> candidates(std::size_t point) const;
+
  private:
+  ModelSpec spec_at(const std::vector<double>& values) const;
+
   ModelSpec spec_;
   Eigen::VectorXd initial_;
   BasinOptions options_;
@@ -120,6 +142,8 @@ class BasinStudy {
   std::size_t points_ = 0;
   std::vector<std::vector<int>> groups_;
   std::vector<int> angle_index_;
+  mutable std::mutex candidates_lock_;
+  mutable std::map<std::size_t, std::shared_ptr<const std::vector<BasinCandidate>>> candidates_;
 };
 
 // The share of each state at one grid point, with its 95% Wilson interval.
