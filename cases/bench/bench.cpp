@@ -10,7 +10,8 @@
 // number of metronomes; (f), the accuracy presets and integrators on a whole branch beside
 // AUTO-07p's measured points, is in bench_branch.cpp; (g) in bench_identical.cpp; (h), equation
 // case files generated against hand-written, in bench_equations.cpp; (i), the Fig. 8 study, in
-// bench_study.cpp; (j), the integrator chosen by the measured stiffness, in bench_stiffness.cpp.
+// bench_study.cpp; (j), the integrator chosen by the measured stiffness, in bench_stiffness.cpp;
+// (k), basin runs stopped when their fate is known, in bench_basins.cpp.
 #include <algorithm>
 #include <cmath>
 #include <cstdio>
@@ -21,6 +22,7 @@
 #include <thread>
 #include <tuple>
 
+#include "cases/bench/bench_basins.hpp"
 #include "cases/bench/bench_branch.hpp"
 #include "cases/bench/bench_equations.hpp"
 #include "cases/bench/bench_identical.hpp"
@@ -308,10 +310,10 @@ int run_bench(const std::vector<std::string>& argv) {
   const std::string out = args.text("--out", "out/bench");
   std::filesystem::create_directories(out);
   const bool quick = args.flag("--quick");
-  const std::string sections = args.text("--sections", "abcdefghij");
+  const std::string sections = args.text("--sections", "abcdefghijk");
   for (char ch : sections)
-    if (ch < 'a' || ch > 'j')
-      throw InputError("--sections: expected letters from a to j (e.g. abc), got '" + sections +
+    if (ch < 'a' || ch > 'k')
+      throw InputError("--sections: expected letters from a to k (e.g. abc), got '" + sections +
                        "'");
   // On a terminal, a line before each section: which, how many of how many, the time so far.
   ProgressLine line(args.flag("--quiet"));
@@ -532,6 +534,7 @@ int run_bench(const std::vector<std::string>& argv) {
   if (want('h')) bench_equations(root, quick, md);
   if (want('i')) bench_study(root, out, quick, md);
   if (want('j')) bench_stiffness(root, out, quick, md);
+  if (want('k')) bench_basins(root, out, quick, md);
   write_file_atomically(out + "/bench.md", md.str());
   std::printf("wrote %s/bench.csv and %s/bench.md; run time %.1f s\n", out.c_str(), out.c_str(),
               clock.seconds());

@@ -83,5 +83,5 @@ sys.exit(0 if ok else 1)"
 check "an unknown option exits 2" test $? -eq 2
 "$bin" bench --sections xyz > /dev/null 2> "$work/bad.err"
 check "--sections with an unknown letter exits 2 and says what it expected" \
-  grep -q "expected letters from a to j" "$work/bad.err"
+  grep -q "expected letters from a to k" "$work/bad.err"
 exit $failures
