@@ -4,12 +4,15 @@
 #include "cases/app/case_arguments.hpp"
 
 #include <cstdio>
+#include <cstdlib>
 #include <filesystem>
+#include <map>
 
 #include <nlohmann/json.hpp>
 
 #include "sympathy/core/csv.hpp"
 #include "sympathy/core/output_file.hpp"
+#include "sympathy/core/quartiles.hpp"
 
 namespace sympathy::app {
 
@@ -64,14 +67,21 @@ std::vector<std::vector<BasinShare>> write_basins(const Basins& b) {
   const BasinOptions& o = b.o;
   const TaskJournal& journal = *b.journal;
   std::vector<std::pair<std::size_t, std::string>> outcomes;
-  for (const auto& [index, row] : journal.rows())
-    outcomes.emplace_back(study.task(index).point, row[b.identity_fields]);
+  // Per point and state, the runs' times to synchronize (the column after the class).
+  std::vector<std::map<std::string, std::vector<double>>> times(study.points());
+  for (const auto& [index, row] : journal.rows()) {
+    const std::size_t point = study.task(index).point;
+    outcomes.emplace_back(point, row[b.identity_fields]);
+    times[point][row[b.identity_fields]].push_back(
+        std::strtod(row[b.identity_fields + 1].c_str(), nullptr));
+  }
   const auto shares = basin_shares(study.points(), outcomes);
   write_file_atomically(b.runs_path, journal.table());
 
   std::vector<std::string> share_header{"point"};
   for (const auto& a : o.grid) share_header.push_back(a.parameter);
-  share_header.insert(share_header.end(), {"class", "count", "runs", "share", "lower", "upper"});
+  share_header.insert(share_header.end(), {"class", "count", "runs", "share", "lower", "upper",
+                                           "t_sync_q1", "t_sync_median", "t_sync_q3"});
   std::string share_table = join(share_header, ",") + "\n";
   nlohmann::ordered_json json;
   if (!b.study_path.empty()) {
@@ -112,13 +122,20 @@ std::vector<std::vector<BasinShare>> write_basins(const Basins& b) {
     point["shares"] = nlohmann::ordered_json::object();
     for (const auto& s : shares[p]) {
       const auto& q = s.proportion;
-      point["shares"][s.state] = {
-          {"count", q.count}, {"share", q.share}, {"lower", q.lower}, {"upper", q.upper}};
+      // The state's times to synchronize: their quartiles (NaN where it is not locked or no
+      // run ended in it).
+      const Quartiles t = quartiles(times[p][s.state]);
+      point["shares"][s.state] = {{"count", q.count},
+                                  {"share", q.share},
+                                  {"lower", q.lower},
+                                  {"upper", q.upper},
+                                  {"t_sync", {{"q1", t.q1}, {"median", t.median}, {"q3", t.q3}}}};
       std::vector<std::string> fields{std::to_string(p)};
       for (double v : values) fields.push_back(format_double(v));
       fields.insert(fields.end(),
                     {s.state, std::to_string(q.count), std::to_string(q.trials),
-                     format_double(q.share), format_double(q.lower), format_double(q.upper)});
+                     format_double(q.share), format_double(q.lower), format_double(q.upper),
+                     format_double(t.q1), format_double(t.median), format_double(t.q3)});
       share_table += join(fields, ",") + "\n";
     }
     json["points"].push_back(point);

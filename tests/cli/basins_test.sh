@@ -23,8 +23,20 @@ check "runs: a header and 6 rows" test "$(wc -l < "$work/one/basins_runs.csv")" 
 check "runs header" test "$(head -1 "$work/one/basins_runs.csv")" = \
   "task,point,k,start,th1_0,th2_0,class,t_sync,frequency,phase_th2,amp_th1,amp_th2"
 check "runs in task order" test "$(cut -d, -f1 "$work/one/basins_runs.csv" | tail -n +2 | tr '\n' ' ')" = "0 1 2 3 4 5 "
-check "shares header" grep -q '^point,k,class,count,runs,share,lower,upper$' "$work/one/basins_shares.csv"
+check "shares header" grep -q '^point,k,class,count,runs,share,lower,upper,t_sync_q1,t_sync_median,t_sync_q3$' "$work/one/basins_shares.csv"
 check "summary prints the run time" grep -q 'run time' "$work/one.err"
+check "shares: each class's t_sync quartiles those of its runs (numpy's default, 1e-12)" test "$(python3 -c "
+import csv, statistics, sys
+runs = list(csv.DictReader(open(sys.argv[1])))
+ok = True
+for s in csv.DictReader(open(sys.argv[2])):
+    t = sorted(float(r['t_sync']) for r in runs if r['point'] == s['point'] and r['class'] == s['class'] and r['t_sync'] != 'nan')
+    if not t:
+        ok = ok and s['t_sync_median'] == 'nan'
+        continue
+    q = statistics.quantiles(t, n=4, method='inclusive') if len(t) > 1 else [t[0]] * 3
+    ok = ok and all(abs(float(s[k]) - v) < 1e-12 for k, v in zip(('t_sync_q1', 't_sync_median', 't_sync_q3'), q))
+print(ok)" "$work/one/basins_runs.csv" "$work/one/basins_shares.csv")" = True
 
 # Under mpirun: rank 0 manages, the others simulate; the files are the same. As root in a
 # container Open MPI wants --allow-run-as-root (or OMPI_ALLOW_RUN_AS_ROOT=1 and
