@@ -669,6 +669,27 @@ def test_basins_equal_the_program(tmp_path):
         sympathy.basins(ROW2, starts=4, out=tmp_path / "none")
 
 
+def test_basins_stop_early_as_the_program_does(tmp_path):
+    # early_stop=True: the same files as the program's --early-stop (stopped_at, certified_by),
+    # every run certified by a case's start at Table III with the class of the run that is not
+    # stopped early, and each state's times to synchronize summarized.
+    import csv
+    args = ("--params", "table3", "--grid", "k=47.0899", "--starts", "6", "--t-end", "60")
+    cli("basins", ROW2, *args, "--early-stop", "--out", str(tmp_path / "cli"), "--quiet")
+    cli("basins", ROW2, *args, "--out", str(tmp_path / "full"), "--quiet")
+    result = sympathy.basins(ROW2, params="table3", grid="k=47.0899", starts=6, t_end=60,
+                             early_stop=True, out=tmp_path / "py")
+    for name in ("basins_runs.csv", "basins_shares.csv"):
+        assert (tmp_path / "cli" / name).read_text() == (tmp_path / "py" / name).read_text()
+    early = list(csv.DictReader(open(tmp_path / "py" / "basins_runs.csv")))
+    full = list(csv.DictReader(open(tmp_path / "full" / "basins_runs.csv")))
+    assert [r["class"] for r in early] == [r["class"] for r in full]
+    assert all(r["certified_by"] in ("in-phase", "anti-phase", "in-phase-low") for r in early)
+    assert all(float(r["stopped_at"]) < 60 for r in early)
+    for state, share in result.points[0].shares.items():
+        assert share.t_sync["median"] is None or share.t_sync["q1"] <= share.t_sync["median"]
+
+
 def test_equilibria_and_curve_draw_a_tqdm_bar(capsys):
     # progress=True on every function that takes it (True was called as a callback here, a
     # TypeError, before): equilibria over the parameter's range, a curve over its points.
