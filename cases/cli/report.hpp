@@ -9,6 +9,7 @@
 
 #include "cases/app/branch_run.hpp"
 #include "cases/app/orbit_run.hpp"
+#include "sympathy/continuation/equilibrium_branch.hpp"
 
 namespace sympathy::cli {
 
@@ -29,5 +30,10 @@ void print_newton_and_flow(std::FILE* out, const PeriodicOrbit& orbit);
 // A branch's events as a table: type (with ? where not trusted), parameter, uncertainty, period,
 // crossing multiplier, note.
 void print_events(std::FILE* out, const Branch& branch);
+
+// A branch of equilibria's events as a table (equilibria, study): type (with ? where not
+// located), parameter, uncertainty, the eigenvalue nearest the imaginary axis, note (a Hopf
+// point's omega, period and criticality).
+void print_equilibrium_events(std::FILE* out, const EquilibriumBranch& branch);
 
 }  // namespace sympathy::cli
