@@ -9,7 +9,6 @@
 
 #include "cases/app/branch_run.hpp"
 #include "cases/app/orbit_run.hpp"
-#include "sympathy/continuation/equilibrium_branch.hpp"
 
 namespace sympathy::cli {
 

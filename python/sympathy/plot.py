@@ -401,10 +401,14 @@ def _equilibria_diagram(ax: Any, result: Any, equilibria: dict,
         tags.append(tag)
     ax.set_xlabel(axis_label(result.parameter))
     ax.set_ylabel(f"{math_name(state)} (equilibria)")
-    if titled and getattr(result, "title", ""):
-        ax.set_title(result.title)
+    title = str(getattr(result, "title", ""))
+    if titled and title:
+        ax.set_title(title)
     _finish(ax, loc="best")
-    return lambda: place_labels(ax, labels, clear_of=place_labels(ax, tags, within="figure"))
+
+    def place() -> None:
+        place_labels(ax, labels, clear_of=place_labels(ax, tags, within="figure"))
+    return place
 
 
 def _orbits_diagram(result: Any, ax: Any) -> Callable[[], None]:
