@@ -508,7 +508,7 @@ py::object study(const std::string& path, const py::dict& keywords, const py::ob
   const Stopwatch clock;
   JobsProgress shown(progress, "study", "branches");
   JobCount count;
-  count.total = run.study.branches.size();
+  count.total = run.job_count();
   app::JobCallbacks callbacks;
   callbacks.finished = [&](std::size_t) { ++count.done; };
   on_worker_thread(
@@ -521,11 +521,20 @@ py::object study(const std::string& path, const py::dict& keywords, const py::ob
     b.attr("error") = run.errors[i];
     branches[py::str(run.study.branches[i].name)] = b;
   }
+  // The [[equilibria]] entries as sympathy.equilibria returns one, by name.
+  py::dict equilibria;
+  for (std::size_t k = 0; k < run.study.equilibria.size(); ++k) {
+    py::object e = equilibria_result(run.equilibria_results[k]);
+    e.attr("error") = run.equilibria_errors[k];
+    equilibria[py::str(run.study.equilibria[k].name)] = e;
+  }
   py::dict fields;
   fields["title"] = run.study.title;
   fields["parameter"] = run.study.parameter;
   fields["axis"] = run.study.axis;
   fields["branches"] = branches;
+  fields["equilibria"] = equilibria;
+  fields["equilibria_axis"] = run.equilibria_axis;
   py::list marks;
   for (const auto& [set, value] : run.marks) {
     py::dict m;

@@ -15,6 +15,7 @@
 #include "cases/app/case_loading.hpp"
 #include "cases/app/event_name.hpp"
 #include "sympathy/continuation/branch_run.hpp"
+#include "sympathy/continuation/equilibrium_branch.hpp"
 #include "sympathy/continuation/hopf.hpp"
 #include "sympathy/continuation/orbit_describer.hpp"
 #include "sympathy/continuation/recorded_period.hpp"
@@ -50,6 +51,9 @@ struct BranchRequest {
   std::string parent_path;
   // ... or this one, already computed (a study branch that switches at an event of another).
   const Branch* parent_branch = nullptr;
+  // With switch_at HBn: these equilibria, already computed (a study branch that switches at a
+  // Hopf point of the study's [[equilibria]] entry), instead of parent_path's or the start's.
+  const EquilibriumBranch* parent_equilibria = nullptr;
   // A caller's own hooks (the Python module's progress callback and signal check): each point of
   // the branch returned, as it is found (after the CSV row), and a stop check asked beside
   // run_branch's flag.

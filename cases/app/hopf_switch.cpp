@@ -105,13 +105,13 @@ Branch run_hopf_branch(const BranchSource& source, const BranchRequest& request,
                        const ContinuationCallbacks& callbacks) {
   const OdeSystem& system = source.system;
   const int parameter = system.parameter_index(request.parameter);
-  EquilibriumBranch parent;
-  if (!request.parent_path.empty()) {
-    parent = read_equilibria_json(request.parent_path, system);
-    if (parent.parameter_name != request.parameter)
-      throw InputError("--parent " + request.parent_path + ": equilibria in " +
-                       parent.parameter_name + "; expected them in --param " + request.parameter);
-  } else {
+  EquilibriumBranch own;  // read or computed here, unless the request holds them
+  if (!request.parent_equilibria && !request.parent_path.empty()) {
+    own = read_equilibria_json(request.parent_path, system);
+    if (own.parameter_name != request.parameter)
+      throw InputError("--parent " + request.parent_path + ": equilibria in " + own.parameter_name +
+                       "; expected them in --param " + request.parameter);
+  } else if (!request.parent_equilibria) {
     EquilibriumProblem problem;
     problem.parameter = parameter;
     problem.values = source.values;
@@ -126,8 +126,9 @@ Branch run_hopf_branch(const BranchSource& source, const BranchRequest& request,
         std::fprintf(request.progress, "  (equilibria) >> %s at %s = %.10g\n",
                      to_string(e.type).c_str(), request.parameter.c_str(), e.parameter);
       };
-    parent = continue_equilibria(system, problem, {}, cb);
+    own = continue_equilibria(system, problem, {}, cb);
   }
+  const EquilibriumBranch& parent = request.parent_equilibria ? *request.parent_equilibria : own;
   Branch born;
   born.parameter_name = request.parameter;
   born.parameter = parameter;

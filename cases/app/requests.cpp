@@ -233,17 +233,11 @@ EquilibriaRequest equilibria_request(const Arguments& args, const LoadedSystem& 
     problem.values = parent.start_values;
     r.start = "the branch point BP" + std::to_string(r.switch_at) + " of " + r.parent_path;
     r.parent = std::move(parent);
-  } else if (saved) {
-    // A point or event of an earlier equilibria run (AUTO's IRS with a label): its state and
-    // every parameter value, in the same parameter or another.
-    const SavedEquilibrium e = read_saved_equilibrium(*saved, system);
-    problem.start_state = e.state;
-    problem.values = e.values;
-    r.start = "saved " + e.description;
   } else {
-    const BranchSource source = c.source(r.start, args.assignments("--initial"));
-    problem.start_state = source.start_state;
-    problem.values = source.values;
+    EquilibriaStart start = equilibria_start(c, r.start, args.assignments("--initial"), saved);
+    problem.start_state = std::move(start.state);
+    problem.values = std::move(start.values);
+    r.start = start.name;
   }
   if (const std::string wrong = problem.problem_with(system); !wrong.empty())
     throw InputError("--" + wrong);
@@ -268,6 +262,18 @@ EquilibriaRequest equilibria_request(const Arguments& args, const LoadedSystem& 
   check_distinct_outputs({{"--csv", csv_path}, {"--json", r.json_path}}, c.inputs());
 
   return r;
+}
+
+EquilibriaStart equilibria_start(const LoadedSystem& c, const std::string& start,
+                                 const std::vector<Assignment>& initial,
+                                 const std::optional<SavedStart>& saved) {
+  if (saved) {
+    // In the same parameter or another.
+    SavedEquilibrium e = read_saved_equilibrium(*saved, c.system());
+    return {std::move(e.state), std::move(e.values), "saved " + e.description};
+  }
+  BranchSource source = c.source(start, initial);  // throws naming the start if there is none
+  return {std::move(source.start_state), std::move(source.values), start};
 }
 
 std::vector<double> simulation_times(const Arguments& args) {
@@ -307,12 +313,14 @@ namespace {
 EquilibriumBranch switch_at_branch_point(const EquilibriaRequest& r, const OdeSystem& system,
                                          const EquilibriumCallbacks& callbacks) {
   EquilibriumBranch computed;
-  if (!r.parent) {
+  if (!r.parent && !r.parent_branch) {
     EquilibriumCallbacks quiet;
     quiet.stop_requested = callbacks.stop_requested;
     computed = continue_equilibria(system, r.problem, r.options, quiet);
   }
-  const EquilibriumBranch& parent = r.parent ? *r.parent : computed;
+  const EquilibriumBranch& parent = r.parent_branch ? *r.parent_branch
+                                    : r.parent      ? *r.parent
+                                                    : computed;
   EquilibriumBranch failed;
   failed.parameter = r.problem.parameter;
   failed.parameter_name = system.parameter_names()[r.problem.parameter];
@@ -357,14 +365,20 @@ EquilibriumBranch run_equilibria(const EquilibriaRequest& r, const OdeSystem& sy
   return branch;
 }
 
-void write_equilibria_json(const EquilibriaRequest& r, const EquilibriumBranch& branch,
-                           const LoadedSystem& c, double seconds) {
+nlohmann::json equilibria_json(const EquilibriaRequest& r, const EquilibriumBranch& branch,
+                               const LoadedSystem& c) {
   nlohmann::json j = equilibrium_branch_json(branch);
   j["case"] = c.path();
   j["params_set"] = c.params();
   j["start"] = r.start;
   j["from"] = r.problem.from;
   j["to"] = r.problem.to;
+  return j;
+}
+
+void write_equilibria_json(const EquilibriaRequest& r, const EquilibriumBranch& branch,
+                           const LoadedSystem& c, double seconds) {
+  nlohmann::json j = equilibria_json(r, branch, c);
   j["seconds"] = seconds;
   write_json(r.json_path, j);
 }

@@ -97,14 +97,32 @@ struct EquilibriaRequest {
   int switch_at = 0;  // n; 0: no switch
   std::optional<EquilibriumBranch> parent;
   std::string parent_path;
+  // ... or this one, already computed (a study's equilibria entry switched at another's BP).
+  const EquilibriumBranch* parent_branch = nullptr;
 };
 EquilibriaRequest equilibria_request(const Arguments& args, const LoadedSystem& c);
+// Where a branch of equilibria that is not switched starts, for `equilibria` and a study's
+// [[equilibria]] entries: a saved point or event of an earlier run (`saved`, --parent F
+// --from-point P: its state and every parameter value, AUTO's IRS with a label), or the case's
+// start `start` ("" for an equation case file's [states]) with `initial` on top. `name` is what
+// the reports and the JSON call it.
+struct EquilibriaStart {
+  Eigen::VectorXd state;
+  ParameterValues values;
+  std::string name;
+};
+EquilibriaStart equilibria_start(const LoadedSystem& c, const std::string& start,
+                                 const std::vector<Assignment>& initial,
+                                 const std::optional<SavedStart>& saved);
 // The branch of equilibria (the engine's continue_equilibria, or with r.switch_at its
 // continue_from_branch_point at the parent's BP), its points streamed to r.csv_path.
 EquilibriumBranch run_equilibria(const EquilibriaRequest& r, const OdeSystem& system,
                                  const EquilibriumCallbacks& callbacks);
-// The branch's JSON to r.json_path, with the case's path and set, the start, the window and the
-// run time.
+// The branch's JSON (the engine's equilibrium_branch_json) with the case's path and set, the
+// start and the window: what `equilibria --json` writes and a study's JSON holds per entry.
+nlohmann::json equilibria_json(const EquilibriaRequest& r, const EquilibriumBranch& branch,
+                               const LoadedSystem& c);
+// That JSON to r.json_path, with the run time.
 void write_equilibria_json(const EquilibriaRequest& r, const EquilibriumBranch& branch,
                            const LoadedSystem& c, double seconds);
 

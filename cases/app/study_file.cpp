@@ -4,14 +4,27 @@
 
 #include <algorithm>
 #include <filesystem>
+#include <set>
 
 namespace sympathy::app {
+
+namespace {
+
+// HBn, n a positive number: a Hopf point of equilibria (parse_hopf_name's form; checked here
+// without the Hopf start's code, which the fuzz target does not build).
+bool is_hopf_name(const std::string& text) {
+  return text.size() > 2 && text.compare(0, 2, "HB") == 0 && text[2] != '0' &&
+         text.find_first_not_of("0123456789", 2) == std::string::npos && text.size() <= 8;
+}
+
+}  // namespace
 
 Study load_study(const std::string& path) {
   const toml::table root = read_toml(path, "study file");
   const TomlReader in(path);
   in.only(root, "",
-          {"title", "case", "params", "parameter", "axis", "accuracy", "branches", "marks"});
+          {"title", "case", "params", "parameter", "axis", "accuracy", "branches", "equilibria",
+           "equilibria_axis", "marks"});
   Study s;
   s.path = path;
   s.name = std::filesystem::path(path).stem().string();
@@ -42,8 +55,21 @@ Study load_study(const std::string& path) {
     accuracy = parse_accuracy(text, "accuracy");
   }
   s.accuracy = accuracy;
-  const toml::node& list = required("branches");
-  if (!list.is_array_of_tables() || list.as_array()->empty())
+  if (const toml::node* n = root.get("equilibria_axis"))
+    s.equilibria_axis = in.string(*n, "equilibria_axis");  // a state of the case: study_run
+  // Branches of equilibria first: the periodic branches may start at their Hopf points.
+  std::set<std::string> names;
+  if (const toml::node* n = root.get("equilibria")) read_study_equilibria(in, *n, s, names);
+  if (!root.get("branches") && s.equilibria.empty())
+    throw InputError(path +
+                     ": key 'branches' is missing; expected [[branches]] tables, [[equilibria]] "
+                     "tables or both");
+  if (root.get("equilibria_axis") && s.equilibria.empty())
+    in.fail(*root.get("equilibria_axis"), "equilibria_axis",
+            "only beside [[equilibria]] tables (the state their diagram is drawn in)");
+  static const toml::array none;
+  const toml::node& list = root.get("branches") ? *root.get("branches") : none;
+  if (root.get("branches") && (!list.is_array_of_tables() || list.as_array()->empty()))
     in.fail(list, "branches", "one or more [[branches]] tables");
   int index = 0;
   for (const auto& entry : *list.as_array()) {
@@ -62,6 +88,9 @@ Study load_study(const std::string& path) {
         throw InputError(path + ":" + std::to_string(entry.source().begin.line) + ": key '" +
                          prefix + key + "' is missing");
     b.name = in.string(*t.get("name"), prefix + "name");
+    if (!names.insert(b.name).second)
+      in.fail(*t.get("name"), prefix + "name",
+              "a name no other branch or equilibria entry has (it names files)");
     if (t.get("start")) b.request.start = in.string(*t.get("start"), prefix + "start");
     if (const toml::node* n = t.get("start_data")) {
       if (t.get("start"))
@@ -99,7 +128,31 @@ Study load_study(const std::string& path) {
     if (auto* n = t.get("at")) b.request.at = in.number(*n, prefix + "at");
     if (auto* n = t.get("switch_at")) {
       std::string text = in.string(*n, prefix + "switch_at");
-      if (const auto colon = text.find(':'); colon != std::string::npos) {
+      const auto colon = text.find(':');
+      const auto equilibria = colon == std::string::npos
+                                  ? s.equilibria.end()
+                                  : std::find_if(s.equilibria.begin(), s.equilibria.end(),
+                                                 [&](const StudyEquilibria& e) {
+                                                   return e.name == text.substr(0, colon);
+                                                 });
+      if (equilibria != s.equilibria.end()) {
+        // NAME:HBn of an [[equilibria]] entry: the family born at its Hopf point, at its values.
+        b.equilibria_parent = equilibria->name;
+        text = text.substr(colon + 1);
+        if (!is_hopf_name(text))
+          in.fail(*n, prefix + "switch_at",
+                  "a Hopf point of the equilibria '" + b.equilibria_parent + "' (" +
+                      b.equilibria_parent +
+                      ":HB1): only there are orbits born (the branches of equilibria born at "
+                      "their BP: an [[equilibria]] entry with switch_at = \"" +
+                      b.equilibria_parent + ":BP1\")");
+        for (const char* own : {"set", "initial", "start_data", "equilibria"})
+          if (t.get(own))
+            in.fail(*t.get(own), prefix + own,
+                    "no " + std::string(own) + " beside switch_at = \"" + b.equilibria_parent +
+                        ":" + text + "\" (the family starts at that Hopf point, at its values)");
+        if (b.request.start.empty()) b.request.start = equilibria->start;
+      } else if (colon != std::string::npos) {
         b.parent = text.substr(0, colon);
         text = text.substr(colon + 1);
         const bool known = std::any_of(s.branches.begin(), s.branches.end(),
@@ -122,13 +175,11 @@ Study load_study(const std::string& path) {
       b.request.switch_at = text;
       // HBn: the family of orbits born at the n-th Hopf point of the equilibria through the
       // start over the window, or of the saved ones `equilibria` names.
-      const bool hopf = text.size() > 2 && text.compare(0, 2, "HB") == 0 && text[2] != '0' &&
-                        text.find_first_not_of("0123456789", 2) == std::string::npos &&
-                        text.size() <= 8;
+      const bool hopf = is_hopf_name(text);
       if (hopf && !b.parent.empty())
         in.fail(*n, prefix + "switch_at",
-                "a Hopf point of the equilibria (HB1, with equilibria = \"FILE.json\" for saved "
-                "ones), not of another branch");
+                "a Hopf point of the equilibria (HB1, NAME:HB1 of an [[equilibria]] entry, or "
+                "HB1 with equilibria = \"FILE.json\" for saved ones), not of another branch");
       if (!hopf)
         parse_event_name(b.request.switch_at, in.where(*n) + ": key '" + prefix + "switch_at'",
                          {BifurcationType::BranchPoint, BifurcationType::PeriodDoubling},

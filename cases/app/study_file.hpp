@@ -2,11 +2,14 @@
 // `sympathy study` (cases/cli/study.cpp) and by the fuzz target tests/fuzz/study_file_fuzz.cpp.
 #pragma once
 
+#include <set>
 #include <string>
 #include <vector>
 
 #include "cases/app/branch_run.hpp"
 #include "cases/app/saved_start.hpp"
+#include "sympathy/cases/toml_reader.hpp"
+#include "sympathy/continuation/equilibrium_branch.hpp"
 
 namespace sympathy::app {
 
@@ -30,19 +33,47 @@ struct StudyBranch {
   // `parent` and `from_point`: the branch starts from a point or event an earlier run saved
   // (continue's --parent FILE --from-point POINT; the file relative to the study file).
   std::optional<SavedStart> saved;
+  // switch_at = "NAME:HB1" with NAME an [[equilibria]] entry: the family born at that entry's
+  // Hopf point (request.switch_at "HB1"; the entry computed first).
+  std::string equilibria_parent;
+};
+
+// An [[equilibria]] table: one `equilibria` run in the study's parameter (cases/app/requests.hpp),
+// read by study_equilibria_file.cpp.
+struct StudyEquilibria {
+  std::string name;
+  std::string start;  // "" for an equation case file's [states] (a metronome case needs one)
+  double from = 0.0, to = 0.0;
+  std::optional<double> at;
+  std::vector<Assignment> sets, initial;
+  std::optional<SavedStart> saved;  // `parent` and `from_point`, as equilibria --from-point
+  // switch_at = "BPn": n, the branch born at the n-th BP of the entry's own run over its window;
+  // with `parent` (switch_at = "NAME:BPn") at that BP of the study's entry NAME, listed before.
+  int switch_at = 0;
+  std::string parent;
+  EquilibriumOptions options;  // max_points, step, max_step, user_points; bounds from from, to
 };
 
 struct Study {
   std::string path, name, title, case_path, params, parameter, axis;
   Accuracy accuracy = Accuracy::Default;  // the file's `accuracy`, applied to every branch
   std::vector<StudyBranch> branches;
+  std::vector<StudyEquilibria> equilibria;  // computed before the branches that need them
+  // The state plot_study draws the equilibria's diagram in (`equilibria_axis`; "" for the first).
+  std::string equilibria_axis;
   // Parameter sets of the case whose value of `parameter` the figure marks (the paper's Fig. 9:
   // the platform's stiffness before and after the fit, Tables II and III).
   std::vector<std::string> marks;
 };
 
-// Reads and checks a study file (its keys, types and each branch's options; not yet its case);
-// throws InputError naming the file, the line and the key.
+// Reads and checks a study file (its keys, types and each branch's and equilibria entry's
+// options; not yet its case); throws InputError naming the file, the line and the key.
 Study load_study(const std::string& path);
+
+// The study's [[equilibria]] tables (`list`, the node of key "equilibria") into s.equilibria,
+// checked as load_study checks branches; their names added to `names` (a name is unique across
+// branches and equilibria: it names files).
+void read_study_equilibria(const TomlReader& in, const toml::node& list, Study& s,
+                           std::set<std::string>& names);
 
 }  // namespace sympathy::app

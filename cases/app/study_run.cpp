@@ -2,6 +2,7 @@
 
 #include <algorithm>
 #include <cmath>
+#include <condition_variable>
 #include <filesystem>
 #include <memory>
 #include <mutex>
@@ -69,6 +70,11 @@ StudyRun study_run(const Arguments& args) {
             user_value(a, stop, c->system(),
                        a.source + ": key 'branches." + b.name + "." +
                            (stop ? "stop_at" : "user_value") + "'"));
+    // The family born at a Hopf point of an [[equilibria]] entry needs no start; a metronome
+    // case's source still names one (unused), as continue --parent HOPF.json's.
+    if (!b.equilibria_parent.empty() && b.request.start.empty() && !c->equations() &&
+        !c->start_names().empty())
+      b.request.start = c->start_names().front();
     if (!c->equations() && b.request.start.empty() && b.start_data.empty() && !b.saved)
       throw InputError(study.path + ": branch '" + b.name +
                        "': key 'start' is missing; expected the name of one of " + c->path() +
@@ -76,7 +82,9 @@ StudyRun study_run(const Arguments& args) {
     sources.push_back(c->source(b.request.start, b.request.initial, recorded.back()));
     systems.push_back(std::move(c));
   }
-  const LoadedSystem& first = *systems.front();
+  std::vector<std::pair<std::string, std::string>> equilibria_outputs;
+  prepare_study_equilibria(run, equilibria_outputs);
+  const LoadedSystem& first = run.first();
   for (const auto& set : study.marks) {
     const auto values = first.set_values(set);  // throws naming the set if the case has none
     const auto it = std::find_if(values.begin(), values.end(),
@@ -97,12 +105,15 @@ StudyRun study_run(const Arguments& args) {
     outputs.emplace_back("branch '" + b.name + "''s CSV", stem + ".csv");
     outputs.emplace_back("branch '" + b.name + "''s events CSV", stem + "-events.csv");
   }
+  outputs.insert(outputs.end(), equilibria_outputs.begin(), equilibria_outputs.end());
   for (const auto& [what, path] : outputs) check_writable(path, study.path + ": " + what);
   std::vector<std::pair<std::string, std::string>> inputs{{"study file", study.path},
                                                           {"case file", first.path()}};
   for (const auto& b : study.branches)
     if (!b.start_data.empty())
       inputs.emplace_back("branch '" + b.name + "''s start_data", b.start_data);
+  for (const auto& e : study.equilibria)
+    if (e.saved) inputs.emplace_back("equilibria '" + e.name + "''s parent", e.saved->path);
   check_distinct_outputs(outputs, inputs);
 
   auto& requests = run.requests;
@@ -121,6 +132,37 @@ StudyRun study_run(const Arguments& args) {
   return run;
 }
 
+namespace {
+
+// The jobs a study job starts from (job numbers as StudyRun's: branches, then equilibria
+// entries): a branch switched at another's event, or at a Hopf point of an equilibria entry; an
+// entry switched at another's BP.
+std::vector<std::vector<std::size_t>> job_parents(const Study& study) {
+  const std::size_t branches = study.branches.size();
+  const auto branch = [&](const std::string& name) {
+    std::size_t i = 0;
+    while (study.branches[i].name != name) ++i;
+    return i;
+  };
+  const auto equilibria = [&](const std::string& name) {
+    std::size_t k = 0;
+    while (study.equilibria[k].name != name) ++k;
+    return branches + k;
+  };
+  std::vector<std::vector<std::size_t>> parents(branches + study.equilibria.size());
+  for (std::size_t i = 0; i < branches; ++i) {
+    const StudyBranch& b = study.branches[i];
+    if (!b.parent.empty()) parents[i].push_back(branch(b.parent));
+    if (!b.equilibria_parent.empty()) parents[i].push_back(equilibria(b.equilibria_parent));
+  }
+  for (std::size_t k = 0; k < study.equilibria.size(); ++k)
+    if (!study.equilibria[k].parent.empty())
+      parents[branches + k].push_back(equilibria(study.equilibria[k].parent));
+  return parents;
+}
+
+}  // namespace
+
 void run_study_branches(StudyRun& run, const std::atomic<bool>* stop,
                         const JobCallbacks& callbacks) {
   const Study& study = run.study;
@@ -128,17 +170,16 @@ void run_study_branches(StudyRun& run, const std::atomic<bool>* stop,
   auto& errors = run.errors;
   auto& requests = run.requests;
   const auto& sources = run.sources;
-  const int jobs = run.jobs;
-  // Branches switched at another's event run after the others, from that branch's result.
+  const std::size_t branches = study.branches.size(), jobs = run.job_count();
+  // The equilibria entries first (cheap, and what Hopf switches start from), then the branches,
+  // each once every job it starts from is done.
   std::vector<std::size_t> order;
-  for (int chained = 0; chained < 2; ++chained)
-    for (std::size_t i = 0; i < study.branches.size(); ++i)
-      if (study.branches[i].parent.empty() == (chained == 0)) order.push_back(i);
-  const std::size_t independent = static_cast<std::size_t>(
-      std::count_if(study.branches.begin(), study.branches.end(),
-                    [](const StudyBranch& b) { return b.parent.empty(); }));
-  std::mutex queue;  // guards next
-  std::size_t next = 0;
+  for (std::size_t k = 0; k < study.equilibria.size(); ++k) order.push_back(branches + k);
+  for (std::size_t i = 0; i < branches; ++i) order.push_back(i);
+  const auto parents = job_parents(study);
+  std::mutex queue;  // guards taken and done
+  std::condition_variable finished;
+  std::vector<bool> taken(jobs, false), done(jobs, false);
   // Where each running branch is (on the status line of a terminal).
   if (callbacks.job)
     for (std::size_t i = 0; i < requests.size(); ++i)
@@ -147,49 +188,87 @@ void run_study_branches(StudyRun& run, const std::atomic<bool>* stop,
         callbacks.job(i, study.branches[i].name + " " + requests[i].parameter + " = " +
                              format_number(p.parameter));
       };
-  auto worker = [&](std::size_t end) {
+  const auto run_branch_job = [&](std::size_t i) {
+    const StudyBranch& b = study.branches[i];
+    if (!b.parent.empty()) {
+      std::size_t p = 0;
+      while (study.branches[p].name != b.parent) ++p;
+      if (!errors[p].empty() || !results[p].started())
+        throw std::runtime_error("its parent branch '" + b.parent + "' has no result");
+      requests[i].parent_branch = &results[p];
+    }
+    if (!b.equilibria_parent.empty()) {
+      std::size_t k = 0;
+      while (study.equilibria[k].name != b.equilibria_parent) ++k;
+      if (!run.equilibria_errors[k].empty() || !run.equilibria_results[k].started())
+        throw std::runtime_error("its equilibria '" + b.equilibria_parent + "' have no result");
+      requests[i].parent_equilibria = &run.equilibria_results[k];
+    }
+    results[i] = run_branch(sources[i], requests[i], stop);
+  };
+  auto worker = [&] {
     for (;;) {
-      std::size_t i;
+      std::size_t i = jobs;
       {
-        std::lock_guard<std::mutex> lock(queue);
-        if (next >= end) return;
-        i = order[next++];
+        std::unique_lock<std::mutex> lock(queue);
+        finished.wait(lock, [&] {
+          if (std::all_of(taken.begin(), taken.end(), [](bool t) { return t; })) return true;
+          for (const std::size_t j : order)
+            if (!taken[j] && std::all_of(parents[j].begin(), parents[j].end(),
+                                         [&](std::size_t p) { return bool(done[p]); })) {
+              i = j;
+              return true;
+            }
+          return false;
+        });
+        if (i == jobs) return;  // every job taken
+        taken[i] = true;
       }
       try {
-        if (const auto& parent = study.branches[i].parent; !parent.empty()) {
-          std::size_t p = 0;
-          while (study.branches[p].name != parent) ++p;
-          if (!errors[p].empty() || !results[p].started())
-            throw std::runtime_error("its parent branch '" + parent + "' has no result");
-          requests[i].parent_branch = &results[p];
+        if (i < branches) {
+          run_branch_job(i);
+        } else {
+          run_study_equilibria(run, i - branches, stop, [&, i](const std::string& doing) {
+            if (callbacks.job) callbacks.job(i, doing);
+          });
         }
-        results[i] = run_branch(sources[i], requests[i], stop);
       } catch (const std::exception& e) {
-        errors[i] = e.what();
+        (i < branches ? errors[i] : run.equilibria_errors[i - branches]) = e.what();
       }
       if (callbacks.finished) callbacks.finished(i);
+      {
+        std::lock_guard<std::mutex> lock(queue);
+        done[i] = true;
+      }
+      finished.notify_all();
     }
   };
-  for (const std::size_t end : {independent, order.size()}) {
-    std::vector<std::thread> threads;
-    for (int t = 0; t < std::min<int>(jobs, static_cast<int>(study.branches.size())); ++t)
-      threads.emplace_back(worker, end);
-    for (auto& t : threads) t.join();
-  }
-  // A line per branch, in the study's order (the same on every run, whichever finished first;
+  std::vector<std::thread> threads;
+  for (int t = 0; t < std::min<int>(run.jobs, static_cast<int>(jobs)); ++t)
+    threads.emplace_back(worker);
+  for (auto& t : threads) t.join();
+  // A line per job, in the study's order (the same on every run, whichever finished first;
   // on a terminal the status line showed them as they went).
   if (!callbacks.log) return;
-  for (std::size_t i = 0; i < study.branches.size(); ++i) {
+  for (std::size_t i = 0; i < branches; ++i) {
     char line[160];
     std::snprintf(line, sizeof line, "  branch %-14s %zu points in %.1f s; ",
                   study.branches[i].name.c_str(), results[i].points.size(), results[i].seconds);
     callbacks.log(line + (!errors[i].empty() ? errors[i] : results[i].stop_reason) + "\n");
   }
+  for (std::size_t k = 0; k < study.equilibria.size(); ++k) {
+    const EquilibriumBranch& e = run.equilibria_results[k];
+    char line[160];
+    std::snprintf(line, sizeof line, "  equilibria %-10s %zu points in %.1f s; ",
+                  study.equilibria[k].name.c_str(), e.points.size(), e.seconds);
+    const std::string& error = run.equilibria_errors[k];
+    callbacks.log(line + (!error.empty() ? error : e.stop_reason) + "\n");
+  }
 }
 
 void write_study_json(const StudyRun& run, double seconds) {
   const Study& study = run.study;
-  const LoadedSystem& first = *run.systems.front();
+  const LoadedSystem& first = run.first();
   nlohmann::json j;
   j["study"] = study.name;
   j["title"] = study.title;
@@ -205,6 +284,16 @@ void write_study_json(const StudyRun& run, double seconds) {
     if (!run.errors[i].empty()) b["error"] = run.errors[i];
     j["branches"].push_back(b);
   }
+  j["equilibria"] = nlohmann::json::array();
+  for (std::size_t k = 0; k < study.equilibria.size(); ++k) {
+    const EquilibriaRequest& r = run.equilibria_requests[k];
+    nlohmann::json e = equilibria_json(r, run.equilibria_results[k], *run.equilibria_systems[k]);
+    e["name"] = study.equilibria[k].name;
+    e["csv"] = std::filesystem::path(r.csv_path).filename().string();
+    if (!run.equilibria_errors[k].empty()) e["error"] = run.equilibria_errors[k];
+    j["equilibria"].push_back(e);
+  }
+  if (!study.equilibria.empty()) j["equilibria_axis"] = run.equilibria_axis;
   j["marks"] = nlohmann::json::array();
   for (const auto& [set, value] : run.marks)
     j["marks"].push_back({{"name", set}, {"value", value}});

@@ -2,6 +2,7 @@
 #pragma once
 
 #include <atomic>
+#include <functional>
 #include <memory>
 #include <string>
 #include <utility>
@@ -11,15 +12,18 @@
 #include "cases/app/branch_run.hpp"
 #include "cases/app/job_callbacks.hpp"
 #include "cases/app/loaded_system.hpp"
+#include "cases/app/requests.hpp"
 #include "cases/app/study_file.hpp"
 
 namespace sympathy::app {
 
-// sympathy study: the run prepared (the study file read, every branch's case, start
-// and outputs checked, its request made: what is checked before any work), its branches computed
-// side by side on run.jobs threads (each as continue computes it, its CSVs streamed; a line per
-// branch to callbacks.log, in the study's order at the end; `stop` asked between points; where
-// each running branch is to callbacks.job, each one done to callbacks.finished).
+// sympathy study: the run prepared (the study file read, every branch's and equilibria entry's
+// case, start and outputs checked, its request made: what is checked before any work), its
+// branches and equilibria computed side by side on run.jobs threads (each as continue or
+// equilibria computes it, its CSVs streamed; an entry another starts from before it), a line per
+// job to callbacks.log, in the study's order at the end; `stop` asked between points; where each
+// running job is to callbacks.job, each one done to callbacks.finished. Jobs are numbered
+// branches first, then equilibria entries.
 struct StudyRun {
   Study study;
   std::string out, json_path;
@@ -32,12 +36,36 @@ struct StudyRun {
   // The marked parameter sets' values of the study's parameter: (set, value), checked before
   // any work.
   std::vector<std::pair<std::string, double>> marks;
+  // Per [[equilibria]] entry (study_equilibria_run.cpp): its case, request, result and error.
+  std::vector<std::unique_ptr<LoadedSystem>> equilibria_systems;
+  std::vector<EquilibriaRequest> equilibria_requests;
+  std::vector<EquilibriumBranch> equilibria_results;
+  std::vector<std::string> equilibria_errors;
+  // The state the equilibria's diagram is drawn in: the study's equilibria_axis, checked against
+  // the case, or its first state.
+  std::string equilibria_axis;
+  // The case as the first entry loaded it (a branch's, else an equilibria entry's).
+  const LoadedSystem& first() const {
+    return systems.empty() ? *equilibria_systems.front() : *systems.front();
+  }
+  std::size_t job_count() const { return study.branches.size() + study.equilibria.size(); }
 };
 StudyRun study_run(const Arguments& args);
 void run_study_branches(StudyRun& run, const std::atomic<bool>* stop,
                         const JobCallbacks& callbacks = {});
 // The study's JSON (run.json_path): per branch its JSON (branch_json) with its name, its CSV's
-// file name and its error if any; `seconds` the run's time.
+// file name and its error if any; per equilibria entry as `equilibria --json` writes it
+// (equilibria_json), the same three beside; `seconds` the run's time.
 void write_study_json(const StudyRun& run, double seconds);
+
+// The [[equilibria]] entries of run.study made requests (study_equilibria_run.cpp): each one's
+// case loaded with its `set`, its start, window and outputs checked, before any work; `outputs`
+// gains (what, path) of each CSV.
+void prepare_study_equilibria(StudyRun& run,
+                              std::vector<std::pair<std::string, std::string>>& outputs);
+// Entry k computed as `equilibria` computes it (its CSV streamed; switched at the BP of the entry
+// it names, already computed); where it is to `doing` (job index `job`).
+void run_study_equilibria(StudyRun& run, std::size_t k, const std::atomic<bool>* stop,
+                          const std::function<void(const std::string&)>& doing);
 
 }  // namespace sympathy::app

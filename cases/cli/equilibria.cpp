@@ -11,47 +11,9 @@
 #include "cases/cli/commands.hpp"
 #include "cases/cli/common.hpp"
 #include "cases/cli/progress.hpp"
+#include "cases/cli/report.hpp"
 
 namespace sympathy::cli {
-
-namespace {
-
-std::string eigenvalue_text(std::complex<double> l) {
-  char text[64];
-  std::snprintf(text, sizeof text, "%.6g%+.6gi", l.real(), l.imag());
-  return text;
-}
-
-// The eigenvalue nearest the imaginary axis: what crosses it at an event.
-std::complex<double> critical(const Eigen::VectorXcd& eigenvalues) {
-  std::complex<double> best = eigenvalues[0];
-  for (const auto& l : eigenvalues)
-    if (std::abs(l.real()) < std::abs(best.real())) best = l;
-  return best;
-}
-
-void print_equilibrium_events(const EquilibriumBranch& branch) {
-  if (branch.events.empty()) {
-    std::printf("  no bifurcations on this branch\n");
-    return;
-  }
-  std::printf("  %-4s %-20s %-11s %-28s %s\n", "type", branch.parameter_name.c_str(), "uncertainty",
-              "critical eigenvalue", "note");
-  for (const auto& e : branch.events) {
-    std::string note = e.note;
-    if (e.hopf) {
-      char text[160];
-      std::snprintf(text, sizeof text, "omega %.10g, period %.10g, %s", e.hopf->omega,
-                    e.hopf->period, describe_criticality(e.hopf->lyapunov).c_str());
-      note = text + (note.empty() ? "" : "; " + note);
-    }
-    std::printf("  %-4s %-20.12g %-11.1e %-28s %s\n",
-                (to_string(e.type) + (e.located ? "" : "?")).c_str(), e.parameter, e.uncertainty,
-                eigenvalue_text(critical(e.eigenvalues)).c_str(), note.c_str());
-  }
-}
-
-}  // namespace
 
 int run_equilibria(const std::vector<std::string>& argv) {
   Arguments args("equilibria", argv, equilibria_options(), {"CASE"});
@@ -100,7 +62,7 @@ int run_equilibria(const std::vector<std::string>& argv) {
               first.parameter, first.unstable, parameter.c_str(), last.parameter, last.unstable);
   if (!branch.origin.empty()) std::printf("  %s\n", branch.origin.c_str());
   std::printf("bifurcations:\n");
-  print_equilibrium_events(branch);
+  print_equilibrium_events(stdout, branch);
   std::printf("  run time %.3f s\n", clock.seconds());
   if (!r.json_path.empty()) write_equilibria_json(r, branch, c, clock.seconds());
   return exit_code_of(branch);

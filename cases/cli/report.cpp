@@ -154,4 +154,43 @@ void print_events(std::FILE* out, const Branch& branch) {
   }
 }
 
+namespace {
+
+std::string eigenvalue_text(std::complex<double> l) {
+  char text[64];
+  std::snprintf(text, sizeof text, "%.6g%+.6gi", l.real(), l.imag());
+  return text;
+}
+
+// The eigenvalue nearest the imaginary axis: what crosses it at an event.
+std::complex<double> critical(const Eigen::VectorXcd& eigenvalues) {
+  std::complex<double> best = eigenvalues[0];
+  for (const auto& l : eigenvalues)
+    if (std::abs(l.real()) < std::abs(best.real())) best = l;
+  return best;
+}
+
+}  // namespace
+
+void print_equilibrium_events(std::FILE* out, const EquilibriumBranch& branch) {
+  if (branch.events.empty()) {
+    std::fprintf(out, "  no bifurcations on this branch\n");
+    return;
+  }
+  std::fprintf(out, "  %-4s %-20s %-11s %-28s %s\n", "type", branch.parameter_name.c_str(),
+               "uncertainty", "critical eigenvalue", "note");
+  for (const auto& e : branch.events) {
+    std::string note = e.note;
+    if (e.hopf) {
+      char text[160];
+      std::snprintf(text, sizeof text, "omega %.10g, period %.10g, %s", e.hopf->omega,
+                    e.hopf->period, describe_criticality(e.hopf->lyapunov).c_str());
+      note = text + (note.empty() ? "" : "; " + note);
+    }
+    std::fprintf(out, "  %-4s %-20.12g %-11.1e %-28s %s\n",
+                 (to_string(e.type) + (e.located ? "" : "?")).c_str(), e.parameter, e.uncertainty,
+                 eigenvalue_text(critical(e.eigenvalues)).c_str(), note.c_str());
+  }
+}
+
 }  // namespace sympathy::cli

@@ -30,4 +30,9 @@ void print_newton_and_flow(std::FILE* out, const PeriodicOrbit& orbit);
 // crossing multiplier, note.
 void print_events(std::FILE* out, const Branch& branch);
 
+// A branch of equilibria's events as a table (equilibria, study): type (with ? where not
+// located), parameter, uncertainty, the eigenvalue nearest the imaginary axis, note (a Hopf
+// point's omega, period and criticality).
+void print_equilibrium_events(std::FILE* out, const EquilibriumBranch& branch);
+
 }  // namespace sympathy::cli

@@ -24,8 +24,7 @@ int run_study(const std::vector<std::string>& argv) {
   Stopwatch clock;
   StudyRun run = study_run(args);
   const Study& study = run.study;
-  const auto& systems = run.systems;
-  const LoadedSystem& first = *systems.front();
+  const LoadedSystem& first = run.first();
   const auto& results = run.results;
   const auto& errors = run.errors;
   const std::string& json_path = run.json_path;
@@ -35,7 +34,8 @@ int run_study(const std::vector<std::string>& argv) {
   if (first.equations()) std::printf("  %s\n", first.build_note().c_str());
   std::fflush(stdout);
   ProgressLine line(args.flag("--quiet"));
-  line.start_jobs("study", study.branches.size(), "branches");
+  line.start_jobs("study", run.job_count(),
+                  study.equilibria.empty() ? "branches" : "branches and equilibria");
   JobCallbacks callbacks;
   if (line.enabled())
     callbacks.job = [&](std::size_t i, const std::string& doing) { line.job(i, doing); };
@@ -54,11 +54,21 @@ int run_study(const std::vector<std::string>& argv) {
     std::printf("bifurcations on %s:\n", study.branches[i].name.c_str());
     print_events(stdout, results[i]);
   }
+  // Equilibria as `sympathy equilibria` prints them.
+  for (std::size_t k = 0; k < study.equilibria.size(); ++k) {
+    const EquilibriumBranch& e = run.equilibria_results[k];
+    ok = ok && run.equilibria_errors[k].empty() && e.started();
+    std::printf("bifurcations on equilibria %s:\n", study.equilibria[k].name.c_str());
+    if (!e.origin.empty()) std::printf("  %s\n", e.origin.c_str());
+    print_equilibrium_events(stdout, e);
+  }
   write_study_json(run, clock.seconds());
   std::printf("  wrote %s, %zu CSV files of points and %zu of events; run time %.2f s\n",
-              json_path.c_str(), study.branches.size(), study.branches.size(), clock.seconds());
+              json_path.c_str(), study.branches.size() + study.equilibria.size(),
+              study.branches.size(), clock.seconds());
   int code = ok ? kDone : kNumericalFailure;
   for (const Branch& b : results) code = worse(code, exit_code_of(b));
+  for (const EquilibriumBranch& e : run.equilibria_results) code = worse(code, exit_code_of(e));
   return code;
 }
 

@@ -159,10 +159,12 @@ def _file_function(command: str, summary: str) -> Any:
 
 
 study = _file_function("study", (
-    "sympathy study: the branches of a study file (``cases/figures/*.toml``) side by side, their "
-    "CSV files written to out as the program writes them; a namespace with title, parameter and "
-    "branches (a dict by name, each as continue_branch returns it, with error: why it has none, "
-    "or ''). Ctrl-C returns the branches so far."))
+    "sympathy study: the branches and equilibria entries of a study file "
+    "(``cases/figures/*.toml``) side by side, their CSV files written to out as the program "
+    "writes them; a namespace with title, parameter, branches (a dict by name, each as "
+    "continue_branch returns it, with error: why it has none, or '') and equilibria (a dict by "
+    "name, each as equilibria returns it, with error), equilibria_axis (the state their diagram "
+    "is drawn in). Ctrl-C returns the branches so far."))
 map = _file_function("map", (
     "sympathy map: where each orbit of a map file (``cases/figures/map_*.toml``) is stable in two "
     "parameters: its branch, the curve of every event on it in both parameters and its stability "

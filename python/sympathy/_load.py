@@ -5,7 +5,8 @@ AUTO's ``load``: an orbit (``orbit --json``), a branch (``continue --json``), a 
 JSON, as one object
 whose ``kind`` says which, with the JSON's keys as attributes: points along a branch or curve as
 NumPy arrays by key (multipliers and eigenvalues complex, one row a point), events as objects,
-a study's branches as a dict by name, a map's orbits and equilibria entries as lists.
+a study's branches and equilibria entries as dicts by name, a map's orbits and equilibria entries
+as lists.
 """
 
 from __future__ import annotations
@@ -118,6 +119,7 @@ def load(path: Union[str, "os.PathLike[str]"]) -> SimpleNamespace:
     result = _basins(j) if kind == "basins" else _object(j)
     if kind == "study":  # by name, as sympathy.study returns them
         result.branches = {b.name: b for b in result.branches}
+        result.equilibria = {e.name: e for e in getattr(result, "equilibria", [])}
     result.kind = kind
     result.path = path
     return result

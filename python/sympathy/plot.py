@@ -348,19 +348,77 @@ def branch(result: Any, ax: Any = None, y: YAxis = None, label: Optional[str] = 
     return ax
 
 
+def _drawn(entries: Any) -> dict:
+    """A study's branches or equilibria entries (a dict by name) that have points to draw."""
+    return {name: b for name, b in (entries or {}).items()
+            if not getattr(b, "error", "") and len(getattr(b.points, "value", [])) > 0}
+
+
 def study(result: Any, ax: Any = None) -> Any:
     """A study's branches on one diagram, as the paper draws its Figs. 6-9, 12 and 18-20: the
     absolute phase difference of th2 to th1 (0 in phase, pi in anti-phase) or the frequency
     against the study's parameter, each branch named at its end, every event label placed apart
-    from all the others. Returns the axes."""
-    ax = new_axes(ax)
+    from all the others. Its equilibria entries (``[[equilibria]]``) in a panel of their own
+    below, on the same parameter axis (alone when the study has no branches): the state
+    ``equilibria_axis`` names (by default the first) against the parameter, stable solid,
+    unstable dashed, their events marked and named as the branches' are; two panels need a new
+    figure (no `ax`). Returns the (first) axes."""
+    equilibria = _drawn(getattr(result, "equilibria", None))
+    if not equilibria:
+        ax = new_axes(ax)
+        _orbits_diagram(result, ax)()
+        return ax
+    if not _drawn(result.branches):
+        ax = new_axes(ax)
+        _equilibria_diagram(ax, result, equilibria, titled=True)()
+        return ax
+    if ax is not None:
+        raise ValueError("plot: a study with branches and equilibria draws two panels; no ax")
+    import matplotlib.pyplot as plt  # type: ignore[import]
+    fig, (ax, below) = plt.subplots(2, 1, figsize=(COLUMN[0], 2.0 * COLUMN[1] + 0.6),
+                                    sharex=True, layout="constrained")
+    # Both panels drawn before any label is placed: place_labels fixes the layout it finds.
+    place_orbits = _orbits_diagram(result, ax)
+    place_equilibria = _equilibria_diagram(below, result, equilibria, titled=False)
+    ax.set_xlabel("")
+    place_orbits()
+    place_equilibria()
+    return ax
+
+
+def _equilibria_diagram(ax: Any, result: Any, equilibria: dict,
+                        titled: bool) -> Callable[[], None]:
+    """The study's equilibria entries on `ax` (study's lower panel), each named at its end;
+    returns what places their labels."""
+    names = list(next(iter(equilibria.values())).state_names)
+    state = getattr(result, "equilibria_axis", "") or names[0]
+    seen: set = set()
+    labels: list = []
+    tags: list = []
+    for name, e in equilibria.items():
+        events, tag = _draw_branch(ax, e, state, name, seen)
+        labels += events
+        tags.append(tag)
+    ax.set_xlabel(axis_label(result.parameter))
+    ax.set_ylabel(f"{math_name(state)} (equilibria)")
+    title = str(getattr(result, "title", ""))
+    if titled and title:
+        ax.set_title(title)
+    _finish(ax, loc="best")
+
+    def place() -> None:
+        place_labels(ax, labels, clear_of=place_labels(ax, tags, within="figure"))
+    return place
+
+
+def _orbits_diagram(result: Any, ax: Any) -> Callable[[], None]:
+    """The study's branches of periodic orbits on `ax` (study's diagram); returns what places
+    their labels."""
     y = "frequency" if getattr(result, "axis", "phase") == "frequency" else "phase:th2"
     seen: set = set()
     labels: list = []
     names: list = []  # the branches' names, placed first
-    for name, b in result.branches.items():
-        if getattr(b, "error", "") or len(getattr(b.points, "value", [])) == 0:
-            continue
+    for name, b in _drawn(result.branches).items():
         events, tag = _draw_branch(ax, b, y, name, seen)
         labels += events
         names.append(tag)
@@ -392,13 +450,17 @@ def study(result: Any, ax: Any = None) -> Any:
     # The legend below the axes, in rows: inside, it took the room the events' labels need.
     _finish(ax, loc="upper center", bbox_to_anchor=(0.5, -0.2), ncol=5, frameon=False,
             handlelength=1.8, columnspacing=1.0)
-    first = place_labels(ax, names, within="figure")
-    first += place_labels(ax, marks, clear_of=first, reach=None)  # anywhere along its line
-    place_labels(ax, labels, clear_of=first)
-    return ax
+
+    def place() -> None:
+        first = place_labels(ax, names, within="figure")
+        first += place_labels(ax, marks, clear_of=first, reach=None)  # anywhere along its line
+        place_labels(ax, labels, clear_of=first)
+    return place
 
 
-_study_diagram = study  # for basins(), whose argument `study` hides the function's name
+def _study_diagram(result: Any, ax: Any) -> None:
+    """For basins(), whose argument `study` hides study's name: the orbits' diagram on `ax`."""
+    _orbits_diagram(result, ax)()
 
 
 def curve(result: Any, ax: Any = None) -> Any:

@@ -51,7 +51,7 @@ check "... naming both options" grep -q -- "--json $work/same: the same file as 
 printf 'case = "%s"\nparameter = "k"\n[[branches]]\nname = "a"\nstart = "anti-phase"\nfrom = 10.0\nto = 11.0\n[[branches]]\nname = "a"\nstart = "in-phase"\nfrom = 10.0\nto = 11.0\n' "$row2" > "$work/twice.toml"
 "$bin" study "$work/twice.toml" --out "$work" > /dev/null 2> "$work/err"
 check "a study with two branches of one name exits 2" test $? -eq 2
-check "... naming the branch" grep -q "branch 'a''s CSV" "$work/err"
+check "... naming the file, line and key" grep -q "twice.toml:9: key 'branches\[2\].name': expected a name no other branch or equilibria entry has" "$work/err"
 "$bin" continue "$row2" --start anti-phase --param k --from 10 --to 11 --json "$work/missing/dir.json" 2> "$work/err"
 check "an output in a missing directory exits before any work" test $? -eq 5
 check "... naming the directory" grep -q "does not exist" "$work/err"
