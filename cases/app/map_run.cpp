@@ -5,6 +5,7 @@
 #include <mutex>
 #include <thread>
 
+#include "cases/app/requests.hpp"
 #include "sympathy/continuation/branch_output.hpp"
 #include "sympathy/continuation/curve_output.hpp"
 #include "sympathy/continuation/equilibrium_output.hpp"
@@ -19,6 +20,15 @@ namespace {
 int index_of(const OdeSystem& system, const std::string& name) {
   const auto names = system.parameter_names();
   return static_cast<int>(std::find(names.begin(), names.end(), name) - names.begin());
+}
+
+// A curve's window: the map's (the cycles' CurveOptions, the equilibria's).
+template <class Options>
+void set_window(Options& o, const MapStudy& map) {
+  o.first_lower = map.first.from;
+  o.first_upper = map.first.to;
+  o.second_lower = map.second.from;
+  o.second_upper = map.second.to;
 }
 
 }  // namespace
@@ -72,27 +82,20 @@ MapRun prepare_map(const MapRequest& request) {
     problem.parameter = first;
     problem.from = map.first.from;
     problem.to = map.first.to;
-    if (e.saved) {
-      // A saved equilibrium: its own parameter values, its second one inside the window.
-      const SavedEquilibrium saved = read_saved_equilibrium(*e.saved, c.system());
-      problem.start_state = saved.state;
-      problem.values = saved.values;
-      run.equilibria_starts.push_back("saved " + saved.description);
-      const double second =
-          c.system().parameter(saved.values, index_of(c.system(), map.second.parameter));
-      if (second < map.second.from || second > map.second.to)
-        throw InputError(map.path + ": equilibria '" + e.name + "': its saved equilibrium has " +
-                         map.second.parameter + " = " + format_double(second) +
-                         ", outside the second window");
-    } else {
-      if (e.start.empty() && !c.equations())
-        throw InputError(map.path + ": equilibria '" + e.name +
-                         "': key 'start' is missing: expected one of the case's starts");
-      const BranchSource source = c.source(e.start, {});  // throws naming the start
-      problem.start_state = source.start_state;
-      problem.values = source.values;
-      run.equilibria_starts.push_back(e.start.empty() ? "the case's states" : e.start);
-    }
+    if (e.start.empty() && !e.saved && !c.equations())
+      throw InputError(map.path + ": equilibria '" + e.name +
+                       "': key 'start' is missing: expected one of the case's starts");
+    EquilibriaStart start = equilibria_start(c, e.start, {}, e.saved);  // throws naming it
+    problem.start_state = std::move(start.state);
+    problem.values = std::move(start.values);
+    run.equilibria_starts.push_back(start.name.empty() ? "the case's states" : start.name);
+    // A saved equilibrium has its own parameter values: its second one inside the window.
+    const double second =
+        c.system().parameter(problem.values, index_of(c.system(), map.second.parameter));
+    if (e.saved && (second < map.second.from || second > map.second.to))
+      throw InputError(map.path + ": equilibria '" + e.name + "': its saved equilibrium has " +
+                       map.second.parameter + " = " + format_double(second) +
+                       ", outside the second window");
     // Found at the entry's `at`, else at its own value where the window holds it (as the
     // orbits' branches), and followed both ways.
     const double own = c.system().parameter(problem.values, first);
@@ -169,10 +172,7 @@ void run_map(MapRun& run, const std::atomic<bool>* stop, const JobCallbacks& cal
     log(line);
     if (!r.branch.started()) return;
     EquilibriumCurveOptions co;
-    co.first_lower = map.first.from;
-    co.first_upper = map.first.to;
-    co.second_lower = map.second.from;
-    co.second_upper = map.second.to;
+    set_window(co, map);
     EquilibriumCurveCallbacks cb;
     cb.stop_requested = stopped;
     if (callbacks.job)
@@ -220,10 +220,7 @@ void run_map(MapRun& run, const std::atomic<bool>* stop, const JobCallbacks& cal
     log(line);
     if (r.branch.started()) {
       CurveOptions co;
-      co.first_lower = map.first.from;
-      co.first_upper = map.first.to;
-      co.second_lower = map.second.from;
-      co.second_upper = map.second.to;
+      set_window(co, map);
       co.orbit = request.continuation.orbit;
       CurveCallbacks cb;
       cb.stop_requested = stopped;
@@ -343,8 +340,8 @@ int write_map(const MapRun& run, double seconds) {
       nlohmann::json cj = equilibrium_curve_json(curve);
       const std::string csv = map.name + "-" + map.equilibria[k].name + "-" +
                               to_string(curve.kind) + std::to_string(++number) + ".csv";
-      EquilibriumCurveCsvWriter writer(run.request.out + "/" + csv, c.system(),
-                                       map.first.parameter, map.second.parameter);
+      EquilibriumCurveCsvWriter writer(run.request.out + "/" + csv, c.system(), map.first.parameter,
+                                       map.second.parameter);
       for (const auto& p : curve.points) writer.write(p);
       writer.close();
       ++files;

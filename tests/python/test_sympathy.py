@@ -535,6 +535,13 @@ def test_type_stubs_are_the_option_tables():
             "the stubs differ from the option table: run scripts/python_stubs"
 
 
+def timeless(j):
+    """A program's JSON without its run times (which differ from run to run; nothing else may)."""
+    if isinstance(j, dict):
+        return {k: timeless(v) for k, v in j.items() if k != "seconds"}
+    return [timeless(v) for v in j] if isinstance(j, list) else j
+
+
 def test_map_equals_the_program(tmp_path):
     # A small map (the anti-phase orbit near its BP, the BP curve in c, a 3 x 2 stability grid)
     # by the program and by Python: the same curves, grid and events, to the last digit of the
@@ -549,11 +556,6 @@ def test_map_equals_the_program(tmp_path):
     cli("map", str(map_file), "--out", str(tmp_path / "cli"), "--quiet")
     result = sympathy.map(map_file, out=tmp_path / "py", jobs=1)
     assert result.json == str(tmp_path / "py" / "map_small.json")
-    def timeless(j):  # run times differ; nothing else may
-        if isinstance(j, dict):
-            return {k: timeless(v) for k, v in j.items() if k != "seconds"}
-        return [timeless(v) for v in j] if isinstance(j, list) else j
-
     program = timeless(json.load(open(tmp_path / "cli" / "map_small.json")))
     python = timeless(json.load(open(result.json)))
     assert program["orbits"] == python["orbits"]
@@ -579,12 +581,6 @@ def test_map_with_equilibria_equals_the_program(tmp_path):
                           "--accuracy", "fast"], capture_output=True, text=True)
     assert run.returncode == 7, run.stderr
     result = sympathy.map(path, out=tmp_path / "py", accuracy="fast")
-
-    def timeless(j):  # run times differ; nothing else may
-        if isinstance(j, dict):
-            return {k: timeless(v) for k, v in j.items() if k != "seconds"}
-        return [timeless(v) for v in j] if isinstance(j, list) else j
-
     program = timeless(json.load(open(tmp_path / "cli" / "bautin_map.json")))
     python = timeless(json.load(open(result.json)))
     assert program["equilibria"] == python["equilibria"]
