@@ -27,6 +27,15 @@ FlowOptions BasinOptions::default_flow() {
   return o;
 }
 
+FlowOptions BasinOptions::classification_flow() {
+  FlowOptions o;
+  o.method = Method::ERK;
+  o.sensitivities = Sensitivities::Augmented;  // an explicit method has no sensitivity module
+  o.rtol = 1e-6;
+  o.atol = 1e-8;
+  return o;
+}
+
 OptionCheck BasinOptions::validate() const {
   if (grid.empty() || grid.size() > 2) return OptionProblem{"grid", "one or two parameters"};
   for (std::size_t i = 0; i < grid.size(); ++i) {

@@ -213,7 +213,10 @@ Basins prepare_basins(const Arguments& args, int ranks) {
   } else {
     parse_study_options(args, b);
   }
-  o.flow = flow_options(args, BasinOptions::default_flow());
+  // Runs that stop early integrate at the accuracy a classification needs (the options given
+  // still override it).
+  o.flow = flow_options(
+      args, o.early_stop ? BasinOptions::classification_flow() : BasinOptions::default_flow());
   apply_accuracy(accuracy(args), o.orbit);
   if (o.early_stop)
     // The candidate orbits come from every start of the case (each in its invariant subspace).
