@@ -331,7 +331,8 @@ std::vector<OptionSpec> basins_options() {
         "confirm each locked end by Newton to a periodic orbit (its period and stability)"},
        {"--early-stop", "", false,
         "stop a run once it is certified to converge to a stable orbit reached from the case's "
-        "starts"},
+        "starts; the runs then integrate with ERK at rtol 1e-6 unless --method or --rtol say "
+        "otherwise"},
        accuracy_option()});
   const auto integrator = integrator_options();
   options.insert(options.end(), integrator.begin(), integrator.end());
