@@ -5,6 +5,7 @@
 #include <filesystem>
 #include <set>
 
+#include "cases/app/saved_start_key.hpp"
 #include "sympathy/cases/toml_reader.hpp"
 
 namespace sympathy::app {
@@ -35,37 +36,17 @@ MapAxis read_axis(const TomlReader& in, const toml::table& root, const std::stri
 // An [[orbits]] or [[equilibria]] entry's keys, the same for both: its name (unique across both
 // lists: it names files), start, at, or a saved point (parent and from_point).
 template <class Entry>
-void read_entry(const TomlReader& in, const MapStudy& s, const std::string& path,
-                const toml::node& entry, const std::string& prefix, std::set<std::string>& names,
-                Entry& o) {
+void read_entry(const TomlReader& in, const MapStudy& s, const toml::node& entry,
+                const std::string& prefix, std::set<std::string>& names, Entry& o) {
   const auto& t = *entry.as_table();
   if (!t.get("name")) throw InputError(in.where(entry) + ": key '" + prefix + "name' is missing");
   o.name = in.string(*t.get("name"), prefix + "name");
   // Required for a metronome case file (checked with the case); an equation case file's
   // default start is its [states].
   if (const toml::node* start = t.get("start")) o.start = in.string(*start, prefix + "start");
-  if (t.get("parent") || t.get("from_point")) {
-    // A saved run's point or event (a path relative to the map file), as continue's --parent
-    // and --from-point; read with the case, before any work.
-    for (const char* key : {"parent", "from_point"})
-      if (!t.get(key))
-        throw InputError(in.where(entry) + ": key '" + prefix + key +
-                         "' is missing; expected parent (a saved run's JSON) and from_point (a "
-                         "point's index or an event, UZ1) together");
-    if (t.get("start"))
-      in.fail(*t.get("start"), prefix + "start",
-              "no start beside parent and from_point (the saved point is the start)");
-    const toml::node& n = *t.get("from_point");
-    if (!n.is_integer() && !n.is_string())
-      in.fail(n, prefix + "from_point", "a point's index or an event's name (UZ1, PD2)");
-    const std::string what = n.is_integer() ? std::to_string(in.integer(n, prefix + "from_point"))
-                                            : in.string(n, prefix + "from_point");
-    o.saved = SavedStart{
-        (std::filesystem::path(path).parent_path() / in.string(*t.get("parent"), prefix + "parent"))
-            .lexically_normal()
-            .string(),
-        what};
-  }
+  // A saved run's point or event, as continue's --parent and --from-point; read with the case,
+  // before any work.
+  o.saved = read_saved_start_keys(in, entry, prefix, "a saved run's JSON", {"start"});
   if (o.name.empty() || o.name.find_first_of("/\\") != std::string::npos)
     in.fail(*t.get("name"), prefix + "name", "a name without slashes (it names files)");
   if (const toml::node* at = t.get("at")) {
@@ -126,7 +107,7 @@ MapStudy load_map(const std::string& path) {
       const auto& t = *entry.as_table();
       in.only(t, prefix, {"name", "start", "at", "parent", "from_point"});
       MapOrbit o;
-      read_entry(in, s, path, entry, prefix, names, o);
+      read_entry(in, s, entry, prefix, names, o);
       s.orbits.push_back(o);
     }
   index = 0;
@@ -136,7 +117,7 @@ MapStudy load_map(const std::string& path) {
       const auto& t = *entry.as_table();
       in.only(t, prefix, {"name", "start", "at", "parent", "from_point"});
       MapEquilibria e;
-      read_entry(in, s, path, entry, prefix, names, e);
+      read_entry(in, s, entry, prefix, names, e);
       s.equilibria.push_back(e);
     }
   if (const toml::node* n = root.get("marks")) {

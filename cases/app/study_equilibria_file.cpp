@@ -7,6 +7,7 @@
 #include <algorithm>
 #include <filesystem>
 
+#include "cases/app/saved_start_key.hpp"
 #include "cases/app/study_file.hpp"
 
 namespace sympathy::app {
@@ -15,7 +16,6 @@ namespace {
 
 StudyEquilibria read_entry(const TomlReader& in, const toml::node& entry, const std::string& prefix,
                            const Study& s) {
-  const std::string& path = in.path();
   const auto& t = *entry.as_table();
   in.only(t, prefix,
           {"name", "start", "from", "to", "at", "set", "initial", "max_points", "step", "max_step",
@@ -36,30 +36,10 @@ StudyEquilibria read_entry(const TomlReader& in, const toml::node& entry, const 
       in.fail(*n, prefix + "at", "a value between from and to");
   }
 
-  if (t.get("parent") || t.get("from_point")) {
-    // A saved point or event of an earlier equilibria run (equilibria --parent F --from-point P,
-    // the file relative to the study file): its state and every parameter value are the start.
-    for (const char* key : {"parent", "from_point"})
-      if (!t.get(key))
-        throw InputError(in.where(entry) + ": key '" + prefix + key +
-                         "' is missing; expected parent (an equilibria JSON) and from_point (a "
-                         "point's index or an event, UZ1) together");
-    const toml::node& n = *t.get("from_point");
-    for (const char* own : {"start", "switch_at", "set", "initial"})
-      if (t.get(own))
-        in.fail(n, prefix + "from_point",
-                std::string("no ") + own +
-                    " beside it (the saved point is the start, at its own parameter values)");
-    if (!n.is_integer() && !n.is_string())
-      in.fail(n, prefix + "from_point", "a point's index or an event's name (UZ1, BP2)");
-    const std::string what = n.is_integer() ? std::to_string(in.integer(n, prefix + "from_point"))
-                                            : in.string(n, prefix + "from_point");
-    e.saved = SavedStart{
-        (std::filesystem::path(path).parent_path() / in.string(*t.get("parent"), prefix + "parent"))
-            .lexically_normal()
-            .string(),
-        what};
-  }
+  // A saved point or event of an earlier equilibria run (equilibria --parent F --from-point P):
+  // its state and every parameter value are the start.
+  e.saved = read_saved_start_keys(in, entry, prefix, "an equilibria JSON",
+                                  {"start", "switch_at", "set", "initial"});
 
   if (const toml::node* n = t.get("switch_at")) {
     const std::string key = prefix + "switch_at";

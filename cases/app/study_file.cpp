@@ -6,6 +6,8 @@
 #include <filesystem>
 #include <set>
 
+#include "cases/app/saved_start_key.hpp"
+
 namespace sympathy::app {
 
 namespace {
@@ -100,28 +102,9 @@ Study load_study(const std::string& path) {
               .lexically_normal()
               .string();
     }
-    if (t.get("parent") || t.get("from_point")) {
-      // A restart from a saved point: its own start and parameter values.
-      for (const char* key : {"parent", "from_point"})
-        if (!t.get(key))
-          throw InputError(path + ":" + std::to_string(entry.source().begin.line) + ": key '" +
-                           prefix + key +
-                           "' is missing; expected parent (a branch or curve JSON) and "
-                           "from_point (a point's index or an event, UZ1) together");
-      const toml::node& n = *t.get("from_point");
-      for (const char* own : {"start", "start_data", "switch_at", "set", "initial"})
-        if (t.get(own))
-          in.fail(n, prefix + "from_point",
-                  std::string("no ") + own +
-                      " beside it (the saved point is the start, at its own parameter values)");
-      const std::string what = n.is_integer() ? std::to_string(in.integer(n, prefix + "from_point"))
-                                              : in.string(n, prefix + "from_point");
-      b.saved = SavedStart{(std::filesystem::path(path).parent_path() /
-                            in.string(*t.get("parent"), prefix + "parent"))
-                               .lexically_normal()
-                               .string(),
-                           what};
-    }
+    // A restart from a saved point: its own start and parameter values.
+    b.saved = read_saved_start_keys(in, entry, prefix, "a branch or curve JSON",
+                                    {"start", "start_data", "switch_at", "set", "initial"});
     b.request.parameter = s.parameter;
     b.request.from = in.number(*t.get("from"), prefix + "from");
     b.request.to = in.number(*t.get("to"), prefix + "to");
