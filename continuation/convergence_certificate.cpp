@@ -30,17 +30,20 @@ OrbitNeighbourhood::OrbitNeighbourhood(const OdeSystem& system, const PeriodicOr
   rate = orbit.floquet.max_modulus;
   eligible = orbit.floquet.stability == Stability::Stable &&
              rate < 1.0 - std::max(options.margin, 10.0 * orbit.floquet.trivial_error);
-  // The amplitude of each state over one period, sampled at 400 points (a range to 1e-5
-  // relative for a smooth orbit).
+  // One integration over the period: the monodromy, and on the way the amplitude of each state,
+  // sampled at 400 points (a range to 1e-5 relative for a smooth orbit).
   const int n = system.dimension();
   Eigen::VectorXd low = point, high = point;
   std::vector<double> times(401);
   for (int i = 0; i <= 400; ++i) times[i] = period * i / 400.0;
   Flow flow(system);
-  flow.sample(point, parameters, 0.0, times, [&](double, const Eigen::VectorXd& z) {
-    low = low.cwiseMin(z);
-    high = high.cwiseMax(z);
-  });
+  const Eigen::MatrixXd m =
+      flow.advance_with_sensitivities(point, parameters, 0.0, period, true, {}, times,
+                                      [&](double, const Eigen::VectorXd& z) {
+                                        low = low.cwiseMin(z);
+                                        high = high.cwiseMax(z);
+                                      })
+          .transition;
   scale = 0.5 * (high - low);
   const double largest = scale.maxCoeff();
   for (int i = 0; i < n; ++i) scale[i] = std::max(scale[i], 1e-3 * largest);
@@ -50,8 +53,6 @@ OrbitNeighbourhood::OrbitNeighbourhood(const OdeSystem& system, const PeriodicOr
   normal.normalize();
   // The monodromy's eigenvectors in the scaled coordinates, each of unit inf-norm; the trivial
   // one is the best aligned with f.
-  const Eigen::MatrixXd m =
-      flow.advance_with_sensitivities(point, parameters, 0.0, period).transition;
   const Eigen::MatrixXd scaled = scale.cwiseInverse().asDiagonal() * m * scale.asDiagonal();
   const Eigen::EigenSolver<Eigen::MatrixXd> solver(scaled);
   Eigen::MatrixXcd v = solver.eigenvectors();

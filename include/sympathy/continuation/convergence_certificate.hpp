@@ -48,8 +48,8 @@ struct CertificateOptions {
 };
 
 // What a certificate needs of an orbit, computed once: its point, scales and section, its
-// monodromy's eigenvectors (one integration with sensitivities over the period) and amplitudes
-// (one more). Shared by the certificates of every trajectory tested against the orbit.
+// monodromy's eigenvectors and amplitudes (one integration with sensitivities over the period).
+// Shared by the certificates of every trajectory tested against the orbit.
 struct OrbitNeighbourhood {
   // `orbit`: converged, of `system` at its parameters. Throws std::invalid_argument for an orbit
   // that did not converge or options out of their domain.
