@@ -13,6 +13,7 @@
 #include "continuation/jacobian_derivatives.hpp"
 #include "sympathy/continuation/generalized_hopf.hpp"
 #include "sympathy/core/autodiff_system.hpp"
+#include "tests/support/test_systems.hpp"
 
 namespace sympathy {
 namespace {
@@ -28,22 +29,6 @@ class Cusp final : public AutoDiffSystem<Cusp> {
   void evaluate(double, const T* z, const P* p, T* dz) const {
     dz[0] = p[0] + p[1] * z[0] - z[0] * z[0] * z[0];
     dz[1] = -z[1];
-  }
-};
-
-// x' = y, y' = b1 + b2 x + x^2 - x y: equilibria (x, 0) with x^2 + b2 x + b1 = 0, Jacobian
-// [0 1; b2 + 2x, -x]: folds on b1 = b2^2 / 4 (x = -b2 / 2), trace zero at x = 0 (b1 = 0) with
-// det = -b2: Hopf for b2 < 0 (omega^2 = -b2), a neutral saddle for b2 > 0, Bogdanov-Takens at the
-// origin.
-class BogdanovTakens final : public AutoDiffSystem<BogdanovTakens> {
- public:
-  BogdanovTakens() { set_parameter_layout({{"b1", {0}}, {"b2", {1}}}, {0.1, -1.0}); }
-  int dimension() const override { return 2; }
-  std::vector<std::string> state_names() const override { return {"x", "y"}; }
-  template <class T, class P>
-  void evaluate(double, const T* z, const P* p, T* dz) const {
-    dz[0] = z[1];
-    dz[1] = p[0] + p[1] * z[0] + z[0] * z[0] - z[0] * z[1];
   }
 };
 
@@ -327,7 +312,7 @@ TEST(EquilibriumCurve, CuspFoldsOnTheirClosedFormAndTheCuspPoint) {
 // at the origin (1e-8) into neutral saddles (kappa = -b2 < 0, labelled); its fold curve
 // b1 = b2^2 / 4 through the same BT point. Each point to 1e-9.
 TEST(EquilibriumCurve, BogdanovTakensHopfAndFoldCurvesMeetAtTheOrigin) {
-  const BogdanovTakens system;
+  const testing::BogdanovTakens system;
   // At b2 = -1: equilibria x^2 - x + b1 = 0; the one near x = 0.11 at b1 = 0.1 has its Hopf point
   // at b1 = 0 (x = 0) and meets the other at the fold b1 = 1/4 (x = 1/2).
   const auto branch = branch_of(system, 0, 0.1, -0.1, Eigen::Vector2d(0.1127, 0.0));

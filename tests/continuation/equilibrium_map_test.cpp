@@ -8,23 +8,10 @@
 #include <cmath>
 
 #include "sympathy/core/autodiff_system.hpp"
+#include "tests/support/test_systems.hpp"
 
 namespace sympathy {
 namespace {
-
-// x' = y, y' = b1 + b2 x + x^2 - x y: folds on b1 = b2^2 / 4, Hopf points on b1 = 0 (b2 < 0),
-// neutral saddles on b1 = 0 (b2 > 0), the Bogdanov-Takens point at the origin.
-class BtForm final : public AutoDiffSystem<BtForm> {
- public:
-  BtForm() { set_parameter_layout({{"b1", {0}}, {"b2", {1}}}, {0.1, -1.0}); }
-  int dimension() const override { return 2; }
-  std::vector<std::string> state_names() const override { return {"x", "y"}; }
-  template <class T, class P>
-  void evaluate(double, const T* z, const P* p, T* dz) const {
-    dz[0] = z[1];
-    dz[1] = p[0] + p[1] * z[0] + z[0] * z[0] - z[0] * z[1];
-  }
-};
 
 // The origin with two pairs: mu = b2 + 1 - b1^2 (omega 1) and nu = b2 - 0.25 (omega sqrt 2):
 // Hopf curves b2 = b1^2 - 1 (crossed twice by a branch in b1 at b2 = -0.5, at b1 = +-sqrt(0.5))
@@ -72,7 +59,7 @@ EquilibriumCurveOptions map_window(double a0, double a1, double b0, double b1) {
 // and fold parabola (each point to 1e-9), each through the BT point at the origin (1e-8), and no
 // third curve: the BT on each starts the other, followed already.
 TEST(EquilibriumMap, BogdanovTakensFoldAndHopfCurvesEachOnce) {
-  const BtForm system;
+  const testing::BogdanovTakens system;
   const auto branch = map_branch(system, -0.1, 0.3, 0.1, Eigen::Vector2d(0.1127, 0.0));
   ASSERT_EQ(branch.events.size(), 2u) << branch.stop_reason;
   const auto curves = equilibrium_event_curves(system, branch, 1, map_window(-1, 1, -1.5, 1));
@@ -151,7 +138,7 @@ TEST(EquilibriumMap, HopfCurveCrossedTwiceAndTheOtherPairAtDoubleHopf) {
 // An event whose curve cannot start (its window does not hold the branch's value of the second
 // parameter) is kept, refused, with its reason.
 TEST(EquilibriumMap, RefusedCurveKeptWithItsReason) {
-  const BtForm system;
+  const testing::BogdanovTakens system;
   const auto branch = map_branch(system, -0.1, 0.3, 0.1, Eigen::Vector2d(0.1127, 0.0));
   const auto curves = equilibrium_event_curves(system, branch, 1, map_window(-1, 1, 0.5, 1));
   ASSERT_EQ(curves.size(), 2u);

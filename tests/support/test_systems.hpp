@@ -491,4 +491,20 @@ class TurnedBranchPoint final : public AutoDiffSystem<TurnedBranchPoint> {
   Kind kind_;
 };
 
+// x' = y, y' = b1 + b2 x + x^2 - x y: equilibria (x, 0) with x^2 + b2 x + b1 = 0, Jacobian
+// [0 1; b2 + 2x, -x]: folds on b1 = b2^2 / 4 (x = -b2 / 2), trace zero at x = 0 (b1 = 0) with
+// det = -b2: Hopf for b2 < 0 (omega^2 = -b2), a neutral saddle for b2 > 0, Bogdanov-Takens at the
+// origin. Defaults b1 = 0.1, b2 = -1.
+class BogdanovTakens final : public AutoDiffSystem<BogdanovTakens> {
+ public:
+  BogdanovTakens() { set_parameter_layout({{"b1", {0}}, {"b2", {1}}}, {0.1, -1.0}); }
+  int dimension() const override { return 2; }
+  std::vector<std::string> state_names() const override { return {"x", "y"}; }
+  template <class T, class P>
+  void evaluate(double, const T* z, const P* p, T* dz) const {
+    dz[0] = z[1];
+    dz[1] = p[0] + p[1] * z[0] + z[0] * z[0] - z[0] * z[1];
+  }
+};
+
 }  // namespace sympathy::testing
