@@ -35,7 +35,9 @@ OrbitNeighbourhood::OrbitNeighbourhood(const OdeSystem& system, const PeriodicOr
   const int n = system.dimension();
   Eigen::VectorXd low = point, high = point;
   std::vector<double> times(401);
-  for (int i = 0; i <= 400; ++i) times[i] = period * i / 400.0;
+  // (the last exactly the period: period * 400 / 400 may round above it, beyond the run)
+  for (int i = 0; i < 400; ++i) times[i] = period * i / 400.0;
+  times[400] = period;
   Flow flow(system);
   const Eigen::MatrixXd m =
       flow.advance_with_sensitivities(point, parameters, 0.0, period, true, {}, times,

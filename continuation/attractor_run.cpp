@@ -1,0 +1,160 @@
+#include "sympathy/continuation/attractor_run.hpp"
+
+#include <cmath>
+#include <memory>
+
+#include "sympathy/continuation/equilibrium.hpp"
+#include "sympathy/core/errors.hpp"
+
+namespace sympathy {
+
+OptionCheck AttractorRunOptions::validate() const {
+  if (!positive(t_end)) return OptionProblem{"t_end", "a positive number"};
+  if (!(positive(dt) && dt <= t_end && t_end / dt <= kMaxSamples))
+    return OptionProblem{"dt", "a positive number up to t_end, at most 1e7 samples"};
+  if (auto wrong = nested("flow.", flow.validate())) return wrong;
+  return nested("attractors.", attractors.validate());
+}
+
+std::string to_string(Fate f) {
+  switch (f) {
+    case Fate::Certified:
+      return "certified";
+    case Fate::Reached:
+      return "reached";
+    case Fate::NewOrbit:
+      return "new orbit";
+    case Fate::Equilibrium:
+      return "equilibrium";
+    case Fate::Unresolved:
+      return "unresolved";
+    case Fate::Failed:
+      return "failed";
+  }
+  return "?";
+}
+
+namespace {
+
+// Where a run that was not certified ended: Newton from its end, with the period of its first
+// return to the section through it (none within the orbit options' max_period: at rest, or not
+// periodic).
+void identify_end(const OdeSystem& system, const ParameterValues& p,
+                  const std::vector<Attractor>& attractors, const AttractorRunOptions& options,
+                  AttractorFate& fate) {
+  const AttractorOptions& ao = options.attractors;
+  Flow flow(system, ao.orbit.transient_flow);
+  const double period =
+      estimate_period(flow, p, fate.end_state, ao.orbit.max_period, std::min(options.dt, 0.01));
+  if (period <= 0.0) {
+    // At rest? Newton on f = 0 from the end, taken where it stays within 1e-6 of it (relative).
+    const Equilibrium e = solve_equilibrium(system, p, fate.end_state);
+    const double scale = std::max(1.0, fate.end_state.lpNorm<Eigen::Infinity>());
+    if (e.converged && (e.state - fate.end_state).lpNorm<Eigen::Infinity>() <= 1e-6 * scale) {
+      if (e.unstable == 0) {
+        fate.fate = Fate::Equilibrium;
+        fate.equilibrium_state = e.state;
+      } else {
+        fate.note =
+            "at an unstable equilibrium (" + std::to_string(e.unstable) + " unstable eigenvalues)";
+      }
+    } else {
+      fate.note = "no return within max_period and not at rest";
+    }
+    return;
+  }
+  PeriodicOrbit orbit;
+  try {
+    orbit = solve_periodic_orbit(system, p, fate.end_state, period, InvariantSubspace{}, ao.orbit);
+  } catch (const IntegrationError& e) {
+    fate.note = std::string("Newton from the end: ").append(e.what());
+    return;
+  }
+  if (!orbit.converged()) {
+    fate.note = "not near a periodic orbit (Newton from the end: " + orbit.newton.reason + ")";
+    return;
+  }
+  for (std::size_t i = 0; i < attractors.size(); ++i)
+    if (same_orbit(system, orbit, *attractors[i].neighbourhood, ao)) {
+      fate.fate = Fate::Reached;
+      fate.attractor = static_cast<int>(i);
+      return;
+    }
+  const OrbitNeighbourhood neighbourhood(system, orbit, ao.certificate);
+  if (!neighbourhood.eligible) {
+    fate.note = "near an orbit of period " + std::to_string(orbit.period) +
+                " that is not stable with the margin (largest multiplier " +
+                std::to_string(orbit.floquet.max_modulus) + ")";
+    return;
+  }
+  fate.fate = Fate::NewOrbit;
+  fate.orbit = std::move(orbit);
+}
+
+}  // namespace
+
+std::optional<AttractorFate> run_to_attractor(const OdeSystem& system, const ParameterValues& p,
+                                              const Eigen::VectorXd& start,
+                                              const std::vector<Attractor>& attractors,
+                                              const AttractorRunOptions& options,
+                                              const std::atomic<bool>* stop) {
+  if (auto wrong = options.validate()) throw std::invalid_argument(wrong->message());
+  std::vector<ConvergenceCertificate> certificates;
+  for (const auto& a : attractors) certificates.emplace_back(system, a.neighbourhood);
+  const std::vector<double> times = sample_times(options.t_end, options.dt);
+  AttractorFate fate;
+  fate.end_state = start;
+  bool stopped = false;
+  try {
+    Flow flow(system, options.flow);
+    stopped = flow.sample_until(start, p, 0.0, times, [&](double t, const Eigen::VectorXd& z) {
+      fate.end_state = z;
+      fate.stopped_at = t;
+      for (std::size_t c = 0; c < certificates.size() && fate.attractor < 0; ++c)
+        if (certificates[c].add(t, z)) fate.attractor = static_cast<int>(c);
+      return (stop && stop->load()) || fate.attractor >= 0;
+    });
+  } catch (const IntegrationError& e) {
+    fate.fate = Fate::Failed;
+    fate.note = e.what();
+    return fate;
+  }
+  if (fate.attractor >= 0) {
+    fate.fate = Fate::Certified;
+    return fate;
+  }
+  if (stopped) return std::nullopt;
+  try {
+    identify_end(system, p, attractors, options, fate);
+  } catch (const IntegrationError& e) {
+    fate.fate = Fate::Unresolved;
+    fate.note = std::string("identifying the end: ").append(e.what());
+  }
+  return fate;
+}
+
+std::vector<Attractor> name_new_attractors(const OdeSystem& system,
+                                           std::vector<AttractorFate>& fates,
+                                           const AttractorOptions& options, int offset, int first) {
+  std::vector<Attractor> found;
+  for (auto& fate : fates) {
+    if (fate.fate != Fate::NewOrbit || !fate.orbit) continue;
+    int index = -1;
+    for (std::size_t i = 0; i < found.size() && index < 0; ++i)
+      if (same_orbit(system, *fate.orbit, *found[i].neighbourhood, options))
+        index = static_cast<int>(i);
+    if (index < 0) {
+      Attractor a;
+      a.name = "new " + std::to_string(first + static_cast<int>(found.size()));
+      a.orbit = *fate.orbit;
+      a.neighbourhood =
+          std::make_shared<const OrbitNeighbourhood>(system, a.orbit, options.certificate);
+      index = static_cast<int>(found.size());
+      found.push_back(std::move(a));
+    }
+    fate.attractor = offset + index;
+  }
+  return found;
+}
+
+}  // namespace sympathy

@@ -1,0 +1,162 @@
+#include "sympathy/continuation/attractors.hpp"
+
+#include <algorithm>
+#include <cmath>
+#include <limits>
+
+#include "sympathy/core/errors.hpp"
+#include "sympathy/core/flow.hpp"
+
+namespace sympathy {
+
+OptionCheck AttractorOptions::validate() const {
+  if (auto wrong = nested("orbit.", orbit.validate())) return wrong;
+  if (auto wrong = nested("certificate.", certificate.validate())) return wrong;
+  if (!(positive(match_tolerance) && match_tolerance < 0.5))
+    return OptionProblem{"match_tolerance", "a number in (0, 0.5)"};
+  if (!(positive(period_tolerance) && period_tolerance < 0.1))
+    return OptionProblem{"period_tolerance", "a number in (0, 0.1)"};
+  return std::nullopt;
+}
+
+bool same_orbit(const OdeSystem& system, const PeriodicOrbit& orbit,
+                const OrbitNeighbourhood& neighbourhood, const AttractorOptions& options) {
+  if (!(std::abs(orbit.period - neighbourhood.period) <=
+        options.period_tolerance * neighbourhood.period))
+    return false;
+  // The certificate's section returns of `orbit`'s own motion (a certificate only reads it).
+  ConvergenceCertificate returns(
+      system, std::shared_ptr<const OrbitNeighbourhood>(&neighbourhood, [](auto*) {}));
+  std::vector<double> times;
+  for (int i = 0; i <= 500; ++i) times.push_back(1.25 * orbit.period * i / 500.0);
+  try {
+    Flow flow(system);
+    flow.sample(orbit.state0, neighbourhood.parameters, 0.0, times,
+                [&](double t, const Eigen::VectorXd& z) { returns.add(t, z); });
+  } catch (const IntegrationError&) {
+    return false;
+  }
+  const auto& d = returns.distances();
+  return !d.empty() && *std::min_element(d.begin(), d.end()) <= options.match_tolerance;
+}
+
+namespace {
+
+// A stable orbit with its neighbourhood, or nothing: Newton from (z0, period) at p.
+std::optional<Attractor> stable_orbit(const OdeSystem& system, const ParameterValues& p,
+                                      const Eigen::VectorXd& z0, double period,
+                                      const InvariantSubspace& subspace,
+                                      const AttractorOptions& options) {
+  Attractor a;
+  try {
+    a.orbit = solve_periodic_orbit(system, p, z0, period, subspace, options.orbit);
+    if (!a.orbit.converged()) return std::nullopt;
+    a.neighbourhood =
+        std::make_shared<const OrbitNeighbourhood>(system, a.orbit, options.certificate);
+  } catch (const IntegrationError&) {
+    return std::nullopt;
+  }
+  if (!a.neighbourhood->eligible) return std::nullopt;
+  return a;
+}
+
+bool known(const OdeSystem& system, const std::vector<Attractor>& list, const Attractor& a,
+           const AttractorOptions& options) {
+  return std::any_of(list.begin(), list.end(), [&](const Attractor& b) {
+    return same_orbit(system, a.orbit, *b.neighbourhood, options);
+  });
+}
+
+}  // namespace
+
+std::vector<Attractor> attractors_on_branches(const OdeSystem& system, const ParameterValues& p,
+                                              const std::vector<NamedBranch>& branches,
+                                              const AttractorOptions& options) {
+  if (auto wrong = options.validate()) throw std::invalid_argument(wrong->message());
+  std::vector<Attractor> found;
+  for (const auto& named : branches) {
+    const Branch& b = *named.branch;
+    const double v = system.parameter(p, b.parameter);
+    std::vector<Attractor> on_this;
+    for (std::size_t i = 0; i + 1 < b.points.size(); ++i) {
+      const ContinuationPoint& lo = b.points[i];
+      const ContinuationPoint& hi = b.points[i + 1];
+      // Each value once: a point exactly at v belongs to the pair it starts.
+      if (!((lo.parameter - v) * (hi.parameter - v) < 0.0 || lo.parameter == v)) continue;
+      if (lo.orbit.floquet.stability == Stability::Unstable &&
+          hi.orbit.floquet.stability == Stability::Unstable)
+        continue;
+      const double w =
+          hi.parameter == lo.parameter ? 0.0 : (v - lo.parameter) / (hi.parameter - lo.parameter);
+      const ContinuationPoint& nearer = w < 0.5 ? lo : hi;
+      if (lo.orbit.state0.size() != hi.orbit.state0.size()) continue;
+      auto a = stable_orbit(system, p, (1 - w) * lo.orbit.state0 + w * hi.orbit.state0,
+                            (1 - w) * lo.orbit.period + w * hi.orbit.period, nearer.orbit.subspace,
+                            options);
+      if (!a || known(system, found, *a, options) || known(system, on_this, *a, options)) continue;
+      a->branch = named.name;
+      a->point = nearer.index;
+      on_this.push_back(std::move(*a));
+    }
+    for (std::size_t k = 0; k < on_this.size(); ++k) {
+      on_this[k].name =
+          on_this.size() == 1 ? named.name : named.name + " (" + std::to_string(k + 1) + ")";
+      found.push_back(std::move(on_this[k]));
+    }
+  }
+  return found;
+}
+
+std::vector<Attractor> continue_attractors(const OdeSystem& system, const ParameterValues& p,
+                                           const std::vector<Attractor>& previous,
+                                           const AttractorOptions& options) {
+  if (auto wrong = options.validate()) throw std::invalid_argument(wrong->message());
+  std::vector<Attractor> continued;
+  for (const auto& before : previous) {
+    auto a = stable_orbit(system, p, before.orbit.state0, before.orbit.period,
+                          before.orbit.subspace, options);
+    if (!a || known(system, continued, *a, options)) continue;
+    a->name = before.name;
+    a->branch = before.branch;
+    continued.push_back(std::move(*a));
+  }
+  return continued;
+}
+
+std::vector<Attractor> merge_attractors(const OdeSystem& system, std::vector<Attractor> on_branches,
+                                        std::vector<Attractor> continued,
+                                        const AttractorOptions& options) {
+  std::vector<bool> renamed(on_branches.size(), false);
+  std::vector<Attractor> merged;
+  std::vector<Attractor> elsewhere;
+  for (auto& c : continued) {
+    bool matched = false;
+    for (std::size_t i = 0; i < on_branches.size() && !matched; ++i)
+      if (!renamed[i] && same_orbit(system, c.orbit, *on_branches[i].neighbourhood, options)) {
+        on_branches[i].name = c.name;
+        renamed[i] = matched = true;
+      }
+    if (!matched) elsewhere.push_back(std::move(c));
+  }
+  const auto taken = [&](const std::string& name, std::size_t except) {
+    for (std::size_t i = 0; i < on_branches.size(); ++i)
+      if (i != except && on_branches[i].name == name && (renamed[i] || i < except)) return true;
+    return std::any_of(elsewhere.begin(), elsewhere.end(),
+                       [&](const Attractor& e) { return e.name == name; });
+  };
+  for (std::size_t i = 0; i < on_branches.size(); ++i) {
+    if (renamed[i] || !taken(on_branches[i].name, i)) continue;
+    for (int k = 2;; ++k) {
+      const std::string name = on_branches[i].branch + " (" + std::to_string(k) + ")";
+      if (!taken(name, i)) {
+        on_branches[i].name = name;
+        break;
+      }
+    }
+  }
+  for (auto& a : on_branches) merged.push_back(std::move(a));
+  for (auto& a : elsewhere) merged.push_back(std::move(a));
+  return merged;
+}
+
+}  // namespace sympathy

@@ -1,0 +1,114 @@
+#include "sympathy/continuation/basin_walk.hpp"
+
+#include <algorithm>
+#include <map>
+#include <random>
+#include <stdexcept>
+
+namespace sympathy {
+
+OptionCheck BasinWalkOptions::validate(int dimension, int parameters) const {
+  if (parameter < 0 || parameter >= parameters)
+    return OptionProblem{"parameter", "one of the system's parameters"};
+  if (values.empty()) return OptionProblem{"values", "at least one value"};
+  for (double v : values)
+    if (!std::isfinite(v)) return OptionProblem{"values", "finite numbers"};
+  if (starts < 1 || starts > 1000000)
+    return OptionProblem{"starts", "an integer from 1 to 1000000"};
+  if (lower.size() != dimension || upper.size() != dimension)
+    return OptionProblem{
+        "lower", "a bound for each of the " + std::to_string(dimension) + " states, and upper too"};
+  for (int i = 0; i < dimension; ++i)
+    if (!(std::isfinite(lower[i]) && std::isfinite(upper[i]) && lower[i] <= upper[i]))
+      return OptionProblem{"upper", "finite bounds with lower <= upper for every state"};
+  if (auto wrong = nested("run.", run.validate())) return wrong;
+  return nested("tasks.", tasks.validate());
+}
+
+Eigen::VectorXd walk_start(const BasinWalkOptions& options, std::size_t j, std::size_t s) {
+  std::mt19937_64 draw(task_seed(options.seed, j * static_cast<std::size_t>(options.starts) + s));
+  Eigen::VectorXd z(options.lower.size());
+  for (Eigen::Index i = 0; i < z.size(); ++i)
+    z[i] = options.lower[i] + (options.upper[i] - options.lower[i]) * unit_uniform(draw());
+  return z;
+}
+
+namespace {
+
+// The name a run's fate counts under.
+std::string share_name(const BasinWalkValue& v, const AttractorFate& f) {
+  if (f.attractor >= 0) return v.attractors[f.attractor].name;
+  return to_string(f.fate == Fate::NewOrbit ? Fate::Unresolved : f.fate);
+}
+
+// The highest k of the "new k" names among `attractors`.
+int highest_new(const std::vector<Attractor>& attractors) {
+  int k = 0;
+  for (const auto& a : attractors)
+    if (a.name.rfind("new ", 0) == 0) k = std::max(k, std::atoi(a.name.c_str() + 4));
+  return k;
+}
+
+}  // namespace
+
+BasinWalk walk_basins(const OdeSystem& system, const ParameterValues& p,
+                      const std::vector<NamedBranch>& branches, const BasinWalkOptions& options,
+                      const std::atomic<bool>* stop) {
+  if (auto wrong = options.validate(system.dimension(), system.parameter_count()))
+    throw std::invalid_argument(wrong->message());
+  for (const auto& b : branches)
+    if (!b.branch || b.branch->parameter != options.parameter)
+      throw std::invalid_argument("walk_basins: branch '" + b.name +
+                                  "' is not continued in the walked parameter");
+  BasinWalk walk;
+  int new_count = 0;
+  for (std::size_t j = 0; j < options.values.size(); ++j) {
+    if (stop && stop->load()) break;
+    BasinWalkValue value;
+    value.value = options.values[j];
+    const ParameterValues at = system.with_parameter(p, options.parameter, value.value);
+    const AttractorOptions& ao = options.run.attractors;
+    value.attractors = merge_attractors(
+        system, attractors_on_branches(system, at, branches, ao),
+        walk.values.empty() ? std::vector<Attractor>{}
+                            : continue_attractors(system, at, walk.values.back().attractors, ao),
+        ao);
+    const auto starts = static_cast<std::size_t>(options.starts);
+    std::vector<std::optional<AttractorFate>> fates(starts);
+    const TaskRunSummary summary = run_tasks<AttractorFate>(
+        starts, {},
+        [&](std::size_t s) {
+          return run_to_attractor(system, at, walk_start(options, j, s), value.attractors,
+                                  options.run, stop);
+        },
+        [&](std::size_t s, AttractorFate&& f) { fates[s] = std::move(f); }, options.tasks, stop);
+    if (summary.interrupted) {
+      walk.interrupted = true;
+      break;
+    }
+    for (auto& f : fates) value.runs.push_back(std::move(*f));
+    new_count = std::max(new_count, highest_new(value.attractors));
+    std::vector<Attractor> found = name_new_attractors(
+        system, value.runs, ao, static_cast<int>(value.attractors.size()), new_count + 1);
+    new_count += static_cast<int>(found.size());
+    for (auto& a : found) value.attractors.push_back(std::move(a));
+    walk.values.push_back(std::move(value));
+  }
+  // Every name of the walk, in order of first appearance; each value's shares over all of them.
+  std::vector<std::pair<std::string, std::string>> names;  // name, branch
+  for (const auto& v : walk.values)
+    for (const auto& f : v.runs) {
+      const std::string n = share_name(v, f);
+      if (std::none_of(names.begin(), names.end(), [&](const auto& e) { return e.first == n; }))
+        names.emplace_back(n, f.attractor >= 0 ? v.attractors[f.attractor].branch : "");
+    }
+  for (auto& v : walk.values) {
+    std::map<std::string, std::size_t> counts;
+    for (const auto& f : v.runs) ++counts[share_name(v, f)];
+    for (const auto& [n, branch] : names)
+      v.shares.push_back({n, branch, wilson_interval(counts[n], v.runs.size())});
+  }
+  return walk;
+}
+
+}  // namespace sympathy

@@ -1,0 +1,71 @@
+// One trajectory to its fate among named attractors (attractors.hpp): stopped as soon as a
+// convergence certificate says it converges to one of them; otherwise, at its end, Newton from
+// where it ended (with the period of its first return) tells which orbit it ended near: a known
+// one (reached too slowly to be certified), a stable orbit none of them is (a new attractor, named
+// afterwards by name_new_attractors), or none (still moving: an unstable orbit it lingers near,
+// quasi-periodic or chaotic motion, a transient longer than the run); an end at rest is a
+// stable or unstable equilibrium.
+#pragma once
+
+#include <atomic>
+#include <optional>
+#include <string>
+#include <vector>
+
+#include <Eigen/Dense>
+
+#include "sympathy/continuation/attractors.hpp"
+#include "sympathy/core/flow.hpp"
+
+namespace sympathy {
+
+struct AttractorRunOptions {
+  double t_end = 300.0;  // the longest run
+  // The sampling interval the certificates read the trajectory at; a period should hold 20 or
+  // more (the section's Hermite interpolation: 3e-5 relative at 20 a period).
+  double dt = 0.01;
+  FlowOptions flow;  // the runs' integrator
+  AttractorOptions attractors;
+
+  OptionCheck validate() const;
+};
+
+enum class Fate {
+  Certified,    // stopped early, certified to converge to `attractor`
+  Reached,      // at t_end, Newton from its end converged to `attractor`'s orbit
+  NewOrbit,     // at t_end, near a stable orbit that is none of the attractors (`orbit`)
+  Equilibrium,  // at t_end, at rest: at a stable equilibrium (`equilibrium_state`)
+  Unresolved,   // at t_end, near no stable orbit or equilibrium (`note` says what it found)
+  Failed,       // the integration failed (`note`)
+};
+std::string to_string(Fate f);  // "certified", "reached", "new orbit", ...
+
+struct AttractorFate {
+  Fate fate = Fate::Unresolved;
+  int attractor = -1;  // Certified, Reached: the index among the attractors given
+  double stopped_at = 0.0;
+  Eigen::VectorXd end_state;
+  std::optional<PeriodicOrbit> orbit;  // NewOrbit: the orbit Newton found
+  Eigen::VectorXd equilibrium_state;   // Equilibrium
+  std::string note;                    // Unresolved, Failed: why
+};
+
+// Runs the trajectory from `start` at parameter values `p` to options.t_end or to a certificate
+// of one of `attractors` (all at p). No result when `stop` became true during it.
+std::optional<AttractorFate> run_to_attractor(const OdeSystem& system, const ParameterValues& p,
+                                              const Eigen::VectorXd& start,
+                                              const std::vector<Attractor>& attractors,
+                                              const AttractorRunOptions& options,
+                                              const std::atomic<bool>* stop = nullptr);
+
+// The new attractors among `fates` (all at p), named in the order of the runs that found them
+// ("new 1", "new 2", ...; the same orbit found by two runs once, judged by same_orbit; numbered
+// after `first`); each NewOrbit fate's `attractor` is set to its index in the list returned plus
+// `offset` (the caller appends the list to its attractors). Deterministic: it depends on the
+// fates' order alone, not on which run finished first.
+std::vector<Attractor> name_new_attractors(const OdeSystem& system,
+                                           std::vector<AttractorFate>& fates,
+                                           const AttractorOptions& options, int offset,
+                                           int first = 1);
+
+}  // namespace sympathy

@@ -1,0 +1,82 @@
+// The attractors a trajectory may end on, named by what continuation found: the stable periodic
+// orbits that the given branches hold at one parameter value, each with its branch's name and
+// the branch point nearest it; those of the previous value of a walk along the parameter,
+// continued to this one by Newton (so that an attractor keeps its name from value to value
+// because it is the same orbit continued, not because a label says so); and whether two orbits
+// are one.
+//
+// Everything here is generic: a system, branches and their names. Nothing knows of metronomes.
+#pragma once
+
+#include <memory>
+#include <string>
+#include <vector>
+
+#include <Eigen/Dense>
+
+#include "sympathy/continuation/branch.hpp"
+#include "sympathy/continuation/convergence_certificate.hpp"
+#include "sympathy/continuation/periodic_orbit.hpp"
+
+namespace sympathy {
+
+// A stable periodic orbit at given parameter values, with what names it.
+struct Attractor {
+  std::string name;    // the branch's (with " (k)" where a branch holds more than one), or "new k"
+  std::string branch;  // the branch it lies on; empty: found by runs that ended on it
+  int point = -1;      // the index of the branch's point nearest it (-1: none)
+  PeriodicOrbit orbit;
+  std::shared_ptr<const OrbitNeighbourhood> neighbourhood;  // what certificates and matching need
+};
+
+// A branch with the name it goes by (a study's entry: "anti", "born").
+struct NamedBranch {
+  std::string name;
+  const Branch* branch = nullptr;
+};
+
+struct AttractorOptions {
+  OrbitOptions orbit;              // Newton's, from a branch's interpolated orbit or a run's end
+  CertificateOptions certificate;  // the margin decides what counts as stable
+  double match_tolerance = 1e-4;   // two orbits are one: see same_orbit
+  double period_tolerance = 1e-5;  // relative
+
+  OptionCheck validate() const;
+};
+
+// Whether `orbit` is the orbit of `neighbourhood` (both at the same parameter values): their
+// periods agree to period_tolerance (relative) and `orbit`, followed over 1.25 of its period
+// from its point (400 samples a period), returns to the other's section within match_tolerance
+// of its point, in the eigen-coordinates of ConvergenceCertificate (a distance relative to the
+// orbit's amplitude per state; Newton's orbits agree to about 1e-8 in it, the section's
+// interpolation adds 3e-9 at 400 samples a period; orbits that differ do by far more: the two
+// orbits w = +-0.5 of the pitchfork of cycles at mu = 0.25 by 2 in it).
+bool same_orbit(const OdeSystem& system, const PeriodicOrbit& orbit,
+                const OrbitNeighbourhood& neighbourhood, const AttractorOptions& options);
+
+// The stable orbits (with the certificate's margin) that `branches` hold at parameter values `p`
+// (the branches' parameter set to its value in p): on every pair of neighbouring points whose
+// parameters bracket that value (not both unstable), the orbit interpolated linearly between them
+// and corrected by Newton at p, in the subspace of the point nearer it. In the branches' order,
+// then along each branch; an orbit found twice (where a branch folds back onto itself, or two
+// branches share a stretch) once, under its first name. Integration failures are no orbit.
+std::vector<Attractor> attractors_on_branches(const OdeSystem& system, const ParameterValues& p,
+                                              const std::vector<NamedBranch>& branches,
+                                              const AttractorOptions& options);
+
+// The attractors of another parameter value continued to `p`: Newton from each orbit (its point
+// and period) at p, kept with its name where it converges to a stable orbit (with the
+// certificate's margin). Those that do not are gone (the attractor ended between the values).
+std::vector<Attractor> continue_attractors(const OdeSystem& system, const ParameterValues& p,
+                                           const std::vector<Attractor>& previous,
+                                           const AttractorOptions& options);
+
+// The attractors at a value of a walk: `on_branches` (attractors_on_branches at it), each taking
+// the name of the continued attractor (continue_attractors from the previous value) that is the
+// same orbit, then the continued ones that are on no branch there, with their names. A branch's
+// attractor whose own name another one now has gets the next free " (k)".
+std::vector<Attractor> merge_attractors(const OdeSystem& system, std::vector<Attractor> on_branches,
+                                        std::vector<Attractor> continued,
+                                        const AttractorOptions& options);
+
+}  // namespace sympathy

@@ -1,0 +1,76 @@
+// Basin shares continued along a parameter (issue 39, item 3): the values of one parameter walked
+// in order; at each, the attractors are the stable orbits the given branches hold there
+// (attractors_on_branches) and those of the previous value continued to it by Newton
+// (continue_attractors: an attractor keeps its name because it is the same orbit continued,
+// merge_attractors), then random starts run to their fates (run_to_attractor) in parallel, and
+// the stable orbits they found that are none of these are named "new k" (name_new_attractors) and
+// carried on like the others. The share of each attractor at each value, with its 95% Wilson
+// interval, is a curve along the parameter: where an attractor appears or disappears lies between
+// two values, and a bifurcation the branches located there is where it happens.
+//
+// Deterministic: the starts of a value run in parallel, the values one after another, value j
+// knowing only value j-1's finished results (never whatever finished first); start s of value j
+// draws each state uniformly in the box from a generator seeded by task_seed(seed, j * starts +
+// s). The results are the same bits for any number of threads.
+#pragma once
+
+#include <atomic>
+#include <cstdint>
+#include <string>
+#include <vector>
+
+#include <Eigen/Dense>
+
+#include "sympathy/continuation/attractor_run.hpp"
+#include "sympathy/continuation/task_runner.hpp"
+#include "sympathy/core/proportion.hpp"
+
+namespace sympathy {
+
+struct BasinWalkOptions {
+  int parameter = -1;            // the walked parameter's index among the system's
+  std::vector<double> values;    // in the order walked
+  int starts = 100;              // random starts per value
+  Eigen::VectorXd lower, upper;  // the box the starts are drawn in, uniformly per state
+  std::uint64_t seed = 1;
+  AttractorRunOptions run;
+  TaskRunOptions tasks;
+
+  // The first field out of its domain, for a system of `dimension` states and `parameters`
+  // named parameters.
+  OptionCheck validate(int dimension, int parameters) const;
+};
+
+// The share of one attractor (or class of fates) at one value.
+struct BasinWalkShare {
+  std::string name;    // an attractor's, or "equilibrium", "unresolved", "failed"
+  std::string branch;  // the branch its orbit lies on (empty: none, or not an orbit)
+  Proportion proportion;
+};
+
+struct BasinWalkValue {
+  double value = 0.0;
+  // The attractors at it: those the branches hold and those continued from the previous value
+  // (merge_attractors), then the new ones its runs found.
+  std::vector<Attractor> attractors;
+  std::vector<AttractorFate> runs;     // in start order; Certified, Reached, NewOrbit: `attractor`
+                                       // indexes `attractors`
+  std::vector<BasinWalkShare> shares;  // every name of the walk, in order of first appearance
+};
+
+struct BasinWalk {
+  std::vector<BasinWalkValue> values;  // those walked (fewer where interrupted)
+  bool interrupted = false;
+};
+
+// The start of run `s` at value `j`: uniform in the box, from task_seed(seed, j * starts + s).
+Eigen::VectorXd walk_start(const BasinWalkOptions& options, std::size_t j, std::size_t s);
+
+// Walks options.values at parameter values `p` (the walked one set at each), with the attractors
+// of `branches` (continued in options.parameter). Throws std::invalid_argument for invalid
+// options (validate first to name the field) or a branch continued in another parameter.
+BasinWalk walk_basins(const OdeSystem& system, const ParameterValues& p,
+                      const std::vector<NamedBranch>& branches, const BasinWalkOptions& options,
+                      const std::atomic<bool>* stop = nullptr);
+
+}  // namespace sympathy

@@ -1,0 +1,300 @@
+// Attractors named by continuation and basin shares continued along a parameter
+// (continuation/attractors.hpp, attractor_run.hpp, basin_walk.hpp), on the transverse pitchfork
+// of cycles (tests/support/test_systems.hpp): r' = r (1 - r^2) turning at unit speed, w' = mu w -
+// w^3. In closed form: the circle r = 1, w = 0 of period 2 pi has the multipliers exp(-4 pi) and
+// exp(2 pi mu), stable for mu < 0; beyond mu = 0 it is unstable and the two circles w = +-sqrt(mu)
+// (multiplier exp(-4 pi mu)) are the attractors, each the fate of the starts with w of its sign.
+// So every start's fate is known: the share of the circle w = 0 is 1 before mu = 0 and 0 after,
+// and the pair's shares are those of the starts' signs of w.
+#include "sympathy/continuation/basin_walk.hpp"
+
+#include <gtest/gtest.h>
+
+#include <algorithm>
+#include <cmath>
+
+#include "sympathy/continuation/branch_switching.hpp"
+#include "sympathy/continuation/continuation.hpp"
+#include "tests/support/math.hpp"
+#include "tests/support/test_systems.hpp"
+
+namespace sympathy {
+namespace {
+
+using testing::kPi;
+using testing::NormalForm;
+
+struct PitchforkBranches {
+  NormalForm system{NormalForm::Kind::Pitchfork, -0.3};
+  Branch base;   // the circle w = 0, continued in mu over [-0.5, 0.5]
+  Branch born;   // both halves w = +-sqrt(mu) from its BP
+  Branch upper;  // the half w > 0 alone (its points with w >= 0)
+  double bp = 0.0;
+};
+
+const PitchforkBranches& pitchfork() {
+  static const PitchforkBranches b = [] {
+    PitchforkBranches r;
+    ContinuationOptions o;
+    o.lower = -0.5;
+    o.upper = 0.5;
+    Eigen::VectorXd z = Eigen::VectorXd::Zero(3);
+    z[0] = 1.0;
+    const PeriodicOrbit circle = solve_periodic_orbit(r.system, r.system.default_parameters(), z,
+                                                      2 * kPi, InvariantSubspace{}, OrbitOptions{});
+    r.base = Continuation(r.system, 0, o).run(circle, +1);
+    const auto bp = std::find_if(r.base.events.begin(), r.base.events.end(), [](const auto& e) {
+      return e.type == BifurcationType::BranchPoint;
+    });
+    if (bp == r.base.events.end()) throw std::runtime_error("no BP on the circle's branch");
+    r.bp = bp->parameter;
+    r.born = switch_branch(r.system, r.base, *bp, o);
+    r.upper = r.born;
+    std::erase_if(r.upper.points,
+                  [](const ContinuationPoint& p) { return p.orbit.state0[2] < -1e-9; });
+    return r;
+  }();
+  return b;
+}
+
+ParameterValues at(double mu) {
+  const NormalForm& s = pitchfork().system;
+  return s.with_parameter(s.default_parameters(), 0, mu);
+}
+
+// w on an attractor's orbit (constant along it).
+double w_of(const Attractor& a) {
+  return a.orbit.state0[2];
+}
+
+AttractorRunOptions run_options() {
+  AttractorRunOptions o;
+  o.t_end = 200.0;
+  o.dt = 0.1;  // 63 samples a period
+  o.flow.rtol = 1e-8;
+  o.flow.atol = 1e-10;
+  return o;
+}
+
+BasinWalkOptions walk_options(std::vector<double> values) {
+  BasinWalkOptions o;
+  o.parameter = 0;
+  o.values = std::move(values);
+  o.starts = 16;
+  o.lower = Eigen::Vector3d(-1.5, -1.5, -1.0);
+  o.upper = Eigen::Vector3d(1.5, 1.5, 1.0);
+  o.run = run_options();
+  o.tasks.threads = 2;
+  return o;
+}
+
+const BasinWalkShare& share(const BasinWalkValue& v, const std::string& name) {
+  for (const auto& s : v.shares)
+    if (s.name == name) return s;
+  throw std::runtime_error("no share named " + name);
+}
+
+// Two orbits are one where they are: the circle w = 0.5 from another of its points (a quarter
+// turn on) is the same orbit; w = -0.5 is not (the same period, 2 in the eigen-coordinates away).
+TEST(Attractors, SameOrbitTellsTheHalvesApart) {
+  const NormalForm& s = pitchfork().system;
+  const ParameterValues p = at(0.25);
+  const auto circle = [&](double x, double y, double w) {
+    return solve_periodic_orbit(s, p, Eigen::Vector3d(x, y, w), 2 * kPi, InvariantSubspace{},
+                                OrbitOptions{});
+  };
+  const PeriodicOrbit upper = circle(1, 0, 0.5), quarter = circle(0, 1, 0.5),
+                      lower = circle(1, 0, -0.5);
+  ASSERT_TRUE(upper.converged() && quarter.converged() && lower.converged());
+  EXPECT_NEAR(upper.period, 2 * kPi, 1e-8);
+  const OrbitNeighbourhood n(s, upper);
+  const AttractorOptions o;
+  EXPECT_TRUE(same_orbit(s, upper, n, o));
+  EXPECT_TRUE(same_orbit(s, quarter, n, o));
+  EXPECT_FALSE(same_orbit(s, lower, n, o));
+}
+
+// At mu = 0.25 the branches hold what the closed form says: the half branch w > 0 its orbit
+// w = 0.5 (named by it, to 1e-8), the circle w = 0 nothing (unstable there); both halves of the
+// born branch their two orbits, named " (1)" and " (2)" along it. Before the BP, the circle.
+TEST(Attractors, StableOrbitsOnBranchesAtAValue) {
+  const auto& b = pitchfork();
+  EXPECT_NEAR(b.bp, 0.0, 1e-8);
+  const AttractorOptions o;
+  auto found =
+      attractors_on_branches(b.system, at(0.25), {{"base", &b.base}, {"upper", &b.upper}}, o);
+  ASSERT_EQ(found.size(), 1u);
+  EXPECT_EQ(found[0].name, "upper");
+  EXPECT_EQ(found[0].branch, "upper");
+  EXPECT_NEAR(w_of(found[0]), 0.5, 1e-8);
+  EXPECT_NEAR(found[0].orbit.period, 2 * kPi, 1e-8);
+  EXPECT_NEAR(found[0].neighbourhood->rate, std::exp(-4 * kPi * 0.25), 1e-6);
+  const ContinuationPoint* point = nullptr;
+  for (const auto& q : b.upper.points)
+    if (q.index == found[0].point) point = &q;
+  ASSERT_NE(point, nullptr);
+  EXPECT_LT(std::abs(point->parameter - 0.25), 0.2);
+
+  found = attractors_on_branches(b.system, at(0.25), {{"born", &b.born}}, o);
+  ASSERT_EQ(found.size(), 2u);
+  EXPECT_EQ(found[0].name, "born (1)");
+  EXPECT_EQ(found[1].name, "born (2)");
+  EXPECT_NEAR(std::abs(w_of(found[0])), 0.5, 1e-8);
+  EXPECT_NEAR(w_of(found[0]) + w_of(found[1]), 0.0, 1e-8);
+
+  found = attractors_on_branches(b.system, at(-0.2), {{"base", &b.base}, {"born", &b.born}}, o);
+  ASSERT_EQ(found.size(), 1u);
+  EXPECT_EQ(found[0].name, "base");
+  EXPECT_NEAR(w_of(found[0]), 0.0, 1e-8);
+}
+
+// A planted attractor on no given branch is reported new, one on a branch is matched: with the
+// half branch w > 0 alone at mu = 0.25, a start with w > 0 is certified to end on it (stopped
+// long before t_end), a start with w < 0 ends on w = -0.5, a stable orbit none of them is, which
+// is then named "new 1" (the second run that finds it: the same attractor).
+TEST(AttractorRun, MatchedOnTheBranchOrReportedNew) {
+  const auto& b = pitchfork();
+  const ParameterValues p = at(0.25);
+  const std::vector<Attractor> known =
+      attractors_on_branches(b.system, p, {{"upper", &b.upper}}, AttractorOptions{});
+  ASSERT_EQ(known.size(), 1u);
+  const AttractorRunOptions o = run_options();
+  const auto up = run_to_attractor(b.system, p, Eigen::Vector3d(0.3, -1.2, 0.2), known, o);
+  ASSERT_TRUE(up);
+  EXPECT_EQ(up->fate, Fate::Certified) << up->note;
+  EXPECT_EQ(up->attractor, 0);
+  EXPECT_LT(up->stopped_at, 100.0);
+  EXPECT_NEAR(up->end_state[2], 0.5, 1e-3);
+
+  std::vector<AttractorFate> fates;
+  for (double w : {-0.2, -0.7}) {
+    const auto down = run_to_attractor(b.system, p, Eigen::Vector3d(1.1, 0.4, w), known, o);
+    ASSERT_TRUE(down);
+    EXPECT_EQ(down->fate, Fate::NewOrbit) << down->note;
+    EXPECT_DOUBLE_EQ(down->stopped_at, o.t_end);
+    ASSERT_TRUE(down->orbit);
+    EXPECT_NEAR(down->orbit->state0[2], -0.5, 1e-8);
+    EXPECT_NEAR(down->orbit->period, 2 * kPi, 1e-8);
+    fates.push_back(*down);
+  }
+  fates.push_back(*up);
+  const auto found = name_new_attractors(b.system, fates, AttractorOptions{}, 1);
+  ASSERT_EQ(found.size(), 1u);
+  EXPECT_EQ(found[0].name, "new 1");
+  EXPECT_EQ(fates[0].attractor, 1);
+  EXPECT_EQ(fates[1].attractor, 1);
+  EXPECT_EQ(fates[2].attractor, 0);  // left as it was
+}
+
+// The walk across the BP: the circle's share is 1 at every value before it and 0 after, the
+// pair's shares 0 before and 1 together after (each the share of the starts' sign of w, read
+// off the starts themselves); the last value where the pair has no share and the first where it
+// has one bracket the BP located on the circle's branch. Each half keeps its name from value to
+// value (the same orbit continued).
+TEST(BasinWalk, ThePairAppearsAtTheBranchPoint) {
+  const auto& b = pitchfork();
+  BasinWalkOptions o = walk_options({-0.25, -0.15, -0.05, 0.05, 0.15, 0.25});
+  const BasinWalk walk = walk_basins(b.system, b.system.default_parameters(),
+                                     {{"base", &b.base}, {"born", &b.born}}, o);
+  ASSERT_EQ(walk.values.size(), 6u);
+  EXPECT_FALSE(walk.interrupted);
+  std::string upper_name;
+  double last_without = -1e9, first_with = 1e9;
+  for (std::size_t j = 0; j < walk.values.size(); ++j) {
+    const BasinWalkValue& v = walk.values[j];
+    int positive = 0;
+    for (int s = 0; s < o.starts; ++s) positive += walk_start(o, j, s)[2] > 0 ? 1 : 0;
+    double pair = 0.0;
+    for (const auto& a : v.attractors)
+      if (a.branch == "born") {
+        const double expected = w_of(a) > 0 ? positive : o.starts - positive;
+        EXPECT_EQ(share(v, a.name).proportion.count, expected) << "mu = " << v.value;
+        pair += share(v, a.name).proportion.share;
+        if (w_of(a) > 0) {
+          if (upper_name.empty()) upper_name = a.name;
+          EXPECT_EQ(a.name, upper_name) << "mu = " << v.value;
+        }
+      }
+    if (v.value < b.bp) {
+      EXPECT_DOUBLE_EQ(share(v, "base").proportion.share, 1.0) << "mu = " << v.value;
+    } else {
+      EXPECT_DOUBLE_EQ(share(v, "base").proportion.share, 0.0) << "mu = " << v.value;
+      EXPECT_NEAR(pair, 1.0, 1e-12) << "mu = " << v.value;
+    }
+    if (pair == 0.0) last_without = std::max(last_without, v.value);
+    if (pair > 0.0) first_with = std::min(first_with, v.value);
+    for (const auto& f : v.runs)
+      EXPECT_TRUE(f.fate == Fate::Certified || f.fate == Fate::Reached) << f.note;
+  }
+  EXPECT_LT(last_without, b.bp);
+  EXPECT_GT(first_with, b.bp);
+  EXPECT_FALSE(upper_name.empty());
+}
+
+// With the circle's branch alone the pair is found by the runs: "new 1" and "new 2" where it
+// appears, carried to the next values under the same names (continued, not relabelled), the
+// shares those of the starts' signs of w. The same bits with one thread as with two.
+TEST(BasinWalk, NewAttractorsAreFoundNamedAndCarried) {
+  const auto& b = pitchfork();
+  BasinWalkOptions o = walk_options({-0.05, 0.15, 0.25});
+  const BasinWalk walk =
+      walk_basins(b.system, b.system.default_parameters(), {{"base", &b.base}}, o);
+  ASSERT_EQ(walk.values.size(), 3u);
+  std::map<std::string, double> sign;  // each new attractor's sign of w
+  for (std::size_t j = 1; j < 3; ++j) {
+    const BasinWalkValue& v = walk.values[j];
+    int positive = 0;
+    for (int s = 0; s < o.starts; ++s) positive += walk_start(o, j, s)[2] > 0 ? 1 : 0;
+    ASSERT_GT(positive, 0);
+    ASSERT_LT(positive, o.starts);
+    int news = 0;
+    for (const auto& a : v.attractors) {
+      if (a.name.rfind("new ", 0) != 0) continue;
+      ++news;
+      EXPECT_NEAR(std::abs(w_of(a)), std::sqrt(v.value), 1e-8);
+      const double s = w_of(a) > 0 ? 1.0 : -1.0;
+      if (sign.count(a.name)) {
+        EXPECT_EQ(sign[a.name], s) << a.name;
+      }
+      sign[a.name] = s;
+      EXPECT_EQ(share(v, a.name).proportion.count, s > 0 ? positive : o.starts - positive);
+    }
+    EXPECT_EQ(news, 2) << "mu = " << v.value;
+  }
+  EXPECT_EQ(sign.size(), 2u);
+  EXPECT_TRUE(sign.count("new 1") && sign.count("new 2"));
+  // The second value's runs found them (NewOrbit), the third's were certified on them.
+  for (const auto& f : walk.values[2].runs) EXPECT_EQ(f.fate, Fate::Certified) << f.note;
+
+  o.tasks.threads = 1;
+  const BasinWalk again =
+      walk_basins(b.system, b.system.default_parameters(), {{"base", &b.base}}, o);
+  for (std::size_t j = 0; j < 3; ++j)
+    for (int s = 0; s < o.starts; ++s) {
+      const AttractorFate &x = walk.values[j].runs[s], &y = again.values[j].runs[s];
+      EXPECT_EQ(x.attractor, y.attractor);
+      EXPECT_EQ(x.stopped_at, y.stopped_at);
+      EXPECT_EQ(x.end_state, y.end_state);
+    }
+}
+
+TEST(BasinWalk, OptionsNameTheField) {
+  BasinWalkOptions o = walk_options({0.1});
+  EXPECT_FALSE(o.validate(3, 3));
+  o.parameter = 5;
+  EXPECT_EQ(o.validate(3, 3)->field, "parameter");
+  o = walk_options({});
+  EXPECT_EQ(o.validate(3, 3)->field, "values");
+  o = walk_options({0.1});
+  o.lower = Eigen::Vector2d(0, 0);
+  EXPECT_EQ(o.validate(3, 3)->field, "lower");
+  o = walk_options({0.1});
+  o.run.dt = 0.0;
+  EXPECT_EQ(o.validate(3, 3)->field, "run.dt");
+  o = walk_options({0.1});
+  o.run.attractors.match_tolerance = 0.7;
+  EXPECT_EQ(o.validate(3, 3)->field, "run.attractors.match_tolerance");
+}
+
+}  // namespace
+}  // namespace sympathy
