@@ -94,14 +94,19 @@ BasinWalk walk_basins(const OdeSystem& system, const ParameterValues& p,
     for (auto& a : found) value.attractors.push_back(std::move(a));
     walk.values.push_back(std::move(value));
   }
-  // Every name of the walk, in order of first appearance; each value's shares over all of them.
+  // Every name of the walk: the attractors in the order they first appear, then the other fates.
   std::vector<std::pair<std::string, std::string>> names;  // name, branch
+  const auto add = [&](const std::string& n, const std::string& branch) {
+    if (std::none_of(names.begin(), names.end(), [&](const auto& e) { return e.first == n; }))
+      names.emplace_back(n, branch);
+  };
   for (const auto& v : walk.values)
-    for (const auto& f : v.runs) {
-      const std::string n = share_name(v, f);
-      if (std::none_of(names.begin(), names.end(), [&](const auto& e) { return e.first == n; }))
-        names.emplace_back(n, f.attractor >= 0 ? v.attractors[f.attractor].branch : "");
-    }
+    for (const auto& a : v.attractors) add(a.name, a.branch);
+  for (const Fate f : {Fate::Equilibrium, Fate::Unresolved, Fate::Failed})
+    for (const auto& v : walk.values)
+      for (const auto& r : v.runs)
+        if (r.attractor < 0 && (r.fate == f || (f == Fate::Unresolved && r.fate == Fate::NewOrbit)))
+          add(to_string(f), "");
   for (auto& v : walk.values) {
     std::map<std::string, std::size_t> counts;
     for (const auto& f : v.runs) ++counts[share_name(v, f)];
@@ -109,6 +114,25 @@ BasinWalk walk_basins(const OdeSystem& system, const ParameterValues& p,
       v.shares.push_back({n, branch, wilson_interval(counts[n], v.runs.size())});
   }
   return walk;
+}
+
+std::vector<ShareChange> share_changes(const BasinWalk& walk,
+                                       const std::vector<NamedBranch>& branches) {
+  std::vector<ShareChange> changes;
+  for (std::size_t j = 0; j + 1 < walk.values.size(); ++j) {
+    const BasinWalkValue &a = walk.values[j], &b = walk.values[j + 1];
+    for (std::size_t k = 0; k < a.shares.size() && k < b.shares.size(); ++k) {
+      const bool was = a.shares[k].proportion.count > 0, is = b.shares[k].proportion.count > 0;
+      if (was == is) continue;
+      ShareChange c{a.shares[k].name, is, a.value, b.value, {}};
+      const double lo = std::min(a.value, b.value), hi = std::max(a.value, b.value);
+      for (const auto& named : branches)
+        for (const auto& e : named.branch->events)
+          if (e.parameter > lo && e.parameter < hi) c.events.push_back({named.name, &e});
+      changes.push_back(std::move(c));
+    }
+  }
+  return changes;
 }
 
 }  // namespace sympathy

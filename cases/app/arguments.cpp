@@ -323,13 +323,18 @@ std::string wrap(const std::string& text, int indent, int width) {
     const std::string word = text.substr(start, end - start);
     start = end + 1;
     if (!line.empty() && line.size() + 1 + word.size() > room) {
-      out += (first ? "" : "\n" + std::string(indent, ' ')) + line;
+      if (!first) out.append("\n").append(static_cast<std::size_t>(indent), ' ');
+      out.append(line);
       first = false;
       line.clear();
     }
-    line += (line.empty() ? "" : " ") + word;
+    if (!line.empty()) line.append(" ");
+    line.append(word);
   }
-  if (!line.empty()) out += (first ? "" : "\n" + std::string(indent, ' ')) + line;
+  if (!line.empty()) {
+    if (!first) out.append("\n").append(static_cast<std::size_t>(indent), ' ');
+    out.append(line);
+  }
   return out;
 }
 

@@ -26,7 +26,7 @@ Study load_study(const std::string& path) {
   const TomlReader in(path);
   in.only(root, "",
           {"title", "case", "params", "parameter", "axis", "accuracy", "branches", "equilibria",
-           "equilibria_axis", "marks"});
+           "equilibria_axis", "marks", "basins"});
   Study s;
   s.path = path;
   s.name = std::filesystem::path(path).stem().string();
@@ -225,6 +225,7 @@ Study load_study(const std::string& path) {
     }
     s.branches.push_back(std::move(b));
   }
+  if (const toml::node* n = root.get("basins")) read_study_basins(in, *n, s);
   return s;
 }
 

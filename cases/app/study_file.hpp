@@ -2,6 +2,7 @@
 // `sympathy study` (cases/cli/study.cpp) and by the fuzz target tests/fuzz/study_file_fuzz.cpp.
 #pragma once
 
+#include <cstdint>
 #include <set>
 #include <string>
 #include <vector>
@@ -9,6 +10,7 @@
 #include "cases/app/branch_run.hpp"
 #include "cases/app/saved_start.hpp"
 #include "sympathy/cases/toml_reader.hpp"
+#include "sympathy/continuation/attractor_run.hpp"
 #include "sympathy/continuation/equilibrium_branch.hpp"
 
 namespace sympathy::app {
@@ -54,6 +56,27 @@ struct StudyEquilibria {
   EquilibriumOptions options;  // max_points, step, max_step, user_points; bounds from from, to
 };
 
+// The [basins] table (study_basins_file.cpp): basin shares walked along the study's parameter
+// (continuation/basin_walk.hpp), their attractors named by the study's branches.
+struct StudyBasins {
+  double from = 0.0, to = 0.0;
+  int count = 2;
+  int starts = 100;
+  std::uint64_t seed = 1;
+  int threads = 0;    // 0: one per core
+  std::string start;  // the case's start the states outside `box` keep ("": an equation case
+                      // file's [states])
+  struct Range {
+    std::string state;
+    double lower = 0.0, upper = 0.0;
+    std::string where;  // FILE:LINE, for the message that names a state the case lacks
+  };
+  std::vector<Range> box;  // the states drawn, each uniformly in its range
+  AttractorRunOptions run;
+  std::string where;                   // FILE:LINE of the table
+  std::vector<double> values() const;  // count values from `from` to `to`
+};
+
 struct Study {
   std::string path, name, title, case_path, params, parameter, axis;
   Accuracy accuracy = Accuracy::Default;  // the file's `accuracy`, applied to every branch
@@ -64,6 +87,7 @@ struct Study {
   // Parameter sets of the case whose value of `parameter` the figure marks (the paper's Fig. 9:
   // the platform's stiffness before and after the fit, Tables II and III).
   std::vector<std::string> marks;
+  std::optional<StudyBasins> basins;
 };
 
 // Reads and checks a study file (its keys, types and each branch's and equilibria entry's
@@ -73,6 +97,9 @@ Study load_study(const std::string& path);
 // The study's [[equilibria]] tables (`list`, the node of key "equilibria") into s.equilibria,
 // checked as load_study checks branches; their names added to `names` (a name is unique across
 // branches and equilibria: it names files).
+// The study's [basins] table (`node`) into s.basins, every key checked (not yet its states).
+void read_study_basins(const TomlReader& in, const toml::node& node, Study& s);
+
 void read_study_equilibria(const TomlReader& in, const toml::node& list, Study& s,
                            std::set<std::string>& names);
 

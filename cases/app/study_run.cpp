@@ -106,6 +106,7 @@ StudyRun study_run(const Arguments& args) {
     outputs.emplace_back("branch '" + b.name + "''s events CSV", stem + "-events.csv");
   }
   outputs.insert(outputs.end(), equilibria_outputs.begin(), equilibria_outputs.end());
+  prepare_study_basins(run, outputs);
   for (const auto& [what, path] : outputs) check_writable(path, study.path + ": " + what);
   std::vector<std::pair<std::string, std::string>> inputs{{"study file", study.path},
                                                           {"case file", first.path()}};
@@ -297,6 +298,7 @@ void write_study_json(const StudyRun& run, double seconds) {
   j["marks"] = nlohmann::json::array();
   for (const auto& [set, value] : run.marks)
     j["marks"].push_back({{"name", set}, {"value", value}});
+  if (run.basins) j["basins"] = study_basins_json(run);
   j["seconds"] = seconds;
   write_json(run.json_path, j);
 }

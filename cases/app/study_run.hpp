@@ -14,6 +14,9 @@
 #include "cases/app/loaded_system.hpp"
 #include "cases/app/requests.hpp"
 #include "cases/app/study_file.hpp"
+#include "sympathy/continuation/basin_walk.hpp"
+
+#include <nlohmann/json.hpp>
 
 namespace sympathy::app {
 
@@ -48,6 +51,12 @@ struct StudyRun {
   const LoadedSystem& first() const {
     return systems.empty() ? *equilibria_systems.front() : *systems.front();
   }
+  // The [basins] walk (study_basins_run.cpp): its options checked against the first branch's
+  // case, its parameter values, CSV path and result.
+  std::optional<BasinWalkOptions> basins_options;
+  ParameterValues basins_values;
+  std::string basins_csv;
+  std::optional<BasinWalk> basins;
   std::size_t job_count() const { return study.branches.size() + study.equilibria.size(); }
 };
 StudyRun study_run(const Arguments& args);
@@ -67,5 +76,17 @@ void prepare_study_equilibria(StudyRun& run,
 // it names, already computed); where it is to `doing` (job index `job`).
 void run_study_equilibria(StudyRun& run, std::size_t k, const std::atomic<bool>* stop,
                           const std::function<void(const std::string&)>& doing);
+
+// The study's [basins] checked against the first branch's case (its states, start, the walked
+// values' range) and made options, before any work; `outputs` gains its CSV. Nothing without one.
+void prepare_study_basins(StudyRun& run, std::vector<std::pair<std::string, std::string>>& outputs);
+// The study's branches that name the walk's attractors: those computed, in the walked parameter.
+std::vector<NamedBranch> study_basins_branches(const StudyRun& run);
+// The walk (after the branches: their orbits name the attractors), its CSV written; `doing` told
+// each value as it starts.
+void run_study_basins(StudyRun& run, const std::atomic<bool>* stop,
+                      const std::function<void(const std::string&)>& doing);
+// The walk's JSON: the values, each attractor's shares, the attractors at each value, the fates.
+nlohmann::json study_basins_json(const StudyRun& run);
 
 }  // namespace sympathy::app

@@ -193,4 +193,55 @@ void print_equilibrium_events(std::FILE* out, const EquilibriumBranch& branch) {
   }
 }
 
+void print_basins_walk(std::FILE* out, const BasinWalk& walk, const std::string& parameter,
+                       const std::vector<NamedBranch>& branches) {
+  const std::size_t starts = walk.values.empty() ? 0 : walk.values.front().runs.size();
+  std::fprintf(out, "basins along %s, %zu starts each (share [95%% interval]):\n",
+               parameter.c_str(), starts);
+  for (const auto& v : walk.values) {
+    std::string line = "  " + parameter + " = " + format_number(v.value) + ":";
+    for (const auto& s : v.shares)
+      if (s.proportion.count > 0)
+        line.append("  ")
+            .append(s.name)
+            .append(" ")
+            .append(format_number(std::round(s.proportion.share * 1000) / 1000))
+            .append(" [")
+            .append(format_number(std::round(s.proportion.lower * 1000) / 1000))
+            .append(", ")
+            .append(format_number(std::round(s.proportion.upper * 1000) / 1000))
+            .append("]");
+    std::string fates;
+    for (const Fate f : {Fate::Certified, Fate::Reached, Fate::NewOrbit, Fate::Equilibrium,
+                         Fate::Unresolved, Fate::Failed}) {
+      const auto n = std::count_if(v.runs.begin(), v.runs.end(),
+                                   [&](const AttractorFate& r) { return r.fate == f; });
+      if (n > 0)
+        fates.append(fates.empty() ? "" : ", ")
+            .append(to_string(f))
+            .append(" ")
+            .append(std::to_string(n));
+    }
+    std::fprintf(out, "%s  (%s)\n", line.c_str(), fates.c_str());
+  }
+  if (walk.interrupted) std::fprintf(out, "  interrupted: the values after these were not run\n");
+  for (const auto& c : share_changes(walk, branches)) {
+    std::string line = "  " + c.name + (c.appears ? " appears" : " disappears") + " between " +
+                       parameter + " = " + format_number(c.before) + " and " +
+                       format_number(c.after) + ":";
+    if (c.events.empty()) line.append(" no located event of the branches there");
+    for (std::size_t i = 0; i < c.events.size(); ++i) {
+      const Bifurcation& e = *c.events[i].event;
+      line.append(i ? "," : "")
+          .append(" ")
+          .append(to_string(e.type))
+          .append(" of ")
+          .append(c.events[i].branch)
+          .append(" at ")
+          .append(format_number(e.parameter));
+    }
+    std::fprintf(out, "%s\n", line.c_str());
+  }
+}
+
 }  // namespace sympathy::cli

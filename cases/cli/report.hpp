@@ -9,6 +9,7 @@
 
 #include "cases/app/branch_run.hpp"
 #include "cases/app/orbit_run.hpp"
+#include "sympathy/continuation/basin_walk.hpp"
 
 namespace sympathy::cli {
 
@@ -34,5 +35,11 @@ void print_events(std::FILE* out, const Branch& branch);
 // located), parameter, uncertainty, the eigenvalue nearest the imaginary axis, note (a Hopf
 // point's omega, period and criticality).
 void print_equilibrium_events(std::FILE* out, const EquilibriumBranch& branch);
+
+// A walk of basin shares along `parameter` (a study's [basins]): per value the attractors with a
+// share (each with its 95% interval) and how the runs ended; then where each share appears or
+// disappears, with the events `branches` located there.
+void print_basins_walk(std::FILE* out, const BasinWalk& walk, const std::string& parameter,
+                       const std::vector<NamedBranch>& branches);
 
 }  // namespace sympathy::cli

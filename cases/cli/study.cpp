@@ -47,6 +47,9 @@ int run_study(const std::vector<std::string>& argv) {
   callbacks.finished = [&](std::size_t i) { line.finish(i); };
   run_study_branches(run, interrupt_flag(), callbacks);
   line.clear();
+  run_study_basins(run, interrupt_flag(),
+                   callbacks.log ? [&](const std::string& doing) { callbacks.log(doing + "\n"); }
+                                 : std::function<void(const std::string&)>{});
 
   bool ok = true;
   for (std::size_t i = 0; i < study.branches.size(); ++i) {
@@ -62,6 +65,8 @@ int run_study(const std::vector<std::string>& argv) {
     if (!e.origin.empty()) std::printf("  %s\n", e.origin.c_str());
     print_equilibrium_events(stdout, e);
   }
+  if (run.basins)
+    print_basins_walk(stdout, *run.basins, study.parameter, study_basins_branches(run));
   write_study_json(run, clock.seconds());
   std::printf("  wrote %s, %zu CSV files of points and %zu of events; run time %.2f s\n",
               json_path.c_str(), study.branches.size() + study.equilibria.size(),
@@ -69,6 +74,7 @@ int run_study(const std::vector<std::string>& argv) {
   int code = ok ? kDone : kNumericalFailure;
   for (const Branch& b : results) code = worse(code, exit_code_of(b));
   for (const EquilibriumBranch& e : run.equilibria_results) code = worse(code, exit_code_of(e));
+  if (run.basins && run.basins->interrupted) code = worse(code, kInterrupted);
   return code;
 }
 

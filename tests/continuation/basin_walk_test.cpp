@@ -229,6 +229,20 @@ TEST(BasinWalk, ThePairAppearsAtTheBranchPoint) {
   EXPECT_LT(last_without, b.bp);
   EXPECT_GT(first_with, b.bp);
   EXPECT_FALSE(upper_name.empty());
+  // The changes of the shares: the circle's disappears and the pair's two appear between -0.05
+  // and 0.05, each at the one located event there, the circle's BP.
+  const auto changes = share_changes(walk, {{"base", &b.base}, {"born", &b.born}});
+  ASSERT_EQ(changes.size(), 3u);
+  for (const auto& c : changes) {
+    EXPECT_EQ(c.appears, c.name != "base") << c.name;
+    EXPECT_DOUBLE_EQ(c.before, -0.05);
+    EXPECT_DOUBLE_EQ(c.after, 0.05);
+    ASSERT_EQ(c.events.size(), 1u) << c.name;
+    EXPECT_EQ(c.events[0].branch, "base");
+    EXPECT_EQ(c.events[0].event->type, BifurcationType::BranchPoint);
+  }
+  // The shares list the attractors in the order they appear: the circle, then the pair.
+  EXPECT_EQ(walk.values.back().shares.front().name, "base");
 }
 
 // With the circle's branch alone the pair is found by the runs: "new 1" and "new 2" where it

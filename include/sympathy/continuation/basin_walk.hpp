@@ -53,15 +53,34 @@ struct BasinWalkValue {
   // The attractors at it: those the branches hold and those continued from the previous value
   // (merge_attractors), then the new ones its runs found.
   std::vector<Attractor> attractors;
-  std::vector<AttractorFate> runs;     // in start order; Certified, Reached, NewOrbit: `attractor`
-                                       // indexes `attractors`
-  std::vector<BasinWalkShare> shares;  // every name of the walk, in order of first appearance
+  std::vector<AttractorFate> runs;  // in start order; Certified, Reached, NewOrbit: `attractor`
+                                    // indexes `attractors`
+  // Every name of the walk: the attractors in the order they first appear in the values' lists
+  // (the branches' first), then the other fates where a run has them ("equilibrium",
+  // "unresolved", "failed").
+  std::vector<BasinWalkShare> shares;
 };
 
 struct BasinWalk {
   std::vector<BasinWalkValue> values;  // those walked (fewer where interrupted)
   bool interrupted = false;
 };
+
+// Where an attractor's share becomes nonzero (appears) or zero (disappears) between two
+// neighbouring values of a walk, and the located events of the branches between them: where it
+// happens (a branch point, fold or period doubling the branches found).
+struct ShareChange {
+  std::string name;
+  bool appears = true;
+  double before = 0.0, after = 0.0;  // the neighbouring values, in the walk's order
+  struct Event {
+    std::string branch;
+    const Bifurcation* event = nullptr;
+  };
+  std::vector<Event> events;  // located on `branches` with the parameter between the two
+};
+std::vector<ShareChange> share_changes(const BasinWalk& walk,
+                                       const std::vector<NamedBranch>& branches);
 
 // The start of run `s` at value `j`: uniform in the box, from task_seed(seed, j * starts + s).
 Eigen::VectorXd walk_start(const BasinWalkOptions& options, std::size_t j, std::size_t s);

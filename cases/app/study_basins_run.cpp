@@ -1,0 +1,148 @@
+// A study's [basins]: basin shares walked along the study's parameter (continuation/basin_walk.hpp)
+// on the first branch's case at its values, the attractors named by the study's branches: a run
+// that ends on an orbit of branch NAME counts under NAME, one on a stable orbit no branch holds
+// under "new k", found by the runs and continued from value to value like the others.
+#include <algorithm>
+#include <filesystem>
+
+#include "cases/app/study_run.hpp"
+#include "sympathy/core/csv.hpp"
+
+namespace sympathy::app {
+
+void prepare_study_basins(StudyRun& run,
+                          std::vector<std::pair<std::string, std::string>>& outputs) {
+  const Study& study = run.study;
+  if (!study.basins) return;
+  const StudyBasins& b = *study.basins;
+  const LoadedSystem& c = *run.systems.front();
+  const OdeSystem& system = c.system();
+  c.check_range(study.parameter,
+                {{b.where + ": basins.from", b.from}, {b.where + ": basins.to", b.to}});
+  if (!c.equations() && b.start.empty())
+    throw InputError(
+        b.where + ": key 'basins.start' is missing; expected the name of one of " + c.path() +
+        "'s starts (the states outside box keep its values): " + join(c.start_names()));
+  const BranchSource start = c.source(b.start, {});
+  BasinWalkOptions o;
+  const auto parameters = system.parameter_names();
+  o.parameter = static_cast<int>(std::find(parameters.begin(), parameters.end(), study.parameter) -
+                                 parameters.begin());
+  o.values = b.values();
+  o.starts = b.starts;
+  o.seed = b.seed;
+  o.tasks.threads = b.threads;
+  o.run = b.run;
+  o.lower = o.upper = start.start_state;
+  const auto states = system.state_names();
+  for (const auto& r : b.box) {
+    const auto it = std::find(states.begin(), states.end(), r.state);
+    if (it == states.end())
+      throw InputError(r.where + ": key 'basins.box." + r.state + "': not a state of " + c.path() +
+                       "; expected one of: " + join(states));
+    o.lower[it - states.begin()] = r.lower;
+    o.upper[it - states.begin()] = r.upper;
+  }
+  if (auto wrong = o.validate(system.dimension(), system.parameter_count()))
+    throw InputError(b.where + ": basins: " + wrong->message());
+  run.basins_values = start.values;
+  run.basins_options = std::move(o);
+  run.basins_csv = run.out + "/" + study.name + "-basins.csv";
+  outputs.emplace_back("the basins' CSV", run.basins_csv);
+}
+
+std::vector<NamedBranch> study_basins_branches(const StudyRun& run) {
+  std::vector<NamedBranch> branches;
+  for (std::size_t i = 0; i < run.study.branches.size(); ++i)
+    if (run.errors[i].empty() && run.results[i].started() &&
+        run.results[i].parameter == run.basins_options->parameter)
+      branches.push_back({run.study.branches[i].name, &run.results[i]});
+  return branches;
+}
+
+void run_study_basins(StudyRun& run, const std::atomic<bool>* stop,
+                      const std::function<void(const std::string&)>& doing) {
+  if (!run.basins_options) return;
+  const BasinWalkOptions& o = *run.basins_options;
+  const std::vector<NamedBranch> branches = study_basins_branches(run);
+  if (doing)
+    doing("basins: " + std::to_string(o.values.size()) + " values of " + run.study.parameter +
+          ", " + std::to_string(o.starts) + " starts each");
+  run.basins = walk_basins(run.systems.front()->system(), run.basins_values, branches, o, stop);
+  CsvWriter csv(run.basins_csv,
+                {"value", "attractor", "branch", "count", "trials", "share", "lower", "upper"});
+  for (const auto& v : run.basins->values)
+    for (const auto& s : v.shares)
+      csv.row({format_number(v.value), s.name, s.branch, std::to_string(s.proportion.count),
+               std::to_string(s.proportion.trials), format_number(s.proportion.share),
+               format_number(s.proportion.lower), format_number(s.proportion.upper)});
+  csv.close();
+}
+
+nlohmann::json study_basins_json(const StudyRun& run) {
+  const BasinWalk& walk = *run.basins;
+  const BasinWalkOptions& o = *run.basins_options;
+  nlohmann::json j;
+  j["csv"] = std::filesystem::path(run.basins_csv).filename().string();
+  j["starts"] = o.starts;
+  j["seed"] = o.seed;
+  j["t_end"] = o.run.t_end;
+  j["interrupted"] = walk.interrupted;
+  j["values"] = nlohmann::json::array();
+  j["shares"] = nlohmann::json::array();
+  j["attractors"] = nlohmann::json::array();
+  j["fates"] = nlohmann::json::array();
+  for (const auto& v : walk.values) j["values"].push_back(v.value);
+  if (!walk.values.empty())
+    for (std::size_t k = 0; k < walk.values.front().shares.size(); ++k) {
+      nlohmann::json s;
+      s["name"] = walk.values.front().shares[k].name;
+      s["branch"] = walk.values.front().shares[k].branch;
+      for (const char* key : {"count", "share", "lower", "upper"}) s[key] = nlohmann::json::array();
+      for (const auto& v : walk.values) {
+        const Proportion& p = v.shares[k].proportion;
+        s["count"].push_back(p.count);
+        s["share"].push_back(p.share);
+        s["lower"].push_back(p.lower);
+        s["upper"].push_back(p.upper);
+      }
+      j["shares"].push_back(s);
+    }
+  for (const auto& v : walk.values) {
+    nlohmann::json list = nlohmann::json::array();
+    for (const auto& a : v.attractors)
+      list.push_back(
+          {{"name", a.name},
+           {"branch", a.branch},
+           {"point", a.point},
+           {"period", a.orbit.period},
+           {"max_multiplier", a.orbit.floquet.max_modulus},
+           {"state", std::vector<double>(a.orbit.state0.data(),
+                                         a.orbit.state0.data() + a.orbit.state0.size())}});
+    j["attractors"].push_back(list);
+    nlohmann::json fates = nlohmann::json::object();
+    for (const Fate f : {Fate::Certified, Fate::Reached, Fate::NewOrbit, Fate::Equilibrium,
+                         Fate::Unresolved, Fate::Failed})
+      fates[to_string(f)] = std::count_if(v.runs.begin(), v.runs.end(),
+                                          [&](const AttractorFate& r) { return r.fate == f; });
+    j["fates"].push_back(fates);
+  }
+  j["changes"] = nlohmann::json::array();
+  for (const auto& c : share_changes(walk, study_basins_branches(run))) {
+    nlohmann::json events = nlohmann::json::array();
+    for (const auto& e : c.events)
+      events.push_back({{"branch", e.branch},
+                        {"type", to_string(e.event->type)},
+                        {"parameter", e.event->parameter},
+                        {"uncertainty", e.event->uncertainty},
+                        {"trusted", e.event->trusted()}});
+    j["changes"].push_back({{"name", c.name},
+                            {"appears", c.appears},
+                            {"before", c.before},
+                            {"after", c.after},
+                            {"events", events}});
+  }
+  return j;
+}
+
+}  // namespace sympathy::app
