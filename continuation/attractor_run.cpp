@@ -1,6 +1,8 @@
 #include "sympathy/continuation/attractor_run.hpp"
 
+#include <algorithm>
 #include <cmath>
+#include <complex>
 #include <memory>
 
 #include "sympathy/continuation/equilibrium.hpp"
@@ -26,6 +28,8 @@ std::string to_string(Fate f) {
       return "new orbit";
     case Fate::Equilibrium:
       return "equilibrium";
+    case Fate::Torus:
+      return "torus";
     case Fate::Unresolved:
       return "unresolved";
     case Fate::Failed:
@@ -35,6 +39,70 @@ std::string to_string(Fate f) {
 }
 
 namespace {
+
+// Whether the motion from the run's end circles `orbit` on a torus: the orbit's largest
+// nontrivial multiplier is one of a complex pair outside the unit circle (a torus born at its NS
+// point surrounds it), and over kTorusReturns returns to its section (after kTorusSettle), each
+// one period after the last, the motion stays at a steady distance from the orbit's point
+// (below kTorusDistance in the eigen-coordinates, the nearest at least a tenth of the farthest:
+// not converging onto the orbit, not leaving it). Crossings of the section count as returns within
+// kTorusReach of the point in the scaled states (a state still on the orbit, as the platform on
+// the anti-phase orbit, has a scale of 1e-3 of the largest, and the torus moves it: the row
+// setup's torus at k = 55 N/m lies 0.7 to 1.4 from the anti-phase orbit in the eigen-coordinates
+// and further in that state; the section's other crossing, on the orbit's far side, runs the
+// other way). Its rotation number: the mean turn of that pair's coordinate from one return to the
+// next, in turns, in [0, 1) (on the normal form's torus exactly the pair's argument over 2 pi).
+// Sets fate.rotation_number where true.
+constexpr int kTorusReturns = 60;
+constexpr int kTorusSettle = 10;
+constexpr double kTorusReach = 10.0;
+constexpr double kTorusDistance = 3.0;
+
+bool on_torus(const OdeSystem& system, const ParameterValues& p,
+              const std::shared_ptr<const OrbitNeighbourhood>& orbit,
+              const AttractorRunOptions& options, AttractorFate& fate) {
+  const Eigen::VectorXcd& mu = orbit->multipliers;
+  if (mu.size() == 0) return false;
+  Eigen::Index lead = 0;
+  mu.cwiseAbs().maxCoeff(&lead);
+  if (!(std::abs(mu[lead]) > 1.0 && std::abs(mu[lead].imag()) > 1e-9 * std::abs(mu[lead])))
+    return false;
+  ConvergenceCertificate returns(system, orbit, kTorusReach);
+  std::vector<double> turns;
+  std::complex<double> previous;
+  std::size_t seen = 0;
+  const double dt = std::min(options.dt, orbit->period / 20.0);
+  std::vector<double> times;
+  for (double t = 0.0; t <= (kTorusReturns + kTorusSettle + 1.5) * orbit->period; t += dt)
+    times.push_back(t);
+  Flow flow(system, options.flow);
+  flow.sample_until(fate.end_state, p, 0.0, times, [&](double t, const Eigen::VectorXd& z) {
+    returns.add(t, z);
+    if (returns.distances().size() > seen) {
+      seen = returns.distances().size();
+      const std::complex<double> c = returns.last_coordinates()[lead];
+      if (seen > static_cast<std::size_t>(kTorusSettle) && std::abs(previous) > 0.0 &&
+          std::abs(c) > 0.0)
+        turns.push_back(std::arg(c / previous));
+      previous = c;
+    }
+    return turns.size() >= static_cast<std::size_t>(kTorusReturns);
+  });
+  const auto& d = returns.distances();
+  if (turns.size() < static_cast<std::size_t>(kTorusReturns)) return false;
+  const auto [low, high] = std::minmax_element(d.begin() + kTorusSettle, d.end());
+  if (!(*high < kTorusDistance && *low >= 0.1 * *high)) return false;
+  // Every return counted: one period after the last (within half a period), none skipped.
+  const auto& t = returns.return_times();
+  for (std::size_t k = 1; k < t.size(); ++k)
+    if (std::abs(t[k] - t[k - 1] - orbit->period) > 0.5 * orbit->period) return false;
+  double mean = 0.0;
+  for (double a : turns) mean += a;
+  mean /= static_cast<double>(turns.size());
+  const double r = mean / (2.0 * std::acos(-1.0));
+  fate.rotation_number = r - std::floor(r);
+  return true;
+}
 
 // Where a run that was not certified ended: Newton from its end, with the period of its first
 // return to the section through it (none within the orbit options' max_period: at rest, or not
@@ -80,8 +148,14 @@ void identify_end(const OdeSystem& system, const ParameterValues& p,
       fate.attractor = static_cast<int>(i);
       return;
     }
-  const OrbitNeighbourhood neighbourhood(system, orbit, ao.certificate);
-  if (!neighbourhood.eligible) {
+  const auto neighbourhood =
+      std::make_shared<const OrbitNeighbourhood>(system, orbit, ao.certificate);
+  if (!neighbourhood->eligible && on_torus(system, p, neighbourhood, options, fate)) {
+    fate.fate = Fate::Torus;
+    fate.orbit = std::move(orbit);
+    return;
+  }
+  if (!neighbourhood->eligible) {
     fate.note = "near an orbit of period " + std::to_string(orbit.period) +
                 " that is not stable with the margin (largest multiplier " +
                 std::to_string(orbit.floquet.max_modulus) + ")";

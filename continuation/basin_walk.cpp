@@ -102,7 +102,7 @@ BasinWalk walk_basins(const OdeSystem& system, const ParameterValues& p,
   };
   for (const auto& v : walk.values)
     for (const auto& a : v.attractors) add(a.name, a.branch);
-  for (const Fate f : {Fate::Equilibrium, Fate::Unresolved, Fate::Failed})
+  for (const Fate f : {Fate::Equilibrium, Fate::Torus, Fate::Unresolved, Fate::Failed})
     for (const auto& v : walk.values)
       for (const auto& r : v.runs)
         if (r.attractor < 0 && (r.fate == f || (f == Fate::Unresolved && r.fate == Fate::NewOrbit)))
@@ -124,11 +124,26 @@ std::vector<ShareChange> share_changes(const BasinWalk& walk,
     for (std::size_t k = 0; k < a.shares.size() && k < b.shares.size(); ++k) {
       const bool was = a.shares[k].proportion.count > 0, is = b.shares[k].proportion.count > 0;
       if (was == is) continue;
-      ShareChange c{a.shares[k].name, is, a.value, b.value, {}};
+      ShareChange c;
+      c.name = a.shares[k].name;
+      c.appears = is;
+      c.before = a.value;
+      c.after = b.value;
+      const auto present = [&](const BasinWalkValue& v) {
+        return std::any_of(v.attractors.begin(), v.attractors.end(),
+                           [&](const Attractor& x) { return x.name == c.name; });
+      };
+      c.present_before = present(a);
+      c.present_after = present(b);
       const double lo = std::min(a.value, b.value), hi = std::max(a.value, b.value);
       for (const auto& named : branches)
-        for (const auto& e : named.branch->events)
-          if (e.parameter > lo && e.parameter < hi) c.events.push_back({named.name, &e});
+        for (const auto& e : named.branch->events) {
+          const bool again = std::any_of(c.events.begin(), c.events.end(), [&](const auto& d) {
+            return d.event->type == e.type && std::abs(d.event->parameter - e.parameter) <=
+                                                  1e-9 * std::max(1.0, std::abs(e.parameter));
+          });
+          if (e.parameter > lo && e.parameter < hi && !again) c.events.push_back({named.name, &e});
+        }
       changes.push_back(std::move(c));
     }
   }

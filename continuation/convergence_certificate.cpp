@@ -71,16 +71,18 @@ OrbitNeighbourhood::OrbitNeighbourhood(const OdeSystem& system, const PeriodicOr
   const Eigen::MatrixXcd inverse = v.inverse();
   coordinates.resize(n - 1, n);
   modes.resize(n, n - 1);
+  multipliers.resize(n - 1);
   for (int i = 0, k = 0; i < n; ++i)
     if (i != trivial) {
       coordinates.row(k) = inverse.row(i);
+      multipliers[k] = solver.eigenvalues()[i];
       modes.col(k++) = v.col(i);
     }
 }
 
 ConvergenceCertificate::ConvergenceCertificate(
-    const OdeSystem& system, std::shared_ptr<const OrbitNeighbourhood> neighbourhood)
-    : system_(system), orbit_(std::move(neighbourhood)) {
+    const OdeSystem& system, std::shared_ptr<const OrbitNeighbourhood> neighbourhood, double reach)
+    : system_(system), orbit_(std::move(neighbourhood)), reach_(reach) {
   if (!orbit_) throw std::invalid_argument("ConvergenceCertificate: no orbit");
 }
 
@@ -106,9 +108,8 @@ double ConvergenceCertificate::bound(const std::vector<int>& components) const {
 bool ConvergenceCertificate::add(double t, const Eigen::VectorXd& z) {
   const double g = side(z);
   const bool crossed = has_previous_ && g_previous_ < 0.0 && g >= 0.0;
-  // Only near z*: the hyperplane is crossed far from the orbit too. Half the orbit's amplitude
-  // is well beyond the certificate's radius and well short of the orbit's other side.
-  if (crossed && std::min(near(z_previous_), near(z)) < 0.5) {
+  // Only near z* (within reach_): the hyperplane is crossed far from the orbit too.
+  if (crossed && std::min(near(z_previous_), near(z)) < reach_) {
     // Cubic Hermite between the two samples, f at both; the crossing by regula falsi on it.
     const int n = system_.dimension();
     Eigen::VectorXd f0(n), f1(n);

@@ -92,6 +92,7 @@ nlohmann::json study_basins_json(const StudyRun& run) {
   j["shares"] = nlohmann::json::array();
   j["attractors"] = nlohmann::json::array();
   j["fates"] = nlohmann::json::array();
+  j["runs"] = nlohmann::json::array();
   for (const auto& v : walk.values) j["values"].push_back(v.value);
   if (!walk.values.empty())
     for (std::size_t k = 0; k < walk.values.front().shares.size(); ++k) {
@@ -122,10 +123,21 @@ nlohmann::json study_basins_json(const StudyRun& run) {
     j["attractors"].push_back(list);
     nlohmann::json fates = nlohmann::json::object();
     for (const Fate f : {Fate::Certified, Fate::Reached, Fate::NewOrbit, Fate::Equilibrium,
-                         Fate::Unresolved, Fate::Failed})
+                         Fate::Torus, Fate::Unresolved, Fate::Failed})
       fates[to_string(f)] = std::count_if(v.runs.begin(), v.runs.end(),
                                           [&](const AttractorFate& r) { return r.fate == f; });
     j["fates"].push_back(fates);
+    // Each run: how it ended, on which attractor, when it stopped, a torus' rotation number.
+    nlohmann::json runs = nlohmann::json::array();
+    for (const auto& r : v.runs) {
+      nlohmann::json x = {{"fate", to_string(r.fate)},
+                          {"attractor", r.attractor >= 0 ? v.attractors[r.attractor].name : ""},
+                          {"stopped_at", r.stopped_at}};
+      if (r.fate == Fate::Torus) x["rotation_number"] = r.rotation_number;
+      if (!r.note.empty()) x["note"] = r.note;
+      runs.push_back(x);
+    }
+    j["runs"].push_back(runs);
   }
   j["changes"] = nlohmann::json::array();
   for (const auto& c : share_changes(walk, study_basins_branches(run))) {
@@ -140,6 +152,8 @@ nlohmann::json study_basins_json(const StudyRun& run) {
                             {"appears", c.appears},
                             {"before", c.before},
                             {"after", c.after},
+                            {"present_before", c.present_before},
+                            {"present_after", c.present_after},
                             {"events", events}});
   }
   return j;

@@ -213,7 +213,7 @@ void print_basins_walk(std::FILE* out, const BasinWalk& walk, const std::string&
             .append("]");
     std::string fates;
     for (const Fate f : {Fate::Certified, Fate::Reached, Fate::NewOrbit, Fate::Equilibrium,
-                         Fate::Unresolved, Fate::Failed}) {
+                         Fate::Torus, Fate::Unresolved, Fate::Failed}) {
       const auto n = std::count_if(v.runs.begin(), v.runs.end(),
                                    [&](const AttractorFate& r) { return r.fate == f; });
       if (n > 0)
@@ -229,7 +229,10 @@ void print_basins_walk(std::FILE* out, const BasinWalk& walk, const std::string&
     std::string line = "  " + c.name + (c.appears ? " appears" : " disappears") + " between " +
                        parameter + " = " + format_number(c.before) + " and " +
                        format_number(c.after) + ":";
-    if (c.events.empty()) line.append(" no located event of the branches there");
+    if (c.appears ? c.present_before : c.present_after)
+      line.append(" (its orbit is an attractor at both: the starts' sampling)");
+    else if (c.events.empty())
+      line.append(" no located event of the branches there");
     for (std::size_t i = 0; i < c.events.size(); ++i) {
       const Bifurcation& e = *c.events[i].event;
       line.append(i ? "," : "")

@@ -240,6 +240,9 @@ TEST(BasinWalk, ThePairAppearsAtTheBranchPoint) {
     ASSERT_EQ(c.events.size(), 1u) << c.name;
     EXPECT_EQ(c.events[0].branch, "base");
     EXPECT_EQ(c.events[0].event->type, BifurcationType::BranchPoint);
+    // Not the sampling: the circle is no attractor after, the pair none before.
+    EXPECT_EQ(c.present_before, !c.appears) << c.name;
+    EXPECT_EQ(c.present_after, c.appears) << c.name;
   }
   // The shares list the attractors in the order they appear: the circle, then the pair.
   EXPECT_EQ(walk.values.back().shares.front().name, "base");

@@ -3,11 +3,14 @@
 // where it ended (with the period of its first return) tells which orbit it ended near: a known
 // one (reached too slowly to be certified), a stable orbit none of them is (a new attractor, named
 // afterwards by name_new_attractors), or none (still moving: an unstable orbit it lingers near,
-// quasi-periodic or chaotic motion, a transient longer than the run); an end at rest is a
-// stable or unstable equilibrium.
+// chaotic motion, a transient longer than the run); an end at rest is a stable or unstable
+// equilibrium; an end that circles an orbit with a complex pair of multipliers outside the unit
+// circle (the torus born at its Neimark-Sacker point) at a steady distance is a torus, with its
+// mean rotation number.
 #pragma once
 
 #include <atomic>
+#include <cmath>
 #include <optional>
 #include <string>
 #include <vector>
@@ -35,6 +38,8 @@ enum class Fate {
   Reached,      // at t_end, Newton from its end converged to `attractor`'s orbit
   NewOrbit,     // at t_end, near a stable orbit that is none of the attractors (`orbit`)
   Equilibrium,  // at t_end, at rest: at a stable equilibrium (`equilibrium_state`)
+  Torus,        // at t_end, on an invariant torus around an orbit whose leading multipliers are
+                // a complex pair outside the unit circle (`orbit`), its `rotation_number`
   Unresolved,   // at t_end, near no stable orbit or equilibrium (`note` says what it found)
   Failed,       // the integration failed (`note`)
 };
@@ -45,9 +50,10 @@ struct AttractorFate {
   int attractor = -1;  // Certified, Reached: the index among the attractors given
   double stopped_at = 0.0;
   Eigen::VectorXd end_state;
-  std::optional<PeriodicOrbit> orbit;  // NewOrbit: the orbit Newton found
-  Eigen::VectorXd equilibrium_state;   // Equilibrium
-  std::string note;                    // Unresolved, Failed: why
+  std::optional<PeriodicOrbit> orbit;     // NewOrbit: the orbit Newton found
+  Eigen::VectorXd equilibrium_state;      // Equilibrium
+  double rotation_number = std::nan("");  // Torus: in [0, 1), turns a return about the orbit
+  std::string note;                       // Unresolved, Failed: why
 };
 
 // Runs the trajectory from `start` at parameter values `p` to options.t_end or to a certificate

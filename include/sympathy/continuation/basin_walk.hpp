@@ -73,11 +73,16 @@ struct ShareChange {
   std::string name;
   bool appears = true;
   double before = 0.0, after = 0.0;  // the neighbouring values, in the walk's order
+  // Whether the attractor is among the values' attractors: a share that falls to zero while its
+  // orbit is still there (present at both) is the starts' sampling, not the attractor's end.
+  bool present_before = false, present_after = false;
   struct Event {
     std::string branch;
     const Bifurcation* event = nullptr;
   };
-  std::vector<Event> events;  // located on `branches` with the parameter between the two
+  // Located on `branches` with the parameter between the two, each once (the mirror halves of a
+  // symmetric branch locate the same events: one type at one value to 1e-9 relative).
+  std::vector<Event> events;
 };
 std::vector<ShareChange> share_changes(const BasinWalk& walk,
                                        const std::vector<NamedBranch>& branches);

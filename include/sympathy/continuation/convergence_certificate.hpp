@@ -65,13 +65,18 @@ struct OrbitNeighbourhood {
   // Rows of V^-1 (V: the eigenvectors of D^-1 M D, unit inf-norm) for the nontrivial
   // multipliers, c = coordinates * D^-1 e, and those columns of V.
   Eigen::MatrixXcd coordinates, modes;
+  Eigen::VectorXcd multipliers;  // the nontrivial ones, in the order of coordinates' rows
 };
 
 class ConvergenceCertificate {
  public:
-  // `system`: the orbit's (its f at the samples); one per trajectory.
+  // `system`: the orbit's (its f at the samples); one per trajectory. `reach`: how near z* (in the
+  // scaled inf-norm) a crossing of the section counts as a return; 0.5 (half the orbit's
+  // amplitude) is well beyond the certificate's radius and short of the orbit's other side; a
+  // torus around the orbit is followed further out (attractor_run.cpp).
   ConvergenceCertificate(const OdeSystem& system,
-                         std::shared_ptr<const OrbitNeighbourhood> neighbourhood);
+                         std::shared_ptr<const OrbitNeighbourhood> neighbourhood,
+                         double reach = 0.5);
 
   bool eligible() const { return orbit_->eligible; }
   double rate() const { return orbit_->rate; }
@@ -86,6 +91,8 @@ class ConvergenceCertificate {
   // The returns to the section so far: their times and distances d_k.
   const std::vector<double>& return_times() const { return times_; }
   const std::vector<double>& distances() const { return distances_; }
+  // The eigen-coordinates c of the deviation at the last return (empty before the first).
+  const Eigen::VectorXcd& last_coordinates() const { return last_; }
 
  private:
   double side(const Eigen::VectorXd& z) const;  // <n, D^-1 (z - z*)>
@@ -93,6 +100,7 @@ class ConvergenceCertificate {
 
   const OdeSystem& system_;
   std::shared_ptr<const OrbitNeighbourhood> orbit_;
+  double reach_ = 0.5;
   bool certified_ = false;
   Eigen::VectorXcd last_;  // c at the last return
   bool has_previous_ = false;
