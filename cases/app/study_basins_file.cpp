@@ -5,14 +5,12 @@
 #include <toml++/toml.h>
 
 #include "cases/app/study_file.hpp"
+#include "sympathy/cases/basin_study.hpp"
 
 namespace sympathy::app {
 
 std::vector<double> StudyBasins::values() const {
-  std::vector<double> v;
-  for (int i = 0; i < count; ++i)
-    v.push_back(count == 1 ? from : from + (to - from) * i / (count - 1));
-  return v;
+  return GridAxis{"", from, to, count}.values();  // as basins' grids: the ends exact
 }
 
 void read_study_basins(const TomlReader& in, const toml::node& node, Study& s) {

@@ -295,6 +295,40 @@ TEST(BasinWalk, NewAttractorsAreFoundNamedAndCarried) {
     }
 }
 
+// A run on the torus born at the Neimark-Sacker point of the rotation normal form's circle: the
+// circle's pair exp(2 pi (mu +- 0.3 i)) lies outside the unit circle for mu > 0, and the torus
+// rho = sqrt(mu) around it turns by 0.3 of a turn every period (the angle's speed 0.3 whatever
+// rho, the circle's period 2 pi): rotation number 0.3, to 1e-6 (the section's interpolation).
+// mu = 1e-6 keeps the torus (rho = 1e-3) within reach of the circle's section in its scaled
+// coordinates (the transverse states, still on the circle, are scaled by 1e-3).
+TEST(AttractorRun, ATorusWithItsRotationNumber) {
+  const NormalForm system(NormalForm::Kind::Rotation, 1e-6);
+  AttractorRunOptions o = run_options();
+  o.t_end = 20.0;
+  const auto fate = run_to_attractor(system, system.default_parameters(),
+                                     Eigen::Vector4d(1.0, 0.0, 1e-3, 0.0), {}, o);
+  ASSERT_TRUE(fate);
+  EXPECT_EQ(fate->fate, Fate::Torus) << fate->note;
+  EXPECT_NEAR(fate->rotation_number, 0.3, 1e-6);
+  ASSERT_TRUE(fate->orbit);
+  EXPECT_NEAR(fate->orbit->period, 2 * kPi, 1e-8);
+  EXPECT_NEAR(fate->orbit->state0.tail(2).norm(), 0.0, 1e-8);  // the circle it surrounds
+  // Before the NS point (mu = -0.05, the pair inside the unit circle): certified on the circle.
+  const NormalForm before(NormalForm::Kind::Rotation, -0.05);
+  const ParameterValues p = before.default_parameters();
+  const PeriodicOrbit circle = solve_periodic_orbit(before, p, Eigen::Vector4d(1.0, 0.0, 0.0, 0.0),
+                                                    2 * kPi, InvariantSubspace{}, OrbitOptions{});
+  ASSERT_TRUE(circle.converged());
+  Attractor a;
+  a.name = "circle";
+  a.orbit = circle;
+  a.neighbourhood = std::make_shared<const OrbitNeighbourhood>(before, circle);
+  o.t_end = 200.0;
+  const auto settled = run_to_attractor(before, p, Eigen::Vector4d(1.0, 0.0, 0.3, 0.0), {a}, o);
+  ASSERT_TRUE(settled);
+  EXPECT_EQ(settled->fate, Fate::Certified) << settled->note;
+}
+
 TEST(BasinWalk, OptionsNameTheField) {
   BasinWalkOptions o = walk_options({0.1});
   EXPECT_FALSE(o.validate(3, 3));

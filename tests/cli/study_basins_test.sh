@@ -1,0 +1,70 @@
+#!/usr/bin/env bash
+# Basin shares walked along a study's parameter ([basins] in a study file), on the pitchfork of
+# cycles (cases/examples/cycle_pitchfork_study.toml), whose every fate is known in closed form:
+# the circle w = 0 wins every start before mu = 0, the circles w = +-sqrt(mu) born at its BP win
+# them all after (each the starts with w of its sign); the attractors named by the study's
+# branches, their orbits exact to 1e-8, the share changes placed at the located BP; the CSV and
+# the JSON; bad [basins] tables refused before any work, each message checked. About 3 s.
+# Usage: study_basins_test.sh SYMPATHY_BINARY SOURCE_DIR WORK_DIR
+set -u
+bin=$1 src=$2 work=$3
+rm -rf "$work"
+mkdir -p "$work"
+. "$(dirname "$0")/check.sh"
+export SYMPATHY_CACHE_DIR="$work/cache"  # never the user's cache
+json() { /usr/bin/python3 -c "import json, math, sys; j=json.load(open(sys.argv[1]))['basins']; print($2)" "$1"; }
+
+study=$src/cases/examples/cycle_pitchfork_study.toml
+"$bin" study "$study" --out "$work/cp" > "$work/cp.out" 2> "$work/cp.err"
+check "the walk exits 0" test $? -eq 0
+j=$work/cp/cycle_pitchfork_study.json
+check "six values, -0.25 to 0.25" test "$(json "$j" "
+len(j['values']) == 6 and all(abs(a - b) < 1e-15 for a, b in zip(j['values'], [-0.25, -0.15, -0.05, 0.05, 0.15, 0.25]))")" = True
+check "the circle wins every start before mu = 0, none after" test "$(json "$j" "
+[s for s in j['shares'] if s['name'] == 'circle'][0]['share'] == [1, 1, 1, 0, 0, 0]")" = True
+check "the pair's two shares: 0 before, together 1 after" test "$(json "$j" "
+(lambda p: len(p) == 2 and all(a + b == (1 if v > 0 else 0) for v, a, b in zip(j['values'], p[0]['share'], p[1]['share'])))([s for s in j['shares'] if s['branch'] == 'pair'])")" = True
+check "the pair's orbits are w = +-sqrt(mu), period 2 pi (1e-8)" test "$(json "$j" "
+all(abs(abs(a['state'][2]) - math.sqrt(v)) < 1e-8 and abs(a['period'] - 2 * math.pi) < 1e-8 for v, l in zip(j['values'], j['attractors']) for a in l if a['branch'] == 'pair')")" = True
+check "... of opposite signs at every value after the BP" test "$(json "$j" "
+all(sum(a['state'][2] for a in l if a['branch'] == 'pair') == 0 or abs(sum(a['state'][2] for a in l if a['branch'] == 'pair')) < 1e-8 for l in j['attractors'][3:])")" = True
+check "every run certified" test "$(json "$j" "all(f['certified'] == 20 for f in j['fates'])")" = True
+check "three changes between -0.05 and 0.05, each at the circle's BP (|mu| < 1e-8)" test "$(json "$j" "
+len(j['changes']) == 3 and all(abs(c['before'] + 0.05) < 1e-15 and abs(c['after'] - 0.05) < 1e-15 and len(c['events']) == 1 and c['events'][0]['type'] == 'BP' and abs(c['events'][0]['parameter']) < 1e-8 for c in j['changes'])")" = True
+check "the shares' CSV: 18 rows, the circle's at mu = 0.05 zero" test "$(/usr/bin/python3 -c "
+import csv, sys
+rows = list(csv.DictReader(open(sys.argv[1])))
+print(len(rows) == 18 and [r['count'] for r in rows if r['attractor'] == 'circle' and r['value'] == '0.05'] == ['0'])" "$work/cp/cycle_pitchfork_study-basins.csv")" = True
+check "the table names the change and its BP" grep -qE "^  pair \(1\) appears between mu = -0.05 and 0.05: BP of circle at" "$work/cp.out"
+
+# Bad [basins] tables: refused before any work (exit 2), file, line and key named.
+head -n 19 "$study" | sed "s#case = \"cycle_pitchfork.toml\"#case = \"$src/cases/examples/cycle_pitchfork.toml\"#" > "$work/head.toml"
+basins() {  # basins NAME LINES...: a study file with the branches and a [basins] table of LINES
+  local name=$1
+  shift
+  { cat "$work/head.toml"; printf '[basins]\n'; printf '%s\n' "$@"; } > "$work/$name.toml"
+}
+bad() {  # bad NAME DESCRIPTION EXPECTED-TEXT
+  "$bin" study "$work/$1.toml" --out "$work/bad" > /dev/null 2> "$work/$1.err"
+  local code=$?
+  check "$2: exit 2" test $code -eq 2
+  check "... $2: message" grep -qF -- "$3" "$work/$1.err"
+  check "... $2: nothing computed" test ! -e "$work/bad/$1.json"
+}
+basins b_key 'from = -0.2' 'to = 0.2' 'count = 3' 'box = { w = [-1, 1] }' 'colour = 1'
+bad b_key "an unknown key" "b_key.toml:25: key 'basins.colour'"
+basins b_box 'from = -0.2' 'to = 0.2' 'count = 3'
+bad b_box "no box" "key 'basins.box' is missing"
+basins b_state 'from = -0.2' 'to = 0.2' 'count = 3' 'box = { z = [-1, 1] }'
+bad b_state "a box state the case lacks" "b_state.toml:24: key 'basins.box.z': not a state of"
+basins b_range 'from = -0.2' 'to = 0.2' 'count = 3' 'box = { w = [1, -1] }'
+bad b_range "a reversed range" "b_range.toml:24: key 'basins.box.w': expected [LOWER, UPPER] with LOWER <= UPPER"
+basins b_count 'from = -0.2' 'to = 0.2' 'count = 0' 'box = { w = [-1, 1] }'
+bad b_count "no values" "b_count.toml:23: key 'basins.count': expected an integer from 1 to 10000"
+basins b_t 'from = -0.2' 'to = 0.2' 'count = 3' 't_end = -1.0' 'box = { w = [-1, 1] }'
+bad b_t "a negative t_end" "b_t.toml:24: key 'basins.t_end': expected a positive number"
+basins b_dt 'from = -0.2' 'to = 0.2' 'count = 3' 'dt = 500.0' 'box = { w = [-1, 1] }'
+bad b_dt "a dt beyond t_end" "b_dt.toml:24: key 'basins.dt': expected a positive number up to t_end"
+{ cat "$work/head.toml" | sed '/^\[\[branches\]\]/,$d'; printf '[[equilibria]]\nname = "e"\nfrom = -0.2\nto = 0.2\n[basins]\nfrom = -0.2\nto = 0.2\ncount = 3\nbox = { w = [-1, 1] }\n'; } > "$work/b_alone.toml"
+bad b_alone "basins without branches" "[basins] only beside [[branches]] tables"
+exit $failures
