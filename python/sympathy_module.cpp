@@ -512,8 +512,11 @@ py::object study(const std::string& path, const py::dict& keywords, const py::ob
   app::JobCallbacks callbacks;
   callbacks.finished = [&](std::size_t) { ++count.done; };
   on_worker_thread(
-      [&](const std::atomic<bool>* stop) { app::run_study_branches(run, stop, callbacks); }, &shown,
-      &count);
+      [&](const std::atomic<bool>* stop) {
+        app::run_study_branches(run, stop, callbacks);
+        app::run_study_basins(run, stop, {});
+      },
+      &shown, &count);
   app::write_study_json(run, clock.seconds());  // as the program writes it, beside the CSVs
   py::dict branches;
   for (std::size_t i = 0; i < run.study.branches.size(); ++i) {
@@ -535,6 +538,11 @@ py::object study(const std::string& path, const py::dict& keywords, const py::ob
   fields["branches"] = branches;
   fields["equilibria"] = equilibria;
   fields["equilibria_axis"] = run.equilibria_axis;
+  // The [basins] walk as sympathy.load reads it from the study's JSON (None without one).
+  fields["basins"] = run.basins ? py::module_::import("sympathy._load")
+                                      .attr("_walk")(py::module_::import("json").attr("loads")(
+                                          app::study_basins_json(run).dump()))
+                                : py::none();
   py::list marks;
   for (const auto& [set, value] : run.marks) {
     py::dict m;

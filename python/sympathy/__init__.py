@@ -164,7 +164,8 @@ study = _file_function("study", (
     "writes them; a namespace with title, parameter, branches (a dict by name, each as "
     "continue_branch returns it, with error: why it has none, or '') and equilibria (a dict by "
     "name, each as equilibria returns it, with error), equilibria_axis (the state their diagram "
-    "is drawn in). Ctrl-C returns the branches so far."))
+    "is drawn in), basins (a [basins] table's walk: values, shares by attractor, attractors, "
+    "fates, runs and changes, or None). Ctrl-C returns the branches so far."))
 map = _file_function("map", (
     "sympathy map: where each orbit of a map file (``cases/figures/map_*.toml``) is stable in two "
     "parameters: its branch, the curve of every event on it in both parameters and its stability "

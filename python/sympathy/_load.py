@@ -91,6 +91,21 @@ def kind_of(j: Any) -> str:
     return ""
 
 
+def _walk(j: dict) -> SimpleNamespace:
+    """A study's [basins] walk: values (an array), shares (a dict by attractor: branch, and
+    count, share, lower, upper as arrays over the values), attractors (per value, each with name,
+    branch, point, period, max_multiplier, state), fates and runs per value, changes (each with
+    name, appears, before, after, present_before, present_after, events)."""
+    shares = {s["name"]: SimpleNamespace(**{k: (np.asarray(v) if isinstance(v, list) else v)
+                                            for k, v in s.items()})
+              for s in j["shares"]}
+    attractors = [[SimpleNamespace(**a) for a in value] for value in j["attractors"]]
+    changes = [SimpleNamespace(**{**c, "events": [SimpleNamespace(**e) for e in c["events"]]})
+               for c in j["changes"]]
+    return SimpleNamespace(**{**j, "values": np.asarray(j["values"]), "shares": shares,
+                              "attractors": attractors, "changes": changes})
+
+
 def _basins(j: dict) -> SimpleNamespace:
     """A basins JSON: per grid point its values (a dict by parameter), runs and each state's
     share (a dict by state: count, share and its 95% Wilson interval lower, upper)."""
@@ -120,6 +135,7 @@ def load(path: Union[str, "os.PathLike[str]"]) -> SimpleNamespace:
     if kind == "study":  # by name, as sympathy.study returns them
         result.branches = {b.name: b for b in result.branches}
         result.equilibria = {e.name: e for e in getattr(result, "equilibria", [])}
+        result.basins = _walk(j["basins"]) if "basins" in j else None
     result.kind = kind
     result.path = path
     return result
