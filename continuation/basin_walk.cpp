@@ -123,7 +123,9 @@ std::vector<ShareChange> share_changes(const BasinWalk& walk,
     const BasinWalkValue &a = walk.values[j], &b = walk.values[j + 1];
     for (std::size_t k = 0; k < a.shares.size() && k < b.shares.size(); ++k) {
       const bool was = a.shares[k].proportion.count > 0, is = b.shares[k].proportion.count > 0;
-      if (was == is) continue;
+      // Runs that ended nowhere (unresolved, failed) are no attractor that appears.
+      const std::string& n = a.shares[k].name;
+      if (was == is || n == to_string(Fate::Unresolved) || n == to_string(Fate::Failed)) continue;
       ShareChange c;
       c.name = a.shares[k].name;
       c.appears = is;

@@ -66,8 +66,8 @@ struct BasinWalk {
   bool interrupted = false;
 };
 
-// Where an attractor's share becomes nonzero (appears) or zero (disappears) between two
-// neighbouring values of a walk, and the located events of the branches between them: where it
+// Where an attractor's share (or the tori's or equilibria's) becomes nonzero (appears) or zero
+// (disappears) between two neighbouring values of a walk, and the located events of the branches between them: where it
 // happens (a branch point, fold or period doubling the branches found).
 struct ShareChange {
   std::string name;
