@@ -361,29 +361,75 @@ def study(result: Any, ax: Any = None) -> Any:
     from all the others. Its equilibria entries (``[[equilibria]]``) in a panel of their own
     below, on the same parameter axis (alone when the study has no branches): the state
     ``equilibria_axis`` names (by default the first) against the parameter, stable solid,
-    unstable dashed, their events marked and named as the branches' are; two panels need a new
-    figure (no `ax`). Returns the (first) axes."""
+    unstable dashed, their events marked and named as the branches' are. Its basin walk
+    (``[basins]``) in a panel above: each attractor's share against the parameter with its 95%
+    interval, the located events where a share appears or disappears as dotted lines. Two or
+    three panels need a new figure (no `ax`). An equation case file's branches (no pendula) are
+    drawn by the maximum of the state whose maximum varies most along them. Returns the (first) axes."""
     equilibria = _drawn(getattr(result, "equilibria", None))
-    if not equilibria:
+    walk = getattr(result, "basins", None)
+    orbits = bool(_drawn(result.branches))
+    panels = ([("basins", walk)] if walk is not None and len(walk.values) else []) + \
+        ([("orbits", None)] if orbits or not equilibria else []) + \
+        ([("equilibria", equilibria)] if equilibria else [])
+    if len(panels) == 1 and panels[0][0] == "orbits":
         ax = new_axes(ax)
         _orbits_diagram(result, ax)()
         return ax
-    if not _drawn(result.branches):
+    if len(panels) == 1 and panels[0][0] == "equilibria":
         ax = new_axes(ax)
         _equilibria_diagram(ax, result, equilibria, titled=True)()
         return ax
     if ax is not None:
-        raise ValueError("plot: a study with branches and equilibria draws two panels; no ax")
+        count = {2: "two", 3: "three"}[len(panels)]
+        raise ValueError(f"plot: a study with {' and '.join(k for k, _ in panels)} draws "
+                         f"{count} panels; no ax")
     import matplotlib.pyplot as plt  # type: ignore[import]
-    fig, (ax, below) = plt.subplots(2, 1, figsize=(COLUMN[0], 2.0 * COLUMN[1] + 0.6),
-                                    sharex=True, layout="constrained")
-    # Both panels drawn before any label is placed: place_labels fixes the layout it finds.
-    place_orbits = _orbits_diagram(result, ax)
-    place_equilibria = _equilibria_diagram(below, result, equilibria, titled=False)
-    ax.set_xlabel("")
-    place_orbits()
-    place_equilibria()
-    return ax
+    fig, axes = plt.subplots(len(panels), 1, sharex=True, layout="constrained",
+                             figsize=(COLUMN[0], len(panels) * COLUMN[1] + 0.6))
+    # Every panel drawn before any label is placed: place_labels fixes the layout it finds.
+    places = []
+    for (kind, _), panel in zip(panels, axes):
+        if kind == "basins":
+            _walk_shares(panel, walk, result.parameter)
+        elif kind == "orbits":
+            places.append(_orbits_diagram(result, panel))
+        else:
+            places.append(_equilibria_diagram(panel, result, equilibria, titled=False))
+        if panel is not axes[-1]:
+            panel.set_xlabel("")
+    if panels[0][0] == "basins":  # the title once, above the top panel
+        import textwrap
+        axes[0].set_title(textwrap.fill(getattr(result, "title", ""), 36))
+        axes[1].set_title("")
+    for place in places:
+        place()
+    return axes[0]
+
+
+def _walk_shares(ax: Any, walk: Any, parameter: str) -> None:
+    """A study's basin walk ([basins]) on `ax`: each attractor's share of the starts against the
+    parameter, a named curve with its 95% interval (where the share is not zero); where a share appears or disappears,
+    the located events between the two values as dotted vertical lines (not where the attractor
+    was there all along: that is the starts' sampling)."""
+    x = np.asarray(walk.values, dtype=float)
+    for name, s in walk.shares.items():
+        share = np.asarray(s.share, dtype=float)
+        (line,) = ax.plot(x, share, marker="o", ms=3, lw=1.2, label=name, gid=f"share {name}")
+        # The intervals where the share is not zero (at zero they would all lie on one another).
+        on = share > 0
+        ax.errorbar(x[on], share[on], yerr=[share[on] - np.asarray(s.lower)[on],
+                                            np.asarray(s.upper)[on] - share[on]],
+                    fmt="none", ecolor=line.get_color(), elinewidth=0.7, capsize=2)
+    events = sorted({(e.type, e.parameter) for c in walk.changes
+                     if not (c.present_before and c.present_after) for e in c.events})
+    for kind, value in events:
+        ax.axvline(value, color="0.4", ls=":", lw=0.8, gid=f"change {kind}")
+    ax.set_ylim(-0.03, 1.03)
+    ax.set_ylabel("share of starts")
+    ax.set_xlabel(axis_label(parameter))
+    _finish(ax, loc="upper center", bbox_to_anchor=(0.5, -0.12), ncol=4, frameon=False,
+            handlelength=1.8, columnspacing=1.0)
 
 
 def _equilibria_diagram(ax: Any, result: Any, equilibria: dict,
@@ -414,11 +460,15 @@ def _equilibria_diagram(ax: Any, result: Any, equilibria: dict,
 def _orbits_diagram(result: Any, ax: Any) -> Callable[[], None]:
     """The study's branches of periodic orbits on `ax` (study's diagram); returns what places
     their labels."""
-    y = "frequency" if getattr(result, "axis", "phase") == "frequency" else "phase:th2"
+    y: YAxis = "frequency" if getattr(result, "axis", "phase") == "frequency" else "phase:th2"
+    drawn = _drawn(result.branches)
+    label = ""
+    if y == "phase:th2" and not any("th2" in getattr(b, "state_names", []) for b in drawn.values()):
+        y, label = _widest_maximum(drawn)  # no pendula (an equation case file)
     seen: set = set()
     labels: list = []
     names: list = []  # the branches' names, placed first
-    for name, b in _drawn(result.branches).items():
+    for name, b in drawn.items():
         events, tag = _draw_branch(ax, b, y, name, seen)
         labels += events
         names.append(tag)
@@ -437,6 +487,8 @@ def _orbits_diagram(result: Any, ax: Any) -> Callable[[], None]:
     ax.set_xlabel(axis_label(result.parameter))
     if y == "frequency":
         ax.set_ylabel("frequency (Hz)")
+    elif callable(y):
+        ax.set_ylabel(label)
     else:
         ax.set_ylabel(r"$|\theta_2 - \theta_1|$ (rad)")
         ax.set_yticks([0, math.pi / 2, math.pi], ["0", r"$\pi/2$", r"$\pi$"])
@@ -456,6 +508,20 @@ def _orbits_diagram(result: Any, ax: Any) -> Callable[[], None]:
         first += place_labels(ax, marks, clear_of=first, reach=None)  # anywhere along its line
         place_labels(ax, labels, clear_of=first)
     return place
+
+
+def _widest_maximum(branches: dict) -> tuple[YAxis, str]:
+    """For branches without pendula: the maximum over the orbit of the state whose maximum
+    varies most along them (the pitchfork of cycles' w = +-sqrt(mu), where x's is 1 throughout),
+    and its label."""
+    first = next(iter(branches.values()), None)
+    if first is None or not hasattr(first.points, "max"):
+        return None, ""
+    names = list(first.state_names)
+    spread = {n: np.ptp(np.concatenate([_by_name(b.points.max, names)[n] for b in branches.values()]))
+              for n in names}
+    state = max(names, key=lambda n: spread[n])
+    return (lambda p: _by_name(p.max, names)[state]), f"max of {math_name(state)}"
 
 
 def _study_diagram(result: Any, ax: Any) -> None:
