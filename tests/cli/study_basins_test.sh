@@ -4,7 +4,8 @@
 # the circle w = 0 wins every start before mu = 0, the circles w = +-sqrt(mu) born at its BP win
 # them all after (each the starts with w of its sign); the attractors named by the study's
 # branches, their orbits exact to 1e-8, the share changes placed at the located BP; the CSV and
-# the JSON; bad [basins] tables refused before any work, each message checked. About 3 s.
+# the JSON; the row setup's walk, each change at its located event; bad [basins] tables refused
+# before any work, each message checked. About 15 s.
 # Usage: study_basins_test.sh SYMPATHY_BINARY SOURCE_DIR WORK_DIR
 set -u
 bin=$1 src=$2 work=$3
@@ -36,6 +37,30 @@ import csv, sys
 rows = list(csv.DictReader(open(sys.argv[1])))
 print(len(rows) == 18 and [r['count'] for r in rows if r['attractor'] == 'circle' and r['value'] == '0.05'] == ['0'])" "$work/cp/cycle_pitchfork_study-basins.csv")" = True
 check "the table names the change and its BP" grep -qE "^  pair \(1\) appears between mu = -0.05 and 0.05: BP of circle at" "$work/cp.out"
+
+# The row setup at Table II (cases/figures/basins_walk_k.toml, about 5 s): every appearance and
+# disappearance of a share lies at the located event where stability changes, as continuation
+# places it: the branch born at the anti-phase BP appears beyond its NS point (41.62 N/m) and is
+# gone beyond the BP (47.07); the torus appears beyond the anti-phase NS point 49.69 and is gone
+# beyond 56.11, where the anti-phase orbit wins; runs on the torus have one rotation number per
+# value (to 1e-3). The same files with one thread as with two.
+walk=$src/cases/figures/basins_walk_k.toml
+"$bin" study "$walk" --out "$work/walk" > "$work/walk.out" 2> "$work/walk.err"
+check "the row setup's walk exits 0" test $? -eq 0
+w=$work/walk/basins_walk_k.json
+event_of() {  # event_of NAME APPEARS TYPE VALUE: the change of NAME has an event TYPE within 0.01 of VALUE
+  test "$(json "$w" "any(c['name'].startswith('$1') and c['appears'] == $2 and any(e['type'] == '$3' and abs(e['parameter'] - $4) < 0.01 for e in c['events']) for c in j['changes'])")" = True
+}
+check "born-at-bp appears at its NS point (41.62)" event_of born-at-bp True NS 41.6228
+check "born-at-bp disappears at the anti-phase BP (47.07)" event_of born-at-bp False BP 47.0656
+check "the torus appears at the anti-phase NS point 49.69" event_of torus True NS 49.6853
+check "the torus disappears at the anti-phase NS point 56.11" event_of torus False NS 56.1116
+check "the anti-phase orbit appears at 56.11" event_of anti-phase True NS 56.1116
+check "one rotation number per value on the torus (1e-3)" test "$(json "$w" "
+all(max(r) - min(r) < 1e-3 for r in ([x['rotation_number'] for x in runs if x['fate'] == 'torus'] for runs in j['runs']) if r)")" = True
+sed 's/^box = /threads = 1\nbox = /' "$walk" | sed "s#case = \"../row2.toml\"#case = \"$src/cases/row2.toml\"#" > "$work/walk1.toml"
+"$bin" study "$work/walk1.toml" --out "$work/walk1" > /dev/null 2>&1
+check "one thread: the same shares" cmp "$work/walk/basins_walk_k-basins.csv" "$work/walk1/walk1-basins.csv"
 
 # Bad [basins] tables: refused before any work (exit 2), file, line and key named.
 head -n 19 "$study" | sed "s#case = \"cycle_pitchfork.toml\"#case = \"$src/cases/examples/cycle_pitchfork.toml\"#" > "$work/head.toml"
