@@ -9,7 +9,7 @@
 
 #include "cases/app/branch_run.hpp"
 #include "cases/app/orbit_run.hpp"
-#include "sympathy/continuation/basin_walk.hpp"
+#include "cases/app/study_run.hpp"
 
 namespace sympathy::cli {
 
