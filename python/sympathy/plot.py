@@ -428,7 +428,7 @@ def _walk_shares(ax: Any, walk: Any, parameter: str) -> None:
     ax.set_ylim(-0.03, 1.03)
     ax.set_ylabel("share of starts")
     ax.set_xlabel(axis_label(parameter))
-    _finish(ax, loc="upper center", bbox_to_anchor=(0.5, -0.12), ncol=4, frameon=False,
+    _finish(ax, loc="upper center", bbox_to_anchor=(0.5, -0.12), ncol=3, frameon=False,
             handlelength=1.8, columnspacing=1.0)
 
 
