@@ -207,9 +207,32 @@ std::optional<AttractorFate> run_to_attractor(const OdeSystem& system, const Par
   return fate;
 }
 
+namespace {
+
+// " (DESCRIPTION)" of the smallest of `symmetries` that z lies in (an orbit lies in an invariant
+// subspace where one of its points does), "" where none.
+std::string symmetry_of(const Eigen::VectorXd& z,
+                        const std::vector<InvariantSubspace>& symmetries) {
+  const double tolerance = 1e-8 * std::max(1.0, z.lpNorm<Eigen::Infinity>());
+  const InvariantSubspace* kept = nullptr;
+  long smallest = z.size() + 1;
+  for (const auto& s : symmetries) {
+    if (s.is_whole_space() || s.description().empty()) continue;
+    const long size = s.coordinates(static_cast<int>(z.size())).size();
+    if (size < smallest && (z - s.project(z)).lpNorm<Eigen::Infinity>() <= tolerance) {
+      kept = &s;
+      smallest = size;
+    }
+  }
+  return kept ? " (" + kept->description() + ")" : "";
+}
+
+}  // namespace
+
 std::vector<Attractor> name_new_attractors(const OdeSystem& system,
                                            std::vector<AttractorFate>& fates,
-                                           const AttractorOptions& options, int offset, int first) {
+                                           const AttractorOptions& options, int offset, int first,
+                                           const std::vector<InvariantSubspace>& symmetries) {
   std::vector<Attractor> found;
   for (auto& fate : fates) {
     if (fate.fate != Fate::NewOrbit || !fate.orbit) continue;
@@ -219,7 +242,8 @@ std::vector<Attractor> name_new_attractors(const OdeSystem& system,
         index = static_cast<int>(i);
     if (index < 0) {
       Attractor a;
-      a.name = "new " + std::to_string(first + static_cast<int>(found.size()));
+      a.name = "new " + std::to_string(first + static_cast<int>(found.size())) +
+               symmetry_of(fate.orbit->state0, symmetries);
       a.orbit = *fate.orbit;
       a.neighbourhood =
           std::make_shared<const OrbitNeighbourhood>(system, a.orbit, options.certificate);

@@ -73,6 +73,7 @@ BasinWalk walk_basins(const OdeSystem& system, const ParameterValues& p,
         walk.values.empty() ? std::vector<Attractor>{}
                             : continue_attractors(system, at, walk.values.back().attractors, ao),
         ao);
+    if (options.on_value) options.on_value(j);
     const auto starts = static_cast<std::size_t>(options.starts);
     std::vector<std::optional<AttractorFate>> fates(starts);
     const TaskRunSummary summary = run_tasks<AttractorFate>(
@@ -88,8 +89,9 @@ BasinWalk walk_basins(const OdeSystem& system, const ParameterValues& p,
     }
     for (auto& f : fates) value.runs.push_back(std::move(*f));
     new_count = std::max(new_count, highest_new(value.attractors));
-    std::vector<Attractor> found = name_new_attractors(
-        system, value.runs, ao, static_cast<int>(value.attractors.size()), new_count + 1);
+    std::vector<Attractor> found =
+        name_new_attractors(system, value.runs, ao, static_cast<int>(value.attractors.size()),
+                            new_count + 1, options.symmetries);
     new_count += static_cast<int>(found.size());
     for (auto& a : found) value.attractors.push_back(std::move(a));
     walk.values.push_back(std::move(value));

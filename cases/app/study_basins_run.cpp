@@ -33,6 +33,7 @@ void prepare_study_basins(StudyRun& run,
   o.seed = b.seed;
   o.tasks.threads = b.threads;
   o.run = b.run;
+  for (const auto& name : c.start_names()) o.symmetries.push_back(c.subspace(name));
   o.lower = o.upper = start.start_state;
   const auto states = system.state_names();
   for (const auto& r : b.box) {
@@ -63,11 +64,13 @@ std::vector<NamedBranch> study_basins_branches(const StudyRun& run) {
 void run_study_basins(StudyRun& run, const std::atomic<bool>* stop,
                       const std::function<void(const std::string&)>& doing) {
   if (!run.basins_options) return;
-  const BasinWalkOptions& o = *run.basins_options;
+  BasinWalkOptions o = *run.basins_options;
   const std::vector<NamedBranch> branches = study_basins_branches(run);
   if (doing)
-    doing("basins: " + std::to_string(o.values.size()) + " values of " + run.study.parameter +
-          ", " + std::to_string(o.starts) + " starts each");
+    o.on_value = [&](std::size_t j) {
+      doing("basins: " + run.study.parameter + " = " + format_number(o.values[j]) + " (" +
+            std::to_string(j + 1) + " of " + std::to_string(o.values.size()) + ")");
+    };
   run.basins = walk_basins(run.systems.front()->system(), run.basins_values, branches, o, stop);
   CsvWriter csv(run.basins_csv,
                 {"value", "attractor", "branch", "count", "trials", "share", "lower", "upper"});

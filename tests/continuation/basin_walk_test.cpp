@@ -329,6 +329,27 @@ TEST(AttractorRun, ATorusWithItsRotationNumber) {
   EXPECT_EQ(settled->fate, Fate::Certified) << settled->note;
 }
 
+// A new attractor is named by the symmetry it keeps: with no branches, the circle w = 0 (every
+// start's end at mu = -0.2) lies in the declared subspace w = 0 and is "new 1 (w1 = 0)"; at
+// mu = 0.25 the pair w = +-0.5 keeps none of it, and the walk carries the circle's name no
+// further (unstable there, it is no attractor).
+TEST(BasinWalk, NewAttractorsNamedByTheSymmetryTheyKeep) {
+  const auto& b = pitchfork();
+  BasinWalkOptions o = walk_options({-0.2, 0.25});
+  o.starts = 6;
+  o.symmetries = {InvariantSubspace(3, {{2, -1, 1.0}}, "w1 = 0"), InvariantSubspace()};
+  std::vector<std::size_t> told;
+  o.on_value = [&](std::size_t j) { told.push_back(j); };
+  const BasinWalk walk = walk_basins(b.system, b.system.default_parameters(), {}, o);
+  EXPECT_EQ(told, (std::vector<std::size_t>{0, 1}));
+  ASSERT_EQ(walk.values[0].attractors.size(), 1u);
+  EXPECT_EQ(walk.values[0].attractors[0].name, "new 1 (w1 = 0)");
+  EXPECT_EQ(share(walk.values[0], "new 1 (w1 = 0)").proportion.count, 6u);
+  std::vector<std::string> names;
+  for (const auto& a : walk.values[1].attractors) names.push_back(a.name);
+  EXPECT_EQ(names, (std::vector<std::string>{"new 2", "new 3"}));
+}
+
 TEST(BasinWalk, OptionsNameTheField) {
   BasinWalkOptions o = walk_options({0.1});
   EXPECT_FALSE(o.validate(3, 3));

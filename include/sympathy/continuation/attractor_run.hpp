@@ -66,12 +66,15 @@ std::optional<AttractorFate> run_to_attractor(const OdeSystem& system, const Par
 
 // The new attractors among `fates` (all at p), named in the order of the runs that found them
 // ("new 1", "new 2", ...; the same orbit found by two runs once, judged by same_orbit; numbered
-// after `first`); each NewOrbit fate's `attractor` is set to its index in the list returned plus
-// `offset` (the caller appends the list to its attractors). Deterministic: it depends on the
-// fates' order alone, not on which run finished first.
+// from `first`), each with the symmetry it keeps: the description of the smallest of
+// `symmetries` its orbit lies in (to 1e-8 of its size: "new 1 (x = 0, th2 = -th1)"); each
+// NewOrbit fate's `attractor` is set to its index in the list returned plus `offset` (the caller
+// appends the list to its attractors). Deterministic: it depends on the fates' order alone, not
+// on which run finished first.
 std::vector<Attractor> name_new_attractors(const OdeSystem& system,
                                            std::vector<AttractorFate>& fates,
                                            const AttractorOptions& options, int offset,
-                                           int first = 1);
+                                           int first = 1,
+                                           const std::vector<InvariantSubspace>& symmetries = {});
 
 }  // namespace sympathy

@@ -16,6 +16,7 @@
 
 #include <atomic>
 #include <cstdint>
+#include <functional>
 #include <string>
 #include <vector>
 
@@ -35,6 +36,11 @@ struct BasinWalkOptions {
   std::uint64_t seed = 1;
   AttractorRunOptions run;
   TaskRunOptions tasks;
+  // The invariant subspaces the system declares (a case's starts'), to name a new attractor by
+  // the symmetry it keeps (name_new_attractors).
+  std::vector<InvariantSubspace> symmetries;
+  // Told the index of each value as its runs start (progress; called on the walk's thread).
+  std::function<void(std::size_t)> on_value;
 
   // The first field out of its domain, for a system of `dimension` states and `parameters`
   // named parameters.
@@ -67,8 +73,8 @@ struct BasinWalk {
 };
 
 // Where an attractor's share (or the tori's or equilibria's) becomes nonzero (appears) or zero
-// (disappears) between two neighbouring values of a walk, and the located events of the branches between them: where it
-// happens (a branch point, fold or period doubling the branches found).
+// (disappears) between two neighbouring values of a walk, and the located events of the branches
+// between them: where it happens (a branch point, fold or period doubling the branches found).
 struct ShareChange {
   std::string name;
   bool appears = true;
