@@ -112,8 +112,12 @@ void identify_end(const OdeSystem& system, const ParameterValues& p,
                   AttractorFate& fate) {
   const AttractorOptions& ao = options.attractors;
   Flow flow(system, ao.orbit.transient_flow);
+  // Looked for up to the orbit options' longest period or twice the attractors' longest, if that
+  // is longer (a system slower than the metronomes' 0.6 s).
+  double longest = ao.orbit.max_period;
+  for (const auto& a : attractors) longest = std::max(longest, 2.0 * a.orbit.period);
   const double period =
-      estimate_period(flow, p, fate.end_state, ao.orbit.max_period, std::min(options.dt, 0.01));
+      estimate_period(flow, p, fate.end_state, longest, std::min(options.dt, 0.01));
   if (period <= 0.0) {
     // At rest? Newton on f = 0 from the end, taken where it stays within 1e-6 of it (relative).
     const Equilibrium e = solve_equilibrium(system, p, fate.end_state);
