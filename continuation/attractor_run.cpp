@@ -7,6 +7,7 @@
 
 #include "sympathy/continuation/equilibrium.hpp"
 #include "sympathy/core/errors.hpp"
+#include "sympathy/core/text.hpp"
 
 namespace sympathy {
 
@@ -104,13 +105,30 @@ bool on_torus(const OdeSystem& system, const ParameterValues& p,
   return true;
 }
 
-// Where a run that was not certified ended: Newton from its end, with the period of its first
-// return to the section through it (none within the orbit options' max_period: at rest, or not
-// periodic).
+// Where a run that was not certified ended: first whether at rest, near a stable equilibrium
+// (Newton on f = 0 from the end converges within 1e-3 of it, relative to the state's size, and
+// every eigenvalue's real part is below -1e-6 times the largest |lambda|: a decaying focus's
+// spiral returns to a section too, so it is asked before any period); else Newton on the
+// shooting problem from the end, with the period of its first return to the section through it.
 void identify_end(const OdeSystem& system, const ParameterValues& p,
                   const std::vector<Attractor>& attractors, const AttractorRunOptions& options,
                   AttractorFate& fate) {
   const AttractorOptions& ao = options.attractors;
+  const double scale = std::max(1.0, fate.end_state.lpNorm<Eigen::Infinity>());
+  const Equilibrium e = solve_equilibrium(system, p, fate.end_state);
+  if (e.converged && (e.state - fate.end_state).lpNorm<Eigen::Infinity>() <= 1e-3 * scale) {
+    const double size = std::max(1.0, e.eigenvalues.cwiseAbs().maxCoeff());
+    if (e.eigenvalues.real().maxCoeff() < -1e-6 * size) {
+      fate.fate = Fate::Equilibrium;
+      fate.equilibrium_state = e.state;
+      return;
+    }
+    if (e.unstable > 0 && (e.state - fate.end_state).lpNorm<Eigen::Infinity>() <= 1e-6 * scale) {
+      fate.note =
+          "at an unstable equilibrium (" + std::to_string(e.unstable) + " unstable eigenvalues)";
+      return;
+    }
+  }
   Flow flow(system, ao.orbit.transient_flow);
   // Looked for up to the orbit options' longest period or twice the attractors' longest, if that
   // is longer (a system slower than the metronomes' 0.6 s).
@@ -119,20 +137,7 @@ void identify_end(const OdeSystem& system, const ParameterValues& p,
   const double period =
       estimate_period(flow, p, fate.end_state, longest, std::min(options.dt, 0.01));
   if (period <= 0.0) {
-    // At rest? Newton on f = 0 from the end, taken where it stays within 1e-6 of it (relative).
-    const Equilibrium e = solve_equilibrium(system, p, fate.end_state);
-    const double scale = std::max(1.0, fate.end_state.lpNorm<Eigen::Infinity>());
-    if (e.converged && (e.state - fate.end_state).lpNorm<Eigen::Infinity>() <= 1e-6 * scale) {
-      if (e.unstable == 0) {
-        fate.fate = Fate::Equilibrium;
-        fate.equilibrium_state = e.state;
-      } else {
-        fate.note =
-            "at an unstable equilibrium (" + std::to_string(e.unstable) + " unstable eigenvalues)";
-      }
-    } else {
-      fate.note = "no return within max_period and not at rest";
-    }
+    fate.note = "no return within " + format_number(longest) + " and not at rest";
     return;
   }
   PeriodicOrbit orbit;

@@ -350,6 +350,20 @@ TEST(BasinWalk, NewAttractorsNamedByTheSymmetryTheyKeep) {
   EXPECT_EQ(names, (std::vector<std::string>{"new 2", "new 3"}));
 }
 
+// A run that spirals into a stable focus ends at rest, not on an orbit its returns suggest: the
+// damped oscillator x'' + 0.2 x' + x = 0 (eigenvalues -0.1 +- 0.995 i) from x = 1 has decayed to
+// 4.5e-5 after 100 s; its fate is the equilibrium at the origin (to 1e-12, the only one).
+TEST(AttractorRun, ASpiralIntoAFocusEndsAtRest) {
+  const testing::DampedOscillator system(1.0, 0.2, 1.0);
+  AttractorRunOptions o = run_options();
+  o.t_end = 100.0;
+  const auto fate =
+      run_to_attractor(system, system.default_parameters(), Eigen::Vector2d(1.0, 0.0), {}, o);
+  ASSERT_TRUE(fate);
+  EXPECT_EQ(fate->fate, Fate::Equilibrium) << fate->note;
+  EXPECT_LT(fate->equilibrium_state.lpNorm<Eigen::Infinity>(), 1e-12);
+}
+
 TEST(BasinWalk, OptionsNameTheField) {
   BasinWalkOptions o = walk_options({0.1});
   EXPECT_FALSE(o.validate(3, 3));
