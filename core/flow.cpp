@@ -90,7 +90,8 @@ FlowStatistics& FlowStatistics::operator+=(const FlowStatistics& o) {
 
 Flow::Flow(const OdeSystem& system, FlowOptions options)
     : system_(system),
-      hybrid_(dynamic_cast<const HybridSystem*>(&system)),
+      // A HybridSystem without surfaces (a model whose smooth forms have none) is a smooth one.
+      hybrid_(system.switching_count() > 0 ? dynamic_cast<const HybridSystem*>(&system) : nullptr),
       options_(options),
       call_(std::make_unique<detail::FlowCall>(system)) {
   options_.linear_solver = resolved_linear_solver(system_, options_);

@@ -135,6 +135,9 @@ class AutoDiffSystem : public Base {
     named_ = std::move(named);
     raw_ = std::move(raw);
   }
+  // The named parameters as directions in the raw layout (for derivatives a derived class
+  // writes by hand, such as a switching surface's in a parameter).
+  const std::vector<NamedParameter>& named_parameters() const { return named_; }
 
  private:
   const Derived& derived() const { return static_cast<const Derived&>(*this); }

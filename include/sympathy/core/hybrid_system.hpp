@@ -66,4 +66,10 @@ class HybridSystem : public OdeSystem {
   }
 };
 
+// Whether a flow of `system` carries sensitivities: it has no switching surfaces, or it is a
+// HybridSystem (a restriction of one to a subspace that is not one itself does not).
+inline bool carries_sensitivities(const OdeSystem& system) {
+  return system.switching_count() == 0 || dynamic_cast<const HybridSystem*>(&system) != nullptr;
+}
+
 }  // namespace sympathy
