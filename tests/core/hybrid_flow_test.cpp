@@ -219,6 +219,25 @@ TEST(HybridFlow, SimultaneousNonCommutingCrossingsAreACorner) {
   }
 }
 
+// A crossing where the flow only touches the surface (h_z f- + h_t = 0) has no saltation matrix:
+// the relay at its centre x = a with v = 0, where v' = -x - 2 zeta v + a = 0 on the side v > 0.
+// Reported, not divided by zero; a transversal crossing at the turning point x = A goes through,
+// with the closed-form saltation entry (A + a) / (A - a).
+TEST(HybridFlow, GrazingCrossingIsReported) {
+  const double a = 0.5;
+  const Relay system(0.1, a);
+  const auto p = system.default_parameters();
+  const std::vector<int> sides{1}, surfaces{0};
+  EXPECT_THROW(cross_surfaces(system, 0.0, Eigen::Vector2d(a, 0.0), p, sides, surfaces, {}, true),
+               NonsmoothFlowError);
+  const double amplitude = Relay::amplitude(0.1, a);
+  const HybridEvent event =
+      cross_surfaces(system, 0.0, Eigen::Vector2d(amplitude, 0.0), p, sides, surfaces, {}, true);
+  EXPECT_EQ(event.sides[0], -1);
+  EXPECT_NEAR(event.saltation(1, 1), (amplitude + a) / (amplitude - a), 1e-14 * 5.4);
+  EXPECT_EQ(event.order_difference, 0.0);
+}
+
 // A system with switching surfaces that does not declare their gradients (not a HybridSystem):
 // sensitivities across them are refused, not silently wrong.
 class HybridUndeclaredSwitch final : public AutoDiffSystem<HybridUndeclaredSwitch> {
