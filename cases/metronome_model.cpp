@@ -293,6 +293,7 @@ int MetronomeModel::switching_count() const {
 
 void MetronomeModel::switching_functions(double /*t*/, const double* z, const double* raw,
                                          double* g) const {
+  if (switching_count() == 0) return;  // the smooth escapements: g has no entries
   for (int i = 0; i < n_metronomes_; ++i) {
     const double ths = raw[metronome_offset(i) + 6];
     const double the = raw[metronome_offset(i) + 7];
@@ -304,6 +305,36 @@ void MetronomeModel::switching_functions(double /*t*/, const double* z, const do
     gi[3] = th + the;
     gi[4] = th - ths;
   }
+}
+
+void MetronomeModel::rhs_on_sides(double t, const double* z, const double* raw, const int* sides,
+                                  double* dz) const {
+  evaluate_on_sides(t, z, raw, dz, sides);
+}
+
+// Surface 5 i + k of metronome i is th_i' (k = 0) or th_i plus a constant (k = 1..4).
+double MetronomeModel::switching_gradient(double /*t*/, const double* /*z*/, const double* /*raw*/,
+                                          int surface, double* h_z) const {
+  const int i = surface / 5, k = surface % 5;
+  std::fill(h_z, h_z + dimension(), 0.0);
+  h_z[k == 0 ? angular_velocity_index(i) : angle_index(i)] = 1.0;
+  return 0.0;
+}
+
+// th + ths, th - the, th + the, th - ths: +-1 in ths (raw entry 6 of the metronome) or the (7),
+// along the named parameter's direction in the raw layout.
+double MetronomeModel::switching_parameter_derivative(double /*t*/, const double* /*z*/,
+                                                      const double* /*raw*/, int surface,
+                                                      int parameter) const {
+  const int i = surface / 5, k = surface % 5;
+  if (k == 0) return 0.0;
+  const int entry = metronome_offset(i) + (k == 1 || k == 4 ? 6 : 7);
+  const double sign = k == 1 || k == 3 ? 1.0 : -1.0;
+  const auto& named = named_parameters().at(parameter);
+  double derivative = 0.0;
+  for (int r : named.raw)
+    if (r == entry) derivative += sign * named.scale;
+  return derivative;
 }
 
 std::optional<LowRankJacobian> MetronomeModel::low_rank_structure() const {

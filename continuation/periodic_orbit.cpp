@@ -10,6 +10,7 @@
 #include "stiffness_choice.hpp"
 #include "sympathy/continuation/symmetry_reduction.hpp"
 #include "sympathy/core/csv.hpp"
+#include "sympathy/core/hybrid_system.hpp"
 #include "sympathy/core/linear_solve.hpp"
 #include "sympathy/core/reduced_system.hpp"
 #include "sympathy/core/text.hpp"
@@ -416,6 +417,8 @@ PeriodicOrbit find_periodic_orbit(const OdeSystem& system, const ParameterValues
   if (options.use_symmetry && !subspace.is_whole_space() && system.angle_states().empty()) {
     restricted = restrict_system(system, subspace);
     coordinates = subspace.coordinates(system.dimension());
+    // A piecewise-smooth system's generic restriction declares no saltation: the whole state.
+    if (!carries_sensitivities(*restricted)) restricted.reset();
   }
   Flow flow(system, options.transient_flow);
   Eigen::VectorXd z = subspace.project(start);

@@ -90,6 +90,10 @@ ShootingProblem::~ShootingProblem() = default;
 void ShootingProblem::use_symmetry(const InvariantSubspace& subspace) {
   symmetric_.reset();
   if (subspace.is_whole_space()) return;
+  // The symmetric evaluations integrate variational equations appended to the state in plain runs,
+  // which carry no saltation matrix across a switching surface: a piecewise-smooth system's orbits
+  // get the whole computation, whose flow does.
+  if (system_.switching_count() > 0) return;
   if (auto g = subspace.reflection(n_))
     symmetric_ = std::make_unique<SymmetricOrbit>(system_, subspace, std::move(*g), options_.flow);
 }

@@ -1,6 +1,7 @@
 #include "sympathy/continuation/symmetry_reduction.hpp"
 
 #include "sympathy/continuation/detection.hpp"
+#include "sympathy/core/hybrid_system.hpp"
 #include "sympathy/core/reduced_system.hpp"
 
 namespace sympathy {
@@ -24,6 +25,8 @@ std::optional<SymmetryReduction> symmetry_reduction(const OdeSystem& system,
   r.block = InvariantSubspace(n, relations);
   r.coordinates = r.block.coordinates(n);
   r.system = restrict_system(system, r.block);
+  // A piecewise-smooth system's generic restriction declares no saltation: no reduction.
+  if (!carries_sensitivities(*r.system)) return std::nullopt;
   r.subspace = subspace.within(r.block, n);
   r.copies = static_cast<int>(units.size()) - 1;
   r.description = "S_" + std::to_string(units.size()) + " symmetry of " + symmetry->description +

@@ -10,6 +10,7 @@
 #include <sstream>
 
 #include "flow_stepper.hpp"
+#include "sympathy/core/saltation.hpp"
 
 namespace sympathy {
 
@@ -88,7 +89,11 @@ FlowStatistics& FlowStatistics::operator+=(const FlowStatistics& o) {
 }
 
 Flow::Flow(const OdeSystem& system, FlowOptions options)
-    : system_(system), options_(options), call_(std::make_unique<detail::FlowCall>(system)) {
+    : system_(system),
+      // A HybridSystem without surfaces (a model whose smooth forms have none) is a smooth one.
+      hybrid_(system.switching_count() > 0 ? dynamic_cast<const HybridSystem*>(&system) : nullptr),
+      options_(options),
+      call_(std::make_unique<detail::FlowCall>(system)) {
   options_.linear_solver = resolved_linear_solver(system_, options_);
   if (const auto problem = options_.validate())
     throw std::invalid_argument("flow options: " + problem->message());
@@ -138,6 +143,10 @@ void Flow::start(const Eigen::VectorXd& z0, const ParameterValues& p, double t0,
   if (sensitivity_columns > 0) {
     if (!system_.differentiable())
       throw std::invalid_argument("sensitivities need a differentiable system");
+    if (system_.switching_count() > 0 && !hybrid_)
+      throw std::invalid_argument(
+          "sensitivities across switching surfaces need a piecewise-smooth system that declares "
+          "the surfaces' gradients and its resets (HybridSystem)");
     if (options_.derivatives == Derivatives::DifferenceQuotients && !parameters.empty())
       throw std::invalid_argument(
           "parameter sensitivities need the system's derivatives, not difference quotients");
@@ -150,11 +159,16 @@ void Flow::start(const Eigen::VectorXd& z0, const ParameterValues& p, double t0,
   call.columns = sensitivity_columns;
   call.parameters.assign(parameters.begin(), parameters.end());
   configure_zones();
+  call.root_directions.clear();
+  if (hybrid_)
+    for (int i = 0; i < system_.switching_count(); ++i)
+      call.root_directions.push_back(hybrid_->crossing_direction(i));
   // Initial sensitivities: unit vectors in the state columns, zero in the parameter columns.
   seeds_ = Eigen::MatrixXd::Zero(n, sensitivity_columns);
   for (std::size_t j = 0; j < initial_components.size(); ++j)
     seeds_(initial_components[j], static_cast<Eigen::Index>(j)) = 1.0;
   stepper_->start(t0, z0.data(), seeds_);
+  if (hybrid_) start_sides(z0);
   forced_stop_.reset();
   bands_.assign(zones_.size(), -2);  // unknown: set from the state below
   last_abs_.assign(zones_.size(), std::numeric_limits<double>::infinity());
@@ -245,11 +259,89 @@ void Flow::update_bands(double t) {
   if (changed || bands_.empty()) update_max_step(t);
 }
 
+// The region of a hybrid system that z0 lies in: the sign of each switching function, or on a
+// surface, the side that f points into.
+void Flow::start_sides(const Eigen::VectorXd& z0) {
+  const int m = system_.switching_count();
+  const int n = system_.dimension();
+  const double* p = call_->values.data();
+  std::vector<double> g(m);
+  system_.switching_functions(t_, z0.data(), p, g.data());
+  sides_.assign(m, 1);
+  Eigen::VectorXd f(n);
+  Eigen::RowVectorXd h_z(n);
+  system_.rhs(t_, z0.data(), p, f.data());
+  for (int i = 0; i < m; ++i) {
+    double into = g[i];
+    if (into == 0.0) {
+      const double h_t = hybrid_->switching_gradient(t_, z0.data(), p, i, h_z.data());
+      into = h_z.dot(f) + h_t;
+    }
+    sides_[i] = into < 0.0 ? -1 : 1;
+  }
+}
+
+// The crossings at this root, with their resets, and the sensitivity columns mapped across them
+// (saltation.hpp). Which surfaces are crossed is decided here, not taken from the integrator's
+// report alone: surface i is crossed where the flow leaves the side it is on, that is where h_i
+// has the other sign, or where h_i is within the root finding's time tolerance of zero (CVODES:
+// 100 uround max(|t|, |h|); here 1000 uround max(|t|, 1), against the rate h_z f- + h_t) and the
+// flow moves across. Two identical pendula cross their surfaces together: the root finding stops
+// at the first zero of all functions, the second one may then be a rounding error short of its
+// zero, or exactly zero, which CVODES takes as inactive where it restarts, so that it would never
+// report it; counted here, the two are one event (and their order is checked, saltation.hpp). A
+// function reported again after it was counted so (it changes sign a rounding error later) is
+// not crossed twice. A crossing against the surface's declared direction is no event: its side is
+// only updated.
+void Flow::cross_surfaces_here() {
+  const int n = system_.dimension();
+  const int m = system_.switching_count();
+  const double* p = call_->values.data();
+  const Eigen::VectorXd z = Eigen::Map<const Eigen::VectorXd>(stepper_->state(), n);
+  std::vector<double> g(m);
+  system_.switching_functions(t_, z.data(), p, g.data());
+  Eigen::VectorXd f_minus(n);
+  hybrid_->rhs_on_sides(t_, z.data(), p, sides_.data(), f_minus.data());
+  Eigen::RowVectorXd h_z(n);
+  const double window = 1e3 * std::numeric_limits<double>::epsilon() * std::max(std::abs(t_), 1.0);
+  std::vector<int> surfaces;
+  for (int i = 0; i < m; ++i) {
+    const double h_t = hybrid_->switching_gradient(t_, z.data(), p, i, h_z.data());
+    const double arrival = h_z.dot(f_minus) + h_t;
+    const int sign = g[i] > 0.0 ? 1 : -1;
+    const bool beyond = g[i] != 0.0 && sign != sides_[i];
+    const bool at = std::abs(g[i]) <= window * std::abs(arrival) && arrival * sides_[i] < 0.0;
+    if (!beyond && !at) continue;
+    const int direction = hybrid_->crossing_direction(i);
+    const int towards = beyond ? sign : -sides_[i];
+    if (direction == 0 || direction == towards)
+      surfaces.push_back(i);
+    else
+      sides_[i] = towards;
+  }
+  const bool derivatives = call_->columns > 0;
+  HybridEvent event = cross_surfaces(*hybrid_, t_, z, call_->values, sides_, surfaces,
+                                     call_->parameters, derivatives);
+  sides_ = std::move(event.sides);
+  Eigen::MatrixXd S(n, 0);
+  if (derivatives) {
+    stepper_->sensitivities(S);
+    S = event.saltation * S;
+    const auto np = static_cast<Eigen::Index>(call_->parameters.size());
+    S.rightCols(np) += event.parameter_jump;
+  }
+  stepper_->restart_from(t_, event.state.data(), S);
+}
+
 void Flow::on_switching() {
-  // f jumps here: restart the integrator from the state at the surface.
+  // f jumps here: restart the integrator from the state at the surface (a hybrid system: from
+  // the state after the crossings, with the sensitivities mapped across them).
   ++statistics_.switchings;
   collect_statistics();
-  stepper_->restart(t_);
+  if (hybrid_)
+    cross_surfaces_here();
+  else
+    stepper_->restart(t_);
   forced_stop_.reset();
   update_max_step(t_);
 }

@@ -41,6 +41,14 @@ class AugmentedCvode final : public FlowStepper {
     t_now = t;
     check(CVodeReInit(mem, t, y), "CVodeReInit");
   }
+  void restart_from(double t, const double* z, const Eigen::MatrixXd& S) override {
+    pack_augmented(N_VGetArrayPointer(y), z, S, call.system.dimension());
+    restart(t);
+  }
+  void roots_found(std::vector<int>& found) override {
+    found.assign(root_count > 0 ? root_count : 0, 0);
+    if (root_count > 0) check(CVodeGetRootInfo(mem, found.data()), "CVodeGetRootInfo");
+  }
   void set_max_step(double hmax) override { check(CVodeSetMaxStep(mem, hmax), "CVodeSetMaxStep"); }
   std::optional<PlannedStep> planned_step() override;
   void set_stop_time(double t) override { check(CVodeSetStopTime(mem, t), "CVodeSetStopTime"); }
@@ -192,6 +200,8 @@ void AugmentedCvode::start(double t0, const double* z0, const Eigen::MatrixXd& s
     if (count > 0) check(CVodeSetNoInactiveRootWarn(mem), "CVodeSetNoInactiveRootWarn");
     root_count = count;
   }
+  if (count > 0 && !call.root_directions.empty())
+    check(CVodeSetRootDirection(mem, call.root_directions.data()), "CVodeSetRootDirection");
 }
 
 std::optional<PlannedStep> AugmentedCvode::planned_step() {

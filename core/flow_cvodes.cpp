@@ -178,6 +178,8 @@ class CvodesStepper final : public FlowStepper {
 
   void start(double t0, const double* z0, const Eigen::MatrixXd& seeds) override;
   void restart(double t) override;
+  void restart_from(double t, const double* z, const Eigen::MatrixXd& S) override;
+  void roots_found(std::vector<int>& found) override;
   void set_max_step(double hmax) override;
   std::optional<PlannedStep> planned_step() override;
   void set_stop_time(double t) override;
@@ -483,6 +485,8 @@ void CvodesStepper::start(double t0, const double* z0, const Eigen::MatrixXd& se
     if (roots > 0) SYMPATHY_CHECK(CVodeSetNoInactiveRootWarn(mem));
     root_count = roots;
   }
+  if (roots > 0 && !call.root_directions.empty())
+    SYMPATHY_CHECK(CVodeSetRootDirection(mem, call.root_directions.data()));
   if (call.columns > 0) {
     start_sensitivities(seeds);
   } else if (sens_on) {
@@ -555,9 +559,26 @@ void CvodesStepper::start_sensitivities(const Eigen::MatrixXd& seeds) {
 
 void CvodesStepper::restart(double t) {
   t_now = t;
-  // Only systems without derivatives have switching surfaces (OdeSystem::differentiable), so no
-  // sensitivity columns cross one.
+  // Sensitivity columns cross a surface only in a HybridSystem's flow, which restarts with
+  // restart_from (the columns mapped by the saltation matrix).
   SYMPATHY_CHECK(CVodeReInit(mem, t, y));
+}
+
+void CvodesStepper::restart_from(double t, const double* z, const Eigen::MatrixXd& S) {
+  const int n = call.system.dimension();
+  std::copy(z, z + n, N_VGetArrayPointer(y));
+  restart(t);
+  if (!sens_on) return;
+  for (int j = 0; j < call.columns; ++j)
+    std::copy(S.col(j).data(), S.col(j).data() + n, N_VGetArrayPointer(yS[j]));
+  const int ism =
+      options.corrector == SensitivityCorrector::Staggered ? CV_STAGGERED : CV_SIMULTANEOUS;
+  SYMPATHY_CHECK(CVodeSensReInit(mem, ism, yS));
+}
+
+void CvodesStepper::roots_found(std::vector<int>& found) {
+  found.assign(root_count > 0 ? root_count : 0, 0);
+  if (root_count > 0) SYMPATHY_CHECK(CVodeGetRootInfo(mem, found.data()));
 }
 
 void CvodesStepper::set_max_step(double hmax) {

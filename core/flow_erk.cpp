@@ -46,6 +46,14 @@ class ErkStepper final : public FlowStepper {
     t_now = t;
     check(ERKStepReInit(mem, rhs, t, y), "ERKStepReInit");
   }
+  void restart_from(double t, const double* z, const Eigen::MatrixXd& S) override {
+    pack_augmented(N_VGetArrayPointer(y), z, S, call.system.dimension());
+    restart(t);
+  }
+  void roots_found(std::vector<int>& found) override {
+    found.assign(root_count > 0 ? root_count : 0, 0);
+    if (root_count > 0) check(ERKStepGetRootInfo(mem, found.data()), "ERKStepGetRootInfo");
+  }
   void set_max_step(double hmax) override {
     check(ERKStepSetMaxStep(mem, hmax), "ERKStepSetMaxStep");
   }
@@ -172,6 +180,8 @@ void ErkStepper::start(double t0, const double* z0, const Eigen::MatrixXd& seeds
     if (count > 0) check(ERKStepSetNoInactiveRootWarn(mem), "ERKStepSetNoInactiveRootWarn");
     root_count = count;
   }
+  if (count > 0 && !call.root_directions.empty())
+    check(ERKStepSetRootDirection(mem, call.root_directions.data()), "ERKStepSetRootDirection");
 }
 
 std::optional<PlannedStep> ErkStepper::planned_step() {

@@ -41,6 +41,9 @@ struct FlowCall {
   // `parameters` (seeded with zero).
   int columns = 0;
   std::vector<int> parameters;
+  // Per switching function, the crossings that are events (HybridSystem::crossing_direction: +1,
+  // -1, 0); empty: every crossing.
+  std::vector<int> root_directions;
   // A C++ exception from a callback: stored, the C code told to stop, rethrown after it returns.
   std::exception_ptr callback_error;
   std::string last_error;  // SUNDIALS's last error message
@@ -65,6 +68,11 @@ class FlowStepper {
   virtual void start(double t0, const double* z0, const Eigen::MatrixXd& seeds) = 0;
   // Restarts from the current solution at t (f jumps there; a multistep history is void).
   virtual void restart(double t) = 0;
+  // Restarts at t from z and the columns S (n x columns): what a reset and the saltation matrix
+  // made of the solution at a crossing.
+  virtual void restart_from(double t, const double* z, const Eigen::MatrixXd& S) = 0;
+  // After a step that ended at a root: per switching function, nonzero where it crossed there.
+  virtual void roots_found(std::vector<int>& found) = 0;
   virtual void set_max_step(double hmax) = 0;  // 0: no limit
   // Where the integrator stands and the step it will attempt next; nullopt before its first step
   // since the last (re)start.

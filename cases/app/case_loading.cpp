@@ -10,6 +10,7 @@
 
 #include "sympathy/core/csv.hpp"
 #include "sympathy/core/errors.hpp"
+#include "sympathy/core/hybrid_system.hpp"
 
 namespace sympathy::app {
 
@@ -56,13 +57,19 @@ LoadedCase load_case(const std::string& path, const std::string& params,
 
 void require_differentiable(const OdeSystem& system, const std::string& case_path,
                             const std::string& what) {
-  if (system.differentiable()) return;
+  // A piecewise-smooth model's orbit is exact (its monodromy crosses the switching surfaces with
+  // saltation matrices); what is built on orbits (branches, studies, maps, basins) also needs the
+  // hybrid orbit's own events (grazing, sliding), not detected yet, and equilibria lie on its
+  // surfaces.
+  const bool hybrid_orbit = what == "orbit" && dynamic_cast<const HybridSystem*>(&system);
+  if (system.differentiable() && (system.switching_count() == 0 || hybrid_orbit)) return;
   throw InputError(case_path +
                    ": key 'escapement': the impulsive escapement (eq. 2) switches "
                    "discontinuously, and " +
                    what +
-                   " needs the flow's sensitivities (monodromy matrices); expected escapement = "
-                   "\"half\" or \"double\" (simulate runs the impulsive one)");
+                   " needs more than its orbits' saltation matrices (the events of hybrid orbits: "
+                   "grazing, sliding); expected escapement = \"half\" or \"double\" (simulate and "
+                   "orbit run the impulsive one)");
 }
 
 Accuracy parse_accuracy(const std::string& text, const std::string& where) {

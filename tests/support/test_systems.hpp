@@ -7,6 +7,7 @@
 #include <vector>
 
 #include "sympathy/core/autodiff_system.hpp"
+#include "sympathy/core/hybrid_system.hpp"
 
 namespace sympathy::testing {
 
@@ -504,6 +505,148 @@ class BogdanovTakens final : public AutoDiffSystem<BogdanovTakens> {
   void evaluate(double, const T* z, const P* p, T* dz) const {
     dz[0] = z[1];
     dz[1] = p[0] + p[1] * z[0] + z[0] * z[0] - z[0] * z[1];
+  }
+};
+
+// Piecewise-smooth systems with closed-form periodic orbits (HybridSystem: modes, surfaces,
+// resets), for the flow's crossings and saltation matrices.
+//
+// Relay: `copies` relay oscillators x_i'' + 2 zeta x_i' + x_i = a s_i + c a sum_(j != i) s_j,
+// s_i = sign(x_i'), states (x_i, v_i), surfaces h_i = v_i (the turning points), parameters zeta,
+// a and c (the cross-coupling, 0 by default). Between turning points each copy is a damped
+// oscillator about x = +-a (c = 0), so a half swing takes pi / w, w = sqrt(1 - zeta^2), and shrinks
+// the distance to the centre by rho = exp(-zeta pi / w): from the bottom turning point -A the
+// swing ends at a + rho (A + a). The symmetric orbit between -A and A, A = a + rho (A + a), that
+// is A = a (1 + rho) / (1 - rho), has period T = 2 pi / w exactly. Its multipliers are 1 and
+// rho^2: the half-swing map of the amplitude, A -> a + rho (A + a), has slope rho; and for one copy
+// det(monodromy) = det(e^(M T)) det(S_top) det(S_bottom) = rho^4 ((A + a) / (A - a))^2 = rho^2
+// agrees (at the top S = I + (f+ - f-) e_v^T / v'-, whose v-v entry is (A + a) / (A - a)). A
+// quarter swing after the bottom turning point the orbit passes x = a - (A + a) e^(-zeta pi / (2
+// w)) zeta / w, v = (A + a) e^(-zeta pi / (2 w)) / w. With copies > 1 and c = 0 the copies are
+// uncoupled: from equal starts they cross their surfaces at the same instants, with saltation
+// matrices that act on their own copy's velocity only, and commute; the multipliers are 1, 1 (the
+// copies' relative phase is free), rho^2, rho^2. With c != 0 a turning point of one copy jumps the
+// others' acceleration too: simultaneous crossings then do not commute (a corner).
+class Relay final : public AutoDiffSystem<Relay, HybridSystem> {
+ public:
+  explicit Relay(double zeta = 0.1, double a = 0.5, int copies = 1, double c = 0.0)
+      : copies_(copies) {
+    set_parameter_layout({{"zeta", {0}}, {"a", {1}}, {"c", {2}}}, {zeta, a, c});
+  }
+  int dimension() const override { return 2 * copies_; }
+  std::vector<std::string> state_names() const override {
+    std::vector<std::string> names;
+    for (int i = 1; i <= copies_; ++i) {
+      names.push_back(std::string("x").append(std::to_string(i)));
+      names.push_back(std::string("v").append(std::to_string(i)));
+    }
+    return names;
+  }
+  // The region is read off the velocities (v = 0 counts as v > 0).
+  template <class T, class P>
+  void evaluate(double, const T* z, const P* p, T* dz) const {
+    std::vector<int> sides(copies_);
+    for (int i = 0; i < copies_; ++i) sides[i] = value_of(z[2 * i + 1]) >= 0.0 ? 1 : -1;
+    field(z, p, sides.data(), dz);
+  }
+  void rhs_on_sides(double, const double* z, const double* p, const int* sides,
+                    double* dz) const override {
+    field(z, p, sides, dz);
+  }
+  int switching_count() const override { return copies_; }
+  void switching_functions(double, const double* z, const double*, double* g) const override {
+    for (int i = 0; i < copies_; ++i) g[i] = z[2 * i + 1];
+  }
+  double switching_gradient(double, const double*, const double*, int surface,
+                            double* h_z) const override {
+    for (int i = 0; i < dimension(); ++i) h_z[i] = i == 2 * surface + 1 ? 1.0 : 0.0;
+    return 0.0;
+  }
+
+  // The closed form above, at zeta and a.
+  static double angular_frequency(double zeta) { return std::sqrt(1.0 - zeta * zeta); }
+  static double contraction(double zeta) {  // rho
+    return std::exp(-zeta * std::numbers::pi / angular_frequency(zeta));
+  }
+  static double amplitude(double zeta, double a) {
+    const double rho = contraction(zeta);
+    return a * (1.0 + rho) / (1.0 - rho);
+  }
+  // (x, v) a quarter swing after the bottom turning point.
+  static Eigen::Vector2d quarter_point(double zeta, double a) {
+    const double w = angular_frequency(zeta);
+    const double decay = (amplitude(zeta, a) + a) * std::exp(-zeta * std::numbers::pi / (2 * w));
+    return {a - decay * zeta / w, decay / w};
+  }
+
+ private:
+  template <class T, class P>
+  void field(const T* z, const P* p, const int* sides, T* dz) const {
+    int sum = 0;
+    for (int i = 0; i < copies_; ++i) sum += sides[i];
+    for (int i = 0; i < copies_; ++i) {
+      dz[2 * i] = z[2 * i + 1];
+      dz[2 * i + 1] = -z[2 * i] - 2.0 * p[0] * z[2 * i + 1] + p[1] * sides[i] +
+                      p[2] * p[1] * static_cast<double>(sum - sides[i]);
+    }
+  }
+  int copies_;
+};
+
+// An impact oscillator: x'' + 2 zeta x' + x = 0 above a wall at x = 0 (surface h = x, crossed
+// downwards only), where the velocity is reset to v+ = w - e v- (restitution e and a kick w:
+// an impact that gives energy back). From the wall at v = V the motion x = V e^(-zeta t)
+// sin(w t) / w, w = sqrt(1 - zeta^2), returns to it at t = pi / w with v = -rho V, rho =
+// exp(-zeta pi / w); the period-one orbit has V = w_kick / (1 - e rho) and period T = pi / w
+// exactly; its multipliers are 1 and e rho (the impact map V -> w_kick + e rho V). Parameters
+// zeta, e, kick.
+class ImpactOscillator final : public AutoDiffSystem<ImpactOscillator, HybridSystem> {
+ public:
+  ImpactOscillator(double zeta = 0.1, double e = 0.8, double kick = 1.0) {
+    set_parameter_layout({{"zeta", {0}}, {"e", {1}}, {"kick", {2}}}, {zeta, e, kick});
+  }
+  int dimension() const override { return 2; }
+  std::vector<std::string> state_names() const override { return {"x", "v"}; }
+  template <class T, class P>
+  void evaluate(double, const T* z, const P* p, T* dz) const {
+    dz[0] = z[1];
+    dz[1] = -z[0] - 2.0 * p[0] * z[1];
+  }
+  // The same field on both sides (the wall only resets).
+  void rhs_on_sides(double t, const double* z, const double* p, const int*,
+                    double* dz) const override {
+    rhs(t, z, p, dz);
+  }
+  int switching_count() const override { return 1; }
+  void switching_functions(double, const double* z, const double*, double* g) const override {
+    g[0] = z[0];
+  }
+  int crossing_direction(int) const override { return -1; }
+  double switching_gradient(double, const double*, const double*, int, double* h_z) const override {
+    h_z[0] = 1.0;
+    h_z[1] = 0.0;
+    return 0.0;
+  }
+  bool has_reset(int) const override { return true; }
+  void reset(double, const double* z, const double* p, int, double* z_plus) const override {
+    z_plus[0] = z[0];
+    z_plus[1] = p[2] - p[1] * z[1];
+  }
+  void reset_jacobian(double, const double*, const double* p, int,
+                      Eigen::MatrixXd& r_z) const override {
+    r_z = Eigen::Matrix2d{{1.0, 0.0}, {0.0, -p[1]}};
+  }
+  void reset_parameter_derivative(double, const double* z, const double*, int, int parameter,
+                                  double* r_p) const override {
+    r_p[0] = 0.0;
+    r_p[1] = parameter == 1 ? -z[1] : parameter == 2 ? 1.0 : 0.0;
+  }
+
+  // The closed form above.
+  static double period(double zeta) { return std::numbers::pi / std::sqrt(1.0 - zeta * zeta); }
+  static double contraction(double zeta) { return std::exp(-zeta * period(zeta)); }
+  static double impact_velocity(double zeta, double e, double kick) {  // V, just after the wall
+    return kick / (1.0 - e * contraction(zeta));
   }
 };
 

@@ -23,6 +23,7 @@
 
 #include "sympathy/core/autodiff_system.hpp"
 #include "sympathy/core/dual.hpp"
+#include "sympathy/core/hybrid_system.hpp"
 
 namespace sympathy {
 
@@ -74,7 +75,16 @@ struct ModelSpec {
   std::vector<std::pair<std::string, std::string>> problems() const;
 };
 
-class MetronomeModel final : public AutoDiffSystem<MetronomeModel> {
+// With the impulsive escapement (eq. 2) the model is piecewise smooth (HybridSystem): per
+// metronome five switching surfaces, th' = 0, th = -ths, th = the, th = -the and th = ths, across
+// which the torque jumps by s or not at all, and no resets. Between them it is as smooth as the
+// other escapements; across them the flow carries the sensitivities by the saltation matrices,
+// so orbits, monodromies and multipliers of the impulsive model are exact. Where two metronomes
+// cross surfaces at one instant (in-phase and anti-phase orbits) the saltation matrices commute:
+// a torque jumps only angular accelerations (through the mass matrix, every one of them), and
+// every surface is a level of an angle or an angular velocity, so no crossing changes the rate at
+// which another surface is reached nor the jump it makes (core/saltation.hpp checks it at each).
+class MetronomeModel final : public AutoDiffSystem<MetronomeModel, HybridSystem> {
  public:
   explicit MetronomeModel(ModelSpec spec);
 
@@ -86,10 +96,20 @@ class MetronomeModel final : public AutoDiffSystem<MetronomeModel> {
 
   int dimension() const override { return 2 * (directions_ + n_metronomes_); }
   std::vector<std::string> state_names() const override;
-  bool differentiable() const override { return spec_.escapement != Escapement::Impulsive; }
+  // Every escapement is differentiable between switching surfaces; the impulsive one's surfaces
+  // are crossed with saltation matrices (HybridSystem below).
   std::vector<SteepZone> steep_zones(const double* p) const override;
   int switching_count() const override;
   void switching_functions(double t, const double* z, const double* p, double* g) const override;
+  // HybridSystem: the field of a region named by its sides (the impulsive torque from the sides,
+  // not from the state), the surfaces' gradients (unit vectors; ths and the move the angle
+  // surfaces), no resets.
+  void rhs_on_sides(double t, const double* z, const double* p, const int* sides,
+                    double* dz) const override;
+  double switching_gradient(double t, const double* z, const double* p, int surface,
+                            double* h_z) const override;
+  double switching_parameter_derivative(double t, const double* z, const double* p, int surface,
+                                        int parameter) const override;
 
   // df/dz = S + U W^T (OdeSystem::low_rank_jacobian) with rank = directions: write f(z) =
   // phi(z, s) with s = r'' the platform acceleration from the Schur complement. S = dphi/dz at
@@ -108,7 +128,13 @@ class MetronomeModel final : public AutoDiffSystem<MetronomeModel> {
   double total_mass(const ParameterValues& p) const;
 
   template <class T, class P>
-  void evaluate(double t, const T* z, const P* raw, T* dz) const;
+  void evaluate(double t, const T* z, const P* raw, T* dz) const {
+    evaluate_on_sides(t, z, raw, dz, nullptr);
+  }
+  // The same, with the impulsive torques of the region on `sides` (5 per metronome, in the order
+  // of switching_functions) where not null.
+  template <class T, class P>
+  void evaluate_on_sides(double t, const T* z, const P* raw, T* dz, const int* sides) const;
 
   // On a subspace where whole metronomes move together (th_j = th_i and th_j' = th_i', nothing
   // else tied, no springs): a model of the platform and one metronome per group, each standing for
@@ -127,7 +153,7 @@ class MetronomeModel final : public AutoDiffSystem<MetronomeModel> {
   }
 
   template <class T, class P>
-  T escapement(const T& th, const T& w, const P* m) const;
+  T escapement(const T& th, const T& w, const P* m, const int* sides = nullptr) const;
 
   // Where low_rank_jacobian() writes in S's values, found once from low_rank_structure().
   struct LowRankLayout {
@@ -152,7 +178,7 @@ class MetronomeModel final : public AutoDiffSystem<MetronomeModel> {
 };
 
 template <class T, class P>
-T MetronomeModel::escapement(const T& th, const T& w, const P* m) const {
+T MetronomeModel::escapement(const T& th, const T& w, const P* m, const int* sides) const {
   const P& s = m[5];
   const P& ths = m[6];
   const P& the = m[7];
@@ -172,6 +198,13 @@ T MetronomeModel::escapement(const T& th, const T& w, const P* m) const {
     }
     case Escapement::Impulsive: {
       // Eq. 2: +s on -ths <= th <= the while th' > 0; -s on -the <= th <= ths while th' < 0.
+      // On given sides of the surfaces (th', th + ths, th - the, th + the, th - ths): the same
+      // rule, read off the sides.
+      if (sides) {
+        if (sides[0] > 0 && sides[1] > 0 && sides[2] < 0) return T(0.0) + s;
+        if (sides[0] < 0 && sides[3] > 0 && sides[4] < 0) return T(0.0) - s;
+        return T(0.0);
+      }
       const double a = value_of(th), v = value_of(w);
       if (v > 0.0 && a >= -value_of(ths) && a <= value_of(the)) return T(0.0) + s;
       if (v < 0.0 && a >= -value_of(the) && a <= value_of(ths)) return T(0.0) - s;
@@ -182,7 +215,8 @@ T MetronomeModel::escapement(const T& th, const T& w, const P* m) const {
 }
 
 template <class T, class P>
-void MetronomeModel::evaluate(double /*t*/, const T* z, const P* raw, T* dz) const {
+void MetronomeModel::evaluate_on_sides(double /*t*/, const T* z, const P* raw, T* dz,
+                                       const int* sides) const {
   using std::cos;
   using std::sin;
   const int D = directions_;
@@ -232,7 +266,7 @@ void MetronomeModel::evaluate(double /*t*/, const T* z, const P* raw, T* dz) con
     T sn, cs;
     sin_cos(th, sn, cs);
     const T pw2s = p * w * w * sn;
-    G[i] = escapement(th, w, mi) - mi[4] * w - p * g * sn;
+    G[i] = escapement(th, w, mi, sides ? sides + 5 * i : nullptr) - mi[4] * w - p * g * sn;
     if (springs) G[i] -= torque[i];  // subtracting a zero torque would change nothing
     inertia[i] = T(0.0) + I;
     for (int a = 0; a < D; ++a) {

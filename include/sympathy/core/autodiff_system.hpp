@@ -29,8 +29,10 @@ struct NamedParameter {
   double scale = 1.0;    // raw value = scale * named value (e.g. degrees to radians)
 };
 
-template <class Derived>
-class AutoDiffSystem : public OdeSystem {
+// Base: OdeSystem, or an interface derived from it (a HybridSystem, whose extra declarations the
+// derived class writes by hand).
+template <class Derived, class Base = OdeSystem>
+class AutoDiffSystem : public Base {
  public:
   std::vector<std::string> parameter_names() const override {
     std::vector<std::string> names;
@@ -53,10 +55,10 @@ class AutoDiffSystem : public OdeSystem {
   void rhs(double t, const double* z, const double* p, double* dz) const override {
     derived().evaluate(t, z, p, dz);
   }
-  using OdeSystem::rhs;
+  using Base::rhs;
 
   void jacobian(double t, const double* z, const double* p, Eigen::MatrixXd& jac) const override {
-    const int n = dimension();
+    const int n = this->dimension();
     jac.resize(n, n);
     for (int c0 = 0; c0 < n;) {
       const int width = std::min(n - c0, 8);
@@ -74,7 +76,7 @@ class AutoDiffSystem : public OdeSystem {
       c0 += width;
     }
   }
-  using OdeSystem::jacobian;
+  using Base::jacobian;
 
   void variational_rhs(double t, const double* z, const double* p, int columns,
                        const double* const* S, double* const* out,
@@ -89,7 +91,7 @@ class AutoDiffSystem : public OdeSystem {
                            const double* const* S, double* const* out,
                            std::span<const int> parameters) const override {
     if (columns - static_cast<int>(parameters.size()) <= 0) {
-      OdeSystem::rhs_and_variational(t, z, p, dz, columns, S, out, parameters);
+      Base::rhs_and_variational(t, z, p, dz, columns, S, out, parameters);
       return;
     }
     variational(t, z, p, columns, S, out, parameters, dz);
@@ -101,7 +103,7 @@ class AutoDiffSystem : public OdeSystem {
                            std::complex<double>* out) const override {
     using J = Jet<OdeSystem::kMaxTaylorOrder>;
     if (order < 0 || order > OdeSystem::kMaxTaylorOrder) return false;
-    const int n = dimension();
+    const int n = this->dimension();
     std::vector<J> zj(n), dzj(n);
     for (int i = 0; i < n; ++i) {
       zj[i] = J(z[i]);
@@ -116,7 +118,7 @@ class AutoDiffSystem : public OdeSystem {
   void parameter_derivative(double t, const double* z, const double* p, int parameter,
                             double* dfdp) const override {
     using D = Dual<1>;
-    const int n = dimension();
+    const int n = this->dimension();
     std::vector<D> zd(z, z + n), dzd(n), pd;
     seed_parameters(p, parameter, pd);
     derived().evaluate(t, zd.data(), pd.data(), dzd.data());
@@ -133,6 +135,9 @@ class AutoDiffSystem : public OdeSystem {
     named_ = std::move(named);
     raw_ = std::move(raw);
   }
+  // The named parameters as directions in the raw layout (for derivatives a derived class
+  // writes by hand, such as a switching surface's in a parameter).
+  const std::vector<NamedParameter>& named_parameters() const { return named_; }
 
  private:
   const Derived& derived() const { return static_cast<const Derived&>(*this); }
@@ -141,7 +146,7 @@ class AutoDiffSystem : public OdeSystem {
   // parameter column; with `f`, f too, from the first chunk's values.
   void variational(double t, const double* z, const double* p, int columns, const double* const* S,
                    double* const* out, std::span<const int> parameters, double* f) const {
-    const int n = dimension();
+    const int n = this->dimension();
     const int state_columns = columns - static_cast<int>(parameters.size());
     for (int c0 = 0; c0 < state_columns;) {
       const int width = std::min(state_columns - c0, 8);

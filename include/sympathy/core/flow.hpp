@@ -43,6 +43,14 @@
 // tried first: CVODES returns the same root forever when two identical ones, from symmetric
 // pendula, coincide.) On the augmented vector the state is its first n components, so the zones
 // and caps carry over unchanged.
+//
+// Switching surfaces (OdeSystem::switching_functions) are located by the integrator's root
+// finding, and the integration restarts at each, so that no step straddles a jump of f. For a
+// HybridSystem each crossing also applies the surface's reset and maps the sensitivity columns by
+// the saltation matrix (core/saltation.hpp): its transition matrices and parameter sensitivities
+// are those of the hybrid flow (tests/core/hybrid_flow_test.cpp: a relay's transition across a
+// turning point within 1e-10 of its closed form at rtol 1e-12). Other systems with surfaces are
+// integrated, but refuse sensitivities.
 #pragma once
 
 #include <functional>
@@ -56,6 +64,7 @@
 #include <Eigen/Dense>
 
 #include "sympathy/core/errors.hpp"
+#include "sympathy/core/hybrid_system.hpp"
 #include "sympathy/core/ode_system.hpp"
 #include "sympathy/core/option_check.hpp"
 
@@ -219,11 +228,17 @@ class Flow {
   int band_of(std::size_t zone, double value) const;
   void update_bands(double t);
   void on_switching();
+  void start_sides(const Eigen::VectorXd& z0);
+  void cross_surfaces_here();
   void update_max_step(double t);
   bool outward_caps_looser(int band, int innermost) const;
   void collect_statistics();
 
   const OdeSystem& system_;
+  // The system as a piecewise-smooth one, where it is (HybridSystem): its crossings then map the
+  // sensitivity columns by their saltation matrices and apply its resets.
+  const HybridSystem* hybrid_ = nullptr;
+  std::vector<int> sides_;  // hybrid: the region the flow is in, a sign per switching function
   FlowOptions options_;
   FlowStatistics statistics_;
   std::unique_ptr<detail::FlowCall> call_;        // the call now being integrated

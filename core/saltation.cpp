@@ -1,0 +1,142 @@
+// The saltation matrix and the crossings of one instant (see saltation.hpp).
+#include "sympathy/core/saltation.hpp"
+
+#include <algorithm>
+#include <cmath>
+#include <sstream>
+#include <string>
+
+namespace sympathy {
+
+namespace {
+
+// h_z f- + h_t, the rate at which the flow arrives at the surface; refused where it is too small
+// against its parts for the crossing time to have a derivative (a grazing).
+double arrival_rate(const Eigen::VectorXd& f_minus, const Eigen::RowVectorXd& h_z, double h_t,
+                    double t, int surface) {
+  const double rate = h_z.dot(f_minus) + h_t;
+  const double scale = h_z.norm() * f_minus.norm() + std::abs(h_t);
+  if (!(std::abs(rate) > kGrazingTolerance * scale)) {
+    std::ostringstream msg;
+    msg.precision(12);
+    msg << "grazing: the flow touches switching surface " << surface << " at t = " << t
+        << " (h_z f + h_t = " << rate << "); the flow has no derivative there";
+    throw NonsmoothFlowError(msg.str(), t);
+  }
+  return rate;
+}
+
+int sign_of(double x) {
+  return x > 0.0 ? 1 : -1;
+}
+
+// The crossings in the given order, one after the other.
+HybridEvent cross_in_order(const HybridSystem& system, double t, const Eigen::VectorXd& z,
+                           const ParameterValues& p, const std::vector<int>& sides,
+                           const std::vector<int>& order, std::span<const int> parameters,
+                           bool derivatives) {
+  const int n = system.dimension();
+  const int np = static_cast<int>(parameters.size());
+  HybridEvent event;
+  event.state = z;
+  event.sides = sides;
+  if (derivatives) {
+    event.saltation = Eigen::MatrixXd::Identity(n, n);
+    event.parameter_jump = Eigen::MatrixXd::Zero(n, np);
+  }
+  Eigen::VectorXd f_minus(n), f_plus(n), z_plus(n), r_p(n);
+  Eigen::RowVectorXd h_z(n);
+  Eigen::MatrixXd r_z;
+  for (int surface : order) {
+    const Eigen::VectorXd z_minus = event.state;
+    system.rhs_on_sides(t, z_minus.data(), p.data(), event.sides.data(), f_minus.data());
+    const double h_t = system.switching_gradient(t, z_minus.data(), p.data(), surface, h_z.data());
+    const double rate = arrival_rate(f_minus, h_z, h_t, t, surface);
+    const bool reset = system.has_reset(surface);
+    if (reset) {
+      system.reset(t, z_minus.data(), p.data(), surface, z_plus.data());
+      // After a jump the flow goes where f points at z+ (an impact: back where it came from).
+      Eigen::VectorXd f(n);
+      Eigen::RowVectorXd g_z(n);
+      system.rhs(t, z_plus.data(), p.data(), f.data());
+      const double g_t = system.switching_gradient(t, z_plus.data(), p.data(), surface, g_z.data());
+      event.sides[surface] = sign_of(arrival_rate(f, g_z, g_t, t, surface));
+    } else {
+      z_plus = z_minus;
+      event.sides[surface] = -event.sides[surface];
+    }
+    event.state = z_plus;
+    if (!derivatives) continue;
+    system.rhs_on_sides(t, z_plus.data(), p.data(), event.sides.data(), f_plus.data());
+    if (reset)
+      system.reset_jacobian(t, z_minus.data(), p.data(), surface, r_z);
+    else
+      r_z = Eigen::MatrixXd::Identity(n, n);
+    const Eigen::VectorXd jump_direction = (f_plus - r_z * f_minus) / rate;
+    const Eigen::MatrixXd s = r_z + jump_direction * h_z;
+    Eigen::MatrixXd b(n, np);
+    for (int k = 0; k < np; ++k) {
+      if (reset)
+        system.reset_parameter_derivative(t, z_minus.data(), p.data(), surface, parameters[k],
+                                          r_p.data());
+      else
+        r_p.setZero();
+      const double h_p = system.switching_parameter_derivative(t, z_minus.data(), p.data(), surface,
+                                                               parameters[k]);
+      b.col(k) = r_p + jump_direction * h_p;
+    }
+    // Composition: x+ = S (S_prev x + b_prev) + b.
+    event.parameter_jump = s * event.parameter_jump + b;
+    event.saltation = s * event.saltation;
+  }
+  return event;
+}
+
+}  // namespace
+
+Eigen::MatrixXd saltation_matrix(const Eigen::VectorXd& f_minus, const Eigen::VectorXd& f_plus,
+                                 const Eigen::RowVectorXd& h_z, double h_t,
+                                 const Eigen::MatrixXd& r_z) {
+  return r_z + (f_plus - r_z * f_minus) * h_z / (h_z.dot(f_minus) + h_t);
+}
+
+Eigen::VectorXd parameter_jump(const Eigen::VectorXd& f_minus, const Eigen::VectorXd& f_plus,
+                               const Eigen::RowVectorXd& h_z, double h_t,
+                               const Eigen::MatrixXd& r_z, double h_p, const Eigen::VectorXd& r_p) {
+  return r_p + (f_plus - r_z * f_minus) * (h_p / (h_z.dot(f_minus) + h_t));
+}
+
+HybridEvent cross_surfaces(const HybridSystem& system, double t, const Eigen::VectorXd& z,
+                           const ParameterValues& p, const std::vector<int>& sides,
+                           std::span<const int> surfaces, std::span<const int> parameters,
+                           bool derivatives) {
+  std::vector<int> order(surfaces.begin(), surfaces.end());
+  HybridEvent event = cross_in_order(system, t, z, p, sides, order, parameters, derivatives);
+  if (!derivatives || order.size() < 2) return event;
+  // A perturbation decides which surface is hit first: the flow is differentiable only if the
+  // orders agree. The ascending and the descending order are compared (for two surfaces, every
+  // order).
+  std::reverse(order.begin(), order.end());
+  const HybridEvent reversed = cross_in_order(system, t, z, p, sides, order, parameters, true);
+  const auto largest = [](const Eigen::MatrixXd& m) {
+    return m.size() == 0 ? 0.0 : m.cwiseAbs().maxCoeff();
+  };
+  const double scale = std::max({largest(event.saltation), largest(event.parameter_jump),
+                                 largest(reversed.saltation), largest(reversed.parameter_jump)});
+  const double difference = std::max(largest(event.saltation - reversed.saltation),
+                                     largest(event.parameter_jump - reversed.parameter_jump));
+  event.order_difference = scale > 0.0 ? difference / scale : 0.0;
+  if (event.order_difference > kCornerTolerance) {
+    std::ostringstream msg;
+    msg.precision(6);
+    msg << "corner: switching surfaces";
+    for (int s : surfaces) msg << ' ' << s;
+    msg << " are crossed at one instant, t = " << t
+        << ", and their saltation matrices do not commute (the two orders differ by "
+        << event.order_difference << ", relative); the flow has no derivative there";
+    throw NonsmoothFlowError(msg.str(), t);
+  }
+  return event;
+}
+
+}  // namespace sympathy

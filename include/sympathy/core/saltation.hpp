@@ -1,0 +1,83 @@
+// Sensitivities across a crossing of a switching surface: the saltation matrix.
+//
+// At a crossing of h(t, z, p) = 0 at time tau, with f- the vector field before it and f+ the one
+// after it at the reset state z+ = R(z-, p), a perturbation dz- of the state just before the
+// surface moves the crossing time by dtau = -(h_z dz- + h_p dp) / (h_z f- + h_t), so that just
+// after it
+//     dz+ = S dz- + (R_p + (f+ - R_z f-) h_p / (h_z f- + h_t)) dp,
+//     S   = R_z + (f+ - R_z f-) h_z / (h_z f- + h_t)                        (the saltation matrix)
+// (Aizerman and Gantmacher 1958; Leine and Nijmeijer 2004, ch. 7; di Bernardo et al. 2008,
+// ch. 2). Without a reset R_z = I and R_p = 0, and S = I where f is continuous: then only the
+// location of the event matters.
+//
+// Several surfaces crossed at one instant (two identical pendula turning together) are crossed
+// one after the other; a perturbation chooses the order in which they are hit, so the flow is
+// differentiable there only if both orders give the same map: the saltation matrices commute
+// (as where each surface and each jump concern other components: uncoupled relays, or the
+// escapement's torque that jumps one pendulum's velocity where only that pendulum's surfaces
+// see it). Where they do not, the return map has a corner and no derivative: cross_surfaces
+// reports it (NonsmoothFlowError) rather than return one of the two one-sided derivatives.
+#pragma once
+
+#include <span>
+#include <vector>
+
+#include <Eigen/Dense>
+
+#include "sympathy/core/errors.hpp"
+#include "sympathy/core/hybrid_system.hpp"
+
+namespace sympathy {
+
+// The flow has no derivative where the caller asked for one: a grazing crossing (h_z f- + h_t
+// = 0, the orbit touches the surface) or simultaneous crossings whose saltation matrices do not
+// commute (a corner of the flow map).
+class NonsmoothFlowError : public IntegrationError {
+ public:
+  using IntegrationError::IntegrationError;
+};
+
+// S = R_z + (f+ - R_z f-) h_z / (h_z f- + h_t) for one crossing.
+Eigen::MatrixXd saltation_matrix(const Eigen::VectorXd& f_minus, const Eigen::VectorXd& f_plus,
+                                 const Eigen::RowVectorXd& h_z, double h_t,
+                                 const Eigen::MatrixXd& r_z);
+// R_p + (f+ - R_z f-) h_p / (h_z f- + h_t): the jump of a parameter's sensitivity column beyond
+// S times it.
+Eigen::VectorXd parameter_jump(const Eigen::VectorXd& f_minus, const Eigen::VectorXd& f_plus,
+                               const Eigen::RowVectorXd& h_z, double h_t,
+                               const Eigen::MatrixXd& r_z, double h_p, const Eigen::VectorXd& r_p);
+
+// What the crossings of one instant do: the state and sides after them, and the affine map of the
+// sensitivity columns, X+ = saltation X- for state columns and x_p+ = saltation x_p- +
+// parameter_jump.col(k) for the k-th of the asked parameters.
+struct HybridEvent {
+  Eigen::VectorXd state;
+  std::vector<int> sides;
+  Eigen::MatrixXd saltation;       // n x n (empty unless derivatives were asked)
+  Eigen::MatrixXd parameter_jump;  // n x parameters.size()
+  // For two or more surfaces: the largest entry of the difference between the maps of the
+  // ascending and the descending order of the surfaces, relative to the largest entry of either
+  // (0 for one surface; the rounding of the formulas, ~1e-16, where they commute).
+  double order_difference = 0.0;
+};
+
+// Saltation matrices of simultaneous crossings that differ by more than this (relative, entry by
+// entry) in the two orders are a corner. A tolerance, not an accuracy: commuting matrices agree
+// to rounding (the test's two relays: 0), non-commuting ones differ at order one.
+constexpr double kCornerTolerance = 1e-8;
+// |h_z f- + h_t| below this times |h_z| |f-| + |h_t| is a grazing crossing.
+constexpr double kGrazingTolerance = 1e-10;
+
+// Crosses `surfaces` (indices of switching functions, increasing) at (t, z) on `sides` (the
+// region the flow comes from), applying each surface's reset; with `derivatives`, the saltation
+// and parameter jumps for `parameters` too, and for two or more surfaces a NonsmoothFlowError
+// where the two orders differ by more than kCornerTolerance. A surface without a reset is left
+// for the other side (its side flips); after a reset the flow continues on the side that f
+// points into at z+ (an impact: back into the region it came from). Throws NonsmoothFlowError
+// at a grazing crossing.
+HybridEvent cross_surfaces(const HybridSystem& system, double t, const Eigen::VectorXd& z,
+                           const ParameterValues& p, const std::vector<int>& sides,
+                           std::span<const int> surfaces, std::span<const int> parameters,
+                           bool derivatives);
+
+}  // namespace sympathy
