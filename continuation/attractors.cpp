@@ -3,6 +3,7 @@
 #include <algorithm>
 #include <cmath>
 #include <limits>
+#include <set>
 
 #include "sympathy/core/errors.hpp"
 #include "sympathy/core/flow.hpp"
@@ -138,21 +139,17 @@ std::vector<Attractor> merge_attractors(const OdeSystem& system, std::vector<Att
       }
     if (!matched) elsewhere.push_back(std::move(c));
   }
-  const auto taken = [&](const std::string& name, std::size_t except) {
-    for (std::size_t i = 0; i < on_branches.size(); ++i)
-      if (i != except && on_branches[i].name == name && (renamed[i] || i < except)) return true;
-    return std::any_of(elsewhere.begin(), elsewhere.end(),
-                       [&](const Attractor& e) { return e.name == name; });
-  };
+  // The names in use: the continued ones'; then each branch attractor keeps its own name where
+  // it is free, else takes the next free " (k)" of its branch.
+  std::set<std::string> used;
+  for (std::size_t i = 0; i < on_branches.size(); ++i)
+    if (renamed[i]) used.insert(on_branches[i].name);
+  for (const auto& e : elsewhere) used.insert(e.name);
   for (std::size_t i = 0; i < on_branches.size(); ++i) {
-    if (renamed[i] || !taken(on_branches[i].name, i)) continue;
-    for (int k = 2;; ++k) {
-      const std::string name = on_branches[i].branch + " (" + std::to_string(k) + ")";
-      if (!taken(name, i)) {
-        on_branches[i].name = name;
-        break;
-      }
-    }
+    if (renamed[i]) continue;
+    for (int k = 2; used.count(on_branches[i].name); ++k)
+      on_branches[i].name = on_branches[i].branch + " (" + std::to_string(k) + ")";
+    used.insert(on_branches[i].name);
   }
   for (auto& a : on_branches) merged.push_back(std::move(a));
   for (auto& a : elsewhere) merged.push_back(std::move(a));

@@ -93,6 +93,29 @@ Eigen::VectorXd hybrid_parameter_by_differences(Flow& flow, const OdeSystem& sys
 // (x = A, v = 0) after exactly pi / (2 w); 0.7 later the transition is exactly
 // e^(M 0.7) S e^(M pi / (2 w)), S = diag(1, (A + a) / (A - a)) (test_systems.hpp). Measured
 // agreement: below 1e-10 with each integrator at rtol 1e-12.
+// The transition and the sensitivity columns of `parameters` from z0 over [0, t1], with each of
+// hybrid_flow_settings, against central differences of the flow map (kHybridDifferenceTolerance),
+// the crossings counted.
+void expect_sensitivities_match_differences(const OdeSystem& system, const Eigen::VectorXd& z0,
+                                            double t1, const std::vector<int>& parameters,
+                                            long switchings) {
+  const auto p = system.default_parameters();
+  for (const FlowOptions& o : hybrid_flow_settings()) {
+    Flow flow(system, o);
+    const auto r = flow.advance_with_sensitivities(z0, p, 0.0, t1, true, parameters);
+    EXPECT_EQ(flow.statistics().switchings, switchings);
+    const Eigen::MatrixXd differences = hybrid_transition_by_differences(flow, z0, p, t1);
+    EXPECT_LT((r.transition - differences).cwiseAbs().maxCoeff(), kHybridDifferenceTolerance)
+        << to_string(o.method);
+    for (int k : parameters) {
+      const Eigen::VectorXd column = hybrid_parameter_by_differences(flow, system, z0, p, k, t1);
+      EXPECT_LT((r.parameter_sensitivities.col(k) - column).cwiseAbs().maxCoeff(),
+                kHybridDifferenceTolerance)
+          << to_string(o.method) << " parameter " << k;
+    }
+  }
+}
+
 TEST(HybridFlow, RelayTransitionAcrossATurningPointIsExact) {
   const double zeta = 0.1, a = 0.5;
   const Relay system(zeta, a);
@@ -117,24 +140,9 @@ TEST(HybridFlow, RelayTransitionAcrossATurningPointIsExact) {
 // Measured: within 2.9e-8 (kHybridDifferenceTolerance).
 TEST(HybridFlow, RelaySensitivitiesMatchCentralDifferences) {
   const Relay system(0.1, 0.5);
-  const auto p = system.default_parameters();
   const Eigen::VectorXd z0 = Relay::quarter_point(0.1, 0.5);
   const double t1 = 5.5;  // crosses the top (t = 1.58) and the bottom (4.74) turning points
-  const std::vector<int> parameters{0, 1};
-  for (const FlowOptions& o : hybrid_flow_settings()) {
-    Flow flow(system, o);
-    const auto r = flow.advance_with_sensitivities(z0, p, 0.0, t1, true, parameters);
-    EXPECT_EQ(flow.statistics().switchings, 2);
-    const Eigen::MatrixXd differences = hybrid_transition_by_differences(flow, z0, p, t1);
-    EXPECT_LT((r.transition - differences).cwiseAbs().maxCoeff(), kHybridDifferenceTolerance)
-        << to_string(o.method);
-    for (int k : parameters) {
-      const Eigen::VectorXd column = hybrid_parameter_by_differences(flow, system, z0, p, k, t1);
-      EXPECT_LT((r.parameter_sensitivities.col(k) - column).cwiseAbs().maxCoeff(),
-                kHybridDifferenceTolerance)
-          << to_string(o.method) << " parameter " << k;
-    }
-  }
+  expect_sensitivities_match_differences(system, z0, t1, {0, 1}, 2);
 }
 
 // Without the saltation matrix the sensitivities would be those of a smooth flow: the check
@@ -161,22 +169,9 @@ TEST(HybridFlow, ImpactSensitivitiesMatchCentralDifferences) {
   const auto p = system.default_parameters();
   const Eigen::Vector2d z0(0.9, -0.2);  // above the wall, falling
   const double t1 = 2.5;                // the wall at about t = 1.47, then the rise
-  const std::vector<int> parameters{0, 1, 2};
-  for (const FlowOptions& o : hybrid_flow_settings()) {
-    Flow flow(system, o);
-    const auto r = flow.advance_with_sensitivities(z0, p, 0.0, t1, true, parameters);
-    EXPECT_EQ(flow.statistics().switchings, 1);
-    EXPECT_GT(r.state[0], 0.0);  // reflected, not through the wall
-    const Eigen::MatrixXd differences = hybrid_transition_by_differences(flow, z0, p, t1);
-    EXPECT_LT((r.transition - differences).cwiseAbs().maxCoeff(), kHybridDifferenceTolerance)
-        << to_string(o.method);
-    for (int k : parameters) {
-      const Eigen::VectorXd column = hybrid_parameter_by_differences(flow, system, z0, p, k, t1);
-      EXPECT_LT((r.parameter_sensitivities.col(k) - column).cwiseAbs().maxCoeff(),
-                kHybridDifferenceTolerance)
-          << to_string(o.method) << " parameter " << k;
-    }
-  }
+  expect_sensitivities_match_differences(system, z0, t1, {0, 1, 2}, 1);
+  // Reflected, not through the wall.
+  EXPECT_GT(Flow(system, hybrid_flow_settings().front()).advance(z0, p, 0.0, t1)[0], 0.0);
 }
 
 // Two uncoupled relays from equal starts cross their surfaces at the same instants: one event
