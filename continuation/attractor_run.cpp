@@ -117,10 +117,11 @@ void identify_end(const OdeSystem& system, const ParameterValues& p,
   const double scale = std::max(1.0, fate.end_state.lpNorm<Eigen::Infinity>());
   const Equilibrium e = solve_equilibrium(system, p, fate.end_state);
   if (e.converged && (e.state - fate.end_state).lpNorm<Eigen::Infinity>() <= 1e-3 * scale) {
-    const double size = std::max(1.0, e.eigenvalues.cwiseAbs().maxCoeff());
-    if (e.eigenvalues.real().maxCoeff() < -1e-6 * size) {
+    if (stable_equilibrium(e)) {
       fate.fate = Fate::Equilibrium;
       fate.equilibrium_state = e.state;
+      for (std::size_t i = 0; i < attractors.size() && fate.attractor < 0; ++i)
+        if (same_rest(attractors[i], e.state)) fate.attractor = static_cast<int>(i);
       return;
     }
     if (e.unstable > 0 && (e.state - fate.end_state).lpNorm<Eigen::Infinity>() <= 1e-6 * scale) {
@@ -152,7 +153,7 @@ void identify_end(const OdeSystem& system, const ParameterValues& p,
     return;
   }
   for (std::size_t i = 0; i < attractors.size(); ++i)
-    if (same_orbit(system, orbit, *attractors[i].neighbourhood, ao)) {
+    if (!attractors[i].at_rest() && same_orbit(system, orbit, *attractors[i].neighbourhood, ao)) {
       fate.fate = Fate::Reached;
       fate.attractor = static_cast<int>(i);
       return;
@@ -182,8 +183,14 @@ std::optional<AttractorFate> run_to_attractor(const OdeSystem& system, const Par
                                               const AttractorRunOptions& options,
                                               const std::atomic<bool>* stop) {
   if (auto wrong = options.validate()) throw std::invalid_argument(wrong->message());
+  // A certificate per orbit attractor (equilibria are told at the end), with its index.
   std::vector<ConvergenceCertificate> certificates;
-  for (const auto& a : attractors) certificates.emplace_back(system, a.neighbourhood);
+  std::vector<int> certified_index;
+  for (std::size_t i = 0; i < attractors.size(); ++i)
+    if (!attractors[i].at_rest()) {
+      certificates.emplace_back(system, attractors[i].neighbourhood);
+      certified_index.push_back(static_cast<int>(i));
+    }
   const std::vector<double> times = sample_times(options.t_end, options.dt);
   AttractorFate fate;
   fate.end_state = start;
@@ -194,7 +201,7 @@ std::optional<AttractorFate> run_to_attractor(const OdeSystem& system, const Par
       fate.end_state = z;
       fate.stopped_at = t;
       for (std::size_t c = 0; c < certificates.size() && fate.attractor < 0; ++c)
-        if (certificates[c].add(t, z)) fate.attractor = static_cast<int>(c);
+        if (certificates[c].add(t, z)) fate.attractor = certified_index[c];
       return (stop && stop->load()) || fate.attractor >= 0;
     });
   } catch (const IntegrationError& e) {
@@ -244,10 +251,27 @@ std::vector<Attractor> name_new_attractors(const OdeSystem& system,
                                            const std::vector<InvariantSubspace>& symmetries) {
   std::vector<Attractor> found;
   for (auto& fate : fates) {
+    if (fate.fate == Fate::Equilibrium && fate.attractor < 0) {
+      // A stable equilibrium none of the attractors is: "new k (at rest)", once.
+      int index = -1;
+      for (std::size_t i = 0; i < found.size() && index < 0; ++i)
+        if (same_rest(found[i], fate.equilibrium_state)) index = static_cast<int>(i);
+      if (index < 0) {
+        Attractor a;
+        const std::string kept = symmetry_of(fate.equilibrium_state, symmetries);
+        a.name = "new " + std::to_string(first + static_cast<int>(found.size())) + " (at rest" +
+                 (kept.empty() ? "" : ", " + kept.substr(2, kept.size() - 3)) + ")";
+        a.rest = fate.equilibrium_state;
+        index = static_cast<int>(found.size());
+        found.push_back(std::move(a));
+      }
+      fate.attractor = offset + index;
+      continue;
+    }
     if (fate.fate != Fate::NewOrbit || !fate.orbit) continue;
     int index = -1;
     for (std::size_t i = 0; i < found.size() && index < 0; ++i)
-      if (same_orbit(system, *fate.orbit, *found[i].neighbourhood, options))
+      if (!found[i].at_rest() && same_orbit(system, *fate.orbit, *found[i].neighbourhood, options))
         index = static_cast<int>(i);
     if (index < 0) {
       Attractor a;

@@ -5,6 +5,7 @@
 #include <limits>
 #include <set>
 
+#include "sympathy/continuation/equilibrium.hpp"
 #include "sympathy/core/errors.hpp"
 #include "sympathy/core/flow.hpp"
 
@@ -41,6 +42,17 @@ bool same_orbit(const OdeSystem& system, const PeriodicOrbit& orbit,
   return !d.empty() && *std::min_element(d.begin(), d.end()) <= options.match_tolerance;
 }
 
+bool same_rest(const Attractor& a, const Eigen::VectorXd& z) {
+  return a.at_rest() && a.rest.size() == z.size() &&
+         (a.rest - z).lpNorm<Eigen::Infinity>() <=
+             1e-6 * std::max(1.0, z.lpNorm<Eigen::Infinity>());
+}
+
+bool stable_equilibrium(const Equilibrium& e) {
+  const double size = std::max(1.0, e.eigenvalues.cwiseAbs().maxCoeff());
+  return e.converged && e.eigenvalues.real().maxCoeff() < -1e-6 * size;
+}
+
 namespace {
 
 // A stable orbit with its neighbourhood, or nothing: Newton from (z0, period) at p.
@@ -64,6 +76,7 @@ std::optional<Attractor> stable_orbit(const OdeSystem& system, const ParameterVa
 bool known(const OdeSystem& system, const std::vector<Attractor>& list, const Attractor& a,
            const AttractorOptions& options) {
   return std::any_of(list.begin(), list.end(), [&](const Attractor& b) {
+    if (a.at_rest() || b.at_rest()) return a.at_rest() && b.at_rest() && same_rest(b, a.rest);
     return same_orbit(system, a.orbit, *b.neighbourhood, options);
   });
 }
@@ -114,6 +127,14 @@ std::vector<Attractor> continue_attractors(const OdeSystem& system, const Parame
   if (auto wrong = options.validate()) throw std::invalid_argument(wrong->message());
   std::vector<Attractor> continued;
   for (const auto& before : previous) {
+    if (before.at_rest()) {
+      const Equilibrium e = solve_equilibrium(system, p, before.rest);
+      Attractor a = before;
+      a.rest = e.state;
+      if (stable_equilibrium(e) && !known(system, continued, a, options))
+        continued.push_back(std::move(a));
+      continue;
+    }
     auto a = stable_orbit(system, p, before.orbit.state0, before.orbit.period,
                           before.orbit.subspace, options);
     if (!a || known(system, continued, *a, options)) continue;
@@ -133,7 +154,8 @@ std::vector<Attractor> merge_attractors(const OdeSystem& system, std::vector<Att
   for (auto& c : continued) {
     bool matched = false;
     for (std::size_t i = 0; i < on_branches.size() && !matched; ++i)
-      if (!renamed[i] && same_orbit(system, c.orbit, *on_branches[i].neighbourhood, options)) {
+      if (!renamed[i] && !c.at_rest() &&
+          same_orbit(system, c.orbit, *on_branches[i].neighbourhood, options)) {
         on_branches[i].name = c.name;
         renamed[i] = matched = true;
       }

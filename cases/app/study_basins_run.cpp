@@ -114,15 +114,16 @@ nlohmann::json study_basins_json(const StudyRun& run) {
     }
   for (const auto& v : walk.values) {
     nlohmann::json list = nlohmann::json::array();
-    for (const auto& a : v.attractors)
-      list.push_back(
-          {{"name", a.name},
-           {"branch", a.branch},
-           {"point", a.point},
-           {"period", a.orbit.period},
-           {"max_multiplier", a.orbit.floquet.max_modulus},
-           {"state", std::vector<double>(a.orbit.state0.data(),
-                                         a.orbit.state0.data() + a.orbit.state0.size())}});
+    for (const auto& a : v.attractors) {
+      const Eigen::VectorXd& z = a.at_rest() ? a.rest : a.orbit.state0;
+      list.push_back({{"name", a.name},
+                      {"branch", a.branch},
+                      {"point", a.point},
+                      {"at_rest", a.at_rest()},
+                      {"period", a.at_rest() ? 0.0 : a.orbit.period},
+                      {"max_multiplier", a.at_rest() ? 0.0 : a.orbit.floquet.max_modulus},
+                      {"state", std::vector<double>(z.data(), z.data() + z.size())}});
+    }
     j["attractors"].push_back(list);
     nlohmann::json fates = nlohmann::json::object();
     for (const Fate f : {Fate::Certified, Fate::Reached, Fate::NewOrbit, Fate::Equilibrium,

@@ -230,7 +230,7 @@ void print_basins_walk(std::FILE* out, const BasinWalk& walk, const std::string&
                        parameter + " = " + format_number(c.before) + " and " +
                        format_number(c.after) + ":";
     if (c.appears ? c.present_before : c.present_after)
-      line.append(" (its orbit is an attractor at both: the starts' sampling)");
+      line.append(" (an attractor at both: the starts' sampling)");
     else if (c.events.empty())
       line.append(" no located event of the branches there");
     for (std::size_t i = 0; i < c.events.size(); ++i) {

@@ -12,9 +12,11 @@
 
 #include <algorithm>
 #include <cmath>
+#include <map>
 
 #include "sympathy/continuation/branch_switching.hpp"
 #include "sympathy/continuation/continuation.hpp"
+#include "sympathy/core/autodiff_system.hpp"
 #include "tests/support/math.hpp"
 #include "tests/support/test_systems.hpp"
 
@@ -362,6 +364,63 @@ TEST(AttractorRun, ASpiralIntoAFocusEndsAtRest) {
   ASSERT_TRUE(fate);
   EXPECT_EQ(fate->fate, Fate::Equilibrium) << fate->note;
   EXPECT_LT(fate->equilibrium_state.lpNorm<Eigen::Infinity>(), 1e-12);
+}
+
+// A double well x'' + c x' - x + x^3 = 0: two stable equilibria x = +-1 (eigenvalues
+// (-c +- sqrt(c^2 - 8)) / 2) and a saddle at 0, no orbits. Every start ends at rest at one of
+// them.
+class DoubleWell final : public AutoDiffSystem<DoubleWell> {
+ public:
+  explicit DoubleWell(double c) { set_parameter_layout({{"c", {0}}}, {c}); }
+  int dimension() const override { return 2; }
+  std::vector<std::string> state_names() const override { return {"x", "v"}; }
+  template <class T, class P>
+  void evaluate(double, const T* z, const P* p, T* dz) const {
+    dz[0] = z[1];
+    dz[1] = -p[0] * z[1] + z[0] - z[0] * z[0] * z[0];
+  }
+};
+
+// Equilibria are attractors with names too: the double well's two found by the runs at
+// c = 0.5 as "new 1 (at rest)" and "new 2 (at rest)" (x = +-1, v = 0 to 1e-12), each run counted
+// under the one it ended at, and at c = 1 the same two continued under the same names (no new
+// one), every run matched to them.
+TEST(BasinWalk, EquilibriaAreNamedAndCarried) {
+  const DoubleWell system(0.5);
+  BasinWalkOptions o;
+  o.parameter = 0;
+  o.values = {0.5, 1.0};
+  o.starts = 12;
+  o.lower = Eigen::Vector2d(-2.0, -1.0);
+  o.upper = Eigen::Vector2d(2.0, 1.0);
+  o.run = run_options();
+  o.run.t_end = 80.0;
+  o.tasks.threads = 2;
+  const BasinWalk walk = walk_basins(system, system.default_parameters(), {}, o);
+  ASSERT_EQ(walk.values.size(), 2u);
+  std::map<std::string, double> side;  // each equilibrium's x
+  for (const auto& v : walk.values) {
+    ASSERT_EQ(v.attractors.size(), 2u) << "c = " << v.value;
+    for (const auto& a : v.attractors) {
+      ASSERT_TRUE(a.at_rest()) << a.name;
+      EXPECT_NEAR(std::abs(a.rest[0]), 1.0, 1e-12) << a.name;
+      EXPECT_NEAR(a.rest[1], 0.0, 1e-12) << a.name;
+      if (side.count(a.name)) {
+        EXPECT_EQ(side[a.name], a.rest[0]) << a.name;
+      }
+      side[a.name] = a.rest[0];
+    }
+    std::size_t counted = 0;
+    for (const auto& f : v.runs) {
+      ASSERT_EQ(f.fate, Fate::Equilibrium) << f.note;
+      ASSERT_GE(f.attractor, 0);
+      EXPECT_NEAR(f.end_state[0], v.attractors[f.attractor].rest[0], 1e-2);
+    }
+    for (const auto& s : v.shares) counted += s.proportion.count;
+    EXPECT_EQ(counted, 12u);
+  }
+  EXPECT_EQ(side.size(), 2u);
+  EXPECT_TRUE(side.count("new 1 (at rest)") && side.count("new 2 (at rest)"));
 }
 
 TEST(BasinWalk, OptionsNameTheField) {

@@ -37,7 +37,8 @@ enum class Fate {
   Certified,    // stopped early, certified to converge to `attractor`
   Reached,      // at t_end, Newton from its end converged to `attractor`'s orbit
   NewOrbit,     // at t_end, near a stable orbit that is none of the attractors (`orbit`)
-  Equilibrium,  // at t_end, at rest: at a stable equilibrium (`equilibrium_state`)
+  Equilibrium,  // at t_end, at rest: at a stable equilibrium (`equilibrium_state`; `attractor`
+                // where it is one of the attractors)
   Torus,        // at t_end, on an invariant torus around an orbit whose leading multipliers are
                 // a complex pair outside the unit circle (`orbit`), its `rotation_number`
   Unresolved,   // at t_end, near no stable orbit or equilibrium (`note` says what it found)
@@ -47,7 +48,7 @@ std::string to_string(Fate f);  // "certified", "reached", "new orbit", ...
 
 struct AttractorFate {
   Fate fate = Fate::Unresolved;
-  int attractor = -1;  // Certified, Reached: the index among the attractors given
+  int attractor = -1;  // Certified, Reached (Equilibrium): the index among the attractors given
   double stopped_at = 0.0;
   Eigen::VectorXd end_state;
   std::optional<PeriodicOrbit> orbit;     // NewOrbit: the orbit Newton found
@@ -64,13 +65,14 @@ std::optional<AttractorFate> run_to_attractor(const OdeSystem& system, const Par
                                               const AttractorRunOptions& options,
                                               const std::atomic<bool>* stop = nullptr);
 
-// The new attractors among `fates` (all at p), named in the order of the runs that found them
-// ("new 1", "new 2", ...; the same orbit found by two runs once, judged by same_orbit; numbered
-// from `first`), each with the symmetry it keeps: the description of the smallest of
-// `symmetries` its orbit lies in (to 1e-8 of its size: "new 1 (x = 0, th2 = -th1)"); each
-// NewOrbit fate's `attractor` is set to its index in the list returned plus `offset` (the caller
-// appends the list to its attractors). Deterministic: it depends on the fates' order alone, not
-// on which run finished first.
+// The new attractors among `fates` (all at p): the stable orbits of NewOrbit fates and the
+// equilibria of Equilibrium fates that are none of the attractors, named in the order of the runs
+// that found them ("new 1", "new 2", ..., an equilibrium "new 3 (at rest)"; the same orbit found by
+// two runs once, judged by same_orbit; numbered from `first`), each with the symmetry it keeps: the
+// description of the smallest of `symmetries` its orbit lies in (to 1e-8 of its size: "new 1 (x =
+// 0, th2 = -th1)"); each NewOrbit fate's `attractor` is set to its index in the list returned plus
+// `offset` (the caller appends the list to its attractors). Deterministic: it depends on the fates'
+// order alone, not on which run finished first.
 std::vector<Attractor> name_new_attractors(const OdeSystem& system,
                                            std::vector<AttractorFate>& fates,
                                            const AttractorOptions& options, int offset,

@@ -16,6 +16,7 @@
 
 #include "sympathy/continuation/branch.hpp"
 #include "sympathy/continuation/convergence_certificate.hpp"
+#include "sympathy/continuation/equilibrium.hpp"
 #include "sympathy/continuation/periodic_orbit.hpp"
 
 namespace sympathy {
@@ -27,7 +28,17 @@ struct Attractor {
   int point = -1;      // the index of the branch's point nearest it (-1: none)
   PeriodicOrbit orbit;
   std::shared_ptr<const OrbitNeighbourhood> neighbourhood;  // what certificates and matching need
+  // A stable equilibrium instead of an orbit (not empty: its state; orbit and neighbourhood
+  // unused): runs that end at rest there count under its name.
+  Eigen::VectorXd rest;
+  bool at_rest() const { return rest.size() > 0; }
 };
+
+// Whether `z` is the state of the equilibrium attractor `a` (to 1e-6 of the state's size).
+bool same_rest(const Attractor& a, const Eigen::VectorXd& z);
+// Whether Newton's equilibrium converged and is stable: every eigenvalue's real part below -1e-6
+// times the largest |lambda| (not marginally).
+bool stable_equilibrium(const Equilibrium& e);
 
 // A branch with the name it goes by (a study's entry: "anti", "born").
 struct NamedBranch {
@@ -66,7 +77,8 @@ std::vector<Attractor> attractors_on_branches(const OdeSystem& system, const Par
 
 // The attractors of another parameter value continued to `p`: Newton from each orbit (its point
 // and period) at p, kept with its name where it converges to a stable orbit (with the
-// certificate's margin). Those that do not are gone (the attractor ended between the values).
+// certificate's margin); Newton on f = 0 from each equilibrium, kept where it converges to a
+// stable one. Those that do not are gone (the attractor ended between the values).
 std::vector<Attractor> continue_attractors(const OdeSystem& system, const ParameterValues& p,
                                            const std::vector<Attractor>& previous,
                                            const AttractorOptions& options);
