@@ -11,6 +11,7 @@
 
 #include "sympathy/continuation/periodic_orbit.hpp"
 #include "tests/support/cases.hpp"
+#include "tests/support/math.hpp"
 
 namespace sympathy {
 namespace {
@@ -47,13 +48,6 @@ Eigen::MatrixXd metronome_flow_map_derivative(Flow& flow, const Eigen::VectorXd&
   return m;
 }
 
-std::vector<std::complex<double>> metronome_by_modulus(std::vector<std::complex<double>> values) {
-  std::sort(values.begin(), values.end(), [](const auto& a, const auto& b) {
-    return std::abs(a) > std::abs(b) || (std::abs(a) == std::abs(b) && a.imag() > b.imag());
-  });
-  return values;
-}
-
 TEST(HybridMetronome, InPhaseAndAntiPhaseOrbitsMatchDifferencesOfTheFlowMap) {
   const CaseFile file = CaseFile::load(testing::case_path("row2"));
   for (const std::string params : {"table2", "table3"}) {
@@ -77,11 +71,9 @@ TEST(HybridMetronome, InPhaseAndAntiPhaseOrbitsMatchDifferencesOfTheFlowMap) {
       Flow flow(model, reference);
       const Eigen::MatrixXd m = metronome_flow_map_derivative(flow, orbit.state0, p, orbit.period);
       const Eigen::VectorXcd eigenvalues = m.eigenvalues();
-      const auto expected = metronome_by_modulus(
+      const auto expected = testing::by_modulus(
           std::vector<std::complex<double>>(eigenvalues.begin(), eigenvalues.end()));
-      std::vector<std::complex<double>> computed;
-      for (const auto& mu : orbit.floquet.multipliers) computed.push_back(mu.value);
-      computed = metronome_by_modulus(computed);
+      const auto computed = testing::by_modulus(orbit.floquet);
       ASSERT_EQ(computed.size(), expected.size());
       double worst = 0.0;
       for (std::size_t i = 0; i < computed.size(); ++i)

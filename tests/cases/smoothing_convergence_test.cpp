@@ -14,6 +14,7 @@
 
 #include "sympathy/continuation/periodic_orbit.hpp"
 #include "tests/support/cases.hpp"
+#include "tests/support/math.hpp"
 
 namespace sympathy {
 namespace {
@@ -27,15 +28,6 @@ OrbitOptions tight_orbit() {
   o.shooting.flow.rtol = 1e-12;
   o.shooting.flow.atol = 1e-14;
   return o;
-}
-
-std::vector<std::complex<double>> smoothing_by_modulus(const PeriodicOrbit& orbit) {
-  std::vector<std::complex<double>> values;
-  for (const auto& mu : orbit.floquet.multipliers) values.push_back(mu.value);
-  std::sort(values.begin(), values.end(), [](const auto& a, const auto& b) {
-    return std::abs(a) > std::abs(b) || (std::abs(a) == std::abs(b) && a.imag() > b.imag());
-  });
-  return values;
 }
 
 struct SmoothingDistance {
@@ -60,7 +52,7 @@ TEST(SmoothingConvergence, SmoothedOrbitsApproachTheImpulsiveOnes) {
       const auto reference =
           find_periodic_orbit(impulsive, p, file.initial_state(&start), subspace, tight_orbit());
       ASSERT_TRUE(reference.converged()) << what;
-      const auto expected = smoothing_by_modulus(reference);
+      const auto expected = testing::by_modulus(reference.floquet);
       std::vector<SmoothingDistance> distances;
       for (double eps : kSmoothingWidths) {
         ModelSpec spec = load_spec("row2", params);
@@ -70,7 +62,7 @@ TEST(SmoothingConvergence, SmoothedOrbitsApproachTheImpulsiveOnes) {
             solve_periodic_orbit(smooth, smooth.default_parameters(), reference.state0,
                                  reference.period, subspace, tight_orbit());
         ASSERT_TRUE(orbit.converged()) << what << " eps " << eps;
-        const auto computed = smoothing_by_modulus(orbit);
+        const auto computed = testing::by_modulus(orbit.floquet);
         ASSERT_EQ(computed.size(), expected.size());
         SmoothingDistance d;
         d.period = std::abs(orbit.period - reference.period);

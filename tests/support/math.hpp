@@ -1,10 +1,13 @@
-// pi, 2 pi and a planar orbit's other multiplier for the tests' exact answers, defined once: the
-// tests compile in batches (a unity build), where a constant of the same name in two files of one
-// batch would be defined twice.
+// pi, 2 pi, a planar orbit's other multiplier and multipliers sorted by modulus for the tests'
+// exact answers, defined once: the tests compile in batches (a unity build), where a constant of
+// the same name in two files of one batch would be defined twice.
 #pragma once
 
+#include <algorithm>
 #include <cmath>
+#include <complex>
 #include <numbers>
+#include <vector>
 
 #include "sympathy/floquet/floquet.hpp"
 
@@ -19,6 +22,20 @@ inline double nontrivial_multiplier(const FloquetAnalysis& f) {
   for (const auto& m : f.multipliers)
     if (!m.trivial) return m.value.real();
   return NAN;
+}
+
+// Multipliers (or eigenvalues) largest modulus first, a pair's positive imaginary part first:
+// an order two computations of the same orbit share, to compare them entry by entry.
+inline std::vector<std::complex<double>> by_modulus(std::vector<std::complex<double>> values) {
+  std::sort(values.begin(), values.end(), [](const auto& a, const auto& b) {
+    return std::abs(a) > std::abs(b) || (std::abs(a) == std::abs(b) && a.imag() > b.imag());
+  });
+  return values;
+}
+inline std::vector<std::complex<double>> by_modulus(const FloquetAnalysis& f) {
+  std::vector<std::complex<double>> values;
+  for (const auto& mu : f.multipliers) values.push_back(mu.value);
+  return by_modulus(std::move(values));
 }
 
 }  // namespace sympathy::testing
