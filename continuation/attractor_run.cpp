@@ -173,6 +173,7 @@ void identify_end(const OdeSystem& system, const ParameterValues& p,
   }
   fate.fate = Fate::NewOrbit;
   fate.orbit = std::move(orbit);
+  fate.neighbourhood = neighbourhood;
 }
 
 }  // namespace
@@ -278,8 +279,9 @@ std::vector<Attractor> name_new_attractors(const OdeSystem& system,
       a.name = "new " + std::to_string(first + static_cast<int>(found.size())) +
                symmetry_of(fate.orbit->state0, symmetries);
       a.orbit = *fate.orbit;
-      a.neighbourhood =
-          std::make_shared<const OrbitNeighbourhood>(system, a.orbit, options.certificate);
+      a.neighbourhood = fate.neighbourhood ? fate.neighbourhood
+                                           : std::make_shared<const OrbitNeighbourhood>(
+                                                 system, a.orbit, options.certificate);
       index = static_cast<int>(found.size());
       found.push_back(std::move(a));
     }

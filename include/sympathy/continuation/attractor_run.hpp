@@ -11,6 +11,7 @@
 
 #include <atomic>
 #include <cmath>
+#include <memory>
 #include <optional>
 #include <string>
 #include <vector>
@@ -51,7 +52,9 @@ struct AttractorFate {
   int attractor = -1;  // Certified, Reached (Equilibrium): the index among the attractors given
   double stopped_at = 0.0;
   Eigen::VectorXd end_state;
-  std::optional<PeriodicOrbit> orbit;     // NewOrbit: the orbit Newton found
+  std::optional<PeriodicOrbit> orbit;  // NewOrbit: the orbit Newton found
+  // NewOrbit: its neighbourhood, computed once to judge it stable (name_new_attractors keeps it).
+  std::shared_ptr<const OrbitNeighbourhood> neighbourhood;
   Eigen::VectorXd equilibrium_state;      // Equilibrium
   double rotation_number = std::nan("");  // Torus: in [0, 1), turns a return about the orbit
   std::string note;                       // Unresolved, Failed: why
