@@ -307,11 +307,6 @@ void MetronomeModel::switching_functions(double /*t*/, const double* z, const do
   }
 }
 
-void MetronomeModel::rhs_on_sides(double t, const double* z, const double* raw, const int* sides,
-                                  double* dz) const {
-  evaluate_on_sides(t, z, raw, dz, sides);
-}
-
 // Surface 5 i + k of metronome i is th_i' (k = 0) or th_i plus a constant (k = 1..4).
 double MetronomeModel::switching_gradient(double /*t*/, const double* /*z*/, const double* /*raw*/,
                                           int surface, double* h_z) const {

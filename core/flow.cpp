@@ -89,11 +89,8 @@ FlowStatistics& FlowStatistics::operator+=(const FlowStatistics& o) {
 }
 
 Flow::Flow(const OdeSystem& system, FlowOptions options)
-    : system_(system),
-      // A HybridSystem without surfaces (a model whose smooth forms have none) is a smooth one.
-      hybrid_(system.switching_count() > 0 ? dynamic_cast<const HybridSystem*>(&system) : nullptr),
-      options_(options),
-      call_(std::make_unique<detail::FlowCall>(system)) {
+    : system_(system), options_(options), call_(std::make_unique<detail::FlowCall>(system)) {
+  hybrid_ = call_->hybrid;
   options_.linear_solver = resolved_linear_solver(system_, options_);
   if (const auto problem = options_.validate())
     throw std::invalid_argument("flow options: " + problem->message());
@@ -167,8 +164,9 @@ void Flow::start(const Eigen::VectorXd& z0, const ParameterValues& p, double t0,
   seeds_ = Eigen::MatrixXd::Zero(n, sensitivity_columns);
   for (std::size_t j = 0; j < initial_components.size(); ++j)
     seeds_(initial_components[j], static_cast<Eigen::Index>(j)) = 1.0;
-  stepper_->start(t0, z0.data(), seeds_);
+  // The region first: the integrator evaluates its field from the start.
   if (hybrid_) start_sides(z0);
+  stepper_->start(t0, z0.data(), seeds_);
   forced_stop_.reset();
   bands_.assign(zones_.size(), -2);  // unknown: set from the state below
   last_abs_.assign(zones_.size(), std::numeric_limits<double>::infinity());
@@ -187,7 +185,7 @@ void Flow::update_max_step(double t) {
   double hmax = options_.max_step > 0.0 ? options_.max_step : 0.0;
   if (!zones_.empty()) {
     const double* z = stepper_->state();
-    system_.rhs(t, z, call_->values.data(), dz_scratch_.data());
+    call_->rhs(t, z, dz_scratch_.data());
     ++statistics_.rhs_evaluations;
     for (std::size_t i = 0; i < zones_.size(); ++i) {
       const double velocity = dz_scratch_[zones_[i].component];
@@ -267,7 +265,7 @@ void Flow::start_sides(const Eigen::VectorXd& z0) {
   const double* p = call_->values.data();
   std::vector<double> g(m);
   system_.switching_functions(t_, z0.data(), p, g.data());
-  sides_.assign(m, 1);
+  call_->sides.assign(m, 1);
   Eigen::VectorXd f(n);
   Eigen::RowVectorXd h_z(n);
   system_.rhs(t_, z0.data(), p, f.data());
@@ -277,7 +275,7 @@ void Flow::start_sides(const Eigen::VectorXd& z0) {
       const double h_t = hybrid_->switching_gradient(t_, z0.data(), p, i, h_z.data());
       into = h_z.dot(f) + h_t;
     }
-    sides_[i] = into < 0.0 ? -1 : 1;
+    call_->sides[i] = into < 0.0 ? -1 : 1;
   }
 }
 
@@ -301,7 +299,7 @@ void Flow::cross_surfaces_here() {
   std::vector<double> g(m);
   system_.switching_functions(t_, z.data(), p, g.data());
   Eigen::VectorXd f_minus(n);
-  hybrid_->rhs_on_sides(t_, z.data(), p, sides_.data(), f_minus.data());
+  hybrid_->rhs_on_sides(t_, z.data(), p, call_->sides.data(), f_minus.data());
   Eigen::RowVectorXd h_z(n);
   const double window = 1e3 * std::numeric_limits<double>::epsilon() * std::max(std::abs(t_), 1.0);
   std::vector<int> surfaces;
@@ -309,20 +307,20 @@ void Flow::cross_surfaces_here() {
     const double h_t = hybrid_->switching_gradient(t_, z.data(), p, i, h_z.data());
     const double arrival = h_z.dot(f_minus) + h_t;
     const int sign = g[i] > 0.0 ? 1 : -1;
-    const bool beyond = g[i] != 0.0 && sign != sides_[i];
-    const bool at = std::abs(g[i]) <= window * std::abs(arrival) && arrival * sides_[i] < 0.0;
+    const bool beyond = g[i] != 0.0 && sign != call_->sides[i];
+    const bool at = std::abs(g[i]) <= window * std::abs(arrival) && arrival * call_->sides[i] < 0.0;
     if (!beyond && !at) continue;
     const int direction = hybrid_->crossing_direction(i);
-    const int towards = beyond ? sign : -sides_[i];
+    const int towards = beyond ? sign : -call_->sides[i];
     if (direction == 0 || direction == towards)
       surfaces.push_back(i);
     else
-      sides_[i] = towards;
+      call_->sides[i] = towards;
   }
   const bool derivatives = call_->columns > 0;
-  HybridEvent event = cross_surfaces(*hybrid_, t_, z, call_->values, sides_, surfaces,
+  HybridEvent event = cross_surfaces(*hybrid_, t_, z, call_->values, call_->sides, surfaces,
                                      call_->parameters, derivatives);
-  sides_ = std::move(event.sides);
+  call_->sides = std::move(event.sides);
   Eigen::MatrixXd S(n, 0);
   if (derivatives) {
     stepper_->sensitivities(S);

@@ -166,7 +166,7 @@ int AugmentedCvode::block_jacobian(sunrealtype t, N_Vector y, N_Vector, SUNMatri
   try {
     const int n = st.call.system.dimension();
     const int size = n * (1 + st.columns);
-    st.call.system.jacobian(t, N_VGetArrayPointer(y), st.call.values.data(), st.jacobian);
+    st.call.jacobian(t, N_VGetArrayPointer(y), st.jacobian);
     Eigen::Map<Eigen::MatrixXd> out(SM_DATA_D(jac), size, size);
     out.setZero();
     for (int b = 0; b <= st.columns; ++b) out.block(b * n, b * n, n, n) = st.jacobian;

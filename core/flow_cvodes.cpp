@@ -235,7 +235,7 @@ int CvodesCallbacks::rhs(sunrealtype t, N_Vector y, N_Vector ydot, void* user) {
   auto& call = static_cast<CvodesStepper*>(user)->call;
   try {
     double* dz = N_VGetArrayPointer(ydot);
-    call.system.rhs(t, N_VGetArrayPointer(y), call.values.data(), dz);
+    call.rhs(t, N_VGetArrayPointer(y), dz);
     return check_finite_rhs(call, t, N_VGetArrayPointer(y), dz);
   } catch (...) {
     call.callback_error = std::current_exception();
@@ -249,7 +249,7 @@ int CvodesCallbacks::dense_jacobian(sunrealtype t, N_Vector y, N_Vector /*fy*/, 
   try {
     const int n = st.call.system.dimension();
     Eigen::Map<Eigen::MatrixXd> out(SM_DATA_D(jac), n, n);
-    st.call.system.jacobian(t, N_VGetArrayPointer(y), st.call.values.data(), st.jacobian);
+    st.call.jacobian(t, N_VGetArrayPointer(y), st.jacobian);
     out = st.jacobian;
     return 0;
   } catch (...) {
@@ -262,7 +262,7 @@ int CvodesCallbacks::sparse_jacobian(sunrealtype t, N_Vector y, N_Vector /*fy*/,
                                      void* user, N_Vector, N_Vector, N_Vector) {
   auto& st = *static_cast<CvodesStepper*>(user);
   try {
-    st.call.system.jacobian(t, N_VGetArrayPointer(y), st.call.values.data(), st.jacobian);
+    st.call.jacobian(t, N_VGetArrayPointer(y), st.jacobian);
     std::copy(st.column_starts.begin(), st.column_starts.end(), SM_INDEXPTRS_S(jac));
     std::copy(st.row_indices.begin(), st.row_indices.end(), SM_INDEXVALS_S(jac));
     double* values = SM_DATA_S(jac);
@@ -285,8 +285,8 @@ int CvodesCallbacks::sensitivity_rhs(int columns, sunrealtype t, N_Vector y, N_V
       st.columns_in[j] = N_VGetArrayPointer(yS[j]);
       st.columns_out[j] = N_VGetArrayPointer(ySdot[j]);
     }
-    st.call.system.variational_rhs(t, N_VGetArrayPointer(y), st.call.values.data(), columns,
-                                   st.columns_in.data(), st.columns_out.data(), st.call.parameters);
+    st.call.variational_rhs(t, N_VGetArrayPointer(y), columns, st.columns_in.data(),
+                            st.columns_out.data());
     return 0;
   } catch (...) {
     st.call.callback_error = std::current_exception();

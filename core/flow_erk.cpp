@@ -225,8 +225,8 @@ void ErkStepper::interpolate_state(double t, Eigen::VectorXd& z) {
   if (!(rates_at == t_now)) {
     rate_before.resize(n);
     rate_after.resize(n);
-    call.system.rhs(t_before, z_before.data(), call.values.data(), rate_before.data());
-    call.system.rhs(t_now, z_after.data(), call.values.data(), rate_after.data());
+    call.rhs(t_before, z_before.data(), rate_before.data());
+    call.rhs(t_now, z_after.data(), rate_after.data());
     rates_at = t_now;
   }
   // The cubic Hermite basis at s = (t - t_before) / h.

@@ -37,7 +37,6 @@ int augmented_rhs(FlowCall& call, double t, const double* y, double* ydot,
                   std::vector<const double*>& columns_in, std::vector<double*>& columns_out) {
   try {
     const int n = call.system.dimension();
-    const double* p = call.values.data();
     columns_in.resize(call.columns);
     columns_out.resize(call.columns);
     for (int j = 0; j < call.columns; ++j) {
@@ -45,8 +44,7 @@ int augmented_rhs(FlowCall& call, double t, const double* y, double* ydot,
       columns_out[j] = ydot + n * (j + 1);
     }
     // f and the columns from one evaluation where the system can (OdeSystem::rhs_and_variational).
-    call.system.rhs_and_variational(t, y, p, ydot, call.columns, columns_in.data(),
-                                    columns_out.data(), call.parameters);
+    call.rhs_and_variational(t, y, ydot, columns_in.data(), columns_out.data());
     return check_finite_rhs(call, t, y, ydot);
   } catch (...) {
     call.callback_error = std::current_exception();

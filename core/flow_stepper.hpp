@@ -26,6 +26,7 @@
 #include <Eigen/Dense>
 
 #include "sympathy/core/flow.hpp"
+#include "sympathy/core/hybrid_system.hpp"
 #include "sympathy/core/ode_system.hpp"
 
 namespace sympathy::detail {
@@ -34,9 +35,17 @@ namespace sympathy::detail {
 // integrated, with its sensitivity columns. The Flow owns it and sets it at each call's start;
 // its stepper reads it.
 struct FlowCall {
-  explicit FlowCall(const OdeSystem& s) : system(s) {}
+  explicit FlowCall(const OdeSystem& s)
+      : system(s),
+        // A HybridSystem without surfaces (a model whose smooth forms have none) is a smooth one.
+        hybrid(s.switching_count() > 0 ? dynamic_cast<const HybridSystem*>(&s) : nullptr) {}
   const OdeSystem& system;
+  const HybridSystem* hybrid;  // the system, if it is a piecewise-smooth one with surfaces
   ParameterValues values;
+  // A hybrid system's region the flow is in (a sign per switching function, set by the Flow at
+  // the start and at each crossing): the integrator sees that region's field, extended beyond its
+  // surfaces, so that no step straddles a discontinuity (hybrid_system.hpp).
+  std::vector<int> sides;
   // Sensitivity columns: the first state_columns seeded with unit vectors, then one per entry of
   // `parameters` (seeded with zero).
   int columns = 0;
@@ -51,6 +60,37 @@ struct FlowCall {
   // the state and parameters); cleared at each step. The integrator retries smaller steps; when
   // it gives up, the failure says this rather than only a return code.
   std::string nonfinite;
+
+  // The field and its derivatives as the integrator sees them: the region's (sides) for a hybrid
+  // system, else the system's; at the call's parameter values, for its sensitivity columns.
+  void rhs(double t, const double* z, double* dz) const {
+    if (hybrid)
+      hybrid->rhs_on_sides(t, z, values.data(), sides.data(), dz);
+    else
+      system.rhs(t, z, values.data(), dz);
+  }
+  void jacobian(double t, const double* z, Eigen::MatrixXd& jac) const {
+    if (hybrid)
+      hybrid->jacobian_on_sides(t, z, values.data(), sides.data(), jac);
+    else
+      system.jacobian(t, z, values.data(), jac);
+  }
+  void variational_rhs(double t, const double* z, int count, const double* const* S,
+                       double* const* out) const {
+    if (hybrid)
+      hybrid->variational_rhs_on_sides(t, z, values.data(), sides.data(), count, S, out,
+                                       parameters);
+    else
+      system.variational_rhs(t, z, values.data(), count, S, out, parameters);
+  }
+  void rhs_and_variational(double t, const double* z, double* dz, const double* const* S,
+                           double* const* out) const {
+    if (hybrid)
+      hybrid->rhs_and_variational_on_sides(t, z, values.data(), sides.data(), dz, columns, S, out,
+                                           parameters);
+    else
+      system.rhs_and_variational(t, z, values.data(), dz, columns, S, out, parameters);
+  }
 };
 
 enum class StepOutcome { Step, StopTime, Root };

@@ -6,8 +6,8 @@
 #include <string>
 #include <vector>
 
+#include "sympathy/core/autodiff_hybrid_system.hpp"
 #include "sympathy/core/autodiff_system.hpp"
-#include "sympathy/core/hybrid_system.hpp"
 
 namespace sympathy::testing {
 
@@ -527,7 +527,7 @@ class BogdanovTakens final : public AutoDiffSystem<BogdanovTakens> {
 // matrices that act on their own copy's velocity only, and commute; the multipliers are 1, 1 (the
 // copies' relative phase is free), rho^2, rho^2. With c != 0 a turning point of one copy jumps the
 // others' acceleration too: simultaneous crossings then do not commute (a corner).
-class Relay final : public AutoDiffSystem<Relay, HybridSystem> {
+class Relay final : public AutoDiffHybridSystem<Relay> {
  public:
   explicit Relay(double zeta = 0.1, double a = 0.5, int copies = 1, double c = 0.0)
       : copies_(copies) {
@@ -544,14 +544,20 @@ class Relay final : public AutoDiffSystem<Relay, HybridSystem> {
   }
   // The region is read off the velocities (v = 0 counts as v > 0).
   template <class T, class P>
-  void evaluate(double, const T* z, const P* p, T* dz) const {
+  void evaluate(double t, const T* z, const P* p, T* dz) const {
     std::vector<int> sides(copies_);
     for (int i = 0; i < copies_; ++i) sides[i] = value_of(z[2 * i + 1]) >= 0.0 ? 1 : -1;
-    field(z, p, sides.data(), dz);
+    evaluate_on_sides(t, z, p, dz, sides.data());
   }
-  void rhs_on_sides(double, const double* z, const double* p, const int* sides,
-                    double* dz) const override {
-    field(z, p, sides, dz);
+  template <class T, class P>
+  void evaluate_on_sides(double, const T* z, const P* p, T* dz, const int* sides) const {
+    int sum = 0;
+    for (int i = 0; i < copies_; ++i) sum += sides[i];
+    for (int i = 0; i < copies_; ++i) {
+      dz[2 * i] = z[2 * i + 1];
+      dz[2 * i + 1] = -z[2 * i] - 2.0 * p[0] * z[2 * i + 1] + p[1] * sides[i] +
+                      p[2] * p[1] * static_cast<double>(sum - sides[i]);
+    }
   }
   int switching_count() const override { return copies_; }
   void switching_functions(double, const double* z, const double*, double* g) const override {
@@ -580,16 +586,6 @@ class Relay final : public AutoDiffSystem<Relay, HybridSystem> {
   }
 
  private:
-  template <class T, class P>
-  void field(const T* z, const P* p, const int* sides, T* dz) const {
-    int sum = 0;
-    for (int i = 0; i < copies_; ++i) sum += sides[i];
-    for (int i = 0; i < copies_; ++i) {
-      dz[2 * i] = z[2 * i + 1];
-      dz[2 * i + 1] = -z[2 * i] - 2.0 * p[0] * z[2 * i + 1] + p[1] * sides[i] +
-                      p[2] * p[1] * static_cast<double>(sum - sides[i]);
-    }
-  }
   int copies_;
 };
 
@@ -600,7 +596,7 @@ class Relay final : public AutoDiffSystem<Relay, HybridSystem> {
 // exp(-zeta pi / w); the period-one orbit has V = w_kick / (1 - e rho) and period T = pi / w
 // exactly; its multipliers are 1 and e rho (the impact map V -> w_kick + e rho V). Parameters
 // zeta, e, kick.
-class ImpactOscillator final : public AutoDiffSystem<ImpactOscillator, HybridSystem> {
+class ImpactOscillator final : public AutoDiffHybridSystem<ImpactOscillator> {
  public:
   ImpactOscillator(double zeta = 0.1, double e = 0.8, double kick = 1.0) {
     set_parameter_layout({{"zeta", {0}}, {"e", {1}}, {"kick", {2}}}, {zeta, e, kick});
@@ -613,9 +609,9 @@ class ImpactOscillator final : public AutoDiffSystem<ImpactOscillator, HybridSys
     dz[1] = -z[0] - 2.0 * p[0] * z[1];
   }
   // The same field on both sides (the wall only resets).
-  void rhs_on_sides(double t, const double* z, const double* p, const int*,
-                    double* dz) const override {
-    rhs(t, z, p, dz);
+  template <class T, class P>
+  void evaluate_on_sides(double t, const T* z, const P* p, T* dz, const int*) const {
+    evaluate(t, z, p, dz);
   }
   int switching_count() const override { return 1; }
   void switching_functions(double, const double* z, const double*, double* g) const override {

@@ -21,9 +21,8 @@
 #include <string>
 #include <vector>
 
-#include "sympathy/core/autodiff_system.hpp"
+#include "sympathy/core/autodiff_hybrid_system.hpp"
 #include "sympathy/core/dual.hpp"
-#include "sympathy/core/hybrid_system.hpp"
 
 namespace sympathy {
 
@@ -84,7 +83,7 @@ struct ModelSpec {
 // a torque jumps only angular accelerations (through the mass matrix, every one of them), and
 // every surface is a level of an angle or an angular velocity, so no crossing changes the rate at
 // which another surface is reached nor the jump it makes (core/saltation.hpp checks it at each).
-class MetronomeModel final : public AutoDiffSystem<MetronomeModel, HybridSystem> {
+class MetronomeModel final : public AutoDiffHybridSystem<MetronomeModel> {
  public:
   explicit MetronomeModel(ModelSpec spec);
 
@@ -101,11 +100,9 @@ class MetronomeModel final : public AutoDiffSystem<MetronomeModel, HybridSystem>
   std::vector<SteepZone> steep_zones(const double* p) const override;
   int switching_count() const override;
   void switching_functions(double t, const double* z, const double* p, double* g) const override;
-  // HybridSystem: the field of a region named by its sides (the impulsive torque from the sides,
-  // not from the state), the surfaces' gradients (unit vectors; ths and the move the angle
-  // surfaces), no resets.
-  void rhs_on_sides(double t, const double* z, const double* p, const int* sides,
-                    double* dz) const override;
+  // HybridSystem: the field of a region named by its sides (evaluate_on_sides: the impulsive
+  // torque from the sides, not from the state), the surfaces' gradients (unit vectors; ths and
+  // the move the angle surfaces), no resets.
   double switching_gradient(double t, const double* z, const double* p, int surface,
                             double* h_z) const override;
   double switching_parameter_derivative(double t, const double* z, const double* p, int surface,

@@ -58,30 +58,14 @@ class AutoDiffSystem : public Base {
   using Base::rhs;
 
   void jacobian(double t, const double* z, const double* p, Eigen::MatrixXd& jac) const override {
-    const int n = this->dimension();
-    jac.resize(n, n);
-    for (int c0 = 0; c0 < n;) {
-      const int width = std::min(n - c0, 8);
-      // Seed the unit directions c0 .. c0+width-1.
-      auto seed = [&](auto tag) {
-        using D = decltype(tag);
-        std::vector<D> zd(n), dzd(n);
-        for (int i = 0; i < n; ++i) zd[i] = D(z[i]);
-        for (int k = 0; k < width; ++k) zd[c0 + k].d[k] = 1.0;
-        derived().evaluate(t, zd.data(), p, dzd.data());
-        for (int i = 0; i < n; ++i)
-          for (int k = 0; k < width; ++k) jac(i, c0 + k) = dzd[i].d[k];
-      };
-      dispatch_width(width, seed);
-      c0 += width;
-    }
+    jacobian_of(field(), t, z, p, jac);
   }
   using Base::jacobian;
 
   void variational_rhs(double t, const double* z, const double* p, int columns,
                        const double* const* S, double* const* out,
                        std::span<const int> parameters) const override {
-    variational(t, z, p, columns, S, out, parameters, nullptr);
+    variational_of(field(), t, z, p, columns, S, out, parameters, nullptr);
   }
 
   // f read off the values of the dual numbers of the first state columns (the same operations on
@@ -94,7 +78,7 @@ class AutoDiffSystem : public Base {
       Base::rhs_and_variational(t, z, p, dz, columns, S, out, parameters);
       return;
     }
-    variational(t, z, p, columns, S, out, parameters, dz);
+    variational_of(field(), t, z, p, columns, S, out, parameters, dz);
   }
 
   // The right-hand side on jets (core/jet.hpp) seeded with z + s v.
@@ -139,13 +123,36 @@ class AutoDiffSystem : public Base {
   // writes by hand, such as a switching surface's in a parameter).
   const std::vector<NamedParameter>& named_parameters() const { return named_; }
 
- private:
-  const Derived& derived() const { return static_cast<const Derived&>(*this); }
+  // The derivatives of a field written once on any number type, eval(t, z, p, dz): the derived
+  // class's evaluate (field()), or a hybrid system's field of one region (AutoDiffHybridSystem).
+  template <class Eval>
+  void jacobian_of(const Eval& eval, double t, const double* z, const double* p,
+                   Eigen::MatrixXd& jac) const {
+    const int n = this->dimension();
+    jac.resize(n, n);
+    for (int c0 = 0; c0 < n;) {
+      const int width = std::min(n - c0, 8);
+      // Seed the unit directions c0 .. c0+width-1.
+      auto seed = [&](auto tag) {
+        using D = decltype(tag);
+        std::vector<D> zd(n), dzd(n);
+        for (int i = 0; i < n; ++i) zd[i] = D(z[i]);
+        for (int k = 0; k < width; ++k) zd[c0 + k].d[k] = 1.0;
+        eval(t, zd.data(), p, dzd.data());
+        for (int i = 0; i < n; ++i)
+          for (int k = 0; k < width; ++k) jac(i, c0 + k) = dzd[i].d[k];
+      };
+      dispatch_width(width, seed);
+      c0 += width;
+    }
+  }
 
   // J * S for the state columns in chunks of up to 8 directions, then J * s + df/dp for each
   // parameter column; with `f`, f too, from the first chunk's values.
-  void variational(double t, const double* z, const double* p, int columns, const double* const* S,
-                   double* const* out, std::span<const int> parameters, double* f) const {
+  template <class Eval>
+  void variational_of(const Eval& eval, double t, const double* z, const double* p, int columns,
+                      const double* const* S, double* const* out, std::span<const int> parameters,
+                      double* f) const {
     const int n = this->dimension();
     const int state_columns = columns - static_cast<int>(parameters.size());
     for (int c0 = 0; c0 < state_columns;) {
@@ -161,7 +168,7 @@ class AutoDiffSystem : public Base {
           zd[i] = D(z[i]);
           for (int k = 0; k < width; ++k) zd[i].d[k] = S[c0 + k][i];
         }
-        derived().evaluate(t, zd.data(), p, dzd.data());
+        eval(t, zd.data(), p, dzd.data());
         if (f && c0 == 0)
           for (int i = 0; i < n; ++i) f[i] = dzd[i].v;
         for (int k = 0; k < width; ++k)
@@ -183,9 +190,18 @@ class AutoDiffSystem : public Base {
         zd[i].d[0] = S[column][i];
       }
       seed_parameters(p, parameters[k], pd);
-      derived().evaluate(t, zd.data(), pd.data(), dzd.data());
+      eval(t, zd.data(), pd.data(), dzd.data());
       for (int i = 0; i < n; ++i) out[column][i] = dzd[i].d[0];
     }
+  }
+
+ private:
+  const Derived& derived() const { return static_cast<const Derived&>(*this); }
+  // The derived class's evaluate as a callable on any number type.
+  auto field() const {
+    return [this](double t, const auto* z, const auto* p, auto* dz) {
+      derived().evaluate(t, z, p, dz);
+    };
   }
 
   // The raw parameter values as dual numbers, the direction of named parameter `parameter` seeded.

@@ -238,7 +238,6 @@ class Flow {
   // The system as a piecewise-smooth one, where it is (HybridSystem): its crossings then map the
   // sensitivity columns by their saltation matrices and apply its resets.
   const HybridSystem* hybrid_ = nullptr;
-  std::vector<int> sides_;  // hybrid: the region the flow is in, a sign per switching function
   FlowOptions options_;
   FlowStatistics statistics_;
   std::unique_ptr<detail::FlowCall> call_;        // the call now being integrated
