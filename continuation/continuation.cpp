@@ -18,6 +18,7 @@
 #include "sympathy/continuation/predictor.hpp"
 #include "sympathy/continuation/step_control.hpp"
 #include "sympathy/core/csv.hpp"
+#include "sympathy/core/hybrid_system.hpp"
 #include "sympathy/core/linear_solve.hpp"
 #include "sympathy/core/text.hpp"
 
@@ -96,6 +97,10 @@ class Continuation::Run {
   int resolved_points_ = 0;  // in a row, resolved on half the segments (kHalvedGrowth)
   // The first value to stop at that detect located in the step: its arclength from a and note.
   std::optional<std::pair<double, std::string>> stop_at_;
+  // A hybrid system's: the last accepted point's crossings per period (grazing.hpp), and those
+  // of the step's end that ends() computed, which accept() keeps.
+  const bool carries_crossings_;  // a hybrid system with switching surfaces
+  std::vector<int> crossings_, crossings_b_;
 };
 
 OptionCheck ContinuationOptions::validate() const {
@@ -495,7 +500,11 @@ Branch Continuation::run_from(const PeriodicOrbit& start, int direction,
 // One way along a branch of periodic orbits, as the driver's problem (driver.hpp): the pieces of
 // the header's comment. The chord Jacobians of the last two accepted points stay with the
 // Continuation (chord_jacobian_, jacobian_before_), replaced only when a point is accepted.
-Continuation::Run::Run(Continuation& c) : c_(c), N_(c.problem_->unknowns()) {}
+Continuation::Run::Run(Continuation& c)
+    : c_(c),
+      N_(c.problem_->unknowns()),
+      carries_crossings_(c.system_.switching_count() > 0 &&
+                         dynamic_cast<const HybridSystem*>(&c.system_) != nullptr) {}
 
 double Continuation::Run::limit_step(const OrbitNode& a, double ds) const {
   return parameter_limited_step(ds, std::abs(a.tangent[N_]), c_.options_);
@@ -679,6 +688,27 @@ std::optional<driver::Ending> Continuation::Run::ends(const OrbitNode& a, const 
     std::erase_if(events, [&](const Bifurcation& e) { return e.arclength > s; });
     return driver::Ending{driver::Stop::UserValue, "reached the value asked for: " + note, false};
   }
+  // A hybrid orbit's crossings changed in the step: a grazing, located, ends the branch (its
+  // flow has no derivative there); the step's events beyond it dropped, b not kept.
+  if (carries_crossings_) {
+    if (crossings_.empty()) crossings_ = c_.crossings_of(a);
+    crossings_b_ = c_.crossings_of(b);
+    if (crossings_b_ != crossings_) {
+      const CrossingChange g = c_.crossing_change(a, b, crossings_, crossings_b_,
+                                                  b.jacobian.rows() ? &b.jacobian : nullptr);
+      std::erase_if(events, [&](const Bifurcation& e) { return e.arclength > g.arclength; });
+      char where[160];
+      std::snprintf(where, sizeof where, "%s = %.10g (probes %.2g apart)", name().c_str(),
+                    g.parameter, 2 * g.uncertainty);
+      return driver::Ending{
+          driver::Stop::Nonsmooth,
+          std::string("grazing near ") + where + ": " + g.note +
+              "; the orbits' flow has no derivative there, so the branch ends (the count misses "
+              "an excursion past a surface within one of its steps, a period / " +
+              std::to_string(kCountingSteps) + ": the grazing may lie a little before)",
+          false};
+    }
+  }
   if (path_.empty()) path_.push_back(y_of(a));
   if (periods_.empty()) periods_.push_back(record_of(a));
   // A family approaching a homoclinic orbit: ended there, b kept (it is as good as any before).
@@ -777,6 +807,7 @@ Eigen::VectorXd Continuation::Run::y_of(const OrbitNode& p) const {
 }
 
 void Continuation::Run::accept(OrbitNode& b) {
+  if (carries_crossings_) crossings_ = std::move(crossings_b_);
   path_.push_back(y_of(b));
   periods_.push_back(record_of(b));
   c_.jacobian_before_ = std::move(c_.chord_jacobian_);

@@ -26,6 +26,8 @@ std::string to_string(StopReason s) {
       return "closed";
     case StopReason::UserValue:
       return "user value";
+    case StopReason::Nonsmooth:
+      return "grazing";
   }
   return "?";
 }

@@ -165,7 +165,10 @@ void Flow::start(const Eigen::VectorXd& z0, const ParameterValues& p, double t0,
   for (std::size_t j = 0; j < initial_components.size(); ++j)
     seeds_(initial_components[j], static_cast<Eigen::Index>(j)) = 1.0;
   // The region first: the integrator evaluates its field from the start.
-  if (hybrid_) start_sides(z0);
+  if (hybrid_) {
+    start_sides(z0);
+    crossings_.assign(system_.switching_count(), 0);
+  }
   stepper_->start(t0, z0.data(), seeds_);
   forced_stop_.reset();
   bands_.assign(zones_.size(), -2);  // unknown: set from the state below
@@ -321,6 +324,7 @@ void Flow::cross_surfaces_here() {
   HybridEvent event = cross_surfaces(*hybrid_, t_, z, call_->values, call_->sides, surfaces,
                                      call_->parameters, derivatives);
   call_->sides = std::move(event.sides);
+  for (int i : surfaces) ++crossings_[i];
   Eigen::MatrixXd S(n, 0);
   if (derivatives) {
     stepper_->sensitivities(S);

@@ -26,6 +26,24 @@ double arrival_rate(const Eigen::VectorXd& f_minus, const Eigen::RowVectorXd& h_
   return rate;
 }
 
+// Past a surface crossed without a reset, the new region's field must carry the flow on (h_z f+ +
+// h_t of the arrival's sign): where it points back, both fields push towards the surface and the
+// solution slides along it (Filippov), which no region's field describes; refused with that name.
+void check_not_sliding(const Eigen::VectorXd& f_plus, const Eigen::RowVectorXd& h_z, double h_t,
+                       double arrival, double t, int surface) {
+  const double rate = h_z.dot(f_plus) + h_t;
+  const double scale = h_z.norm() * f_plus.norm() + std::abs(h_t);
+  if (rate * arrival < 0.0 && std::abs(rate) > kGrazingTolerance * scale) {
+    std::ostringstream msg;
+    msg.precision(12);
+    msg << "sliding: at t = " << t << " the fields on both sides of switching surface " << surface
+        << " push towards it (h_z f + h_t = " << arrival << " before, " << rate
+        << " after the crossing): the solution slides along the surface, which the flow does not "
+           "follow";
+    throw NonsmoothFlowError(msg.str(), t);
+  }
+}
+
 int sign_of(double x) {
   return x > 0.0 ? 1 : -1;
 }
@@ -66,8 +84,9 @@ HybridEvent cross_in_order(const HybridSystem& system, double t, const Eigen::Ve
       event.sides[surface] = -event.sides[surface];
     }
     event.state = z_plus;
-    if (!derivatives) continue;
     system.rhs_on_sides(t, z_plus.data(), p.data(), event.sides.data(), f_plus.data());
+    if (!reset) check_not_sliding(f_plus, h_z, h_t, rate, t, surface);
+    if (!derivatives) continue;
     if (reset)
       system.reset_jacobian(t, z_minus.data(), p.data(), surface, r_z);
     else

@@ -58,18 +58,18 @@ LoadedCase load_case(const std::string& path, const std::string& params,
 void require_differentiable(const OdeSystem& system, const std::string& case_path,
                             const std::string& what) {
   // A piecewise-smooth model's orbit is exact (its monodromy crosses the switching surfaces with
-  // saltation matrices); what is built on orbits (branches, studies, maps, basins) also needs the
-  // hybrid orbit's own events (grazing, sliding), not detected yet, and equilibria lie on its
-  // surfaces.
-  const bool hybrid_orbit = what == "orbit" && dynamic_cast<const HybridSystem*>(&system);
-  if (system.differentiable() && (system.switching_count() == 0 || hybrid_orbit)) return;
+  // saltation matrices), and so is a branch of them, which ends where an orbit grazes a surface
+  // (grazing.hpp; sliding is refused by the flow). Curves, maps and basins of them are not built
+  // yet, and equilibria lie on its surfaces.
+  const bool hybrid_orbits = (what == "orbit" || what == "continue" || what == "a branch") &&
+                             dynamic_cast<const HybridSystem*>(&system);
+  if (system.differentiable() && (system.switching_count() == 0 || hybrid_orbits)) return;
   throw InputError(case_path +
                    ": key 'escapement': the impulsive escapement (eq. 2) switches "
                    "discontinuously, and " +
                    what +
-                   " needs more than its orbits' saltation matrices (the events of hybrid orbits: "
-                   "grazing, sliding); expected escapement = \"half\" or \"double\" (simulate and "
-                   "orbit run the impulsive one)");
+                   " of its orbits is not built yet (orbit, continue and a study's branches are); "
+                   "expected escapement = \"half\" or \"double\"");
 }
 
 Accuracy parse_accuracy(const std::string& text, const std::string& where) {

@@ -19,7 +19,8 @@ constexpr int kStoppedShort = 7;       // a branch or curve ended before its bou
                                        // what it computed is written
 
 // What a continuation's stop means for the exit code: the window's edge, the point limit asked
-// for, a Hopf end, a homoclinic end, a closed curve or a family that turned back are ends (0); the
+// for, a Hopf end, a homoclinic end, a closed curve, a grazing of hybrid orbits or a family that
+// turned back are ends (0); the
 // minimum step is a numerical failure short of the bound (kStoppedShort).
 constexpr int exit_code(StopReason stop) {
   switch (stop) {
@@ -36,6 +37,7 @@ constexpr int exit_code(StopReason stop) {
     case StopReason::Homoclinic:
     case StopReason::Closed:
     case StopReason::UserValue:
+    case StopReason::Nonsmooth:
       return kDone;
   }
   return kFailure;

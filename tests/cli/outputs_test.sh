@@ -61,15 +61,17 @@ check "... naming the directory" grep -q "does not exist" "$work/err"
 check "--from -0.5 for M exits 2" test $? -eq 2
 check "... saying M must be positive" grep -q "M = -0.5 is outside the model's domain: M must be a positive number" "$work/err"
 
-# The impulsive escapement (eq. 2) is piecewise smooth: orbit runs it (its monodromy crosses the
-# switching surfaces with saltation matrices); continue and equilibria, which need the hybrid
-# orbit's own events or lie on its surfaces, refuse it at once (exit 2), naming the case file and
-# its escapement.
+# The impulsive escapement (eq. 2) is piecewise smooth: orbit and continue run it (the monodromy
+# crosses the switching surfaces with saltation matrices; a branch ends where an orbit grazes a
+# surface); equilibria, which lie on its surfaces, refuse it at once (exit 2), naming the case
+# file and its escapement.
 sed 's/^escapement = "half".*/escapement = "impulsive"/' "$row2" > "$work/impulsive.toml"
 "$bin" orbit "$work/impulsive.toml" --start in-phase > "$work/out" 2> "$work/err"
 check "orbit on the impulsive escapement runs" test $? -eq 0
-for command in "continue --start in-phase --param c --from 0.0185 --to 0" \
-  "equilibria --start in-phase --param s --from 1e-8 --to 0"; do
+"$bin" continue "$work/impulsive.toml" --start in-phase --param d --from 2.4e-6 --to 1e-4 --quiet > "$work/out" 2> "$work/err"
+check "continue on the impulsive escapement ends at a grazing (exit 0)" test $? -eq 0
+check "... naming it" grep -q "stopped: grazing near d = 1.5679" "$work/out"
+for command in "equilibria --start in-phase --param s --from 1e-8 --to 0"; do
   set -- $command
   "$bin" "$1" "$work/impulsive.toml" "${@:2}" > /dev/null 2> "$work/err"
   check "$1 on the impulsive escapement exits 2" test $? -eq 2

@@ -233,6 +233,49 @@ TEST(HybridFlow, GrazingCrossingIsReported) {
   EXPECT_EQ(event.order_difference, 0.0);
 }
 
+// x' = -sign(x) (x' = -1 on x > 0, +1 on x < 0): both fields push towards x = 0, which the flow
+// from x = 1 reaches at t = 1 exactly and would then slide along (Filippov). Refused there, by
+// name, with the time; a run that ends before it goes through, and counts no crossing.
+class HybridSlidingSign final : public AutoDiffHybridSystem<HybridSlidingSign> {
+ public:
+  HybridSlidingSign() { set_parameter_layout({{"a", {0}}}, {1.0}); }
+  int dimension() const override { return 1; }
+  std::vector<std::string> state_names() const override { return {"x"}; }
+  template <class T, class P>
+  void evaluate(double t, const T* z, const P* p, T* dz) const {
+    const int side = value_of(z[0]) >= 0.0 ? 1 : -1;
+    evaluate_on_sides(t, z, p, dz, &side);
+  }
+  template <class T, class P>
+  void evaluate_on_sides(double, const T*, const P* p, T* dz, const int* sides) const {
+    dz[0] = -p[0] * static_cast<double>(sides[0]);
+  }
+  int switching_count() const override { return 1; }
+  void switching_functions(double, const double* z, const double*, double* g) const override {
+    g[0] = z[0];
+  }
+  double switching_gradient(double, const double*, const double*, int, double* h_z) const override {
+    h_z[0] = 1.0;
+    return 0.0;
+  }
+};
+
+TEST(HybridFlow, SlidingIsRefusedWhereItBegins) {
+  const HybridSlidingSign system;
+  const auto p = system.default_parameters();
+  Flow flow(system);
+  const Eigen::VectorXd start = Eigen::VectorXd::Constant(1, 1.0);
+  EXPECT_NEAR(flow.advance(start, p, 0.0, 0.5)[0], 0.5, 1e-12);
+  EXPECT_EQ(flow.crossings(), std::vector<int>{0});
+  try {
+    flow.advance(start, p, 0.0, 2.0);
+    FAIL() << "sliding not refused";
+  } catch (const NonsmoothFlowError& e) {
+    EXPECT_NE(std::string(e.what()).find("sliding"), std::string::npos) << e.what();
+    EXPECT_NEAR(e.time(), 1.0, 1e-9);
+  }
+}
+
 // A system with switching surfaces that does not declare their gradients (not a HybridSystem):
 // sensitivities across them are refused, not silently wrong.
 class HybridUndeclaredSwitch final : public AutoDiffSystem<HybridUndeclaredSwitch> {

@@ -29,6 +29,7 @@
 #include "sympathy/continuation/branch_space.hpp"
 #include "sympathy/continuation/corrector.hpp"
 #include "sympathy/continuation/detection.hpp"
+#include "sympathy/continuation/grazing.hpp"
 
 namespace sympathy {
 
@@ -122,6 +123,14 @@ class Continuation {
       const Eigen::SparseMatrix<double>* jacobian_b) const;
   // A user value's quantity at a point (its samples, or one plain period).
   double quantity(const UserValue& v, const ContinuationPoint& p) const;
+
+  // A hybrid system's orbit's crossings of its switching surfaces in one period (empty for a
+  // smooth system), and where they change between a (at_a) and b (at_b): bisection along the
+  // step, each probe corrected as location's are (grazing.cpp).
+  std::vector<int> crossings_of(const ContinuationPoint& p) const;
+  CrossingChange crossing_change(const ContinuationPoint& a, const ContinuationPoint& b,
+                                 const std::vector<int>& at_a, const std::vector<int>& at_b,
+                                 const Eigen::SparseMatrix<double>* jacobian_b) const;
 
   // The new branch's unit tangent (scaled) at a branch point y0 with Jacobian [F_x F_p],
   // left null vector psi and kernel (two orthonormal columns, scaled), all in `section`: the root

@@ -73,6 +73,8 @@ enum class StopReason {
                    // (homoclinic_approach.hpp)
   Closed,          // a curve came back to its start
   UserValue,       // an orbit branch reached a value it was asked to stop at (UserValue::stop)
+  Nonsmooth,       // a branch of hybrid orbits reached a grazing: its orbits' crossings of the
+                   // switching surfaces change there (grazing.hpp)
 };
 std::string to_string(StopReason s);  // "parameter bound", "point limit", ...
 

@@ -208,6 +208,11 @@ class Flow {
   const FlowOptions& options() const { return options_; }
   const OdeSystem& system() const { return system_; }
   const FlowStatistics& statistics() const { return statistics_; }
+  // A hybrid system's crossings since the last call began: how often each switching surface was
+  // crossed (events only; empty for a smooth system). A periodic orbit's, over one period, say
+  // which surfaces it crosses how often: where that changes along a branch, an orbit grazed a
+  // surface between two points.
+  const std::vector<int>& crossings() const { return crossings_; }
   void reset_statistics() { statistics_ = FlowStatistics{}; }
 
  private:
@@ -238,6 +243,7 @@ class Flow {
   // The system as a piecewise-smooth one, where it is (HybridSystem): its crossings then map the
   // sensitivity columns by their saltation matrices and apply its resets.
   const HybridSystem* hybrid_ = nullptr;
+  std::vector<int> crossings_;  // per switching surface, since the call began
   FlowOptions options_;
   FlowStatistics statistics_;
   std::unique_ptr<detail::FlowCall> call_;        // the call now being integrated
