@@ -700,13 +700,10 @@ std::optional<driver::Ending> Continuation::Run::ends(const OrbitNode& a, const 
       char where[160];
       std::snprintf(where, sizeof where, "%s = %.10g (probes %.2g apart)", name().c_str(),
                     g.parameter, 2 * g.uncertainty);
-      return driver::Ending{
-          driver::Stop::Nonsmooth,
-          std::string("grazing near ") + where + ": " + g.note +
-              "; the orbits' flow has no derivative there, so the branch ends (the count misses "
-              "an excursion past a surface within one of its steps, a period / " +
-              std::to_string(kCountingSteps) + ": the grazing may lie a little before)",
-          false};
+      return driver::Ending{driver::Stop::Nonsmooth,
+                            std::string("grazing near ") + where + ": " + g.note +
+                                "; the orbits' flow has no derivative there, so the branch ends",
+                            false};
     }
   }
   if (path_.empty()) path_.push_back(y_of(a));

@@ -13,12 +13,9 @@ namespace sympathy {
 std::vector<int> crossings_per_period(const OdeSystem& system, const FlowOptions& flow,
                                       const PeriodicOrbit& orbit) {
   if (system.switching_count() == 0 || !dynamic_cast<const HybridSystem*>(&system)) return {};
-  // The root finding sees a sign change at a step's ends only: two crossings inside one step (an
-  // orbit just past a grazing) are missed. Steps of at most kCountingSteps-th of the period bound
-  // the excursion missed (on a circle of radius r, r (1 - cos(pi / kCountingSteps)), 5e-6 r).
-  FlowOptions counting = flow;
-  counting.max_step = orbit.period / kCountingSteps;
-  Flow f(system, counting);
+  // Two crossings inside one step (an orbit just past a grazing) count too: the flow looks for
+  // them (Flow::hidden_excursion).
+  Flow f(system, flow);
   f.advance(orbit.state0, orbit.parameters, 0.0, orbit.period);
   return f.crossings();
 }

@@ -168,6 +168,8 @@ void Flow::start(const Eigen::VectorXd& z0, const ParameterValues& p, double t0,
   if (hybrid_) {
     start_sides(z0);
     crossings_.assign(system_.switching_count(), 0);
+    redone_from_ = std::numeric_limits<double>::quiet_NaN();
+    step_end_.t = std::numeric_limits<double>::quiet_NaN();
   }
   stepper_->start(t0, z0.data(), seeds_);
   forced_stop_.reset();
@@ -340,6 +342,7 @@ void Flow::on_switching() {
   // the state after the crossings, with the sensitivities mapped across them).
   ++statistics_.switchings;
   collect_statistics();
+  step_end_.t = std::numeric_limits<double>::quiet_NaN();  // the state may jump, the region does
   if (hybrid_)
     cross_surfaces_here();
   else
@@ -377,6 +380,22 @@ void Flow::step_to(double t_end, const std::function<bool(double, double)>& afte
     stepper_->set_stop_time(forced ? *forced_stop_ : t_end);
     const double t_old = t_;
     const detail::StepOutcome outcome = stepper_->step(t_end, t_);
+    if (hybrid_ && outcome != detail::StepOutcome::Root && t_old != redone_from_) {
+      if (const auto turn = hidden_excursion(t_old)) {
+        // The step again, from its start, stopping at the excursion's turn: the root finding then
+        // sees the surface's function change sign in it, and locates the first crossing.
+        collect_statistics();
+        Eigen::VectorXd z;
+        Eigen::MatrixXd S;
+        stepper_->interpolate(t_old, z, S);
+        stepper_->restart_from(t_old, z.data(), S);
+        t_ = t_old;
+        redone_from_ = t_old;  // once: a turn that the retaken step still misses is a grazing
+        step_end_.t = std::numeric_limits<double>::quiet_NaN();
+        forced_stop_ = *turn;
+        continue;
+      }
+    }
     if (after_step && after_step(t_old, t_)) return;
     if (outcome == detail::StepOutcome::Root) {
       on_switching();
@@ -386,6 +405,82 @@ void Flow::step_to(double t_end, const std::function<bool(double, double)>& afte
       forced_stop_.reset();  // the shortened step is done
     if (!zones_.empty()) update_bands(t_);
   }
+}
+
+// A surface crossed twice inside one step (h leaves its side and comes back between the step's
+// ends, as on an orbit just past a grazing) shows no sign change at the ends, where the root
+// finding looks: seen here where h moves towards the surface at the step's start and away from it
+// at its end. The cubic through h and its rate at the ends (h_z f + h_t, f the region's) says
+// where it turns; where that turn comes within half of the ends' distance to the surface, the turn
+// is found on the integrator's interpolant (bisection on the rate) and h evaluated there. The
+// earliest turn beyond the surface, or nullopt.
+// The step's start is the last one's end (kept in step_end_), unless the integrator restarted.
+std::optional<double> Flow::hidden_excursion(double t_old) {
+  const int n = system_.dimension();
+  const int m = system_.switching_count();
+  const double* p = call_->values.data();
+  Eigen::RowVectorXd h_z(n);
+  Eigen::VectorXd f(n);
+  if (!(step_end_.t == t_old)) {
+    step_end_.z.resize(n);
+    stepper_->interpolate_state(t_old, step_end_.z);
+    step_end_.g.resize(m);
+    system_.switching_functions(t_old, step_end_.z.data(), p, step_end_.g.data());
+    step_end_.f.resize(n);
+    call_->rhs(t_old, step_end_.z.data(), step_end_.f.data());
+  }
+  const StepEnd start = std::move(step_end_);
+  StepEnd& end = step_end_;
+  end.t = t_;
+  end.z = Eigen::Map<const Eigen::VectorXd>(stepper_->state(), n);
+  end.g.resize(m);
+  system_.switching_functions(t_, end.z.data(), p, end.g.data());
+  end.f.resize(n);
+  call_->rhs(t_, end.z.data(), end.f.data());
+  const auto rate = [&](double t, const Eigen::VectorXd& z, const Eigen::VectorXd& f_z, int i) {
+    const double h_t = hybrid_->switching_gradient(t, z.data(), p, i, h_z.data());
+    return h_z.dot(f_z) + h_t;
+  };
+  const std::vector<double>& g_old = start.g;
+  const std::vector<double>& g_new = end.g;
+  std::vector<double> g(m);
+  const double h = t_ - t_old;
+  std::optional<double> first;
+  Eigen::VectorXd z(n);
+  for (int i = 0; i < m; ++i) {
+    const double side = g_old[i] > 0.0 ? 1.0 : -1.0;
+    if (g_old[i] == 0.0 || side * g_new[i] <= 0.0) continue;  // a sign change: the root finding's
+    const double r0 = side * rate(t_old, start.z, start.f, i);
+    const double r1 = side * rate(t_, end.z, end.f, i);
+    if (!(r0 < 0.0 && r1 > 0.0)) continue;
+    // The cubic in s = (t - t_old) / h through (side g, side g' h) at both ends; its turn is the
+    // root of its derivative a s^2 + b s + c in (0, 1), where r0 < 0 < r1 puts exactly one.
+    const double d0 = side * g_old[i], d1 = side * g_new[i];
+    const double a = 3 * (2 * d0 - 2 * d1 + h * r0 + h * r1);
+    const double b = 2 * (-3 * d0 + 3 * d1 - 2 * h * r0 - h * r1), c = h * r0;
+    double s = 0.0, lo = 0.0, hi = 1.0;
+    for (int k = 0; k < 60; ++k) {  // the derivative rises from c < 0 to h r1 > 0
+      s = 0.5 * (lo + hi);
+      ((a * s + b) * s + c < 0.0 ? lo : hi) = s;
+    }
+    const double s2 = s * s, s3 = s2 * s;
+    const double cubic = (2 * s3 - 3 * s2 + 1) * d0 + (s3 - 2 * s2 + s) * h * r0 +
+                         (3 * s2 - 2 * s3) * d1 + (s3 - s2) * h * r1;
+    if (cubic > 0.5 * std::min(d0, d1)) continue;
+    // On the interpolant: the turn where the rate changes sign, h there.
+    double t_lo = t_old, t_hi = t_;
+    for (int k = 0; k < 50 && t_hi - t_lo > 1e-15 * std::max(1.0, std::abs(t_)); ++k) {
+      const double t_mid = 0.5 * (t_lo + t_hi);
+      stepper_->interpolate_state(t_mid, z);
+      call_->rhs(t_mid, z.data(), f.data());
+      (side * rate(t_mid, z, f, i) < 0.0 ? t_lo : t_hi) = t_mid;
+    }
+    const double turn = 0.5 * (t_lo + t_hi);
+    stepper_->interpolate_state(turn, z);
+    system_.switching_functions(turn, z.data(), p, g.data());
+    if (side * g[i] < 0.0 && (!first || turn < *first)) first = turn;
+  }
+  return first;
 }
 
 void Flow::collect_statistics() {

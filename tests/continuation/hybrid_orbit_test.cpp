@@ -10,6 +10,7 @@
 
 #include "sympathy/continuation/continuation.hpp"
 #include "sympathy/continuation/periodic_orbit.hpp"
+#include "sympathy/core/flow.hpp"
 #include "tests/support/test_systems.hpp"
 
 namespace sympathy {
@@ -146,11 +147,31 @@ class HopfWithMark final : public AutoDiffHybridSystem<HopfWithMark> {
   }
 };
 
+// A circle of radius 1 + 1e-8 passes x = 1 for 2.8e-4 of its period of 2 pi, within one step of
+// the integrator at rtol 1e-11 (about 400 steps a period, 0.016): both crossings are counted (and
+// none on a circle of radius 1 - 1e-8), where the root finding alone, comparing signs at the
+// steps' ends, saw none (measured; at 1 + 1e-6 a step's end happened to fall inside). At 1 +
+// 1e-10, the integration's own accuracy, neither sees them.
+TEST(HybridOrbit, TwoCrossingsWithinOneStepAreCounted) {
+  FlowOptions o;
+  o.rtol = 1e-11;
+  o.atol = 1e-13;
+  for (const double radius : {1.0 + 1e-8, 1.0 - 1e-8}) {
+    const HopfWithMark system(radius * radius, 1.0);
+    Flow flow(system, o);
+    const Eigen::VectorXd end = flow.advance(
+        Eigen::Vector2d(0.0, radius), system.default_parameters(), 0.0, 2 * std::numbers::pi);
+    EXPECT_NEAR(end[1], radius, 1e-9);
+    EXPECT_EQ(flow.crossings(), std::vector<int>{radius > 1.0 ? 2 : 0}) << radius;
+  }
+}
+
 // From mu = 2.25 (radius 1.5) down towards 0.25: the branch ends at the grazing, mu = c^2 = 1,
 // its stop named; from mu = 0.25 up, the same point from the other side. Each direction about 30
-// bisection probes, to 5e-9; but the count's steps (a period / kCountingSteps) miss an excursion
-// of up to r (1 - cos(pi / 1000)) = 4.9e-6 r past the surface, 1e-5 in mu = r^2: held to 2e-5
-// (measured: 6.3e-6 beyond the grazing from either side).
+// bisection probes, to the location tolerance (1e-8 relative; measured: 2e-9 and 1e-9 off). The
+// orbits just past the grazing cross x = 1 twice within one integration step: before the flow
+// looked for such excursions (Flow::hidden_excursion) the count missed them, and the grazing was
+// located at mu = 1.00038.
 TEST(HybridOrbit, BranchEndsWhereItsOrbitGrazesASurface) {
   const double c = 1.0;
   for (const double from : {2.25, 0.25}) {
@@ -177,7 +198,7 @@ TEST(HybridOrbit, BranchEndsWhereItsOrbitGrazesASurface) {
       EXPECT_EQ(p.parameter > c * c, from > 1.0) << from << " at " << p.parameter;
     const double located =
         std::stod(branch.stop_reason.substr(branch.stop_reason.find("mu = ") + 5));
-    EXPECT_NEAR(located, c * c, 2e-5) << branch.stop_reason;
+    EXPECT_NEAR(located, c * c, 1e-8) << branch.stop_reason;
   }
 }
 

@@ -23,7 +23,6 @@ namespace sympathy {
 // surfaces.
 std::vector<int> crossings_per_period(const OdeSystem& system, const FlowOptions& flow,
                                       const PeriodicOrbit& orbit);
-constexpr int kCountingSteps = 1000;  // its steps at most period / kCountingSteps
 
 // "switching surface 2: 2 -> 0 crossings a period" for each surface whose count differs.
 std::string describe_crossing_change(const std::vector<int>& before, const std::vector<int>& after);

@@ -54,6 +54,7 @@
 #pragma once
 
 #include <functional>
+#include <limits>
 #include <memory>
 #include <optional>
 #include <span>
@@ -235,6 +236,7 @@ class Flow {
   void on_switching();
   void start_sides(const Eigen::VectorXd& z0);
   void cross_surfaces_here();
+  std::optional<double> hidden_excursion(double t_old);
   void update_max_step(double t);
   bool outward_caps_looser(int band, int innermost) const;
   void collect_statistics();
@@ -244,6 +246,15 @@ class Flow {
   // sensitivity columns by their saltation matrices and apply its resets.
   const HybridSystem* hybrid_ = nullptr;
   std::vector<int> crossings_;  // per switching surface, since the call began
+  // The start of the last step taken again for a hidden excursion (hidden_excursion), and the
+  // last step's end as it saw it (the next step's start).
+  double redone_from_ = std::numeric_limits<double>::quiet_NaN();
+  struct StepEnd {
+    double t = std::numeric_limits<double>::quiet_NaN();
+    Eigen::VectorXd z, f;   // the state and the region's field
+    std::vector<double> g;  // the switching functions
+  };
+  StepEnd step_end_;
   FlowOptions options_;
   FlowStatistics statistics_;
   std::unique_ptr<detail::FlowCall> call_;        // the call now being integrated
