@@ -307,6 +307,13 @@ void MetronomeModel::switching_functions(double /*t*/, const double* z, const do
   }
 }
 
+std::string MetronomeModel::switching_name(int surface) const {
+  static const char* const kLevels[] = {" = 0", " = -ths", " = the", " = -the", " = ths"};
+  const int i = surface / 5, k = surface % 5;
+  const auto names = state_names();
+  return names.at(k == 0 ? angular_velocity_index(i) : angle_index(i)) + kLevels[k];
+}
+
 // Surface 5 i + k of metronome i is th_i' (k = 0) or th_i plus a constant (k = 1..4).
 double MetronomeModel::switching_gradient(double /*t*/, const double* /*z*/, const double* /*raw*/,
                                           int surface, double* h_z) const {

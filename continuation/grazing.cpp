@@ -20,7 +20,7 @@ std::vector<int> crossings_per_period(const OdeSystem& system, const FlowOptions
   return f.crossings();
 }
 
-std::string describe_crossing_change(const std::vector<int>& before,
+std::string describe_crossing_change(const OdeSystem& system, const std::vector<int>& before,
                                      const std::vector<int>& after) {
   std::string out;
   for (std::size_t i = 0; i < std::max(before.size(), after.size()); ++i) {
@@ -28,8 +28,8 @@ std::string describe_crossing_change(const std::vector<int>& before,
     const int to = i < after.size() ? after[i] : 0;
     if (from == to) continue;
     if (!out.empty()) out += ", ";
-    out += "switching surface " + std::to_string(i) + ": " + std::to_string(from) + " -> " +
-           std::to_string(to) + " crossings a period";
+    out += system.switching_name(static_cast<int>(i)) + " crossed " + std::to_string(from) +
+           " -> " + std::to_string(to) + " times a period";
   }
   return out;
 }
@@ -83,7 +83,7 @@ CrossingChange Continuation::crossing_change(const ContinuationPoint& a, const C
   change.parameter = 0.5 * (p_near + p_far);
   change.uncertainty = 0.5 * std::abs(p_far - p_near);
   change.arclength = s_far;
-  const std::string what = describe_crossing_change(at_a, at_b);
+  const std::string what = describe_crossing_change(system_, at_a, at_b);
   change.note = change.note.empty() ? what : what + "; " + change.note;
   return change;
 }

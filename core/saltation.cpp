@@ -13,14 +13,14 @@ namespace {
 // h_z f- + h_t, the rate at which the flow arrives at the surface; refused where it is too small
 // against its parts for the crossing time to have a derivative (a grazing).
 double arrival_rate(const Eigen::VectorXd& f_minus, const Eigen::RowVectorXd& h_z, double h_t,
-                    double t, int surface) {
+                    double t, const std::string& surface) {
   const double rate = h_z.dot(f_minus) + h_t;
   const double scale = h_z.norm() * f_minus.norm() + std::abs(h_t);
   if (!(std::abs(rate) > kGrazingTolerance * scale)) {
     std::ostringstream msg;
     msg.precision(12);
-    msg << "grazing: the flow touches switching surface " << surface << " at t = " << t
-        << " (h_z f + h_t = " << rate << "); the flow has no derivative there";
+    msg << "grazing: the flow touches " << surface << " at t = " << t << " (h_z f + h_t = " << rate
+        << "); the flow has no derivative there";
     throw NonsmoothFlowError(msg.str(), t);
   }
   return rate;
@@ -30,13 +30,13 @@ double arrival_rate(const Eigen::VectorXd& f_minus, const Eigen::RowVectorXd& h_
 // h_t of the arrival's sign): where it points back, both fields push towards the surface and the
 // solution slides along it (Filippov), which no region's field describes; refused with that name.
 void check_not_sliding(const Eigen::VectorXd& f_plus, const Eigen::RowVectorXd& h_z, double h_t,
-                       double arrival, double t, int surface) {
+                       double arrival, double t, const std::string& surface) {
   const double rate = h_z.dot(f_plus) + h_t;
   const double scale = h_z.norm() * f_plus.norm() + std::abs(h_t);
   if (rate * arrival < 0.0 && std::abs(rate) > kGrazingTolerance * scale) {
     std::ostringstream msg;
     msg.precision(12);
-    msg << "sliding: at t = " << t << " the fields on both sides of switching surface " << surface
+    msg << "sliding: at t = " << t << " the fields on both sides of " << surface
         << " push towards it (h_z f + h_t = " << arrival << " before, " << rate
         << " after the crossing): the solution slides along the surface, which the flow does not "
            "follow";
@@ -69,7 +69,8 @@ HybridEvent cross_in_order(const HybridSystem& system, double t, const Eigen::Ve
     const Eigen::VectorXd z_minus = event.state;
     system.rhs_on_sides(t, z_minus.data(), p.data(), event.sides.data(), f_minus.data());
     const double h_t = system.switching_gradient(t, z_minus.data(), p.data(), surface, h_z.data());
-    const double rate = arrival_rate(f_minus, h_z, h_t, t, surface);
+    const std::string name = system.switching_name(surface);
+    const double rate = arrival_rate(f_minus, h_z, h_t, t, name);
     const bool reset = system.has_reset(surface);
     if (reset) {
       system.reset(t, z_minus.data(), p.data(), surface, z_plus.data());
@@ -78,14 +79,14 @@ HybridEvent cross_in_order(const HybridSystem& system, double t, const Eigen::Ve
       Eigen::RowVectorXd g_z(n);
       system.rhs(t, z_plus.data(), p.data(), f.data());
       const double g_t = system.switching_gradient(t, z_plus.data(), p.data(), surface, g_z.data());
-      event.sides[surface] = sign_of(arrival_rate(f, g_z, g_t, t, surface));
+      event.sides[surface] = sign_of(arrival_rate(f, g_z, g_t, t, name));
     } else {
       z_plus = z_minus;
       event.sides[surface] = -event.sides[surface];
     }
     event.state = z_plus;
     system.rhs_on_sides(t, z_plus.data(), p.data(), event.sides.data(), f_plus.data());
-    if (!reset) check_not_sliding(f_plus, h_z, h_t, rate, t, surface);
+    if (!reset) check_not_sliding(f_plus, h_z, h_t, rate, t, name);
     if (!derivatives) continue;
     if (reset)
       system.reset_jacobian(t, z_minus.data(), p.data(), surface, r_z);
@@ -149,7 +150,7 @@ HybridEvent cross_surfaces(const HybridSystem& system, double t, const Eigen::Ve
     std::ostringstream msg;
     msg.precision(6);
     msg << "corner: switching surfaces";
-    for (int s : surfaces) msg << ' ' << s;
+    for (int s : surfaces) msg << (s == surfaces.front() ? " " : ", ") << system.switching_name(s);
     msg << " are crossed at one instant, t = " << t
         << ", and their saltation matrices do not commute (the two orders differ by "
         << event.order_difference << ", relative); the flow has no derivative there";

@@ -141,6 +141,7 @@ class HopfWithMark final : public AutoDiffHybridSystem<HopfWithMark> {
     h_z[1] = 0.0;
     return 0.0;
   }
+  std::string switching_name(int) const override { return "x = c"; }
   double switching_parameter_derivative(double, const double*, const double*, int,
                                         int parameter) const override {
     return parameter == 1 ? -1.0 : 0.0;
@@ -190,7 +191,8 @@ TEST(HybridOrbit, BranchEndsWhereItsOrbitGrazesASurface) {
     ASSERT_EQ(branch.stop, StopReason::Nonsmooth) << from << ": " << branch.stop_reason;
     EXPECT_NE(branch.stop_reason.find("grazing near mu = "), std::string::npos)
         << branch.stop_reason;
-    EXPECT_NE(branch.stop_reason.find(from > 1.0 ? "2 -> 0 crossings" : "0 -> 2 crossings"),
+    EXPECT_NE(branch.stop_reason.find(from > 1.0 ? "x = c crossed 2 -> 0 times"
+                                                 : "x = c crossed 0 -> 2 times"),
               std::string::npos)
         << branch.stop_reason;
     // The last point lies before the grazing: every point on the starting side.

@@ -100,6 +100,7 @@ class MetronomeModel final : public AutoDiffHybridSystem<MetronomeModel> {
   std::vector<SteepZone> steep_zones(const double* p) const override;
   int switching_count() const override;
   void switching_functions(double t, const double* z, const double* p, double* g) const override;
+  std::string switching_name(int i) const override;  // "vth1 = 0", "th1 = -ths", "th1 = the", ...
   // HybridSystem: the field of a region named by its sides (evaluate_on_sides: the impulsive
   // torque from the sides, not from the state), the surfaces' gradients (unit vectors; ths and
   // the move the angle surfaces), no resets.

@@ -24,8 +24,10 @@ namespace sympathy {
 std::vector<int> crossings_per_period(const OdeSystem& system, const FlowOptions& flow,
                                       const PeriodicOrbit& orbit);
 
-// "switching surface 2: 2 -> 0 crossings a period" for each surface whose count differs.
-std::string describe_crossing_change(const std::vector<int>& before, const std::vector<int>& after);
+// "th1 = the crossed 2 -> 0 times a period" for each surface whose count differs (named by the
+// system's switching_name).
+std::string describe_crossing_change(const OdeSystem& system, const std::vector<int>& before,
+                                     const std::vector<int>& after);
 
 // A change of the crossings located between two points of a branch: the parameter bracket of
 // the last probe before it and the first after it.

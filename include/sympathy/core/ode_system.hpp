@@ -135,6 +135,10 @@ class OdeSystem {
   virtual int switching_count() const { return 0; }
   virtual void switching_functions(double /*t*/, const double* /*z*/, const double* /*p*/,
                                    double* /*g*/) const {}
+  // Surface i for messages ("th1 = the"); by default "switching surface i".
+  virtual std::string switching_name(int i) const {
+    return "switching surface " + std::to_string(i);
+  }
 
   // The system restricted to an invariant subspace, in the subspace's representative coordinates
   // (InvariantSubspace::coordinates), with the same parameters, where the model can evaluate it
