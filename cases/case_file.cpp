@@ -89,15 +89,9 @@ CaseFile CaseFile::load(const std::string& path) {
   if (auto* n = root.get("name")) c.name_ = in.string(*n, "name");
   if (auto* n = root.get("description")) c.description_ = in.string(*n, "description");
   if (auto* n = root.get("escapement")) {
-    const std::string e = in.string(*n, "escapement");
-    if (e == "half")
-      c.base_.escapement = Escapement::Half;
-    else if (e == "double")
-      c.base_.escapement = Escapement::Double;
-    else if (e == "impulsive")
-      c.base_.escapement = Escapement::Impulsive;
-    else
-      in.fail(*n, "escapement", "\"half\", \"double\" or \"impulsive\"");
+    const auto e = escapement_named(in.string(*n, "escapement"));
+    if (!e) in.fail(*n, "escapement", "\"half\", \"double\" or \"impulsive\"");
+    c.base_.escapement = *e;
   }
   if (auto* n = root.get("g")) {
     c.base_.g = in.number(*n, "g");

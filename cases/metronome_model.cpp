@@ -22,6 +22,12 @@ std::string to_string(Escapement e) {
   return "?";
 }
 
+std::optional<Escapement> escapement_named(const std::string& name) {
+  for (Escapement e : {Escapement::Half, Escapement::Double, Escapement::Impulsive})
+    if (to_string(e) == name) return e;
+  return std::nullopt;
+}
+
 namespace {
 
 constexpr double kDegree = std::numbers::pi / 180.0;

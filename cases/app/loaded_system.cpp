@@ -11,14 +11,20 @@ namespace sympathy::app {
 LoadedSystem::LoadedSystem(const std::string& path, const std::string& params,
                            const std::vector<Assignment>& sets,
                            const std::optional<std::string>& start_data, const std::string& what,
-                           const std::optional<SavedStart>& saved)
+                           const std::optional<SavedStart>& saved,
+                           std::optional<Escapement> escapement)
     : sets_(sets) {
   if (case_file_kind(path) == "equations") {
+    if (escapement)
+      throw InputError(path +
+                       ": an equation case file has no escapement (expected a metronome "
+                       "case file where an escapement is asked for)");
     equations_.emplace(load_equations(path, params, sets, start_data));
     recorded_ = equations_->start_data;
     describer_ = std::make_unique<StateDescriber>(*equations_->build.system);
   } else {
     metronomes_.emplace(load_case(path, params, sets));
+    if (escapement) metronomes_->spec.escapement = *escapement;
     model_ = std::make_unique<MetronomeModel>(metronomes_->spec);
     require_differentiable(*model_, path, what);
     describer_ = std::make_unique<MetronomeDescriber>(*model_);

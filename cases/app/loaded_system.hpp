@@ -34,12 +34,14 @@ class LoadedSystem {
   // top, and the recorded period at `start_data` if given (read and checked before anything is
   // compiled). `what` names the computation for the check that the model is differentiable
   // ("continue", "a branch"). `saved`: the start is a saved orbit (--parent, --from-point), read
-  // once the system is known.
+  // once the system is known. `escapement`: a metronome case's instead of its file's (a study's
+  // `escapement`); InputError for an equation case file.
   LoadedSystem(const std::string& path, const std::string& params,
                const std::vector<Assignment>& sets,
                const std::optional<std::string>& start_data = std::nullopt,
                const std::string& what = "a branch",
-               const std::optional<SavedStart>& saved = std::nullopt);
+               const std::optional<SavedStart>& saved = std::nullopt,
+               std::optional<Escapement> escapement = std::nullopt);
 
   bool equations() const { return equations_.has_value(); }
   const std::string& path() const;

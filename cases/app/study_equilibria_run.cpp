@@ -17,7 +17,7 @@ void prepare_study_equilibria(StudyRun& run,
     const StudyEquilibria& e = study.equilibria[k];
     const std::string where = study.path + ": equilibria '" + e.name + "': ";
     auto c = std::make_unique<LoadedSystem>(study.case_path, study.params, e.sets, std::nullopt,
-                                            "equilibria");
+                                            "equilibria", std::nullopt, study.escapement);
     c->require_autonomous("[[equilibria]] (equilibria)");
     const OdeSystem& system = c->system();
     const auto names = system.parameter_names();

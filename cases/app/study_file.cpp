@@ -25,8 +25,8 @@ Study load_study(const std::string& path) {
   const toml::table root = read_toml(path, "study file");
   const TomlReader in(path);
   in.only(root, "",
-          {"title", "case", "params", "parameter", "axis", "accuracy", "branches", "equilibria",
-           "equilibria_axis", "marks", "basins"});
+          {"title", "case", "params", "escapement", "parameter", "axis", "accuracy", "branches",
+           "equilibria", "equilibria_axis", "marks", "basins"});
   Study s;
   s.path = path;
   s.name = std::filesystem::path(path).stem().string();
@@ -39,6 +39,10 @@ Study load_study(const std::string& path) {
   const std::string case_file = in.string(required("case"), "case");
   s.case_path = (std::filesystem::path(path).parent_path() / case_file).lexically_normal().string();
   if (root.get("params")) s.params = in.string(*root.get("params"), "params");
+  if (const toml::node* n = root.get("escapement")) {
+    s.escapement = escapement_named(in.string(*n, "escapement"));
+    if (!s.escapement) in.fail(*n, "escapement", "\"half\", \"double\" or \"impulsive\"");
+  }
   s.parameter = in.string(required("parameter"), "parameter");
   s.axis = root.get("axis") ? in.string(*root.get("axis"), "axis") : "phase";
   if (const toml::node* n = root.get("marks")) {

@@ -3,12 +3,14 @@
 #pragma once
 
 #include <cstdint>
+#include <optional>
 #include <set>
 #include <string>
 #include <vector>
 
 #include "cases/app/branch_run.hpp"
 #include "cases/app/saved_start.hpp"
+#include "sympathy/cases/metronome_model.hpp"
 #include "sympathy/cases/toml_reader.hpp"
 #include "sympathy/continuation/attractor_run.hpp"
 #include "sympathy/continuation/equilibrium_branch.hpp"
@@ -80,6 +82,9 @@ struct StudyBasins {
 struct Study {
   std::string path, name, title, case_path, params, parameter, axis;
   Accuracy accuracy = Accuracy::Default;  // the file's `accuracy`, applied to every branch
+  // A metronome case's escapement instead of its file's (`escapement`; the paper's Fig. 8 on its
+  // own escapement beside the smoothed one); nullopt: the file's.
+  std::optional<Escapement> escapement;
   std::vector<StudyBranch> branches;
   std::vector<StudyEquilibria> equilibria;  // computed before the branches that need them
   // The state plot_study draws the equilibria's diagram in (`equilibria_axis`; "" for the first).

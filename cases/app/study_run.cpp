@@ -37,7 +37,7 @@ StudyRun study_run(const Arguments& args) {
   std::vector<std::optional<RecordedPeriod>> recorded;  // each branch's start_data, if any
   for (auto& b : study.branches) {
     auto c = std::make_unique<LoadedSystem>(study.case_path, study.params, b.sets, std::nullopt,
-                                            "a branch", b.saved);
+                                            "a branch", b.saved, study.escapement);
     c->require_orbits();
     if (c->saved_orbit())  // on the segments it was resolved on, as continue's --from-point
       b.request.continuation.orbit.shooting.segments = c->saved_orbit()->segments;

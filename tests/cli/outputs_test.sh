@@ -78,6 +78,26 @@ for command in "equilibria --start in-phase --param s --from 1e-8 --to 0"; do
   check "... naming the case and its escapement" grep -q "impulsive.toml: key 'escapement': the impulsive escapement (eq. 2) switches discontinuously" "$work/err"
 done
 
+# A study file's `escapement`: Fig. 8 on the paper's escapement from the smoothed case file (its
+# in-phase branch ends at a grazing near k = 83.40 N/m); checked before any work: a name that is
+# none, an equation case file, [basins] of the hybrid model.
+"$bin" study "$src/cases/figures/fig08_impulsive.toml" --out "$work/f8i" > "$work/out" 2> "$work/err"
+check "a study with escapement = \"impulsive\" runs" test $? -eq 0
+check "... its in-phase branch ends at the grazing" grep -q "in-phase .*grazing near k = 83.400" "$work/out"
+check "... its anti-phase BP where the hybrid branch has it" grep -q "BP   47.06660" "$work/out"
+sed 's/^escapement = "impulsive"/escapement = "smooth"/' "$src/cases/figures/fig08_impulsive.toml" | sed "s|\.\./row2.toml|$row2|" > "$work/esc.toml"
+"$bin" study "$work/esc.toml" --out "$work" > /dev/null 2> "$work/err"
+check "escapement = \"smooth\" exits 2" test $? -eq 2
+check "... naming the key and what is expected" grep -q "esc.toml:.*escapement.*expected \"half\", \"double\" or \"impulsive\"" "$work/err"
+printf 'case = "%s"\nescapement = "impulsive"\nparameter = "mu"\n[[branches]]\nname = "a"\nfrom = 0.1\nto = 0.2\n' "$src/cases/examples/hopf.toml" > "$work/esc_eq.toml"
+"$bin" study "$work/esc_eq.toml" --out "$work" > /dev/null 2> "$work/err"
+check "escapement with an equation case file exits 2" test $? -eq 2
+check "... saying it has none" grep -q "an equation case file has no escapement" "$work/err"
+{ sed "s|\.\./row2.toml|$row2|" "$src/cases/figures/fig08_impulsive.toml"; printf '[basins]\nfrom = 40.0\nto = 50.0\ncount = 2\nstart = "anti-phase"\nbox = { th1 = [-0.5, 0.5] }\n'; } > "$work/esc_basins.toml"
+"$bin" study "$work/esc_basins.toml" --out "$work" > /dev/null 2> "$work/err"
+check "[basins] of the impulsive escapement exits 2" test $? -eq 2
+check "... saying they are not built" grep -q "basins\] of a piecewise-smooth model" "$work/err"
+
 # Options validated by the engine's one validation, in study files as on the command line.
 printf 'case = "%s"\nparameter = "k"\n[[branches]]\nname = "a"\nstart = "anti-phase"\nfrom = 1.0\nto = 2.0\nstep = -0.1\n' "$row2" > "$work/step.toml"
 "$bin" study "$work/step.toml" --out "$work" 2> "$work/err"

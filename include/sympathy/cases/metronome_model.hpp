@@ -28,6 +28,8 @@ namespace sympathy {
 
 enum class Escapement { Half, Double, Impulsive };
 std::string to_string(Escapement e);
+// The escapement named "half", "double" or "impulsive"; nullopt for any other name.
+std::optional<Escapement> escapement_named(const std::string& name);
 
 // The platform's named parameters over a raw layout that starts M, cx, cy, kx, ky: M, c and k
 // (both directions at once on a 2-D platform), and cx, cy, kx, ky on a 2-D platform.
