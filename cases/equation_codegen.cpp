@@ -64,6 +64,8 @@ const char* function_code(Function f) {
       return "equations_max";
     case Function::SignSmooth:
       return "equations_sign_smooth";
+    case Function::Sign:
+      return "equations_sign";  // a switching surface's (Emitter::emit)
   }
   throw std::logic_error("unknown function");
 }
@@ -79,7 +81,14 @@ class Emitter {
       identifiers_[system.intermediates[i].name] = cat("w", std::to_string(i));
     identifiers_["t"] = "S(t)";
     identifiers_["pi"] = literal(std::numbers::pi);
+    // Each sign(...) of the intermediates and derivatives is a switching surface, numbered in
+    // the order they are written (its argument = 0; a sign inside another's argument too).
+    for (const auto& w : system.intermediates) collect_surfaces(w.tree);
+    for (const auto& d : system.derivatives) collect_surfaces(d.tree);
   }
+
+  // The switching surfaces' functions: the arguments of the sign calls, in surface order.
+  const std::vector<const Expression*>& surfaces() const { return surface_arguments_; }
 
   using K = Expression::Kind;
 
@@ -123,6 +132,16 @@ class Emitter {
         return cat("pow(S(", emit(e.operands[0]), "), S(", emit(exponent), "))");
       }
       case K::Call: {
+        // sign(x): the region's sign of surface k where `sides` (the generated function's) names
+        // a region, else the sign of x; a sign of parameters alone (a steep zone's width) is no
+        // surface.
+        if (e.function == Function::Sign) {
+          const auto k = surface_of_.find(&e);
+          return cat(
+              "equations_sign(S(", emit(e.operands[0]), "), ",
+              k == surface_of_.end() ? "nullptr, 0" : cat("sides, ", std::to_string(k->second)),
+              ")");
+        }
         std::string s = std::string(function_code(e.function)) + "(";
         for (std::size_t i = 0; i < e.operands.size(); ++i)
           s += cat(i ? ", S(" : "S(", emit(e.operands[i]), ")");
@@ -133,7 +152,17 @@ class Emitter {
   }
 
  private:
+  void collect_surfaces(const Expression& e) {
+    if (e.kind == K::Call && e.function == Function::Sign) {
+      surface_of_[&e] = static_cast<int>(surface_arguments_.size());
+      surface_arguments_.push_back(&e.operands[0]);
+    }
+    for (const auto& operand : e.operands) collect_surfaces(operand);
+  }
+
   std::map<std::string, std::string> identifiers_;
+  std::map<const Expression*, int> surface_of_;
+  std::vector<const Expression*> surface_arguments_;
 };
 
 constexpr const char* kPrologue =
@@ -186,8 +215,27 @@ S equations_sign_smooth(const S& x, const S& eps) {
   using std::tanh;
   return tanh(x / eps);
 }
+// sign(x): the sign of switching surface k in the region named by `sides` where given (a hybrid
+// system's field of one region, extended beyond its surfaces), else of x itself; constant
+// between surfaces (no derivative).
+template <class S>
+S equations_sign(const S& x, const int* sides, int k) {
+  return S(sides ? static_cast<double>(sides[k]) : (value_of(x) >= 0.0 ? 1.0 : -1.0));
+}
+)";
 
+constexpr const char* kSmoothClass = R"(
 class GeneratedSystem final : public sympathy::PluginSystem<GeneratedSystem> {
+ public:
+  using PluginSystem::PluginSystem;
+)";
+
+// With sign(...) calls: a piecewise-smooth system (core/hybrid_system.hpp) whose regions are
+// named by the signs of their arguments.
+constexpr const char* kHybridClass = R"(
+class GeneratedSystem final
+    : public sympathy::PluginSystem<GeneratedSystem,
+                                    sympathy::AutoDiffHybridSystem<GeneratedSystem>> {
  public:
   using PluginSystem::PluginSystem;
 )";
@@ -199,12 +247,58 @@ constexpr const char* kEpilogue = R"(};
 SYMPATHY_PLUGIN(GeneratedSystem)
 )";
 
+// A piecewise-smooth system's surfaces (the sign calls' arguments), their gradients in the
+// states by dual numbers, dh/dt by a central difference where the system uses t (1e-6 of |t|, at
+// least 1e-6: a truncation error of about 1e-12 relative), dh/dp by dual numbers, their names.
+std::string hybrid_declarations(const EquationSystem& system, const Emitter& emitter,
+                                const std::string& preamble) {
+  const auto& surfaces = emitter.surfaces();
+  const std::string n = std::to_string(system.states.size());
+  const std::string m = std::to_string(system.parameters.size());
+  std::string s = "  int switching_count() const override { return " +
+                  std::to_string(surfaces.size()) + "; }\n\n";
+  s += "  template <class S>\n";
+  s += "  void surfaces([[maybe_unused]] double t, const S* z, [[maybe_unused]] const S* p, S* g) "
+       "const {\n";
+  s += "    [[maybe_unused]] const int* sides = nullptr;\n" + preamble;
+  for (std::size_t k = 0; k < surfaces.size(); ++k)
+    s += "    g[" + std::to_string(k) + "] = S(" + emitter.emit(*surfaces[k]) + ");\n";
+  s += "  }\n\n";
+  s += "  void switching_functions(double t, const double* z, const double* p, double* g) const "
+       "override {\n    surfaces(t, z, p, g);\n  }\n\n";
+  s += "  double switching_gradient(double t, const double* z, const double* p, int surface, "
+       "double* h_z) const override {\n";
+  s += "    using D = sympathy::Dual<1>;\n";
+  s += "    std::vector<D> zd(z, z + " + n + "), pd(p, p + " + m + "), gd(switching_count());\n";
+  s += "    for (int j = 0; j < " + n + "; ++j) {\n";
+  s += "      zd[j].d[0] = 1.0;\n      surfaces(t, zd.data(), pd.data(), gd.data());\n";
+  s += "      h_z[j] = gd[surface].d[0];\n      zd[j].d[0] = 0.0;\n    }\n";
+  if (system.uses_time) {
+    s += "    const double dt = 1e-6 * std::max(1.0, std::abs(t));\n";
+    s += "    std::vector<double> up(switching_count()), down(switching_count());\n";
+    s += "    surfaces(t + dt, z, p, up.data());\n    surfaces(t - dt, z, p, down.data());\n";
+    s += "    return (up[surface] - down[surface]) / (2.0 * dt);\n  }\n\n";
+  } else {
+    s += "    return 0.0;\n  }\n\n";
+  }
+  s += "  double switching_parameter_derivative(double t, const double* z, const double* p, int "
+       "surface, int parameter) const override {\n";
+  s += "    using D = sympathy::Dual<1>;\n";
+  s += "    std::vector<D> zd(z, z + " + n + "), pd(p, p + " + m + "), gd(switching_count());\n";
+  s += "    pd[parameter].d[0] = 1.0;\n    surfaces(t, zd.data(), pd.data(), gd.data());\n";
+  s += "    return gd[surface].d[0];\n  }\n\n";
+  return s;
+}
+
 }  // namespace
 
 std::string generate_equation_source(const EquationSystem& system) {
   const Emitter emitter(system);
   const std::size_t n = system.states.size(), m = system.parameters.size();
+  const auto& surfaces = emitter.surfaces();
+  const bool hybrid = !surfaces.empty();
   std::string s = kPrologue;
+  s += hybrid ? kHybridClass : kSmoothClass;
   s += "  int dimension() const override { return " + std::to_string(n) + "; }\n";
   s += std::string("  bool autonomous() const override { return ") +
        (system.uses_time ? "false" : "true") + "; }\n";
@@ -214,25 +308,37 @@ std::string generate_equation_source(const EquationSystem& system) {
   if (!angles.empty())
     s += "  std::vector<int> angle_states() const override { return {" + angles + "}; }\n";
   s += "\n";
-  s += "  template <class T, class P>\n";
-  s += "  void evaluate([[maybe_unused]] double t, const T* z, [[maybe_unused]] const P* p, "
-       "T* dz) const {\n";
-  s += "    using S = decltype(T() + P());\n";
-  s += "    using std::abs, std::acos, std::asin, std::atan, std::atan2, std::cos, std::cosh,\n"
-       "        std::exp, std::log, std::pow, std::sin, std::sinh, std::sqrt, std::tan, "
-       "std::tanh;\n";
+  // The states, parameters and intermediates as S, in a function with z and p (and `sides`).
+  std::string preamble =
+      "    using std::abs, std::acos, std::asin, std::atan, std::atan2, std::cos, std::cosh,\n"
+      "        std::exp, std::log, std::pow, std::sin, std::sinh, std::sqrt, std::tan, "
+      "std::tanh;\n";
   for (std::size_t i = 0; i < n; ++i)
-    s +=
+    preamble +=
         "    [[maybe_unused]] const S s" + std::to_string(i) + " = z[" + std::to_string(i) + "];\n";
   for (std::size_t i = 0; i < m; ++i)
-    s +=
+    preamble +=
         "    [[maybe_unused]] const S p" + std::to_string(i) + " = p[" + std::to_string(i) + "];\n";
   for (std::size_t i = 0; i < system.intermediates.size(); ++i)
-    s += "    [[maybe_unused]] const S w" + std::to_string(i) + " = " +
-         emitter.emit(system.intermediates[i].tree) + ";\n";
+    preamble += "    [[maybe_unused]] const S w" + std::to_string(i) + " = " +
+                emitter.emit(system.intermediates[i].tree) + ";\n";
+  s += "  template <class T, class P>\n";
+  if (hybrid) {
+    // The field read off the state's own region, and the field of a named region.
+    s += "  void evaluate(double t, const T* z, const P* p, T* dz) const {\n"
+         "    evaluate_on_sides(t, z, p, dz, nullptr);\n  }\n\n";
+    s += "  template <class T, class P>\n";
+    s += "  void evaluate_on_sides([[maybe_unused]] double t, const T* z, [[maybe_unused]] const "
+         "P* p, T* dz, [[maybe_unused]] const int* sides) const {\n";
+  } else {
+    s += "  void evaluate([[maybe_unused]] double t, const T* z, [[maybe_unused]] const P* p, "
+         "T* dz) const {\n";
+  }
+  s += "    using S = decltype(T() + P());\n" + preamble;
   for (std::size_t i = 0; i < n; ++i)
     s += "    dz[" + std::to_string(i) + "] = " + emitter.emit(system.derivatives[i].tree) + ";\n";
   s += "  }\n\n";
+  if (hybrid) s += hybrid_declarations(system, emitter, preamble);
   // A function of the parameters alone, in doubles (steep zones' sizes, the forcing's period).
   auto parameter_function = [&](const std::string& signature) {
     std::string f = "  " + signature + " const override {\n";

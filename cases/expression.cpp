@@ -9,25 +9,17 @@ namespace sympathy {
 
 namespace {
 
-constexpr std::array<FunctionInfo, 18> kFunctions{{
-    {Function::Sin, "sin", 1},
-    {Function::Cos, "cos", 1},
-    {Function::Tan, "tan", 1},
-    {Function::Exp, "exp", 1},
-    {Function::Log, "log", 1},
-    {Function::Sqrt, "sqrt", 1},
-    {Function::Abs, "abs", 1},
-    {Function::Tanh, "tanh", 1},
-    {Function::Atan, "atan", 1},
-    {Function::Asin, "asin", 1},
-    {Function::Acos, "acos", 1},
-    {Function::Sinh, "sinh", 1},
-    {Function::Cosh, "cosh", 1},
-    {Function::Pow, "pow", 2},
-    {Function::Atan2, "atan2", 2},
-    {Function::Min, "min", 2},
-    {Function::Max, "max", 2},
-    {Function::SignSmooth, "sign_smooth", 2},
+constexpr std::array<FunctionInfo, 19> kFunctions{{
+    {Function::Sin, "sin", 1},     {Function::Cos, "cos", 1},
+    {Function::Tan, "tan", 1},     {Function::Exp, "exp", 1},
+    {Function::Log, "log", 1},     {Function::Sqrt, "sqrt", 1},
+    {Function::Abs, "abs", 1},     {Function::Tanh, "tanh", 1},
+    {Function::Atan, "atan", 1},   {Function::Asin, "asin", 1},
+    {Function::Acos, "acos", 1},   {Function::Sinh, "sinh", 1},
+    {Function::Cosh, "cosh", 1},   {Function::Pow, "pow", 2},
+    {Function::Atan2, "atan2", 2}, {Function::Min, "min", 2},
+    {Function::Max, "max", 2},     {Function::SignSmooth, "sign_smooth", 2},
+    {Function::Sign, "sign", 1},
 }};
 
 bool is_letter(char c) {
@@ -294,6 +286,8 @@ double call(Function f, const std::vector<double>& a) {
       return std::max(a[0], a[1]);
     case Function::SignSmooth:
       return std::tanh(a[0] / a[1]);
+    case Function::Sign:
+      return a[0] >= 0.0 ? 1.0 : -1.0;
   }
   throw std::logic_error("unknown function");
 }

@@ -16,9 +16,11 @@
 // (quotes, ';', braces, '#', '\\', non-ASCII bytes) is refused where it stands.
 //
 // Functions (a fixed table, `functions()`): one argument: sin cos tan exp log sqrt abs tanh atan
-// asin acos sinh cosh; two: pow atan2 min max sign_smooth. sign_smooth(x, eps) = tanh(x / eps), a
-// sign function smoothed over a width eps (as the metronome model's escapement smooths its
-// switch); |sign_smooth(x, eps) - sign(x)| < 1e-8 for |x| > 10 eps.
+// asin acos sinh cosh sign; two: pow atan2 min max sign_smooth. sign_smooth(x, eps) = tanh(x /
+// eps), a sign function smoothed over a width eps (as the metronome model's escapement smooths
+// its switch); |sign_smooth(x, eps) - sign(x)| < 1e-8 for |x| > 10 eps. sign(x) is the sign
+// itself, +1 where x >= 0 and -1 where x < 0: in an equation case file each sign(...) makes the
+// system piecewise smooth, x = 0 a switching surface (cases/equation_codegen.cpp).
 #pragma once
 
 #include <cstddef>
@@ -49,6 +51,7 @@ enum class Function {
   Min,
   Max,
   SignSmooth,
+  Sign,
 };
 
 struct FunctionInfo {

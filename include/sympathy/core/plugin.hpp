@@ -38,6 +38,7 @@
 #include <utility>
 #include <vector>
 
+#include "sympathy/core/autodiff_hybrid_system.hpp"
 #include "sympathy/core/autodiff_system.hpp"
 #include "sympathy/core/binary_interface.hpp"
 
@@ -45,8 +46,10 @@ namespace sympathy {
 
 constexpr int kPluginAbi = 3;  // 2: with sympathy_equations_binary_interface; 3: Taylor jets
 
-template <class Derived>
-class PluginSystem : public AutoDiffSystem<Derived> {
+// Base: AutoDiffSystem<Derived>, or AutoDiffHybridSystem<Derived> for a piecewise-smooth system
+// (which then writes evaluate_on_sides and its surfaces too, core/autodiff_hybrid_system.hpp).
+template <class Derived, class Base = AutoDiffSystem<Derived>>
+class PluginSystem : public Base {
  public:
   // -1: any number (then dimension() is the number of states named).
   static constexpr int kDimension = -1, kParameters = -1;
