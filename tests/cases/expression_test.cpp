@@ -69,7 +69,11 @@ TEST(Expression, EveryFunction) {
   EXPECT_EQ(value("sign_smooth(x, 0.1)", n), std::tanh(x / 0.1));
   // The header's claim: within 1e-8 of sign(x) beyond 10 eps (1 - tanh(10) = 2 e^-20 = 4.1e-9).
   EXPECT_LT(1.0 - value("sign_smooth(10, 1)"), 1e-8);
-  EXPECT_EQ(functions().size(), 18u);
+  // sign: +1 at and above zero, -1 below (the side a switching surface's region counts zero on).
+  EXPECT_EQ(value("sign(x)", n), 1.0);
+  EXPECT_EQ(value("sign(-x)", n), -1.0);
+  EXPECT_EQ(value("sign(0)"), 1.0);
+  EXPECT_EQ(functions().size(), 19u);
   for (const auto& f : functions()) EXPECT_EQ(&function_info(f.function), &f);
 }
 
