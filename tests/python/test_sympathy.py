@@ -728,3 +728,18 @@ def test_sweep_equals_the_program_and_the_closed_form(tmp_path):
         sympathy.sweep(HOPF, out=tmp_path / "none")  # type: ignore[call-arg]
     with pytest.raises(sympathy.InputError, match=r"^over w: expected NAME=FROM:TO:COUNT"):
         sympathy.sweep(HOPF, over="w", out=tmp_path / "none")
+
+
+def test_hybrid_branch_ends_at_its_grazing_as_the_program_says(tmp_path):
+    # The paper's escapement (eq. 2): the in-phase branch in the hinge damping d ends where the
+    # swing grazes the escapement angle, the stop and its message as the program prints them.
+    case = tmp_path / "row2_impulsive.toml"
+    with open(ROW2) as f:
+        case.write_text(f.read().replace('escapement = "half"', 'escapement = "impulsive"', 1))
+    stdout = cli("continue", str(case), "--start", "in-phase", "--param", "d", "--from",
+                 "2.4e-6", "--to", "1e-4", "--quiet")
+    branch = sympathy.Case(str(case)).continue_branch(start="in-phase", param="d", from_=2.4e-6,
+                                                      to=1e-4)
+    assert branch.stop == "grazing"
+    assert f"{len(branch.points.value)} points; stopped: grazing near d = 1.5679" in stdout
+    assert [(e.type, "%.12g" % e.value) for e in branch.events] == events_table(stdout)
