@@ -342,7 +342,8 @@ void Flow::on_switching() {
   // the state after the crossings, with the sensitivities mapped across them).
   ++statistics_.switchings;
   collect_statistics();
-  step_end_.t = std::numeric_limits<double>::quiet_NaN();  // the state may jump, the region does
+  // A crossing changes the region (and a reset the state): the next step's start is computed anew.
+  step_end_.t = std::numeric_limits<double>::quiet_NaN();
   if (hybrid_)
     cross_surfaces_here();
   else
