@@ -691,8 +691,16 @@ std::optional<driver::Ending> Continuation::Run::ends(const OrbitNode& a, const 
   // A hybrid orbit's crossings changed in the step: a grazing, located, ends the branch (its
   // flow has no derivative there); the step's events beyond it dropped, b not kept.
   if (carries_crossings_) {
-    if (crossings_.empty()) crossings_ = c_.crossings_of(a);
-    crossings_b_ = c_.crossings_of(b);
+    try {
+      if (crossings_.empty()) crossings_ = c_.crossings_of(a);
+      crossings_b_ = c_.crossings_of(b);
+    } catch (const IntegrationError& e) {
+      // The plain run of b's orbit meets a tangency or sliding itself (NonsmoothFlowError).
+      return driver::Ending{driver::Stop::Nonsmooth,
+                            std::string("the orbit at ") + name() + " = " +
+                                format_double(b.parameter) + " is not smooth: " + e.what(),
+                            false};
+    }
     if (crossings_b_ != crossings_) {
       const CrossingChange g = c_.crossing_change(a, b, crossings_, crossings_b_,
                                                   b.jacobian.rows() ? &b.jacobian : nullptr);
