@@ -79,9 +79,14 @@ HopfPoint describe_hopf(const OdeSystem& system, const ParameterValues& p, const
 
 std::string describe_criticality(const std::optional<double>& lyapunov) {
   if (!lyapunov) return "criticality unknown";
+  // Exactly zero where the field's second and third derivatives vanish at the point (a
+  // piecewise-linear field: a linear centre, whose family of cycles is vertical): no side.
   char text[64];
   std::snprintf(text, sizeof text, "%s (l1 = %.6g)",
-                *lyapunov < 0 ? "supercritical" : "subcritical", *lyapunov);
+                *lyapunov < 0   ? "supercritical"
+                : *lyapunov > 0 ? "subcritical"
+                                : "degenerate",
+                *lyapunov);
   return text;
 }
 

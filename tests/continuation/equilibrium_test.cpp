@@ -59,6 +59,15 @@ TEST(Equilibrium, NewtonScalesWithTheState) {
 // p = 0.25 is passed twice, at x = 0.5 and at x = -0.5 after the fold, each solved with the
 // parameter held there (exact to Newton's tolerance: 1e-12), in order along the branch, with its
 // eigenvalue -2x; a value the branch does not reach (p = 2) is not reported.
+// The sign of l1 names the side; exactly zero (a piecewise-linear field, whose second and third
+// derivatives vanish: Chua's circuit unsmoothed) is no side. (It said "subcritical".)
+TEST(Equilibrium, CriticalityNamesTheSignOfL1AndZeroAsDegenerate) {
+  EXPECT_EQ(describe_criticality(-0.31), "supercritical (l1 = -0.31)");
+  EXPECT_EQ(describe_criticality(2.1), "subcritical (l1 = 2.1)");
+  EXPECT_EQ(describe_criticality(0.0), "degenerate (l1 = 0)");
+  EXPECT_EQ(describe_criticality(std::nullopt), "criticality unknown");
+}
+
 TEST(EquilibriumBranch, UserPointsAtTheValuesAskedForOnBothSidesOfAFold) {
   Equilibria1D system(Equilibria1D::Kind::SaddleNode);
   EquilibriumOptions o;

@@ -78,7 +78,8 @@ struct HopfPoint {
 HopfPoint describe_hopf(const OdeSystem& system, const ParameterValues& p, const Eigen::VectorXd& x,
                         double omega_guess);
 
-// "supercritical (l1 = -0.31)", "subcritical (l1 = 2.1)", "criticality unknown".
+// "supercritical (l1 = -0.31)", "subcritical (l1 = 2.1)", "degenerate (l1 = 0)" (exactly zero:
+// a piecewise-linear field's linear centre), "criticality unknown".
 std::string describe_criticality(const std::optional<double>& lyapunov);
 
 }  // namespace sympathy
