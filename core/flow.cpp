@@ -90,7 +90,6 @@ FlowStatistics& FlowStatistics::operator+=(const FlowStatistics& o) {
 
 Flow::Flow(const OdeSystem& system, FlowOptions options)
     : system_(system), options_(options), call_(std::make_unique<detail::FlowCall>(system)) {
-  hybrid_ = call_->hybrid;
   options_.linear_solver = resolved_linear_solver(system_, options_);
   if (const auto problem = options_.validate())
     throw std::invalid_argument("flow options: " + problem->message());
@@ -140,7 +139,7 @@ void Flow::start(const Eigen::VectorXd& z0, const ParameterValues& p, double t0,
   if (sensitivity_columns > 0) {
     if (!system_.differentiable())
       throw std::invalid_argument("sensitivities need a differentiable system");
-    if (system_.switching_count() > 0 && !hybrid_)
+    if (system_.switching_count() > 0 && !call_->hybrid)
       throw std::invalid_argument(
           "sensitivities across switching surfaces need a piecewise-smooth system that declares "
           "the surfaces' gradients and its resets (HybridSystem)");
@@ -157,15 +156,15 @@ void Flow::start(const Eigen::VectorXd& z0, const ParameterValues& p, double t0,
   call.parameters.assign(parameters.begin(), parameters.end());
   configure_zones();
   call.root_directions.clear();
-  if (hybrid_)
+  if (call_->hybrid)
     for (int i = 0; i < system_.switching_count(); ++i)
-      call.root_directions.push_back(hybrid_->crossing_direction(i));
+      call.root_directions.push_back(call_->hybrid->crossing_direction(i));
   // Initial sensitivities: unit vectors in the state columns, zero in the parameter columns.
   seeds_ = Eigen::MatrixXd::Zero(n, sensitivity_columns);
   for (std::size_t j = 0; j < initial_components.size(); ++j)
     seeds_(initial_components[j], static_cast<Eigen::Index>(j)) = 1.0;
   // The region first: the integrator evaluates its field from the start.
-  if (hybrid_) {
+  if (call_->hybrid) {
     start_sides(z0);
     crossings_.assign(system_.switching_count(), 0);
     redone_from_ = std::numeric_limits<double>::quiet_NaN();
@@ -277,7 +276,7 @@ void Flow::start_sides(const Eigen::VectorXd& z0) {
   for (int i = 0; i < m; ++i) {
     double into = g[i];
     if (into == 0.0) {
-      const double h_t = hybrid_->switching_gradient(t_, z0.data(), p, i, h_z.data());
+      const double h_t = call_->hybrid->switching_gradient(t_, z0.data(), p, i, h_z.data());
       into = h_z.dot(f) + h_t;
     }
     call_->sides[i] = into < 0.0 ? -1 : 1;
@@ -304,18 +303,18 @@ void Flow::cross_surfaces_here() {
   std::vector<double> g(m);
   system_.switching_functions(t_, z.data(), p, g.data());
   Eigen::VectorXd f_minus(n);
-  hybrid_->rhs_on_sides(t_, z.data(), p, call_->sides.data(), f_minus.data());
+  call_->hybrid->rhs_on_sides(t_, z.data(), p, call_->sides.data(), f_minus.data());
   Eigen::RowVectorXd h_z(n);
   const double window = 1e3 * std::numeric_limits<double>::epsilon() * std::max(std::abs(t_), 1.0);
   std::vector<int> surfaces;
   for (int i = 0; i < m; ++i) {
-    const double h_t = hybrid_->switching_gradient(t_, z.data(), p, i, h_z.data());
+    const double h_t = call_->hybrid->switching_gradient(t_, z.data(), p, i, h_z.data());
     const double arrival = h_z.dot(f_minus) + h_t;
     const int sign = g[i] > 0.0 ? 1 : -1;
     const bool beyond = g[i] != 0.0 && sign != call_->sides[i];
     const bool at = std::abs(g[i]) <= window * std::abs(arrival) && arrival * call_->sides[i] < 0.0;
     if (!beyond && !at) continue;
-    const int direction = hybrid_->crossing_direction(i);
+    const int direction = call_->hybrid->crossing_direction(i);
     const int towards = beyond ? sign : -call_->sides[i];
     if (direction == 0 || direction == towards)
       surfaces.push_back(i);
@@ -323,7 +322,7 @@ void Flow::cross_surfaces_here() {
       call_->sides[i] = towards;
   }
   const bool derivatives = call_->columns > 0;
-  HybridEvent event = cross_surfaces(*hybrid_, t_, z, call_->values, call_->sides, surfaces,
+  HybridEvent event = cross_surfaces(*call_->hybrid, t_, z, call_->values, call_->sides, surfaces,
                                      call_->parameters, derivatives);
   call_->sides = std::move(event.sides);
   for (int i : surfaces) ++crossings_[i];
@@ -344,7 +343,7 @@ void Flow::on_switching() {
   collect_statistics();
   // A crossing changes the region (and a reset the state): the next step's start is computed anew.
   step_end_.t = std::numeric_limits<double>::quiet_NaN();
-  if (hybrid_)
+  if (call_->hybrid)
     cross_surfaces_here();
   else
     stepper_->restart(t_);
@@ -381,7 +380,7 @@ void Flow::step_to(double t_end, const std::function<bool(double, double)>& afte
     stepper_->set_stop_time(forced ? *forced_stop_ : t_end);
     const double t_old = t_;
     const detail::StepOutcome outcome = stepper_->step(t_end, t_);
-    if (hybrid_ && outcome != detail::StepOutcome::Root && t_old != redone_from_) {
+    if (call_->hybrid && outcome != detail::StepOutcome::Root && t_old != redone_from_) {
       if (const auto turn = hidden_excursion(t_old)) {
         // The step again, from its start, stopping at the excursion's turn: the root finding then
         // sees the surface's function change sign in it, and locates the first crossing.
@@ -439,7 +438,7 @@ std::optional<double> Flow::hidden_excursion(double t_old) {
   end.f.resize(n);
   call_->rhs(t_, end.z.data(), end.f.data());
   const auto rate = [&](double t, const Eigen::VectorXd& z, const Eigen::VectorXd& f_z, int i) {
-    const double h_t = hybrid_->switching_gradient(t, z.data(), p, i, h_z.data());
+    const double h_t = call_->hybrid->switching_gradient(t, z.data(), p, i, h_z.data());
     return h_z.dot(f_z) + h_t;
   };
   const std::vector<double>& g_old = start.g;

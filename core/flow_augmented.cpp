@@ -45,10 +45,6 @@ class AugmentedCvode final : public FlowStepper {
     pack_augmented(N_VGetArrayPointer(y), z, S, call.system.dimension());
     restart(t);
   }
-  void roots_found(std::vector<int>& found) override {
-    found.assign(root_count > 0 ? root_count : 0, 0);
-    if (root_count > 0) check(CVodeGetRootInfo(mem, found.data()), "CVodeGetRootInfo");
-  }
   void set_max_step(double hmax) override { check(CVodeSetMaxStep(mem, hmax), "CVodeSetMaxStep"); }
   std::optional<PlannedStep> planned_step() override;
   void set_stop_time(double t) override { check(CVodeSetStopTime(mem, t), "CVodeSetStopTime"); }

@@ -179,7 +179,6 @@ class CvodesStepper final : public FlowStepper {
   void start(double t0, const double* z0, const Eigen::MatrixXd& seeds) override;
   void restart(double t) override;
   void restart_from(double t, const double* z, const Eigen::MatrixXd& S) override;
-  void roots_found(std::vector<int>& found) override;
   void set_max_step(double hmax) override;
   std::optional<PlannedStep> planned_step() override;
   void set_stop_time(double t) override;
@@ -574,11 +573,6 @@ void CvodesStepper::restart_from(double t, const double* z, const Eigen::MatrixX
   const int ism =
       options.corrector == SensitivityCorrector::Staggered ? CV_STAGGERED : CV_SIMULTANEOUS;
   SYMPATHY_CHECK(CVodeSensReInit(mem, ism, yS));
-}
-
-void CvodesStepper::roots_found(std::vector<int>& found) {
-  found.assign(root_count > 0 ? root_count : 0, 0);
-  if (root_count > 0) SYMPATHY_CHECK(CVodeGetRootInfo(mem, found.data()));
 }
 
 void CvodesStepper::set_max_step(double hmax) {

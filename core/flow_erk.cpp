@@ -50,10 +50,6 @@ class ErkStepper final : public FlowStepper {
     pack_augmented(N_VGetArrayPointer(y), z, S, call.system.dimension());
     restart(t);
   }
-  void roots_found(std::vector<int>& found) override {
-    found.assign(root_count > 0 ? root_count : 0, 0);
-    if (root_count > 0) check(ERKStepGetRootInfo(mem, found.data()), "ERKStepGetRootInfo");
-  }
   void set_max_step(double hmax) override {
     check(ERKStepSetMaxStep(mem, hmax), "ERKStepSetMaxStep");
   }

@@ -68,7 +68,6 @@ class StepperByColumns final : public FlowStepper {
   void restart_from(double t, const double* z, const Eigen::MatrixXd& S) override {
     active().restart_from(t, z, S);
   }
-  void roots_found(std::vector<int>& found) override { active().roots_found(found); }
   void set_max_step(double hmax) override { active().set_max_step(hmax); }
   std::optional<PlannedStep> planned_step() override { return active().planned_step(); }
   void set_stop_time(double t) override { active().set_stop_time(t); }

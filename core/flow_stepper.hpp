@@ -40,7 +40,10 @@ struct FlowCall {
         // A HybridSystem without surfaces (a model whose smooth forms have none) is a smooth one.
         hybrid(s.switching_count() > 0 ? dynamic_cast<const HybridSystem*>(&s) : nullptr) {}
   const OdeSystem& system;
-  const HybridSystem* hybrid;  // the system, if it is a piecewise-smooth one with surfaces
+  // The system as a piecewise-smooth one with surfaces, where it is: its flow integrates each
+  // region's field, and its crossings map the sensitivity columns by their saltation matrices
+  // and apply its resets (Flow).
+  const HybridSystem* hybrid;
   ParameterValues values;
   // A hybrid system's region the flow is in (a sign per switching function, set by the Flow at
   // the start and at each crossing): the integrator sees that region's field, extended beyond its
@@ -111,8 +114,6 @@ class FlowStepper {
   // Restarts at t from z and the columns S (n x columns): what a reset and the saltation matrix
   // made of the solution at a crossing.
   virtual void restart_from(double t, const double* z, const Eigen::MatrixXd& S) = 0;
-  // After a step that ended at a root: per switching function, nonzero where it crossed there.
-  virtual void roots_found(std::vector<int>& found) = 0;
   virtual void set_max_step(double hmax) = 0;  // 0: no limit
   // Where the integrator stands and the step it will attempt next; nullopt before its first step
   // since the last (re)start.

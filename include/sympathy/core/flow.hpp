@@ -242,9 +242,6 @@ class Flow {
   void collect_statistics();
 
   const OdeSystem& system_;
-  // The system as a piecewise-smooth one, where it is (HybridSystem): its crossings then map the
-  // sensitivity columns by their saltation matrices and apply its resets.
-  const HybridSystem* hybrid_ = nullptr;
   std::vector<int> crossings_;  // per switching surface, since the call began
   // The start of the last step taken again for a hidden excursion (hidden_excursion), and the
   // last step's end as it saw it (the next step's start).
