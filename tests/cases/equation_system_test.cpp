@@ -148,6 +148,38 @@ TEST_F(EquationSystemTest, RelayFromSignIsTheHandWrittenHybridSystem) {
   EXPECT_EQ(h_z, Eigen::Vector2d(0.0, 1.0));
 }
 
+// A surface that moves with a parameter and with time, sign(x - c cos(w t)): the generated
+// system's h = x - c cos(w t), its gradient (1, 0), dh/dt = c w sin(w t) (a central difference,
+// held to 1e-9: its truncation error is about (1e-6)^2 c w^3 / 6 and its rounding 1e-16 / 1e-6)
+// and dh/dc = -cos(w t), dh/dw = c t sin(w t) (dual numbers, to rounding).
+TEST_F(EquationSystemTest, MovingSurfaceHasItsExactDerivatives) {
+  const fs::path file = cache_ / "moving.toml";
+  fs::create_directories(cache_);
+  std::ofstream(file) << "kind = \"equations\"\n[states]\nx = 0.0\nv = 0.0\n"
+                         "[parameters]\nc = 0.4\nw = 1.3\n"
+                         "[equations]\nx = \"v\"\nv = \"-x + sign(x - c*cos(w*t))\"\n";
+  const auto c = EquationCase::load(file.string());
+  const auto b = build(c);
+  const auto& hybrid = dynamic_cast<const HybridSystem&>(*b.system);
+  ASSERT_EQ(hybrid.switching_count(), 1);
+  const ParameterValues p = b.system->default_parameters();
+  const double amplitude = 0.4, w = 1.3;
+  for (const double t : {0.0, 0.7, 2.9}) {
+    const Eigen::Vector2d z(0.25, -0.5);
+    double g = 0.0;
+    hybrid.switching_functions(t, z.data(), p.data(), &g);
+    EXPECT_NEAR(g, z[0] - amplitude * std::cos(w * t), 1e-15);
+    Eigen::Vector2d h_z;
+    const double h_t = hybrid.switching_gradient(t, z.data(), p.data(), 0, h_z.data());
+    EXPECT_EQ(h_z, Eigen::Vector2d(1.0, 0.0));
+    EXPECT_NEAR(h_t, amplitude * w * std::sin(w * t), 1e-9) << t;
+    EXPECT_NEAR(hybrid.switching_parameter_derivative(t, z.data(), p.data(), 0, 0),
+                -std::cos(w * t), 1e-15);
+    EXPECT_NEAR(hybrid.switching_parameter_derivative(t, z.data(), p.data(), 0, 1),
+                amplitude * t * std::sin(w * t), 1e-15);
+  }
+}
+
 // Chua's circuit with its piecewise-linear diode (cases/examples/chua.toml: |u| as u sign(u), a
 // continuous field whose Jacobian switches at x = -1 and 1) against AUTO's chu, which smooths |u|
 // as 2 u atan(rk u) / pi (tests/auto/cases/chu.toml), at alpha = 8: the smoothed orbit's period
