@@ -167,6 +167,7 @@ void Flow::start(const Eigen::VectorXd& z0, const ParameterValues& p, double t0,
   if (call_->hybrid) {
     start_sides(z0);
     crossings_.assign(system_.switching_count(), 0);
+    crossing_times_.assign(system_.switching_count(), CrossingTimes{});
     redone_from_ = std::numeric_limits<double>::quiet_NaN();
     step_end_.t = std::numeric_limits<double>::quiet_NaN();
   }
@@ -262,7 +263,8 @@ void Flow::update_bands(double t) {
 }
 
 // The region of a hybrid system that z0 lies in: the sign of each switching function, or on a
-// surface, the side that f points into.
+// surface, the side the flow enters (saltation.hpp's side_entered, which refuses a start with two
+// solutions or sliding).
 void Flow::start_sides(const Eigen::VectorXd& z0) {
   const int m = system_.switching_count();
   const int n = system_.dimension();
@@ -270,17 +272,13 @@ void Flow::start_sides(const Eigen::VectorXd& z0) {
   std::vector<double> g(m);
   system_.switching_functions(t_, z0.data(), p, g.data());
   call_->sides.assign(m, 1);
+  for (int i = 0; i < m; ++i)
+    if (g[i] < 0.0) call_->sides[i] = -1;
   Eigen::VectorXd f(n);
-  Eigen::RowVectorXd h_z(n);
   system_.rhs(t_, z0.data(), p, f.data());
-  for (int i = 0; i < m; ++i) {
-    double into = g[i];
-    if (into == 0.0) {
-      const double h_t = call_->hybrid->switching_gradient(t_, z0.data(), p, i, h_z.data());
-      into = h_z.dot(f) + h_t;
-    }
-    call_->sides[i] = into < 0.0 ? -1 : 1;
-  }
+  for (int i = 0; i < m; ++i)
+    if (g[i] == 0.0)
+      call_->sides[i] = side_entered(*call_->hybrid, t_, z0, call_->values, call_->sides, i, f);
 }
 
 // The crossings at this root, with their resets, and the sensitivity columns mapped across them
@@ -325,7 +323,10 @@ void Flow::cross_surfaces_here() {
   HybridEvent event = cross_surfaces(*call_->hybrid, t_, z, call_->values, call_->sides, surfaces,
                                      call_->parameters, derivatives);
   call_->sides = std::move(event.sides);
-  for (int i : surfaces) ++crossings_[i];
+  for (int i : surfaces) {
+    ++crossings_[i];
+    check_chattering(i);
+  }
   Eigen::MatrixXd S(n, 0);
   if (derivatives) {
     stepper_->sensitivities(S);
@@ -334,6 +335,37 @@ void Flow::cross_surfaces_here() {
     S.rightCols(np) += event.parameter_jump;
   }
   stepper_->restart_from(t_, event.state.data(), S);
+}
+
+// Crossings of one surface whose intervals shrink geometrically accumulate at a finite time (a
+// Zeno point: a ball bouncing with restitution e under gravity returns after intervals 2 v e^k /
+// g, which sum to 2 v / (g (1 - e))); past it the motion stays on the surface, which no region's
+// field describes, and before it the flow would restart at each of infinitely many crossings.
+// Refused as chattering where kChatterIntervals intervals in a row shrank by kChatterRatio or
+// more (a factor 2.3 at least: an orbit's crossings repeat at a period, a transient's
+// intervals do not shrink so steadily), or where an interval falls below the root finding's
+// resolution (1e3 uround max(|t|, 1)), with the accumulation time extrapolated from the last
+// ratio.
+void Flow::check_chattering(int surface) {
+  constexpr int kChatterIntervals = 8;
+  constexpr double kChatterRatio = 0.9;
+  CrossingTimes& c = crossing_times_[surface];
+  const double interval = t_ - c.last;
+  const double ratio = interval / c.interval;
+  c.shrinking = ratio <= kChatterRatio ? c.shrinking + 1 : 0;
+  c.last = t_;
+  c.interval = interval;
+  const double resolution =
+      1e3 * std::numeric_limits<double>::epsilon() * std::max(std::abs(t_), 1.0);
+  if (c.shrinking < kChatterIntervals && !(interval <= resolution)) return;
+  const double accumulation = ratio < 1.0 ? t_ + interval * ratio / (1.0 - ratio) : t_;
+  std::ostringstream msg;
+  msg.precision(12);
+  msg << "chattering: " << system_.switching_name(surface) << " crossed " << crossings_[surface]
+      << " times, the intervals shrinking by a factor " << ratio << " each (the last " << interval
+      << " at t = " << t_ << "): the crossings accumulate near t = " << accumulation
+      << ", past which the flow stays on the surface, which it does not follow";
+  throw NonsmoothFlowError(msg.str(), accumulation);
 }
 
 void Flow::on_switching() {

@@ -254,6 +254,7 @@ class HybridSlidingSign final : public AutoDiffHybridSystem<HybridSlidingSign> {
   void switching_functions(double, const double* z, const double*, double* g) const override {
     g[0] = z[0];
   }
+  std::string switching_name(int) const override { return "x = 0"; }
   double switching_gradient(double, const double*, const double*, int, double* h_z) const override {
     h_z[0] = 1.0;
     return 0.0;
@@ -274,6 +275,94 @@ TEST(HybridFlow, SlidingIsRefusedWhereItBegins) {
     EXPECT_NE(std::string(e.what()).find("sliding"), std::string::npos) << e.what();
     EXPECT_NEAR(e.time(), 1.0, 1e-9);
   }
+}
+
+// From x = 0 itself: with a = 1 both fields push towards the surface (sliding from the start),
+// with a = -1 (x' = sign(x)) both push away from it, and x = t and x = -t are both solutions.
+// Both refused at t = 0 by name; off the surface, a = -1 runs away on its side.
+TEST(HybridFlow, AStartOnASurfaceWithTwoSolutionsIsRefused) {
+  const HybridSlidingSign system;
+  const auto sliding = system.default_parameters();
+  const auto repelling = system.with_parameter(sliding, 0, -1.0);
+  Flow flow(system);
+  const Eigen::VectorXd on = Eigen::VectorXd::Zero(1);
+  const auto refusal = [&](const ParameterValues& p) {
+    try {
+      flow.advance(on, p, 0.0, 1.0);
+    } catch (const NonsmoothFlowError& e) {
+      EXPECT_EQ(e.time(), 0.0);
+      return std::string(e.what());
+    }
+    return std::string("none");
+  };
+  EXPECT_EQ(refusal(repelling).rfind("not unique: at t = 0 the state lies on x = 0", 0), 0u)
+      << refusal(repelling);
+  EXPECT_EQ(refusal(sliding).rfind("sliding: at t = 0", 0), 0u) << refusal(sliding);
+  EXPECT_NEAR(flow.advance(Eigen::VectorXd::Constant(1, -0.5), repelling, 0.0, 1.0)[0], -1.5,
+              1e-12);
+}
+
+// A ball bouncing under gravity g on a floor x = 0 (crossed downwards only) with restitution e:
+// from the floor at v = V it returns after 2 V / g, faster each bounce by e, and the bounces
+// accumulate at t* = 2 V / (g (1 - e)) (a Zeno point: then it lies on the floor). Parameters g,
+// e.
+class BouncingBall final : public AutoDiffHybridSystem<BouncingBall> {
+ public:
+  BouncingBall() { set_parameter_layout({{"g", {0}}, {"e", {1}}}, {1.0, 0.5}); }
+  int dimension() const override { return 2; }
+  std::vector<std::string> state_names() const override { return {"x", "v"}; }
+  template <class T, class P>
+  void evaluate(double, const T* z, const P* p, T* dz) const {
+    dz[0] = z[1];
+    dz[1] = T(-p[0]);
+  }
+  template <class T, class P>
+  void evaluate_on_sides(double t, const T* z, const P* p, T* dz, const int*) const {
+    evaluate(t, z, p, dz);
+  }
+  int switching_count() const override { return 1; }
+  void switching_functions(double, const double* z, const double*, double* g) const override {
+    g[0] = z[0];
+  }
+  int crossing_direction(int) const override { return -1; }
+  std::string switching_name(int) const override { return "x = 0"; }
+  double switching_gradient(double, const double*, const double*, int, double* h_z) const override {
+    h_z[0] = 1.0;
+    h_z[1] = 0.0;
+    return 0.0;
+  }
+  bool has_reset(int) const override { return true; }
+  void reset(double, const double* z, const double* p, int, double* z_plus) const override {
+    z_plus[0] = z[0];
+    z_plus[1] = -p[1] * z[1];
+  }
+  void reset_jacobian(double, const double*, const double* p, int,
+                      Eigen::MatrixXd& r_z) const override {
+    r_z = Eigen::Matrix2d{{1.0, 0.0}, {0.0, -p[1]}};
+  }
+};
+
+// Chattering is refused with the accumulation time, here t* = 2 / (1 - e) = 4 (g = V = 1): the
+// ratios are exactly e, so the extrapolation is exact up to the located crossing times (at rtol
+// 1e-12, within 1e-9).
+// A run that ends before the bounces shrink eight times in a row goes through.
+TEST(HybridFlow, ChatteringIsRefusedWithItsAccumulationTime) {
+  const BouncingBall system;
+  const auto p = system.default_parameters();
+  const Eigen::Vector2d floor(0.0, 1.0);
+  Flow flow(system, hybrid_flow_settings().front());
+  // Four bounces: at t = 2, 3, 3.5, 3.75, and then up at v = 1/16 for 0.05 s more.
+  const Eigen::VectorXd z = flow.advance(floor, p, 0.0, 3.8);
+  EXPECT_EQ(flow.crossings(), std::vector<int>{4});
+  EXPECT_NEAR(z[1], 1.0 / 16 - 0.05, 1e-9);
+  try {
+    flow.advance(floor, p, 0.0, 10.0);
+    FAIL() << "chattering not refused";
+  } catch (const NonsmoothFlowError& e) {
+    EXPECT_EQ(std::string(e.what()).rfind("chattering: x = 0 crossed 10 times", 0), 0u) << e.what();
+    EXPECT_NEAR(e.time(), 4.0, 1e-9) << e.what();
+  }
+  EXPECT_EQ(flow.crossings(), std::vector<int>{10});
 }
 
 // A system with switching surfaces that does not declare their gradients (not a HybridSystem):

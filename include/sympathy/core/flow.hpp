@@ -237,12 +237,21 @@ class Flow {
   void start_sides(const Eigen::VectorXd& z0);
   void cross_surfaces_here();
   std::optional<double> hidden_excursion(double t_old);
+  void check_chattering(int surface);
   void update_max_step(double t);
   bool outward_caps_looser(int band, int innermost) const;
   void collect_statistics();
 
   const OdeSystem& system_;
   std::vector<int> crossings_;  // per switching surface, since the call began
+  // Per switching surface: its last crossing, the interval before it and how many intervals in a
+  // row shrank geometrically (check_chattering).
+  struct CrossingTimes {
+    double last = std::numeric_limits<double>::quiet_NaN();
+    double interval = std::numeric_limits<double>::quiet_NaN();
+    int shrinking = 0;
+  };
+  std::vector<CrossingTimes> crossing_times_;
   // The start of the last step taken again for a hidden excursion (hidden_excursion), and the
   // last step's end as it saw it (the next step's start).
   double redone_from_ = std::numeric_limits<double>::quiet_NaN();

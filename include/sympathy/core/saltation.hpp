@@ -29,9 +29,11 @@
 
 namespace sympathy {
 
-// The flow has no derivative where the caller asked for one: a grazing crossing (h_z f- + h_t
-// = 0, the orbit touches the surface) or simultaneous crossings whose saltation matrices do not
-// commute (a corner of the flow map).
+// The flow has no derivative where the caller asked for one, or no single continuation at all:
+// a grazing crossing (h_z f- + h_t = 0, the orbit touches the surface), simultaneous crossings
+// whose saltation matrices do not commute (a corner of the flow map), sliding (both fields push
+// towards a surface), a start on a surface that both fields push away from (two solutions), or
+// chattering (crossings accumulating at a finite time). time(): where it happens.
 class NonsmoothFlowError : public IntegrationError {
  public:
   using IntegrationError::IntegrationError;
@@ -79,5 +81,15 @@ HybridEvent cross_surfaces(const HybridSystem& system, double t, const Eigen::Ve
                            const ParameterValues& p, const std::vector<int>& sides,
                            std::span<const int> surfaces, std::span<const int> parameters,
                            bool derivatives);
+
+// The side (+1 or -1) of surface `surface` that a flow starting on it (h = 0 at z) enters, the
+// other surfaces on `sides`: the side both one-sided fields carry it into (where one is tangent,
+// the other's). Where both push away from the surface, two solutions start at z (a pendulum at
+// rest inside the escapement's window: torque +s for th' > 0, -s for th' < 0), and where both
+// push towards it the solution slides along it: both refused by name (NonsmoothFlowError). A
+// surface with a reset or a declared crossing direction is left to the field at z (`field`).
+int side_entered(const HybridSystem& system, double t, const Eigen::VectorXd& z,
+                 const ParameterValues& p, std::vector<int> sides, int surface,
+                 const Eigen::VectorXd& field);
 
 }  // namespace sympathy
