@@ -9,6 +9,7 @@
 #include "curve_system.hpp"
 #include "sympathy/continuation/crossing_locator.hpp"
 #include "sympathy/continuation/driver.hpp"
+#include "sympathy/continuation/grazing.hpp"
 #include "sympathy/core/text.hpp"
 
 namespace sympathy {
@@ -102,7 +103,9 @@ class CurveContinuation {
   std::optional<Point> onto_edge(const Point& a, const Point& b);
   driver::Found<Event> detect(const Point*, const Point& a, const Point& b);
   std::optional<driver::Ending> ends(const Point& a, const Point& b, std::vector<Event>&);
-  void accept(Point&) {}
+  void accept(Point&) {
+    if (!crossings_b_.empty()) crossings_ = std::move(crossings_b_);
+  }
   double parameter(const Point& p) const { return p.first; }
 
  private:
@@ -116,6 +119,10 @@ class CurveContinuation {
   std::vector<Watch> watches() const;
   CurveEvent locate(const Watch& w, const Point& from, const Point& to, double f0, double f1);
   CurveEvent locate_turn(int k, const Point& from, const Point& to, double t0);
+  // A hybrid orbit's crossings per period at a point (grazing.hpp), and the step's arclength
+  // and note of where they change between a and b.
+  std::vector<int> crossings_of(const CurvePoint& p) const;
+  std::optional<driver::Ending> grazing(const Point& a, const Point& b, std::vector<Event>& events);
 
   CurveSystem& system_;
   const BifurcationCurve& curve_;
@@ -124,6 +131,9 @@ class CurveContinuation {
   const CurvePoint& start_;
   double farthest_ = 0.0;               // from the start, in the scaled norm
   std::optional<std::string> stop_at_;  // a stop passed in the step detect saw last: its note
+  // A hybrid system's: the last accepted point's crossings per period, and the step's end's,
+  // which accept() keeps (empty for a smooth system).
+  std::vector<int> crossings_, crossings_b_;
 };
 
 bool CurveContinuation::inside(const Eigen::VectorXd& u) const {
@@ -196,8 +206,71 @@ std::optional<CurveNode> CurveContinuation::onto_edge(const Point& a, const Poin
   return n;
 }
 
+std::vector<int> CurveContinuation::crossings_of(const CurvePoint& p) const {
+  PeriodicOrbit orbit;
+  orbit.state0 = p.state0;
+  orbit.period = p.period;
+  orbit.parameters = system_.values(p.unknowns);
+  return crossings_per_period(system_.system(), system_.options().orbit.shooting.flow, orbit);
+}
+
+// A curve of hybrid orbits ends where its orbits' crossings per period change, as a branch does
+// (grazing.hpp): bisection in the arclength from a, each probe corrected onto the curve, to the
+// location tolerance (scaled arclength); b not kept, the step's events located beyond the
+// bracket's near end dropped (their orbits lie past the grazing).
+std::optional<driver::Ending> CurveContinuation::grazing(const Point& a, const Point& b,
+                                                         std::vector<Event>& events) {
+  const auto where = [&](const CurvePoint& p) {
+    return curve_.first_name + " = " + format_number(p.first) + ", " + curve_.second_name + " = " +
+           format_number(p.second);
+  };
+  try {
+    if (crossings_.empty()) crossings_ = crossings_of(a);
+    crossings_b_ = crossings_of(b);
+  } catch (const IntegrationError& e) {
+    return driver::Ending{driver::Stop::Nonsmooth,
+                          "the orbit at " + where(b) + " is not smooth: " + e.what(), false};
+  }
+  if (crossings_b_ == crossings_) return std::nullopt;
+  system_.set_section(a.unknowns);
+  system_.set_borders(*b.borders);
+  double s_near = 0.0, s_far = b.step;
+  CurvePoint near = a, far = b;
+  std::string failed;
+  constexpr int kMostProbes = 60;
+  for (int probe = 0; probe < kMostProbes && s_far - s_near > options_.location_tolerance;
+       ++probe) {
+    const double s = 0.5 * (s_near + s_far);
+    auto r = along(a, s);
+    std::vector<int> at;
+    if (r.converged) {
+      const CurvePoint q = system_.point(r.u, r.evaluation, a.jacobian, a.tangent);
+      try {
+        at = crossings_of(q);
+      } catch (const IntegrationError& e) {
+        failed = e.what();
+      }
+      if (!at.empty()) (at == crossings_ ? s_near : s_far) = s;
+      if (!at.empty()) (at == crossings_ ? near : far) = q;
+    } else {
+      failed = r.reason;
+    }
+    if (at.empty()) break;
+  }
+  std::string note =
+      "grazing near " + where(far) + " (probes " +
+      format_number(system_.norm(far.unknowns - near.unknowns)) +
+      " apart, scaled): " + describe_crossing_change(system_.system(), crossings_, crossings_b_) +
+      "; the orbits' flow has no derivative there, so the curve ends";
+  if (!failed.empty()) note += "; a probe failed: " + failed;
+  std::erase_if(events, [&](const CurveEvent& e) {
+    return system_.norm(e.at.unknowns - a.unknowns) > s_near;
+  });
+  return driver::Ending{driver::Stop::Nonsmooth, note, false};
+}
+
 std::optional<driver::Ending> CurveContinuation::ends(const Point& a, const Point& b,
-                                                      std::vector<Event>&) {
+                                                      std::vector<Event>& events) {
   // A period the curve was asked to stop at, passed in this step: b not kept (the curve's orbit
   // there is the event's).
   if (stop_at_) {
@@ -205,6 +278,8 @@ std::optional<driver::Ending> CurveContinuation::ends(const Point& a, const Poin
     stop_at_.reset();
     return driver::Ending{driver::Stop::UserValue, "reached the value asked for: " + note, false};
   }
+  if (system_.system().switching_count() > 0)
+    if (auto g = grazing(a, b, events)) return g;
   // Near the point the curve was born from, where it degenerates (CurveOptions::end_radius): b
   // kept, the last point before it.
   if (options_.end_radius > 0.0 &&

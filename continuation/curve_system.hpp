@@ -28,6 +28,8 @@ class CurveSystem {
               CriticalBlock block, int first, int second, ParameterValues base,
               const CurveOptions& options);
 
+  const OdeSystem& system() const { return system_; }
+  const CurveOptions& options() const { return options_; }
   int unknowns() const { return m_ + 3; }  // N: G has N - 1 entries
   int first_index() const { return m_ + 1; }
   int second_index() const { return m_ + 2; }

@@ -164,6 +164,7 @@ void Flow::start(const Eigen::VectorXd& z0, const ParameterValues& p, double t0,
   for (std::size_t j = 0; j < initial_components.size(); ++j)
     seeds_(initial_components[j], static_cast<Eigen::Index>(j)) = 1.0;
   // The region first: the integrator evaluates its field from the start.
+  two_solutions_.clear();
   if (call_->hybrid) {
     start_sides(z0);
     crossings_.assign(system_.switching_count(), 0);
@@ -263,8 +264,8 @@ void Flow::update_bands(double t) {
 }
 
 // The region of a hybrid system that z0 lies in: the sign of each switching function, or on a
-// surface, the side the flow enters (saltation.hpp's side_entered, which refuses a start with two
-// solutions or sliding).
+// surface, the side the flow enters (saltation.hpp's side_entered, which refuses sliding and
+// notes a start where two solutions begin).
 void Flow::start_sides(const Eigen::VectorXd& z0) {
   const int m = system_.switching_count();
   const int n = system_.dimension();
@@ -276,9 +277,13 @@ void Flow::start_sides(const Eigen::VectorXd& z0) {
     if (g[i] < 0.0) call_->sides[i] = -1;
   Eigen::VectorXd f(n);
   system_.rhs(t_, z0.data(), p, f.data());
-  for (int i = 0; i < m; ++i)
-    if (g[i] == 0.0)
-      call_->sides[i] = side_entered(*call_->hybrid, t_, z0, call_->values, call_->sides, i, f);
+  for (int i = 0; i < m; ++i) {
+    if (g[i] != 0.0) continue;
+    StartSide s = side_entered(*call_->hybrid, t_, z0, call_->values, call_->sides, i, f);
+    call_->sides[i] = s.side;
+    if (!s.two_solutions.empty())
+      two_solutions_ += (two_solutions_.empty() ? "" : "; ") + s.two_solutions;
+  }
 }
 
 // The crossings at this root, with their resets, and the sensitivity columns mapped across them

@@ -159,14 +159,15 @@ HybridEvent cross_surfaces(const HybridSystem& system, double t, const Eigen::Ve
   return event;
 }
 
-int side_entered(const HybridSystem& system, double t, const Eigen::VectorXd& z,
-                 const ParameterValues& p, std::vector<int> sides, int surface,
-                 const Eigen::VectorXd& field) {
+StartSide side_entered(const HybridSystem& system, double t, const Eigen::VectorXd& z,
+                       const ParameterValues& p, std::vector<int> sides, int surface,
+                       const Eigen::VectorXd& field) {
   const int n = system.dimension();
   Eigen::RowVectorXd h_z(n);
   const double h_t = system.switching_gradient(t, z.data(), p.data(), surface, h_z.data());
+  const int along_field = h_z.dot(field) + h_t < 0.0 ? -1 : 1;
   if (system.has_reset(surface) || system.crossing_direction(surface) != 0)
-    return h_z.dot(field) + h_t < 0.0 ? -1 : 1;
+    return {along_field, ""};
   // The rate h_z f + h_t of each side's field, and whether it leaves the surface (beyond the
   // grazing tolerance: a field tangent to the surface decides nothing).
   Eigen::VectorXd f(n);
@@ -178,27 +179,31 @@ int side_entered(const HybridSystem& system, double t, const Eigen::VectorXd& z,
     rate[k] = h_z.dot(f) + h_t;
     leaves[k] = std::abs(rate[k]) > kGrazingTolerance * (h_z.norm() * f.norm() + std::abs(h_t));
   }
-  const std::string name = system.switching_name(surface);
-  std::ostringstream msg;
-  msg.precision(12);
-  if (leaves[0] && leaves[1] && rate[0] > 0.0 && rate[1] < 0.0) {
-    msg << "not unique: at t = " << t << " the state lies on " << name
-        << " and the fields on both sides push away from it (h_z f + h_t = " << rate[0]
-        << " on its positive side, " << rate[1]
-        << " on its negative side): two solutions start here; expected a start off the surface";
-    throw NonsmoothFlowError(msg.str(), t);
-  }
-  if (leaves[0] && leaves[1] && rate[0] < 0.0 && rate[1] > 0.0) {
-    msg << "sliding: at t = " << t << " the state lies on " << name
+  const bool both = leaves[0] && leaves[1];
+  if (both && rate[0] < 0.0 && rate[1] > 0.0) {
+    std::ostringstream msg;
+    msg.precision(12);
+    msg << "sliding: at t = " << t << " the state lies on " << system.switching_name(surface)
         << " and the fields on both sides push towards it (h_z f + h_t = " << rate[0]
         << " on its positive side, " << rate[1]
         << " on its negative side): the solution slides along the surface, which the flow does "
            "not follow";
     throw NonsmoothFlowError(msg.str(), t);
   }
-  if (leaves[0]) return rate[0] > 0.0 ? 1 : -1;
-  if (leaves[1]) return rate[1] > 0.0 ? 1 : -1;
-  return h_z.dot(field) + h_t < 0.0 ? -1 : 1;
+  if (both && rate[0] > 0.0 && rate[1] < 0.0) {
+    std::ostringstream msg;
+    msg.precision(6);
+    msg << "two solutions: at t = " << t << " the state lies on " << system.switching_name(surface)
+        << ", which the fields on both sides push away from (h_z f + h_t = " << rate[0]
+        << " on its positive side, " << rate[1]
+        << " on its negative side); followed: the one into its "
+        << (along_field > 0 ? "positive" : "negative") << " side, where the field at the state "
+        << "points";
+    return {along_field, msg.str()};
+  }
+  if (leaves[0]) return {rate[0] > 0.0 ? 1 : -1, ""};
+  if (leaves[1]) return {rate[1] > 0.0 ? 1 : -1, ""};
+  return {along_field, ""};
 }
 
 }  // namespace sympathy

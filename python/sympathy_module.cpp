@@ -232,6 +232,7 @@ class Case {
                      : run.interrupted    ? "interrupted"
                                           : "end time";
     fields["failure"] = run.failure;
+    fields["note"] = run.note;
     return py::module_::import("types").attr("SimpleNamespace")(**fields);
   }
 

@@ -4,6 +4,7 @@
 #include <string>
 #include <thread>
 
+#include "cases/app/equilibrium_curve_run.hpp"
 #include "cases/app/hopf_switch.hpp"
 #include "cases/app/start_data.hpp"
 #include "sympathy/core/errors.hpp"
@@ -27,8 +28,12 @@ LoadedSystem load_system(const Arguments& args) {
   std::optional<SavedStart> saved =
       args.command() == "equilibria" ? std::nullopt : saved_start(args);
   if (saved && holds_hopf_curve(saved->path)) saved.reset();
+  // What the model must allow (a piecewise-smooth one: orbits and what is built on them); a curve
+  // of equilibria is equilibria.
+  const std::string what =
+      args.command() == "curve" && wants_equilibrium_curve(args) ? "equilibria" : args.command();
   LoadedSystem c(args.positional(0), args.text("--params", ""), args.assignments("--set"),
-                 start_data_path(args), args.command(), saved);
+                 start_data_path(args), what, saved);
   if (period) c.scale_data_time(*period);
   return c;
 }

@@ -55,21 +55,20 @@ LoadedCase load_case(const std::string& path, const std::string& params,
   return c;
 }
 
-void require_differentiable(const OdeSystem& system, const std::string& case_path,
-                            const std::string& what) {
+void require_differentiable(const OdeSystem& system, const std::string& switching,
+                            const std::string& what, const std::string& expected) {
   // A piecewise-smooth model's orbit is exact (its monodromy crosses the switching surfaces with
-  // saltation matrices), and so is a branch of them, which ends where an orbit grazes a surface
-  // (grazing.hpp; sliding is refused by the flow). Curves, maps and basins of them are not built
-  // yet, and equilibria lie on its surfaces.
-  const bool hybrid_orbits = (what == "orbit" || what == "continue" || what == "a branch") &&
+  // saltation matrices), and so are branches, sweeps of branches, curves and maps of them, which
+  // end where an orbit grazes a surface (grazing.hpp; sliding, two solutions and chattering are
+  // refused by the flow). Equilibria lie on its surfaces, where its field has no derivative.
+  const bool hybrid_orbits = (what == "orbit" || what == "continue" || what == "curve" ||
+                              what == "sweep" || what == "a branch" || what == "a map") &&
                              dynamic_cast<const HybridSystem*>(&system);
   if (system.differentiable() && (system.switching_count() == 0 || hybrid_orbits)) return;
-  throw InputError(case_path +
-                   ": key 'escapement': the impulsive escapement (eq. 2) switches "
-                   "discontinuously, and " +
-                   what +
-                   " of its orbits is not built yet (orbit, continue and a study's branches are); "
-                   "expected escapement = \"half\" or \"double\"");
+  throw InputError(switching + " switches discontinuously, and " + what +
+                   " is not built for it (orbits, branches, sweeps, curves and maps are); "
+                   "expected " +
+                   expected);
 }
 
 Accuracy parse_accuracy(const std::string& text, const std::string& where) {

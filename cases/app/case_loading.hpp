@@ -26,11 +26,13 @@ struct LoadedCase {
 
 // Throws InputError "WHERE TEXT: expected fast, default or high" unless TEXT names a preset.
 Accuracy parse_accuracy(const std::string& text, const std::string& where);
-// InputError naming the case file and its escapement unless the model is differentiable: the
-// impulsive escapement (eq. 2) switches discontinuously, and orbits, branches and equilibria
-// need the flow's sensitivities (`what`: "orbit", "continue", ...). Before any work.
-void require_differentiable(const OdeSystem& system, const std::string& case_path,
-                            const std::string& what);
+// InputError unless `what` ("orbit", "continue", "equilibria", "a map", ...) is built for the
+// model: a smooth one, or a piecewise-smooth one (a HybridSystem) for its orbits and everything
+// built on them (branches, sweeps, curves, maps), not for equilibria, which lie on its surfaces.
+// `switching` names the case file and what switches ("FILE: key 'escapement': the impulsive
+// escapement (eq. 2)"), `expected` what would do. Before any work.
+void require_differentiable(const OdeSystem& system, const std::string& switching,
+                            const std::string& what, const std::string& expected);
 // The case file at `path` with parameter set `params` ("" for the file's default) and `sets`
 // (name = value overrides) on top.
 LoadedCase load_case(const std::string& path, const std::string& params,

@@ -20,13 +20,16 @@ LoadedSystem::LoadedSystem(const std::string& path, const std::string& params,
                        ": an equation case file has no escapement (expected a metronome "
                        "case file where an escapement is asked for)");
     equations_.emplace(load_equations(path, params, sets, start_data));
+    require_differentiable(*equations_->build.system, path + ": sign() in its equations", what,
+                           "equations without sign() for " + what);
     recorded_ = equations_->start_data;
     describer_ = std::make_unique<StateDescriber>(*equations_->build.system);
   } else {
     metronomes_.emplace(load_case(path, params, sets));
     if (escapement) metronomes_->spec.escapement = *escapement;
     model_ = std::make_unique<MetronomeModel>(metronomes_->spec);
-    require_differentiable(*model_, path, what);
+    require_differentiable(*model_, path + ": key 'escapement': the impulsive escapement (eq. 2)",
+                           what, "escapement = \"half\" or \"double\"");
     describer_ = std::make_unique<MetronomeDescriber>(*model_);
     if (start_data)
       recorded_ = read_recorded_period(*start_data, model_->state_names(), this->path());

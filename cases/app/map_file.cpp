@@ -5,6 +5,7 @@
 #include <filesystem>
 #include <set>
 
+#include "cases/app/escapement_key.hpp"
 #include "cases/app/saved_start_key.hpp"
 #include "sympathy/cases/toml_reader.hpp"
 
@@ -63,9 +64,9 @@ void read_entry(const TomlReader& in, const MapStudy& s, const toml::node& entry
 MapStudy load_map(const std::string& path) {
   const toml::table root = read_toml(path, "map file");
   const TomlReader in(path);
-  in.only(
-      root, "",
-      {"title", "case", "params", "accuracy", "first", "second", "orbits", "equilibria", "marks"});
+  in.only(root, "",
+          {"title", "case", "params", "escapement", "accuracy", "first", "second", "orbits",
+           "equilibria", "marks"});
   MapStudy s;
   s.path = path;
   s.name = std::filesystem::path(path).stem().string();
@@ -76,6 +77,7 @@ MapStudy load_map(const std::string& path) {
                     .lexically_normal()
                     .string();
   if (root.get("params")) s.params = in.string(*root.get("params"), "params");
+  s.escapement = read_escapement_key(in, root);
   if (const toml::node* n = root.get("accuracy")) {
     const std::string text = in.string(*n, "accuracy");
     if (text != "fast" && text != "default" && text != "high")

@@ -38,6 +38,8 @@ struct MapEquilibria {
 
 struct MapStudy {
   std::string path, name, title, case_path, params;
+  // A metronome case's escapement instead of its file's (`escapement`); nullopt: the file's.
+  std::optional<Escapement> escapement;
   Accuracy accuracy = Accuracy::Default;
   MapAxis first, second;
   std::vector<MapOrbit> orbits;

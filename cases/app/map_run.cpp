@@ -41,7 +41,10 @@ MapRun prepare_map(const MapRequest& request) {
   const MapStudy& map = run.map;
   // The case (a metronome case file or an equation case file, compiled once), its parameters,
   // starts and marks checked before any work.
-  run.system = std::make_unique<LoadedSystem>(map.case_path, map.params, std::vector<Assignment>{});
+  // A piecewise-smooth model's orbits are mapped; its equilibria lie on its surfaces.
+  run.system = std::make_unique<LoadedSystem>(
+      map.case_path, map.params, std::vector<Assignment>{}, std::nullopt,
+      map.equilibria.empty() ? "a map" : "a map's [[equilibria]]", std::nullopt, map.escapement);
   const LoadedSystem& c = *run.system;
   c.require_autonomous("map (two-parameter curves)");
   for (const auto* axis : {&map.first, &map.second}) {

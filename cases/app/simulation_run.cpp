@@ -123,6 +123,7 @@ void run_simulation(SimulationRun& run, const std::function<bool()>& stop_reques
   if (csv) csv->close();
   run.summary = analyzer.summary();
   run.statistics = flow.statistics();
+  run.note = flow.two_solutions();
 }
 
 }  // namespace sympathy::app

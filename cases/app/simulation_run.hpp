@@ -37,6 +37,7 @@ struct SimulationRun {
   // After run_simulation:
   OscillationSummary summary;
   FlowStatistics statistics;
+  std::string note;          // a piecewise-smooth start where two solutions begin: which one
   std::string failure;       // the integration's error, where it stopped early
   bool interrupted = false;  // stopped by the caller's stop check
 };

@@ -17,11 +17,6 @@ void prepare_study_basins(StudyRun& run,
   const StudyBasins& b = *study.basins;
   const LoadedSystem& c = *run.systems.front();
   const OdeSystem& system = c.system();
-  if (system.switching_count() > 0)
-    throw InputError(b.where +
-                     ": [basins] of a piecewise-smooth model (escapement = "
-                     "\"impulsive\") are not built yet; expected the smoothed "
-                     "escapement, \"half\" or \"double\"");
   c.check_range(study.parameter,
                 {{b.where + ": basins.from", b.from}, {b.where + ": basins.to", b.to}});
   if (!c.equations() && b.start.empty())

@@ -6,6 +6,7 @@
 #include <filesystem>
 #include <set>
 
+#include "cases/app/escapement_key.hpp"
 #include "cases/app/saved_start_key.hpp"
 
 namespace sympathy::app {
@@ -39,10 +40,7 @@ Study load_study(const std::string& path) {
   const std::string case_file = in.string(required("case"), "case");
   s.case_path = (std::filesystem::path(path).parent_path() / case_file).lexically_normal().string();
   if (root.get("params")) s.params = in.string(*root.get("params"), "params");
-  if (const toml::node* n = root.get("escapement")) {
-    s.escapement = escapement_named(in.string(*n, "escapement"));
-    if (!s.escapement) in.fail(*n, "escapement", "\"half\", \"double\" or \"impulsive\"");
-  }
+  s.escapement = read_escapement_key(in, root);
   s.parameter = in.string(required("parameter"), "parameter");
   s.axis = root.get("axis") ? in.string(*root.get("axis"), "axis") : "phase";
   if (const toml::node* n = root.get("marks")) {

@@ -25,6 +25,7 @@ int run_simulate(const std::vector<std::string>& argv) {
                run.model_note.c_str());
   std::fprintf(stderr, "  t = 0 .. %g s, output every %g s%s%s\n", run.t_end, run.dt,
                csv ? " -> " : " (no --out: time series not written)", run.out_path.c_str());
+  if (!run.note.empty()) std::fprintf(stderr, "  NOTE: %s\n", run.note.c_str());
   if (!run.failure.empty()) std::fprintf(stderr, "  STOPPED: %s\n", run.failure.c_str());
   if (run.interrupted)
     std::fprintf(stderr, "  INTERRUPTED: the time series ends where the signal came\n");

@@ -61,16 +61,35 @@ check "... naming the directory" grep -q "does not exist" "$work/err"
 check "--from -0.5 for M exits 2" test $? -eq 2
 check "... saying M must be positive" grep -q "M = -0.5 is outside the model's domain: M must be a positive number" "$work/err"
 
-# The impulsive escapement (eq. 2) is piecewise smooth: orbit and continue run it (the monodromy
-# crosses the switching surfaces with saltation matrices; a branch ends where an orbit grazes a
-# surface); equilibria, which lie on its surfaces, refuse it at once (exit 2), naming the case
-# file and its escapement.
+# The impulsive escapement (eq. 2) is piecewise smooth: orbit, continue, curve and map run it (the
+# monodromy crosses the switching surfaces with saltation matrices; a branch ends where an orbit
+# grazes a surface); equilibria, which lie on its surfaces, refuse it at once (exit 2), naming
+# the case file and its escapement.
 sed 's/^escapement = "half".*/escapement = "impulsive"/' "$row2" > "$work/impulsive.toml"
 "$bin" orbit "$work/impulsive.toml" --start in-phase > "$work/out" 2> "$work/err"
 check "orbit on the impulsive escapement runs" test $? -eq 0
 "$bin" continue "$work/impulsive.toml" --start in-phase --param d --from 2.4e-6 --to 1e-4 --quiet > "$work/out" 2> "$work/err"
 check "continue on the impulsive escapement ends at a grazing (exit 0)" test $? -eq 0
 check "... naming it" grep -q "stopped: grazing near d = 1.5679" "$work/out"
+# Curves and maps of its orbits run: the anti-phase NS curve in c closes where the smoothed
+# model's does (c = 0.2954 N s/m there; docs/guides/curves-and-maps.md), about 2 s; a map of the
+# anti-phase orbit on a 4 x 3 grid, about 1.5 s.
+"$bin" curve "$work/impulsive.toml" --start anti-phase --param k --from 1 --to 100 --event NS1 \
+  --second c --second-from 0 --second-to 0.5 --quiet > "$work/out" 2> "$work/err"
+check "curve on the impulsive escapement runs" test $? -eq 0
+check "... its NS curve turns back in c at 0.29548" grep -qE "turn in c +53\.09[0-9]+ +0\.29548" "$work/out"
+sed "s|\.\./row2.toml|$row2|" "$src/tests/fuzz/corpus/map_file/map_impulsive.toml" > "$work/map_impulsive.toml"
+"$bin" map "$work/map_impulsive.toml" --out "$work/map" --quiet > "$work/out" 2> "$work/err"
+check "a map file with escapement = \"impulsive\" runs" test $? -eq 0
+check "... its BP curve from the hybrid branch's BP" grep -qE "BP +BP at k = 47\.0666015" "$work/out"
+{ cat "$work/map_impulsive.toml"; printf '[[equilibria]]\nname = "rest"\n'; } > "$work/map_eq.toml"
+"$bin" map "$work/map_eq.toml" --out "$work/map" --quiet > /dev/null 2> "$work/err"
+check "a map's [[equilibria]] on the impulsive escapement exits 2" test $? -eq 2
+check "... naming the case, its escapement and the equilibria" grep -q "row2.toml: key 'escapement': the impulsive escapement (eq. 2) switches discontinuously, and a map's \[\[equilibria\]\] is not built" "$work/err"
+# An equation case file with sign() is piecewise smooth too: its equilibria are refused.
+"$bin" equilibria "$src/cases/examples/relay.toml" --param a --from 0.5 --to 1 > /dev/null 2> "$work/err"
+check "equilibria of an equation case file with sign() exit 2" test $? -eq 2
+check "... naming sign()" grep -q "relay.toml: sign() in its equations switches discontinuously, and equilibria is not built" "$work/err"
 for command in "equilibria --start in-phase --param s --from 1e-8 --to 0"; do
   set -- $command
   "$bin" "$1" "$work/impulsive.toml" "${@:2}" > /dev/null 2> "$work/err"
@@ -93,10 +112,12 @@ printf 'case = "%s"\nescapement = "impulsive"\nparameter = "mu"\n[[branches]]\nn
 "$bin" study "$work/esc_eq.toml" --out "$work" > /dev/null 2> "$work/err"
 check "escapement with an equation case file exits 2" test $? -eq 2
 check "... saying it has none" grep -q "an equation case file has no escapement" "$work/err"
-{ sed "s|\.\./row2.toml|$row2|" "$src/cases/figures/fig08_impulsive.toml"; printf '[basins]\nfrom = 40.0\nto = 50.0\ncount = 2\nstart = "anti-phase"\nbox = { th1 = [-0.5, 0.5] }\n'; } > "$work/esc_basins.toml"
-"$bin" study "$work/esc_basins.toml" --out "$work" > /dev/null 2> "$work/err"
-check "[basins] of the impulsive escapement exits 2" test $? -eq 2
-check "... saying they are not built" grep -q "basins\] of a piecewise-smooth model" "$work/err"
+# [basins] on it: runs certified against the hybrid branches' stable orbits (at k = 60 N/m the
+# anti-phase orbit, stable beyond its NS point at 56.11), about 1 s.
+{ sed "s|\.\./row2.toml|$row2|" "$src/cases/figures/fig08_impulsive.toml"; printf '[basins]\nfrom = 58.0\nto = 60.0\ncount = 2\nstarts = 4\nt_end = 100.0\nstart = "anti-phase"\nbox = { th1 = [0.3, 0.5] }\n'; } > "$work/esc_basins.toml"
+"$bin" study "$work/esc_basins.toml" --out "$work/esc_basins" > "$work/out" 2> "$work/err"
+check "[basins] of the impulsive escapement run" test $? -eq 0
+check "... each start certified on the anti-phase orbit" grep -qE "k = 60: +anti-phase 1 .*certified 4" "$work/out"
 
 # Options validated by the engine's one validation, in study files as on the command line.
 printf 'case = "%s"\nparameter = "k"\n[[branches]]\nname = "a"\nstart = "anti-phase"\nfrom = 1.0\nto = 2.0\nstep = -0.1\n' "$row2" > "$work/step.toml"

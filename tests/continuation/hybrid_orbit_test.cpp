@@ -8,6 +8,7 @@
 #include <cmath>
 #include <numbers>
 
+#include "sympathy/continuation/bifurcation_curve.hpp"
 #include "sympathy/continuation/continuation.hpp"
 #include "sympathy/continuation/periodic_orbit.hpp"
 #include "sympathy/core/flow.hpp"
@@ -202,6 +203,89 @@ TEST(HybridOrbit, BranchEndsWhereItsOrbitGrazesASurface) {
         std::stod(branch.stop_reason.substr(branch.stop_reason.find("mu = ") + 5));
     EXPECT_NEAR(located, c * c, 1e-8) << branch.stop_reason;
   }
+}
+
+// The fold normal form's cycles (r^2 solving mu + (1 + a) r^2 - r^4 = 0, period 2 pi) with a
+// surface x = c across which nothing jumps: its LP curve mu = -(1 + a)^2 / 4, at r^2 = (1 + a) /
+// 2, grazes the surface where r = c, at a = 2 c^2 - 1 exactly. Parameters mu, a, c.
+class FoldWithMark final : public AutoDiffHybridSystem<FoldWithMark> {
+ public:
+  FoldWithMark(double mu, double a, double c) {
+    set_parameter_layout({{"mu", {0}}, {"a", {1}}, {"c", {2}}}, {mu, a, c});
+  }
+  int dimension() const override { return 2; }
+  std::vector<std::string> state_names() const override { return {"x", "y"}; }
+  template <class T, class P>
+  void evaluate(double, const T* z, const P* p, T* dz) const {
+    const T r2 = z[0] * z[0] + z[1] * z[1];
+    const T g = p[0] + (1.0 + p[1]) * r2 - r2 * r2;
+    dz[0] = -z[1] + z[0] * g;
+    dz[1] = z[0] + z[1] * g;
+  }
+  template <class T, class P>
+  void evaluate_on_sides(double t, const T* z, const P* p, T* dz, const int*) const {
+    evaluate(t, z, p, dz);
+  }
+  int switching_count() const override { return 1; }
+  void switching_functions(double, const double* z, const double* p, double* g) const override {
+    g[0] = z[0] - p[2];
+  }
+  double switching_gradient(double, const double*, const double*, int, double* h_z) const override {
+    h_z[0] = 1.0;
+    h_z[1] = 0.0;
+    return 0.0;
+  }
+  std::string switching_name(int) const override { return "x = c"; }
+  double switching_parameter_derivative(double, const double*, const double*, int,
+                                        int parameter) const override {
+    return parameter == 2 ? -1.0 : 0.0;
+  }
+};
+
+// The LP curve from the fold at a = 0 (mu = -1/4, r^2 = 1/2), in a over [-0.5, 0.5]: upward to
+// the window's edge, downward to the grazing at a = 2 c^2 - 1 = -0.28 (c = 0.6), where it ends,
+// its stop named and located by bisection (measured: 2.8e-10 off); every point on the parabola and
+// on the crossing side.
+TEST(HybridOrbit, CurveEndsWhereItsOrbitGrazesASurface) {
+  const double c = 0.6;
+  const FoldWithMark system(-0.2, 0.0, c);
+  const double r2 = 0.5 * (1.0 + std::sqrt(0.2));  // the outer cycle at mu = -0.2
+  OrbitOptions orbit = hybrid_orbit_options();
+  orbit.shooting.flow.rtol = 1e-11;
+  orbit.shooting.flow.atol = 1e-13;
+  const auto start =
+      solve_periodic_orbit(system, system.default_parameters(), Eigen::Vector2d(std::sqrt(r2), 0.0),
+                           2 * std::numbers::pi, {}, orbit);
+  ASSERT_TRUE(start.converged()) << start.newton.reason;
+  ContinuationOptions o;
+  o.lower = -0.5;
+  o.upper = 0.5;
+  o.orbit = orbit;
+  Continuation continuation(system, 0, o);
+  const Branch branch = continuation.run(start, -1);
+  const auto fold = std::ranges::find_if(
+      branch.events, [](const Bifurcation& e) { return e.type == BifurcationType::Fold; });
+  ASSERT_NE(fold, branch.events.end()) << branch.stop_reason;
+  EXPECT_NEAR(fold->parameter, -0.25, 1e-8);
+  CurveOptions w;
+  w.first_lower = -1.0;
+  w.first_upper = 0.0;
+  w.second_lower = -0.5;
+  w.second_upper = 0.5;
+  w.orbit = orbit;
+  const BifurcationCurve curve = continue_curve(system, branch, *fold, 1, w);
+  ASSERT_TRUE(curve.started()) << curve.stop_reason;
+  EXPECT_NE(curve.stop_reason.find("grazing near mu = "), std::string::npos) << curve.stop_reason;
+  EXPECT_NE(curve.stop_reason.find("x = c crossed 2 -> 0 times"), std::string::npos)
+      << curve.stop_reason;
+  const double a_grazing = 2 * c * c - 1.0;
+  for (const auto& p : curve.points) {
+    EXPECT_GT(p.second, a_grazing);
+    EXPECT_NEAR(p.first, -(1.0 + p.second) * (1.0 + p.second) / 4.0, 1e-8) << p.second;
+  }
+  const auto at = curve.stop_reason.find(", a = ");
+  ASSERT_NE(at, std::string::npos) << curve.stop_reason;
+  EXPECT_NEAR(std::stod(curve.stop_reason.substr(at + 6)), a_grazing, 1e-8) << curve.stop_reason;
 }
 
 }  // namespace

@@ -277,29 +277,35 @@ TEST(HybridFlow, SlidingIsRefusedWhereItBegins) {
   }
 }
 
-// From x = 0 itself: with a = 1 both fields push towards the surface (sliding from the start),
-// with a = -1 (x' = sign(x)) both push away from it, and x = t and x = -t are both solutions.
-// Both refused at t = 0 by name; off the surface, a = -1 runs away on its side.
-TEST(HybridFlow, AStartOnASurfaceWithTwoSolutionsIsRefused) {
+// From x = 0 itself: with a = 1 both fields push towards the surface (sliding from the start:
+// refused at t = 0 by name), with a = -1 (x' = sign(x)) both push away from it, and x = t and x =
+// -t are both solutions: the one the field at the state points into (x' = 1 there: the system
+// reads x = 0 as x > 0) is followed, and said; off the surface, none is said.
+TEST(HybridFlow, AStartOnASurfaceWithTwoSolutionsIsSaid) {
   const HybridSlidingSign system;
   const auto sliding = system.default_parameters();
   const auto repelling = system.with_parameter(sliding, 0, -1.0);
   Flow flow(system);
   const Eigen::VectorXd on = Eigen::VectorXd::Zero(1);
-  const auto refusal = [&](const ParameterValues& p) {
-    try {
-      flow.advance(on, p, 0.0, 1.0);
-    } catch (const NonsmoothFlowError& e) {
-      EXPECT_EQ(e.time(), 0.0);
-      return std::string(e.what());
-    }
-    return std::string("none");
-  };
-  EXPECT_EQ(refusal(repelling).rfind("not unique: at t = 0 the state lies on x = 0", 0), 0u)
-      << refusal(repelling);
-  EXPECT_EQ(refusal(sliding).rfind("sliding: at t = 0", 0), 0u) << refusal(sliding);
+  EXPECT_NEAR(flow.advance(on, repelling, 0.0, 1.0)[0], 1.0, 1e-12);
+  EXPECT_EQ(flow.two_solutions().rfind("two solutions: at t = 0 the state lies on x = 0, which "
+                                       "the fields on both sides push away from",
+                                       0),
+            0u)
+      << flow.two_solutions();
+  EXPECT_NE(flow.two_solutions().find("followed: the one into its positive side"),
+            std::string::npos)
+      << flow.two_solutions();
   EXPECT_NEAR(flow.advance(Eigen::VectorXd::Constant(1, -0.5), repelling, 0.0, 1.0)[0], -1.5,
               1e-12);
+  EXPECT_EQ(flow.two_solutions(), "");
+  try {
+    flow.advance(on, sliding, 0.0, 1.0);
+    FAIL() << "sliding from the start not refused";
+  } catch (const NonsmoothFlowError& e) {
+    EXPECT_EQ(e.time(), 0.0);
+    EXPECT_EQ(std::string(e.what()).rfind("sliding: at t = 0", 0), 0u) << e.what();
+  }
 }
 
 // A ball bouncing under gravity g on a floor x = 0 (crossed downwards only) with restitution e:

@@ -214,6 +214,9 @@ class Flow {
   // which surfaces it crosses how often: where that changes along a branch, an orbit grazed a
   // surface between two points.
   const std::vector<int>& crossings() const { return crossings_; }
+  // Where the last call of a hybrid system began on a switching surface that the fields on both
+  // sides push away from (two solutions start there): which one it followed; empty otherwise.
+  const std::string& two_solutions() const { return two_solutions_; }
   void reset_statistics() { statistics_ = FlowStatistics{}; }
 
  private:
@@ -244,6 +247,7 @@ class Flow {
 
   const OdeSystem& system_;
   std::vector<int> crossings_;  // per switching surface, since the call began
+  std::string two_solutions_;   // see two_solutions()
   // Per switching surface: its last crossing, the interval before it and how many intervals in a
   // row shrank geometrically (check_chattering).
   struct CrossingTimes {

@@ -20,6 +20,7 @@
 #pragma once
 
 #include <span>
+#include <string>
 #include <vector>
 
 #include <Eigen/Dense>
@@ -84,12 +85,18 @@ HybridEvent cross_surfaces(const HybridSystem& system, double t, const Eigen::Ve
 
 // The side (+1 or -1) of surface `surface` that a flow starting on it (h = 0 at z) enters, the
 // other surfaces on `sides`: the side both one-sided fields carry it into (where one is tangent,
-// the other's). Where both push away from the surface, two solutions start at z (a pendulum at
-// rest inside the escapement's window: torque +s for th' > 0, -s for th' < 0), and where both
-// push towards it the solution slides along it: both refused by name (NonsmoothFlowError). A
-// surface with a reset or a declared crossing direction is left to the field at z (`field`).
-int side_entered(const HybridSystem& system, double t, const Eigen::VectorXd& z,
-                 const ParameterValues& p, std::vector<int> sides, int surface,
-                 const Eigen::VectorXd& field);
+// the other's). Where both push towards the surface the solution slides along it: refused by
+// name (NonsmoothFlowError). Where both push away from it, two solutions start at z (a pendulum
+// at rest inside the escapement's window with its gravity torque below s: torque +s for th' > 0,
+// -s for th' < 0): the one that the field at z (`field`, the model's own value on the surface)
+// points into is followed, and `two_solutions` says so. A surface with a reset or a declared
+// crossing direction is left to `field`.
+struct StartSide {
+  int side = 1;
+  std::string two_solutions;  // empty unless two solutions start at z: which one is followed
+};
+StartSide side_entered(const HybridSystem& system, double t, const Eigen::VectorXd& z,
+                       const ParameterValues& p, std::vector<int> sides, int surface,
+                       const Eigen::VectorXd& field);
 
 }  // namespace sympathy
