@@ -11,8 +11,9 @@
 // AUTO-07p's measured points, is in bench_branch.cpp; (g) in bench_identical.cpp; (h), equation
 // case files generated against hand-written, in bench_equations.cpp; (i), the Fig. 8 study, in
 // bench_study.cpp; (j), the integrator chosen by the measured stiffness, in bench_stiffness.cpp;
-// (k), basin runs stopped when their fate is known, in bench_basins.cpp. The orbit sections'
-// shared pieces are in bench_orbit.hpp.
+// (k), basin runs stopped when their fate is known, in bench_basins.cpp; (l), the paper's
+// impulsive escapement (hybrid orbits) against the smoothed one at equal error, in
+// bench_hybrid.cpp. The orbit sections' shared pieces are in bench_orbit.hpp.
 #include <algorithm>
 #include <cmath>
 #include <cstdio>
@@ -26,6 +27,7 @@
 #include "cases/bench/bench_basins.hpp"
 #include "cases/bench/bench_branch.hpp"
 #include "cases/bench/bench_equations.hpp"
+#include "cases/bench/bench_hybrid.hpp"
 #include "cases/bench/bench_identical.hpp"
 #include "cases/bench/bench_orbit.hpp"
 #include "cases/bench/bench_stiffness.hpp"
@@ -210,10 +212,10 @@ int run_bench(const std::vector<std::string>& argv) {
   const std::string out = args.text("--out", "out/bench");
   std::filesystem::create_directories(out);
   const bool quick = args.flag("--quick");
-  const std::string sections = args.text("--sections", "abcdefghijk");
+  const std::string sections = args.text("--sections", "abcdefghijkl");
   for (char ch : sections)
-    if (ch < 'a' || ch > 'k')
-      throw InputError("--sections: expected letters from a to k (e.g. abc), got '" + sections +
+    if (ch < 'a' || ch > 'l')
+      throw InputError("--sections: expected letters from a to l (e.g. abc), got '" + sections +
                        "'");
   // On a terminal, a line before each section: which, how many of how many, the time so far.
   ProgressLine line(args.flag("--quiet"));
@@ -423,6 +425,7 @@ int run_bench(const std::vector<std::string>& argv) {
   if (want('i')) bench_study(root, out, quick, md);
   if (want('j')) bench_stiffness(root, out, quick, md);
   if (want('k')) bench_basins(root, out, quick, md);
+  if (want('l')) bench_hybrid(root, quick, csv, md);
   write_file_atomically(out + "/bench.md", md.str());
   std::printf("wrote %s/bench.csv and %s/bench.md; run time %.1f s\n", out.c_str(), out.c_str(),
               clock.seconds());

@@ -81,6 +81,7 @@ Result solve_orbit(const MetronomeModel& model, const PeriodicOrbit& guess,
                                             subspace, orbit_options(s));
     r.converged = orbit.converged();
     r.period = orbit.period;
+    r.state0 = orbit.state0;
     r.multipliers = nontrivial_values(orbit.floquet);
     r.trivial_error = orbit.floquet.trivial_error;
     r.flow = orbit.flow;
@@ -110,12 +111,15 @@ std::vector<std::string> bench_csv_columns() {
           "note",
           "steps",
           "points",
-          "cpu_seconds"};
+          "cpu_seconds",
+          "seconds_per_period",
+          "steps_per_period"};
 }
 
 std::vector<std::string> orbit_csv_row(const std::string& problem, const Setting& s,
                                        const Result& r, double period_error, double mu_error,
-                                       double k_error) {
+                                       double k_error, double seconds_per_period,
+                                       double steps_per_period) {
   using cli::table_number;
   return {problem,
           s.name,
@@ -133,7 +137,9 @@ std::vector<std::string> orbit_csv_row(const std::string& problem, const Setting
           r.note,
           std::to_string(r.flow.steps),
           "",
-          ""};
+          "",
+          std::isnan(seconds_per_period) ? "" : table_number(seconds_per_period, "%.6f"),
+          std::isnan(steps_per_period) ? "" : table_number(steps_per_period, "%.0f")};
 }
 
 }  // namespace sympathy::bench

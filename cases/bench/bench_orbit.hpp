@@ -1,12 +1,14 @@
 // What the bench's orbit sections share: an integrator setting, one orbit solved by Newton from a
 // guess at that setting with what it cost, the multipliers' error against a reference's, the
 // timing of repeated runs, and bench.csv's columns with the row of one solved orbit. Sections
-// (a)-(c) (bench.cpp) measure with them.
+// (a)-(c) (bench.cpp) and (l) (bench_hybrid.cpp) measure with the same pieces, so their numbers
+// compare.
 #pragma once
 
 #include <algorithm>
 #include <cmath>
 #include <complex>
+#include <ctime>
 #include <string>
 #include <vector>
 
@@ -29,6 +31,7 @@ struct Setting {
 struct Result {
   bool converged = false;
   double period = 0.0;
+  Eigen::VectorXd state0;                         // the orbit's initial state
   std::vector<std::complex<double>> multipliers;  // nontrivial
   double trivial_error = NAN;
   double parameter = 0.0;  // (c): the located branch point
@@ -66,13 +69,15 @@ PeriodicOrbit orbit_guess(const MetronomeModel& model, const CaseFile& file, con
 Result solve_orbit(const MetronomeModel& model, const PeriodicOrbit& guess,
                    const InvariantSubspace& subspace, const Setting& s);
 
-// bench.csv's columns.
+// bench.csv's columns; `seconds_per_period` and `steps_per_period` are section (l)'s (one period
+// with the monodromy at the solved orbit), empty elsewhere.
 std::vector<std::string> bench_csv_columns();
 
-// The bench.csv row of one solved orbit (sections (a)-(c)); NAN errors are written "-".
+// The bench.csv row of one solved orbit (sections (a)-(c) and (l)); NAN errors are written "-".
 std::vector<std::string> orbit_csv_row(const std::string& problem, const Setting& s,
                                        const Result& r, double period_error, double mu_error,
-                                       double k_error);
+                                       double k_error, double seconds_per_period = NAN,
+                                       double steps_per_period = NAN);
 
 // Median wall time of `repeats` runs of `work`.
 template <class F>
@@ -82,6 +87,20 @@ double median_seconds(int repeats, F&& work) {
     const Stopwatch clock;
     work();
     t.push_back(clock.seconds());
+  }
+  std::sort(t.begin(), t.end());
+  return t[t.size() / 2];
+}
+
+// Median CPU time of the process over `repeats` runs of `work` (one thread): on a machine shared
+// with other work the wall time of a run grows while this does not.
+template <class F>
+double median_cpu_seconds(int repeats, F&& work) {
+  std::vector<double> t;
+  for (int r = 0; r < repeats; ++r) {
+    const std::clock_t begin = std::clock();
+    work();
+    t.push_back(static_cast<double>(std::clock() - begin) / CLOCKS_PER_SEC);
   }
   std::sort(t.begin(), t.end());
   return t[t.size() / 2];
