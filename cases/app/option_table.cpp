@@ -383,13 +383,15 @@ std::vector<OptionSpec> bench_options() {
           {"--quick", "", false, "fewer tolerances (for a smoke run)"},
           {"--quiet", "", false, "no progress lines on a terminal"},
           {"--sections", "LIST", false,
-           "which parts, e.g. abc (default abcdefghijk): (a)-(c) error against run time, "
+           "which parts, e.g. abc (default abcdefghijkl): (a)-(c) error against run time, "
            "(d) cost of a continuation point, (e) cost against the number of metronomes, "
            "(f) the anti-phase k-branch per accuracy preset and integrator, with AUTO-07p's "
            "measured points, (g) identical metronomes in phase, reduced and whole, (h) equation "
            "case files, generated against hand-written, and their compile time, (i) the Fig. 8 "
            "study from its file, wall time, (j) the integrator chosen by the measured stiffness "
-           "against each forced, (k) basin runs stopped early against full-length ones"}};
+           "against each forced, (k) basin runs stopped early against full-length ones, (l) the "
+           "paper's impulsive escapement (hybrid orbits) against the smoothed one at equal "
+           "error"}};
 }
 
 std::vector<std::string> commands() {

@@ -11,7 +11,9 @@
 // AUTO-07p's measured points, is in bench_branch.cpp; (g) in bench_identical.cpp; (h), equation
 // case files generated against hand-written, in bench_equations.cpp; (i), the Fig. 8 study, in
 // bench_study.cpp; (j), the integrator chosen by the measured stiffness, in bench_stiffness.cpp;
-// (k), basin runs stopped when their fate is known, in bench_basins.cpp.
+// (k), basin runs stopped when their fate is known, in bench_basins.cpp; (l), the paper's
+// impulsive escapement (hybrid orbits) against the smoothed one at equal error, in
+// bench_hybrid.cpp. The orbit sections' shared pieces are in bench_orbit.hpp.
 #include <algorithm>
 #include <cmath>
 #include <cstdio>
@@ -25,14 +27,15 @@
 #include "cases/bench/bench_basins.hpp"
 #include "cases/bench/bench_branch.hpp"
 #include "cases/bench/bench_equations.hpp"
+#include "cases/bench/bench_hybrid.hpp"
 #include "cases/bench/bench_identical.hpp"
+#include "cases/bench/bench_orbit.hpp"
 #include "cases/bench/bench_stiffness.hpp"
 #include "cases/bench/bench_study.hpp"
 #include "cases/cli/commands.hpp"
 #include "cases/cli/common.hpp"
 #include "cases/cli/progress.hpp"
 #include "sympathy/continuation/continuation.hpp"
-#include "sympathy/core/assignment.hpp"
 #include "sympathy/core/csv.hpp"
 #include "sympathy/core/output_file.hpp"
 
@@ -41,94 +44,6 @@ namespace sympathy::bench {
 using namespace sympathy::cli;  // the program's options, progress line and interrupts
 
 namespace {
-
-struct Setting {
-  std::string name;
-  FlowOptions flow;
-  int segments = 1;
-};
-
-struct Result {
-  bool converged = false;
-  double period = 0.0;
-  std::vector<std::complex<double>> multipliers;  // nontrivial
-  double trivial_error = NAN;
-  double parameter = 0.0;  // (c): the located branch point
-  double seconds = 0.0;
-  FlowStatistics flow;
-  int iterations = 0;
-  std::string note;
-};
-
-Setting setting(const std::string& name, Method method, double rtol, int segments = 1,
-                LinearSolver solver = LinearSolver::Dense,
-                Derivatives derivatives = Derivatives::Model, bool resolve = true) {
-  Setting s;
-  s.name = name;
-  s.flow.method = method;
-  s.flow.nonlinear_solver =
-      method == Method::BDF ? NonlinearSolver::Newton : NonlinearSolver::FixedPoint;
-  s.flow.rtol = rtol;
-  s.flow.atol = rtol * 1e-2;
-  s.flow.linear_solver = solver;
-  s.flow.derivatives = derivatives;
-  s.flow.resolve_steep_zones = resolve;
-  s.segments = segments;
-  return s;
-}
-
-OrbitOptions orbit_options(const Setting& s) {
-  OrbitOptions o;
-  o.shooting.flow = s.flow;
-  o.shooting.segments = s.segments;
-  // Newton cannot get below the integration's own error: the library asks for no less than
-  // 20 rtol (NewtonOptions::rtol_factor), and at the tightest settings for 1e-10.
-  o.newton.residual_tolerance = 1e-10;
-  return o;
-}
-
-std::vector<std::complex<double>> nontrivial_values(const FloquetAnalysis& f) {
-  std::vector<std::complex<double>> v;
-  for (const auto& m : f.multipliers)
-    if (!m.trivial) v.push_back(m.value);
-  return v;
-}
-
-// Largest distance between the multipliers and the reference's, paired by least total squared
-// distance.
-double multiplier_error(const std::vector<std::complex<double>>& a,
-                        const std::vector<std::complex<double>>& b) {
-  if (a.size() != b.size()) return INFINITY;
-  const int n = static_cast<int>(a.size());
-  Eigen::MatrixXd cost(n, n);
-  for (int i = 0; i < n; ++i)
-    for (int j = 0; j < n; ++j) cost(i, j) = std::norm(a[i] - b[j]);
-  const std::vector<int> column = least_cost_assignment(cost);
-  double worst = 0.0;
-  for (int i = 0; i < n; ++i) worst = std::max(worst, std::abs(a[i] - b[column[i]]));
-  return worst;
-}
-
-Result solve_orbit(const MetronomeModel& model, const PeriodicOrbit& guess,
-                   const InvariantSubspace& subspace, const Setting& s) {
-  Result r;
-  const Stopwatch clock;
-  try {
-    const auto orbit = solve_periodic_orbit(model, guess.parameters, guess.state0, guess.period,
-                                            subspace, orbit_options(s));
-    r.converged = orbit.converged();
-    r.period = orbit.period;
-    r.multipliers = nontrivial_values(orbit.floquet);
-    r.trivial_error = orbit.floquet.trivial_error;
-    r.flow = orbit.flow;
-    r.iterations = orbit.newton.iterations;
-    if (!r.converged) r.note = orbit.newton.reason;
-  } catch (const std::exception& e) {
-    r.note = e.what();
-  }
-  r.seconds = clock.seconds();
-  return r;
-}
 
 // The first stability change of the anti-phase branch between k = 44 and 50 N/m.
 Result locate_branch_point(const MetronomeModel& model, const PeriodicOrbit& at44,
@@ -161,19 +76,6 @@ Result locate_branch_point(const MetronomeModel& model, const PeriodicOrbit& at4
 
 std::string format(double v, const char* f = "%.2e") {
   return table_number(v, f);
-}
-
-// Median wall time of `repeats` runs of `work`.
-template <class F>
-double median_seconds(int repeats, F&& work) {
-  std::vector<double> t;
-  for (int r = 0; r < repeats; ++r) {
-    const Stopwatch clock;
-    work();
-    t.push_back(clock.seconds());
-  }
-  std::sort(t.begin(), t.end());
-  return t[t.size() / 2];
 }
 
 // (d) A branch at default settings against the floor of a shooting method: one period's
@@ -310,10 +212,10 @@ int run_bench(const std::vector<std::string>& argv) {
   const std::string out = args.text("--out", "out/bench");
   std::filesystem::create_directories(out);
   const bool quick = args.flag("--quick");
-  const std::string sections = args.text("--sections", "abcdefghijk");
+  const std::string sections = args.text("--sections", "abcdefghijkl");
   for (char ch : sections)
-    if (ch < 'a' || ch > 'k')
-      throw InputError("--sections: expected letters from a to k (e.g. abc), got '" + sections +
+    if (ch < 'a' || ch > 'l')
+      throw InputError("--sections: expected letters from a to l (e.g. abc), got '" + sections +
                        "'");
   // On a terminal, a line before each section: which, how many of how many, the time so far.
   ProgressLine line(args.flag("--quiet"));
@@ -361,24 +263,15 @@ int run_bench(const std::vector<std::string>& argv) {
   };
   const std::vector<Problem> orbits{{"(a) anti-phase orbit, Table II", "table2", "anti-phase"},
                                     {"(b) in-phase orbit, Table III", "table3", "in-phase"}};
-  CsvWriter csv(
-      out + "/bench.csv",
-      {"problem", "setting", "rtol", "period_error", "multiplier_error", "parameter_error",
-       "trivial_multiplier_error", "seconds", "rhs_evaluations", "sensitivity_rhs_evaluations",
-       "jacobians", "newton_iterations", "converged", "note", "steps", "points", "cpu_seconds"});
+  CsvWriter csv(out + "/bench.csv", bench_csv_columns());
   std::ostringstream md;
   md << "# sympathy bench: error against run time (row setup)\n\n"
      << where_measured(argv) << "\n\n";
-  const Setting reference = setting("reference", Method::BDF, 1e-13);
-  const Setting check = setting("check", Method::BDF, 1e-12);
+  const Setting reference = reference_setting();
+  const Setting check = check_setting();
   auto emit = [&](const std::string& problem, const Setting& s, const Result& r,
                   double period_error, double mu_error, double k_error) {
-    csv.row(std::vector<std::string>{
-        problem, s.name, format(s.flow.rtol, "%.0e"), format(period_error), format(mu_error),
-        format(k_error), format(r.trivial_error), format(r.seconds, "%.4f"),
-        std::to_string(r.flow.rhs_evaluations), std::to_string(r.flow.variational_evaluations),
-        std::to_string(r.flow.jacobian_evaluations), std::to_string(r.iterations),
-        r.converged ? "yes" : "no", r.note, std::to_string(r.flow.steps), "", ""});
+    csv.row(orbit_csv_row(problem, s, r, period_error, mu_error, k_error));
     md << "| " << s.name << " | " << format(s.flow.rtol, "%.0e") << " | "
        << (std::isnan(period_error) ? format(k_error) : format(period_error)) << " | "
        << (std::isnan(mu_error) ? std::string("-") : format(mu_error)) << " | "
@@ -393,11 +286,8 @@ int run_bench(const std::vector<std::string>& argv) {
     MetronomeModel model(file.spec(p.params));
     const auto& start = file.start(p.start);
     const InvariantSubspace subspace = file.invariant_subspace(start, model);
-    PeriodicOrbit guess = find_periodic_orbit(model, model.default_parameters(),
-                                              file.initial_state(&start), subspace, OrbitOptions{});
     // Every setting converges by itself from the same guess: the orbit moved by 1e-3.
-    guess.state0 = subspace.project(guess.state0 * (1.0 + 1e-3));
-    guess.period *= 1.0 + 1e-3;
+    const PeriodicOrbit guess = orbit_guess(model, file, start, subspace);
     const Result ref = solve_orbit(model, guess, subspace, reference);
     const Result chk = solve_orbit(model, guess, subspace, check);
     const double ref_period = std::abs(chk.period - ref.period) / ref.period;
@@ -535,6 +425,7 @@ int run_bench(const std::vector<std::string>& argv) {
   if (want('i')) bench_study(root, out, quick, md);
   if (want('j')) bench_stiffness(root, out, quick, md);
   if (want('k')) bench_basins(root, out, quick, md);
+  if (want('l')) bench_hybrid(root, quick, csv, md);
   write_file_atomically(out + "/bench.md", md.str());
   std::printf("wrote %s/bench.csv and %s/bench.md; run time %.1f s\n", out.c_str(), out.c_str(),
               clock.seconds());

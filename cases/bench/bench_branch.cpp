@@ -221,7 +221,7 @@ void bench_branch_accuracy(const std::string& root, bool quick, CsvWriter& csv, 
         fmt(r.seconds, "%.4f"), std::to_string(r.flow.rhs_evaluations),
         std::to_string(r.flow.variational_evaluations), std::to_string(r.flow.jacobian_evaluations),
         "", ok ? "yes" : "no", r.note, std::to_string(r.flow.steps), std::to_string(r.points),
-        fmt(r.cpu_seconds, "%.4f")});
+        fmt(r.cpu_seconds, "%.4f"), "", ""});
     md << "| " << s.name << " | " << fmt(s.flow.rtol, "%.0e") << " | " << fmt(error) << " | "
        << fmt(r.trivial_error) << " | " << fmt(r.seconds, "%.3f") << " | "
        << fmt(r.cpu_seconds, "%.3f") << " | " << r.flow.steps << " | " << r.points << " | "
@@ -236,7 +236,7 @@ void bench_branch_accuracy(const std::string& root, bool quick, CsvWriter& csv, 
     csv.row(std::vector<std::string>{problem, a.setting, "-", "", "", fmt(a.error), fmt(a.trivial),
                                      fmt(a.seconds, "%.4f"), "", "", "", "", "AUTO-07p",
                                      "AUTO-07p's measurement (anchors file)", "",
-                                     std::to_string(a.points), ""});
+                                     std::to_string(a.points), "", "", ""});
     md << "| " << a.setting << " (AUTO's measurement) | - | " << fmt(a.error) << " | "
        << fmt(a.trivial) << " | " << fmt(a.seconds, "%.3f") << " | - | - | " << a.points
        << " | - |\n";
