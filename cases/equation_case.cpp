@@ -238,9 +238,10 @@ EquationCase EquationCase::load(const std::string& path) {
   EquationCase c;
   c.path_ = path;
   c.name_ = std::filesystem::path(path).stem().string();
-  in.only(root, "",
-          {"kind", "name", "description", "plugin", "states", "parameters", "intermediates",
-           "equations", "steep", "forcing_period", "params", "default_params", "starts"});
+  in.only(
+      root, "",
+      {"kind", "name", "description", "plugin", "states", "parameters", "intermediates",
+       "equations", "steep", "impacts", "forcing_period", "params", "default_params", "starts"});
   const auto* kind = root.get("kind");
   if (kind == nullptr || in.string(*kind, "kind") != "equations")
     throw InputError(path +
@@ -365,7 +366,7 @@ EquationCase EquationCase::load(const std::string& path) {
   // A C++ plug-in instead of equations: its source beside the case file (or where it says).
   if (const auto* n = root.get("plugin")) {
     const std::string name = in.string(*n, "plugin");
-    for (const char* table : {"intermediates", "equations", "steep"})
+    for (const char* table : {"intermediates", "equations", "steep", "impacts"})
       if (root.get(table) != nullptr)
         in.fail(*root.get(table), table,
                 "no [" + std::string(table) + "] in a case file with a plug-in (its equations " +
@@ -479,6 +480,61 @@ EquationCase EquationCase::load(const std::string& path) {
     }
     for (const auto& st : sys.states)
       if (by_state.count(st.name)) sys.steep.push_back(std::move(by_state[st.name]));
+  }
+
+  // Impacts: a surface, the direction it is reached from, the states' values after it. Data like
+  // the equations: each expression a checked tree that code generation writes out.
+  if (const auto* n = root.get("impacts")) {
+    if (!n->is_array_of_tables() || n->as_array()->empty())
+      in.fail(*n, "impacts", "one or more [[impacts]] tables");
+    int index = 0;
+    for (const auto& entry : *n->as_array()) {
+      const std::string prefix = "impacts[" + std::to_string(++index) + "].";
+      const auto& t = *entry.as_table();
+      in.only(t, prefix, {"surface", "direction", "reset"});
+      ImpactSpec impact;
+      const auto* surface = t.get("surface");
+      if (surface == nullptr)
+        throw InputError(in.where(entry) + ": key '" + prefix +
+                         "surface' is missing: expected the impact surface h, an expression "
+                         "(the impact where h = 0)");
+      impact.surface = loader.expression(*surface, prefix + "surface");
+      check_names(impact.surface, *surface, prefix + "surface");
+      if (const auto* d = t.get("direction")) {
+        const std::string text = in.string(*d, prefix + "direction");
+        if (text != "decreasing" && text != "increasing")
+          in.fail(*d, prefix + "direction",
+                  "\"decreasing\" (the impact where h falls through 0, from h > 0) or "
+                  "\"increasing\"");
+        impact.direction = text == "increasing" ? 1 : -1;
+      }
+      const auto* reset = t.get("reset");
+      if (reset == nullptr)
+        throw InputError(in.where(entry) + ": key '" + prefix +
+                         "reset' is missing: expected the states after the impact, { STATE = "
+                         "\"...\" }");
+      const auto& values = in.table(*reset, prefix + "reset");
+      if (values.empty()) in.fail(*reset, prefix + "reset", "one or more STATE = \"...\"");
+      std::map<std::string, const toml::node*> by_state;
+      for (const auto& [key, node] : in_file_order(values)) {
+        const std::string name(key->str());
+        if (!std::any_of(sys.states.begin(), sys.states.end(),
+                         [&](const auto& st) { return st.name == name; }))
+          loader.fail_key(*key, prefix + "reset." + name,
+                          "a state of [states] (" + join(c.state_names()) + ")",
+                          "'" + name + "', not a state");
+        by_state[name] = node;
+      }
+      for (std::size_t i = 0; i < sys.states.size(); ++i) {
+        const auto it = by_state.find(sys.states[i].name);
+        if (it == by_state.end()) continue;
+        const std::string full = prefix + "reset." + sys.states[i].name;
+        Expression tree = loader.expression(*it->second, full);
+        check_names(tree, *it->second, full);
+        impact.reset.emplace_back(static_cast<int>(i), std::move(tree));
+      }
+      sys.impacts.push_back(std::move(impact));
+    }
   }
 
   // The forcing's period, for equations that use t: what orbits of a forced system have.

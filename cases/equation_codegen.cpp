@@ -85,9 +85,12 @@ class Emitter {
     // the order they are written (its argument = 0; a sign inside another's argument too).
     for (const auto& w : system.intermediates) collect_surfaces(w.tree);
     for (const auto& d : system.derivatives) collect_surfaces(d.tree);
+    // Then each impact's surface (a sign(...) inside it or its reset is the sign of its value).
+    for (const auto& impact : system.impacts) surface_arguments_.push_back(&impact.surface);
   }
 
-  // The switching surfaces' functions: the arguments of the sign calls, in surface order.
+  // The switching surfaces' functions: the arguments of the sign calls, in surface order, then
+  // the impacts' surfaces.
   const std::vector<const Expression*>& surfaces() const { return surface_arguments_; }
 
   using K = Expression::Kind;
@@ -247,6 +250,58 @@ constexpr const char* kEpilogue = R"(};
 SYMPATHY_PLUGIN(GeneratedSystem)
 )";
 
+// The impacts' surfaces (the last ones): their directions, names and resets, the resets'
+// derivatives in the states and parameters by dual numbers.
+std::string impact_declarations(const EquationSystem& system, const Emitter& emitter,
+                                const std::string& preamble) {
+  const std::string n = std::to_string(system.states.size());
+  const std::string m = std::to_string(system.parameters.size());
+  const std::size_t first = emitter.surfaces().size() - system.impacts.size();
+  std::string s =
+      "  int crossing_direction(int surface) const override {\n    switch (surface) {\n";
+  for (std::size_t k = 0; k < system.impacts.size(); ++k)
+    s += "      case " + std::to_string(first + k) + ": return " +
+         std::to_string(system.impacts[k].direction) + ";\n";
+  s += "      default: return 0;\n    }\n  }\n\n";
+  s += "  bool has_reset(int surface) const override { return surface >= " + std::to_string(first) +
+       "; }\n\n";
+  s += "  std::string switching_name(int surface) const override {\n";
+  s += "    return surface >= " + std::to_string(first) +
+       " ? \"impacts[\" + std::to_string(surface - " + std::to_string(first) +
+       " + 1) + \"].surface = 0\" : \"switching surface \" + std::to_string(surface);\n  }\n\n";
+  s += "  template <class S>\n";
+  s += "  void resets([[maybe_unused]] double t, const S* z, [[maybe_unused]] const S* p, int "
+       "surface, S* out) const {\n";
+  s += "    [[maybe_unused]] const int* sides = nullptr;\n" + preamble;
+  s += "    for (int i = 0; i < " + n + "; ++i) out[i] = z[i];\n    switch (surface) {\n";
+  for (std::size_t k = 0; k < system.impacts.size(); ++k) {
+    s += "      case " + std::to_string(first + k) + ":\n";
+    for (const auto& [state, tree] : system.impacts[k].reset)
+      s += "        out[" + std::to_string(state) + "] = S(" + emitter.emit(tree) + ");\n";
+    s += "        break;\n";
+  }
+  s += "      default:\n        break;\n    }\n  }\n\n";
+  s +=
+      "  void reset(double t, const double* z, const double* p, int surface, double* z_plus) const "
+      "override {\n    resets(t, z, p, surface, z_plus);\n  }\n\n";
+  s += "  void reset_jacobian(double t, const double* z, const double* p, int surface, "
+       "Eigen::MatrixXd& r_z) const override {\n";
+  s += "    using D = sympathy::Dual<1>;\n";
+  s += "    std::vector<D> zd(z, z + " + n + "), pd(p, p + " + m + "), out(" + n + ");\n";
+  s += "    r_z.resize(" + n + ", " + n + ");\n";
+  s += "    for (int j = 0; j < " + n + "; ++j) {\n";
+  s += "      zd[j].d[0] = 1.0;\n      resets(t, zd.data(), pd.data(), surface, out.data());\n";
+  s += "      for (int i = 0; i < " + n + "; ++i) r_z(i, j) = out[i].d[0];\n";
+  s += "      zd[j].d[0] = 0.0;\n    }\n  }\n\n";
+  s += "  void reset_parameter_derivative(double t, const double* z, const double* p, int surface, "
+       "int parameter, double* r_p) const override {\n";
+  s += "    using D = sympathy::Dual<1>;\n";
+  s += "    std::vector<D> zd(z, z + " + n + "), pd(p, p + " + m + "), out(" + n + ");\n";
+  s += "    pd[parameter].d[0] = 1.0;\n    resets(t, zd.data(), pd.data(), surface, out.data());\n";
+  s += "    for (int i = 0; i < " + n + "; ++i) r_p[i] = out[i].d[0];\n  }\n\n";
+  return s;
+}
+
 // A piecewise-smooth system's surfaces (the sign calls' arguments), their gradients in the
 // states by dual numbers, dh/dt by a central difference where the system uses t (1e-6 of |t|, at
 // least 1e-6: a truncation error of about 1e-12 relative), dh/dp by dual numbers, their names.
@@ -287,6 +342,7 @@ std::string hybrid_declarations(const EquationSystem& system, const Emitter& emi
   s += "    std::vector<D> zd(z, z + " + n + "), pd(p, p + " + m + "), gd(switching_count());\n";
   s += "    pd[parameter].d[0] = 1.0;\n    surfaces(t, zd.data(), pd.data(), gd.data());\n";
   s += "    return gd[surface].d[0];\n  }\n\n";
+  if (!system.impacts.empty()) s += impact_declarations(system, emitter, preamble);
   return s;
 }
 

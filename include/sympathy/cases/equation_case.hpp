@@ -81,6 +81,17 @@ struct SteepSpec {
   std::optional<Expression> scale;
 };
 
+// An impact: where the motion reaches the surface h(t, z, p) = 0 in `direction` (-1: where h
+// decreases, the free region h > 0; +1: where it increases), the states named in `reset` jump to
+// their expressions' values, of the states just before (the others keep theirs): a ball's
+// velocity reversed at a wall, v = -e*v. The system is then a hybrid one (core/hybrid_system.hpp)
+// with a reset on that surface.
+struct ImpactSpec {
+  Expression surface;
+  int direction = -1;
+  std::vector<std::pair<int, Expression>> reset;  // (state, its value after), in state order
+};
+
 // A checked system of equations: what code generation needs, and nothing of the file's text.
 struct EquationSystem {
   std::vector<EquationState> states;
@@ -89,6 +100,7 @@ struct EquationSystem {
   std::vector<NamedExpression> derivatives;    // one per state, in state order
   bool uses_time = false;                      // does any expression use t?
   std::vector<SteepSpec> steep;                // [steep], in state order
+  std::vector<ImpactSpec> impacts;             // [[impacts]], in file order
   std::optional<Expression> forcing_period;    // of parameters; only where uses_time
 };
 
