@@ -75,6 +75,42 @@ TEST(EquationCase, SteepZones) {
                   "key 'steep.y.width' is missing: expected the zone's half-width");
 }
 
+// [[impacts]]: a surface (an expression of states, parameters, intermediates and t), a direction
+// ("decreasing" by default) and the states after the impact, in state order; each wrong entry
+// refused where it stands.
+TEST(EquationCase, Impacts) {
+  const auto c = EquationCase::load(write_test_file(
+      "sympathy_equation_case_test", ".toml",
+      kValid + "[[impacts]]\nsurface = \"x - a\"\nreset = { y = \"-b*y\", x = \"a\" }\n"
+               "[[impacts]]\nsurface = \"r2 - 4\"\ndirection = \"increasing\"\n"
+               "reset = { y = \"0\" }\n"));
+  ASSERT_EQ(c.system().impacts.size(), 2u);
+  EXPECT_EQ(c.system().impacts[0].direction, -1);
+  ASSERT_EQ(c.system().impacts[0].reset.size(), 2u);
+  EXPECT_EQ(c.system().impacts[0].reset[0].first, 0);  // in state order, not the file's
+  EXPECT_EQ(c.system().impacts[0].reset[1].first, 1);
+  EXPECT_EQ(c.system().impacts[1].direction, 1);
+  expect_contains(error_of_file(kValid + "[[impacts]]\nreset = { y = \"0\" }\n"),
+                  ".toml:13: key 'impacts[1].surface' is missing: expected the impact surface h");
+  expect_contains(
+      error_of_file(kValid + "[[impacts]]\nsurface = \"x\"\ndirection = \"down\"\n"
+                             "reset = { y = \"0\" }\n"),
+      ".toml:15: key 'impacts[1].direction': expected \"decreasing\" (the impact where h falls "
+      "through 0, from h > 0) or \"increasing\"");
+  expect_contains(error_of_file(kValid + "[[impacts]]\nsurface = \"x\"\n"),
+                  "key 'impacts[1].reset' is missing: expected the states after the impact");
+  expect_contains(
+      error_of_file(kValid + "[[impacts]]\nsurface = \"x\"\nreset = { r2 = \"0\" }\n"),
+      "key 'impacts[1].reset.r2': expected a state of [states] (x, y), got 'r2', not a state");
+  expect_contains(
+      error_of_file(kValid + "[[impacts]]\nsurface = \"x - q\"\nreset = { y = \"0\" }\n"),
+      ".toml:14:16: key 'impacts[1].surface': expected a state, a parameter, an intermediate, t "
+      "or pi");
+  expect_contains(
+      error_of_file(kValid + "[[impacts]]\nsurface = \"x\"\nspeed = 1\nreset = { y = \"0\" }\n"),
+      "impacts[1].speed");
+}
+
 // plugin = "FILE.cpp": a C++ source beside the case file instead of equations; a file that also
 // has equations, or names no .cpp file that exists, is refused where the key stands.
 TEST(EquationCase, PluginInsteadOfEquations) {
