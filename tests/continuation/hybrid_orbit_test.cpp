@@ -9,6 +9,7 @@
 #include <numbers>
 
 #include "sympathy/continuation/bifurcation_curve.hpp"
+#include "sympathy/continuation/branch_switching.hpp"
 #include "sympathy/continuation/continuation.hpp"
 #include "sympathy/continuation/periodic_orbit.hpp"
 #include "sympathy/core/flow.hpp"
@@ -286,6 +287,75 @@ TEST(HybridOrbit, CurveEndsWhereItsOrbitGrazesASurface) {
   const auto at = curve.stop_reason.find(", a = ");
   ASSERT_NE(at, std::string::npos) << curve.stop_reason;
   EXPECT_NEAR(std::stod(curve.stop_reason.substr(at + 6)), a_grazing, 1e-8) << curve.stop_reason;
+}
+
+// The relay (x, v, with sign(v)) beside a transverse pitchfork w' = mu w - w^3: the relay's orbit
+// with w = 0 has the multipliers 1, rho^2 and exp(mu T), a branch point at mu = 0, and the
+// branches born there, w = +-sqrt(mu), carry the same relay orbit (period 2 pi / w_r). Its
+// crossings jump v' by 2a, so the monodromy has a nontrivial saltation factor. Parameters mu,
+// zeta, a.
+class RelayWithPitchfork final : public AutoDiffHybridSystem<RelayWithPitchfork> {
+ public:
+  explicit RelayWithPitchfork(double mu) {
+    set_parameter_layout({{"mu", {0}}, {"zeta", {1}}, {"a", {2}}}, {mu, 0.1, 0.5});
+  }
+  int dimension() const override { return 3; }
+  std::vector<std::string> state_names() const override { return {"x", "v", "w"}; }
+  template <class T, class P>
+  void evaluate(double t, const T* z, const P* p, T* dz) const {
+    const int side = value_of(z[1]) >= 0.0 ? 1 : -1;
+    evaluate_on_sides(t, z, p, dz, &side);
+  }
+  template <class T, class P>
+  void evaluate_on_sides(double, const T* z, const P* p, T* dz, const int* sides) const {
+    dz[0] = z[1];
+    dz[1] = -z[0] - 2.0 * p[1] * z[1] + p[2] * static_cast<double>(sides[0]);
+    dz[2] = p[0] * z[2] - z[2] * z[2] * z[2];
+  }
+  int switching_count() const override { return 1; }
+  void switching_functions(double, const double* z, const double*, double* g) const override {
+    g[0] = z[1];
+  }
+  double switching_gradient(double, const double*, const double*, int, double* h_z) const override {
+    h_z[0] = 0.0;
+    h_z[1] = 1.0;
+    h_z[2] = 0.0;
+    return 0.0;
+  }
+};
+
+// From the relay orbit at mu = -0.3 up: the BP at mu = 0 (to 1e-8), and the branch switched
+// there has w^2 = mu and the relay's period on every point beyond it (1e-8, the orbits' accuracy
+// at rtol 1e-12), both halves.
+TEST(HybridOrbit, BranchSwitchedAtAPitchforkOfHybridOrbits) {
+  const RelayWithPitchfork system(-0.3);
+  const double zeta = 0.1, a = 0.5;
+  const Eigen::Vector2d quarter = Relay::quarter_point(zeta, a);
+  const double period = 2 * std::numbers::pi / Relay::angular_frequency(zeta);
+  const auto start = solve_periodic_orbit(system, system.default_parameters(),
+                                          Eigen::Vector3d(quarter[0], quarter[1], 0.0), period, {},
+                                          hybrid_orbit_options());
+  ASSERT_TRUE(start.converged()) << start.newton.reason;
+  ContinuationOptions o;
+  o.lower = -0.3;
+  o.upper = 0.3;
+  o.orbit = hybrid_orbit_options();
+  Continuation continuation(system, 0, o);
+  const Branch old = continuation.run(start, +1);
+  const auto bp = std::ranges::find_if(
+      old.events, [](const Bifurcation& e) { return e.type == BifurcationType::BranchPoint; });
+  ASSERT_NE(bp, old.events.end()) << old.stop_reason;
+  EXPECT_NEAR(bp->parameter, 0.0, 1e-8);
+  const Branch born = switch_branch(system, old, *bp, o);
+  int positive = 0, negative = 0;
+  for (const auto& p : born.points) {
+    const Eigen::VectorXd& z = p.orbit.state0;
+    EXPECT_NEAR(z[2] * z[2], p.parameter, 1e-8) << "mu = " << p.parameter;
+    EXPECT_NEAR(p.orbit.period, period, 1e-8);
+    if (p.parameter > 1e-3) (z[2] > 0 ? positive : negative) += 1;
+  }
+  EXPECT_GT(positive, 0) << born.stop_reason;
+  EXPECT_GT(negative, 0) << born.stop_reason;
 }
 
 }  // namespace
