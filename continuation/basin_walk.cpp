@@ -76,13 +76,27 @@ BasinWalk walk_basins(const OdeSystem& system, const ParameterValues& p,
     if (options.on_value) options.on_value(j);
     const auto starts = static_cast<std::size_t>(options.starts);
     std::vector<std::optional<AttractorFate>> fates(starts);
+    std::vector<bool> done(starts, false);
+    if (options.journaled)
+      for (std::size_t s = 0; s < starts; ++s) {
+        fates[s] = options.journaled(j * starts + s);
+        done[s] = fates[s].has_value();
+        if (done[s] && fates[s]->fate == Fate::NewOrbit && fates[s]->orbit)
+          fates[s]->orbit =
+              solve_periodic_orbit(system, at, fates[s]->orbit->state0, fates[s]->orbit->period,
+                                   InvariantSubspace{}, options.run.attractors.orbit);
+      }
     const TaskRunSummary summary = run_tasks<AttractorFate>(
-        starts, {},
+        starts, done,
         [&](std::size_t s) {
           return run_to_attractor(system, at, walk_start(options, j, s), value.attractors,
                                   options.run, stop);
         },
-        [&](std::size_t s, AttractorFate&& f) { fates[s] = std::move(f); }, options.tasks, stop);
+        [&](std::size_t s, AttractorFate&& f) {
+          if (options.on_run) options.on_run(j * starts + s, f);
+          fates[s] = std::move(f);
+        },
+        options.tasks, stop);
     if (summary.interrupted) {
       walk.interrupted = true;
       break;

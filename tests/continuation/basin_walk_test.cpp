@@ -14,6 +14,7 @@
 #include <cmath>
 #include <map>
 
+#include "sympathy/continuation/basin_walk_journal.hpp"
 #include "sympathy/continuation/branch_switching.hpp"
 #include "sympathy/continuation/continuation.hpp"
 #include "sympathy/core/autodiff_system.hpp"
@@ -295,6 +296,64 @@ TEST(BasinWalk, NewAttractorsAreFoundNamedAndCarried) {
       EXPECT_EQ(x.stopped_at, y.stopped_at);
       EXPECT_EQ(x.end_state, y.end_state);
     }
+}
+
+// A walk resumed from a journal equals the walk that wrote it: the runs of even index read back
+// from their rows (walk_journal_row, walk_journal_fate), the others run again; every fate, time,
+// attractor and new orbit (found by the runs at mu = 0.15 and carried on) the same bits, and only
+// the runs not in the journal computed.
+TEST(BasinWalk, AResumedWalkEqualsTheWalkThatWroteItsJournal) {
+  const auto& b = pitchfork();
+  BasinWalkOptions o = walk_options({-0.05, 0.15, 0.25});
+  const auto starts = static_cast<std::size_t>(o.starts);
+  std::map<std::size_t, TaskJournal::Row> rows;
+  o.on_run = [&](std::size_t task, const AttractorFate& f) {
+    rows[task] = walk_journal_row(o.values[task / starts], task % starts, f);
+  };
+  const BasinWalk whole =
+      walk_basins(b.system, b.system.default_parameters(), {{"base", &b.base}}, o);
+  ASSERT_EQ(rows.size(), 3 * starts);
+  std::vector<std::size_t> computed;
+  o.on_run = [&](std::size_t task, const AttractorFate&) { computed.push_back(task); };
+  o.journaled = [&](std::size_t task) -> std::optional<AttractorFate> {
+    if (task % 2 == 1) return std::nullopt;
+    return walk_journal_fate(rows.at(task),
+                             std::string("journal task ").append(std::to_string(task)));
+  };
+  const BasinWalk resumed =
+      walk_basins(b.system, b.system.default_parameters(), {{"base", &b.base}}, o);
+  EXPECT_EQ(computed.size(), 3 * starts / 2 + (3 * starts) % 2);
+  for (std::size_t task : computed) EXPECT_EQ(task % 2, 1u);
+  ASSERT_EQ(resumed.values.size(), 3u);
+  int news = 0;
+  for (std::size_t j = 0; j < 3; ++j) {
+    const BasinWalkValue &x = whole.values[j], &y = resumed.values[j];
+    ASSERT_EQ(x.attractors.size(), y.attractors.size());
+    for (std::size_t k = 0; k < x.attractors.size(); ++k) {
+      EXPECT_EQ(x.attractors[k].name, y.attractors[k].name);
+      EXPECT_EQ(x.attractors[k].orbit.state0, y.attractors[k].orbit.state0);
+      EXPECT_EQ(x.attractors[k].orbit.period, y.attractors[k].orbit.period);
+      news += x.attractors[k].name.rfind("new ", 0) == 0 ? 1 : 0;
+    }
+    for (std::size_t s = 0; s < starts; ++s) {
+      EXPECT_EQ(x.runs[s].fate, y.runs[s].fate) << j << " " << s;
+      EXPECT_EQ(x.runs[s].attractor, y.runs[s].attractor) << j << " " << s;
+      EXPECT_EQ(x.runs[s].stopped_at, y.runs[s].stopped_at) << j << " " << s;
+    }
+    ASSERT_EQ(x.shares.size(), y.shares.size());
+    for (std::size_t k = 0; k < x.shares.size(); ++k)
+      EXPECT_EQ(x.shares[k].proportion.count, y.shares[k].proportion.count);
+  }
+  EXPECT_EQ(news, 4);  // "new 1" and "new 2" at mu = 0.15 and 0.25
+  // A row that is not one is refused, naming where.
+  TaskJournal::Row bad = rows.at(0);
+  bad[2] = "lost";
+  try {
+    walk_journal_fate(bad, "J.csv: task 0");
+    FAIL() << "a bad row read";
+  } catch (const InputError& e) {
+    EXPECT_EQ(std::string(e.what()), "J.csv: task 0: column 'fate': not a fate, 'lost'");
+  }
 }
 
 // A run on the torus born at the Neimark-Sacker point of the rotation normal form's circle: the

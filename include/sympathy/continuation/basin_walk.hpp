@@ -17,6 +17,7 @@
 #include <atomic>
 #include <cstdint>
 #include <functional>
+#include <optional>
 #include <string>
 #include <vector>
 
@@ -41,6 +42,12 @@ struct BasinWalkOptions {
   std::vector<InvariantSubspace> symmetries;
   // Told the index of each value as its runs start (progress; called on the walk's thread).
   std::function<void(std::size_t)> on_value;
+  // A journal (basin_walk_journal.hpp), both optional; runs are numbered j * starts + s. Each
+  // run's fate as it finishes (one call at a time, in the order they finish); and the fates an
+  // earlier walk of the same study recorded, which are taken instead of running again (a new
+  // orbit's solved again from its recorded state and period: the same bits).
+  std::function<void(std::size_t, const AttractorFate&)> on_run;
+  std::function<std::optional<AttractorFate>(std::size_t)> journaled;
 
   // The first field out of its domain, for a system of `dimension` states and `parameters`
   // named parameters.

@@ -1,0 +1,104 @@
+#include "sympathy/continuation/basin_walk_journal.hpp"
+
+#include <cstdio>
+#include <sstream>
+
+#include "sympathy/core/errors.hpp"
+
+namespace sympathy {
+
+namespace {
+
+std::string exact(double x) {
+  char buffer[32];
+  std::snprintf(buffer, sizeof buffer, "%.17g", x);
+  return buffer;
+}
+
+std::string numbers(const Eigen::VectorXd& v) {
+  std::string s;
+  for (Eigen::Index i = 0; i < v.size(); ++i) {
+    if (i > 0) s += ' ';
+    s += exact(v[i]);
+  }
+  return s;
+}
+
+double number(const std::string& text, const std::string& where, const char* column) {
+  std::size_t used = 0;
+  double x = 0.0;
+  try {
+    x = std::stod(text, &used);
+  } catch (const std::exception&) {
+    used = 0;
+  }
+  if (text.empty() || used != text.size())
+    throw InputError(where + ": column '" + column + "': expected a number, got '" + text + "'");
+  return x;
+}
+
+Eigen::VectorXd vector_of(const std::string& text, const std::string& where) {
+  std::istringstream in(text);
+  std::vector<double> values;
+  std::string word;
+  while (in >> word) values.push_back(number(word, where, "state"));
+  return Eigen::Map<const Eigen::VectorXd>(values.data(), static_cast<Eigen::Index>(values.size()));
+}
+
+constexpr Fate kFates[] = {Fate::Certified, Fate::Reached,    Fate::NewOrbit, Fate::Equilibrium,
+                           Fate::Torus,     Fate::Unresolved, Fate::Failed};
+
+}  // namespace
+
+TaskJournal::Row walk_journal_header() {
+  return {"value",           "start",  "fate",  "attractor", "stopped_at",
+          "rotation_number", "period", "state", "note"};
+}
+
+TaskJournal::Row walk_journal_row(double value, std::size_t start, const AttractorFate& fate) {
+  std::string note = fate.note;
+  for (char& ch : note) {
+    if (ch == ',') ch = ';';
+    if (ch == '"') ch = '\'';
+    if (ch == '\n' || ch == '\r') ch = ' ';
+  }
+  const bool orbit = fate.fate == Fate::NewOrbit && fate.orbit;
+  return {exact(value),
+          std::to_string(start),
+          to_string(fate.fate),
+          std::to_string(fate.attractor),
+          exact(fate.stopped_at),
+          fate.fate == Fate::Torus ? exact(fate.rotation_number) : "",
+          orbit ? exact(fate.orbit->period) : "",
+          orbit                            ? numbers(fate.orbit->state0)
+          : fate.fate == Fate::Equilibrium ? numbers(fate.equilibrium_state)
+                                           : "",
+          note};
+}
+
+AttractorFate walk_journal_fate(const TaskJournal::Row& row, const std::string& where) {
+  if (row.size() != walk_journal_header().size())
+    throw InputError(where + ": expected " + std::to_string(walk_journal_header().size()) +
+                     " fields after the task, got " + std::to_string(row.size()));
+  AttractorFate fate;
+  bool known = false;
+  for (const Fate f : kFates)
+    if (row[2] == to_string(f)) {
+      fate.fate = f;
+      known = true;
+    }
+  if (!known) throw InputError(where + ": column 'fate': not a fate, '" + row[2] + "'");
+  fate.attractor = static_cast<int>(number(row[3], where, "attractor"));
+  fate.stopped_at = number(row[4], where, "stopped_at");
+  if (fate.fate == Fate::Torus) fate.rotation_number = number(row[5], where, "rotation_number");
+  if (fate.fate == Fate::NewOrbit && !row[6].empty()) {
+    fate.orbit.emplace();
+    fate.orbit->period = number(row[6], where, "period");
+    fate.orbit->state0 = vector_of(row[7], where);
+  }
+  if (fate.fate == Fate::Equilibrium) fate.equilibrium_state = vector_of(row[7], where);
+  fate.note = row[8];
+  return fate;
+}
+
+}  // namespace sympathy
