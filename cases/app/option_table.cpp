@@ -270,6 +270,9 @@ std::vector<OptionSpec> curve_options() {
 std::vector<OptionSpec> study_options() {
   return {{"--out", "DIR", false, "where the CSV and JSON files go (default out/figures)"},
           {"--jobs", "N", false, "branches computed side by side (default 2)"},
+          {"--resume", "", false,
+           "continue the [basins] walk from its journal in --out (the runs it holds are not run "
+           "again)"},
           {"--quiet", "", false, "no progress line on a terminal"},
           accuracy_option()};
 }

@@ -6,6 +6,7 @@
 #include <filesystem>
 
 #include "cases/app/study_run.hpp"
+#include "sympathy/continuation/basin_walk_journal.hpp"
 #include "sympathy/core/csv.hpp"
 
 namespace sympathy::app {
@@ -50,6 +51,22 @@ void prepare_study_basins(StudyRun& run,
   run.basins_options = std::move(o);
   run.basins_csv = run.out + "/" + study.name + "-basins.csv";
   outputs.emplace_back("the basins' CSV", run.basins_csv);
+  run.basins_journal_path = run.out + "/" + study.name + "-basins-journal.csv";
+  outputs.emplace_back("the basins' journal", run.basins_journal_path);
+}
+
+void open_study_basins_journal(StudyRun& run) {
+  const std::string& path = run.basins_journal_path;
+  const bool exists = std::filesystem::exists(path);
+  if (!run.resume && exists)
+    throw InputError("--out " + run.out + ": " + path +
+                     " is the journal of an earlier walk; expected --resume to continue it, or "
+                     "another --out (or remove the file)");
+  check_or_write_study_record(path, run.basins_record, run.resume && exists);
+  const BasinWalkOptions& o = *run.basins_options;
+  run.basins_journal = std::make_unique<TaskJournal>(
+      path, walk_journal_header(), o.values.size() * static_cast<std::size_t>(o.starts),
+      run.resume);
 }
 
 std::vector<NamedBranch> study_basins_branches(const StudyRun& run) {
@@ -71,7 +88,18 @@ void run_study_basins(StudyRun& run, const std::atomic<bool>* stop,
       doing("basins: " + run.study.parameter + " = " + format_number(o.values[j]) + " (" +
             std::to_string(j + 1) + " of " + std::to_string(o.values.size()) + ")");
     };
+  TaskJournal& journal = *run.basins_journal;
+  const auto starts = static_cast<std::size_t>(o.starts);
+  o.on_run = [&](std::size_t task, const AttractorFate& fate) {
+    journal.append(task, walk_journal_row(o.values[task / starts], task % starts, fate));
+  };
+  o.journaled = [&](std::size_t task) -> std::optional<AttractorFate> {
+    const auto it = journal.rows().find(task);
+    if (it == journal.rows().end()) return std::nullopt;
+    return walk_journal_fate(it->second, journal.path() + ": task " + std::to_string(task));
+  };
   run.basins = walk_basins(run.systems.front()->system(), run.basins_values, branches, o, stop);
+  journal.close();
   CsvWriter csv(run.basins_csv,
                 {"value", "attractor", "branch", "count", "trials", "share", "lower", "upper"});
   for (const auto& v : run.basins->values)

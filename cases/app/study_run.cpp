@@ -27,6 +27,7 @@ StudyRun study_run(const Arguments& args) {
   run.out = args.text("--out", "out/figures");
   const std::string& out = run.out;
   run.jobs = args.integer("--jobs", 2);
+  run.resume = args.flag("--resume");
   if (run.jobs < 1) throw InputError("--jobs: expected a positive integer");
   std::filesystem::create_directories(out);
 
@@ -116,6 +117,13 @@ StudyRun study_run(const Arguments& args) {
   for (const auto& e : study.equilibria)
     if (e.saved) inputs.emplace_back("equilibria '" + e.name + "''s parent", e.saved->path);
   check_distinct_outputs(outputs, inputs);
+  if (run.resume && !run.basins_options)
+    throw InputError("--resume: " + study.path +
+                     " has no [basins] walk to resume; expected a study with [basins]");
+  if (run.basins_options) {
+    run.basins_record = study_record(args, inputs, {"--jobs", "--out", "--resume", "--quiet"});
+    open_study_basins_journal(run);
+  }
 
   auto& requests = run.requests;
   for (std::size_t i = 0; i < study.branches.size(); ++i) {

@@ -14,7 +14,9 @@
 #include "cases/app/loaded_system.hpp"
 #include "cases/app/requests.hpp"
 #include "cases/app/study_file.hpp"
+#include "cases/app/study_record.hpp"
 #include "sympathy/continuation/basin_walk.hpp"
+#include "sympathy/continuation/task_journal.hpp"
 
 #include <nlohmann/json.hpp>
 
@@ -57,6 +59,12 @@ struct StudyRun {
   ParameterValues basins_values;
   std::string basins_csv;
   std::optional<BasinWalk> basins;
+  // The walk's journal (OUT/NAME-basins-journal.csv: each run's fate as it finishes, so that a
+  // killed walk keeps them), opened before any work; `--resume` reads it and runs only the rest.
+  bool resume = false;
+  StudyRecord basins_record;  // what the journal may be resumed by (study_record.hpp)
+  std::string basins_journal_path;
+  std::unique_ptr<TaskJournal> basins_journal;
   std::size_t job_count() const { return study.branches.size() + study.equilibria.size(); }
 };
 StudyRun study_run(const Arguments& args);
@@ -78,7 +86,8 @@ void run_study_equilibria(StudyRun& run, std::size_t k, const std::atomic<bool>*
                           const std::function<void(const std::string&)>& doing);
 
 // The study's [basins] checked against the first branch's case (its states, start, the walked
-// values' range) and made options, before any work; `outputs` gains its CSV. Nothing without one.
+// values' range) and made options, before any work; `outputs` gains its CSV and journal. Nothing
+// without one.
 void prepare_study_basins(StudyRun& run, std::vector<std::pair<std::string, std::string>>& outputs);
 // The study's branches that name the walk's attractors: those computed, in the walked parameter.
 std::vector<NamedBranch> study_basins_branches(const StudyRun& run);
@@ -86,6 +95,9 @@ std::vector<NamedBranch> study_basins_branches(const StudyRun& run);
 // each value as it starts.
 void run_study_basins(StudyRun& run, const std::atomic<bool>* stop,
                       const std::function<void(const std::string&)>& doing);
+// The walk's journal opened (after check_distinct_outputs): a new one refused where an earlier
+// run's is in the way without --resume, a resumed one checked against run.basins_record.
+void open_study_basins_journal(StudyRun& run);
 // The walk's JSON: the values, each attractor's shares, the attractors at each value, the fates.
 nlohmann::json study_basins_json(const StudyRun& run);
 

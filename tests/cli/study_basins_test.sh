@@ -5,7 +5,7 @@
 # them all after (each the starts with w of its sign); the attractors named by the study's
 # branches, their orbits exact to 1e-8, the share changes placed at the located BP; the CSV and
 # the JSON; the row setup's walk, each change at its located event; bad [basins] tables refused
-# before any work, each message checked. About 15 s.
+# before any work, each message checked; the walk's journal and its resume. About 17 s.
 # Usage: study_basins_test.sh SYMPATHY_BINARY SOURCE_DIR WORK_DIR
 set -u
 bin=$1 src=$2 work=$3
@@ -61,6 +61,32 @@ all(max(r) - min(r) < 1e-3 for r in ([x['rotation_number'] for x in runs if x['f
 sed 's/^box = /threads = 1\nbox = /' "$walk" | sed "s#case = \"../row2.toml\"#case = \"$src/cases/row2.toml\"#" > "$work/walk1.toml"
 "$bin" study "$work/walk1.toml" --out "$work/walk1" > /dev/null 2>&1
 check "one thread: the same shares" cmp "$work/walk/basins_walk_k-basins.csv" "$work/walk1/walk1-basins.csv"
+
+# The walk's journal: each run's fate as it finishes (OUT/NAME-basins-journal.csv, with the
+# study's record beside it). A walk cut short (its first 23 runs kept, the 24th half written, as a
+# kill leaves it) and resumed gives the files of the walk that was not: the same shares CSV, the
+# same JSON walk; without --resume the journal in the way is refused, and with a study changed
+# (another seed) the resume is.
+check "the walk's journal has every run" test "$(($(wc -l < "$work/walk/basins_walk_k-basins-journal.csv") - 1))" -eq 50
+mkdir -p "$work/cut"
+cp "$work/walk/basins_walk_k-basins-journal.csv.study" "$work/cut/"
+{ head -n 24 "$work/walk/basins_walk_k-basins-journal.csv"; sed -n 25p "$work/walk/basins_walk_k-basins-journal.csv" | head -c 12; } > "$work/cut/basins_walk_k-basins-journal.csv"
+"$bin" study "$walk" --out "$work/cut" > "$work/cut.out" 2> "$work/cut.err"
+check "a journal in the way without --resume: exit 2" test $? -eq 2
+check "... naming it and --resume" grep -q "basins-journal.csv is the journal of an earlier walk; expected --resume" "$work/cut.err"
+"$bin" study "$walk" --out "$work/cut" --resume > "$work/cut.out" 2> "$work/cut.err"
+check "the walk resumed exits 0" test $? -eq 0
+check "... its shares those of the walk not cut short" cmp "$work/walk/basins_walk_k-basins.csv" "$work/cut/basins_walk_k-basins.csv"
+check "... and its JSON walk" test "$(/usr/bin/python3 -c "
+import json, sys
+a, b = (json.load(open(f))['basins'] for f in sys.argv[1:])
+print(a == b)" "$work/walk/basins_walk_k.json" "$work/cut/basins_walk_k.json")" = True
+sed 's/^starts = 10 /seed = 2\nstarts = 10 /' "$walk" | sed "s#case = \"../row2.toml\"#case = \"$src/cases/row2.toml\"#" > "$work/cut/basins_walk_k.toml"
+"$bin" study "$work/cut/basins_walk_k.toml" --out "$work/cut" --resume > /dev/null 2> "$work/cut.err"
+check "a resume by another study: exit 2" test $? -eq 2
+check "... naming the difference" grep -q "basins-journal.csv" "$work/cut.err"
+"$bin" study "$study" --out "$work/cp" --resume > /dev/null 2> "$work/cut.err"
+check "--resume of a walk whose journal is complete exits 0" test $? -eq 0
 
 # Bad [basins] tables: refused before any work (exit 2), file, line and key named.
 head -n 19 "$study" | sed "s#case = \"cycle_pitchfork.toml\"#case = \"$src/cases/examples/cycle_pitchfork.toml\"#" > "$work/head.toml"
