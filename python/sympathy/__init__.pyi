@@ -361,6 +361,7 @@ def study(
     *,
     out: str | os.PathLike[str] | None = ...,
     jobs: int | None = ...,
+    resume: bool | None = ...,
     quiet: bool | None = ...,
     accuracy: Literal['fast', 'default', 'high'] | None = ...,
     progress: bool | Callable[[int, int], None] | None = ...,
