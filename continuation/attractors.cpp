@@ -121,6 +121,41 @@ std::vector<Attractor> attractors_on_branches(const OdeSystem& system, const Par
   return found;
 }
 
+std::vector<Attractor> attractors_at_rest_on_branches(const OdeSystem& system,
+                                                      const ParameterValues& p,
+                                                      const std::vector<NamedEquilibria>& branches,
+                                                      const AttractorOptions& options) {
+  if (auto wrong = options.validate()) throw std::invalid_argument(wrong->message());
+  std::vector<Attractor> found;
+  for (const auto& named : branches) {
+    const EquilibriumBranch& b = *named.branch;
+    const double v = system.parameter(p, b.parameter);
+    std::vector<Attractor> on_this;
+    for (std::size_t i = 0; i + 1 < b.points.size(); ++i) {
+      const EquilibriumPoint& lo = b.points[i];
+      const EquilibriumPoint& hi = b.points[i + 1];
+      if (!((lo.parameter - v) * (hi.parameter - v) < 0.0 || lo.parameter == v)) continue;
+      if (lo.unstable > 0 && hi.unstable > 0) continue;
+      const double w =
+          hi.parameter == lo.parameter ? 0.0 : (v - lo.parameter) / (hi.parameter - lo.parameter);
+      const Equilibrium e = solve_equilibrium(system, p, (1 - w) * lo.state + w * hi.state);
+      if (!stable_equilibrium(e)) continue;
+      Attractor a;
+      a.rest = e.state;
+      if (known(system, found, a, options) || known(system, on_this, a, options)) continue;
+      a.branch = named.name;
+      a.point = (w < 0.5 ? lo : hi).index;
+      on_this.push_back(std::move(a));
+    }
+    for (std::size_t k = 0; k < on_this.size(); ++k) {
+      on_this[k].name =
+          on_this.size() == 1 ? named.name : named.name + " (" + std::to_string(k + 1) + ")";
+      found.push_back(std::move(on_this[k]));
+    }
+  }
+  return found;
+}
+
 std::vector<Attractor> continue_attractors(const OdeSystem& system, const ParameterValues& p,
                                            const std::vector<Attractor>& previous,
                                            const AttractorOptions& options) {
@@ -154,8 +189,9 @@ std::vector<Attractor> merge_attractors(const OdeSystem& system, std::vector<Att
   for (auto& c : continued) {
     bool matched = false;
     for (std::size_t i = 0; i < on_branches.size() && !matched; ++i)
-      if (!renamed[i] && !c.at_rest() &&
-          same_orbit(system, c.orbit, *on_branches[i].neighbourhood, options)) {
+      if (!renamed[i] && c.at_rest() == on_branches[i].at_rest() &&
+          (c.at_rest() ? same_rest(on_branches[i], c.rest)
+                       : same_orbit(system, c.orbit, *on_branches[i].neighbourhood, options))) {
         on_branches[i].name = c.name;
         renamed[i] = matched = true;
       }

@@ -53,13 +53,18 @@ int highest_new(const std::vector<Attractor>& attractors) {
 
 BasinWalk walk_basins(const OdeSystem& system, const ParameterValues& p,
                       const std::vector<NamedBranch>& branches, const BasinWalkOptions& options,
-                      const std::atomic<bool>* stop) {
+                      const std::atomic<bool>* stop,
+                      const std::vector<NamedEquilibria>& equilibria) {
   if (auto wrong = options.validate(system.dimension(), system.parameter_count()))
     throw std::invalid_argument(wrong->message());
   for (const auto& b : branches)
     if (!b.branch || b.branch->parameter != options.parameter)
       throw std::invalid_argument("walk_basins: branch '" + b.name +
                                   "' is not continued in the walked parameter");
+  for (const auto& e : equilibria)
+    if (!e.branch || e.branch->parameter != options.parameter)
+      throw std::invalid_argument("walk_basins: equilibria '" + e.name +
+                                  "' are not continued in the walked parameter");
   BasinWalk walk;
   int new_count = 0;
   for (std::size_t j = 0; j < options.values.size(); ++j) {
@@ -68,8 +73,13 @@ BasinWalk walk_basins(const OdeSystem& system, const ParameterValues& p,
     value.value = options.values[j];
     const ParameterValues at = system.with_parameter(p, options.parameter, value.value);
     const AttractorOptions& ao = options.run.attractors;
+    std::vector<Attractor> named = attractors_on_branches(system, at, branches, ao);
+    for (auto& a : attractors_at_rest_on_branches(system, at, equilibria, ao))
+      if (std::none_of(named.begin(), named.end(),
+                       [&](const Attractor& b) { return b.at_rest() && same_rest(b, a.rest); }))
+        named.push_back(std::move(a));
     value.attractors = merge_attractors(
-        system, attractors_on_branches(system, at, branches, ao),
+        system, std::move(named),
         walk.values.empty() ? std::vector<Attractor>{}
                             : continue_attractors(system, at, walk.values.back().attractors, ao),
         ao);
@@ -133,7 +143,8 @@ BasinWalk walk_basins(const OdeSystem& system, const ParameterValues& p,
 }
 
 std::vector<ShareChange> share_changes(const BasinWalk& walk,
-                                       const std::vector<NamedBranch>& branches) {
+                                       const std::vector<NamedBranch>& branches,
+                                       const std::vector<NamedEquilibria>& equilibria) {
   std::vector<ShareChange> changes;
   for (std::size_t j = 0; j + 1 < walk.values.size(); ++j) {
     const BasinWalkValue &a = walk.values[j], &b = walk.values[j + 1];
@@ -154,14 +165,20 @@ std::vector<ShareChange> share_changes(const BasinWalk& walk,
       c.present_before = present(a);
       c.present_after = present(b);
       const double lo = std::min(a.value, b.value), hi = std::max(a.value, b.value);
+      const auto add = [&](ShareChange::Event e) {
+        const bool again = std::any_of(c.events.begin(), c.events.end(), [&](const auto& d) {
+          return d.type == e.type &&
+                 std::abs(d.parameter - e.parameter) <= 1e-9 * std::max(1.0, std::abs(e.parameter));
+        });
+        if (e.parameter > lo && e.parameter < hi && !again) c.events.push_back(std::move(e));
+      };
       for (const auto& named : branches)
-        for (const auto& e : named.branch->events) {
-          const bool again = std::any_of(c.events.begin(), c.events.end(), [&](const auto& d) {
-            return d.event->type == e.type && std::abs(d.event->parameter - e.parameter) <=
-                                                  1e-9 * std::max(1.0, std::abs(e.parameter));
-          });
-          if (e.parameter > lo && e.parameter < hi && !again) c.events.push_back({named.name, &e});
-        }
+        for (const auto& e : named.branch->events)
+          add({named.name, to_string(e.type), e.parameter, e.uncertainty, e.trusted()});
+      for (const auto& named : equilibria)
+        for (const auto& e : named.branch->events)
+          if (e.type != EquilibriumEventType::UserPoint)
+            add({named.name, to_string(e.type), e.parameter, e.uncertainty, e.located});
       changes.push_back(std::move(c));
     }
   }

@@ -78,6 +78,15 @@ std::vector<NamedBranch> study_basins_branches(const StudyRun& run) {
   return branches;
 }
 
+std::vector<NamedEquilibria> study_basins_equilibria(const StudyRun& run) {
+  std::vector<NamedEquilibria> equilibria;
+  for (std::size_t k = 0; k < run.study.equilibria.size(); ++k)
+    if (run.equilibria_errors[k].empty() && run.equilibria_results[k].started() &&
+        run.equilibria_results[k].parameter == run.basins_options->parameter)
+      equilibria.push_back({run.study.equilibria[k].name, &run.equilibria_results[k]});
+  return equilibria;
+}
+
 void run_study_basins(StudyRun& run, const std::atomic<bool>* stop,
                       const std::function<void(const std::string&)>& doing) {
   if (!run.basins_options) return;
@@ -98,7 +107,8 @@ void run_study_basins(StudyRun& run, const std::atomic<bool>* stop,
     if (it == journal.rows().end()) return std::nullopt;
     return walk_journal_fate(it->second, journal.path() + ": task " + std::to_string(task));
   };
-  run.basins = walk_basins(run.systems.front()->system(), run.basins_values, branches, o, stop);
+  run.basins = walk_basins(run.first().system(), run.basins_values, branches, o, stop,
+                           study_basins_equilibria(run));
   journal.close();
   CsvWriter csv(run.basins_csv,
                 {"value", "attractor", "branch", "count", "trials", "share", "lower", "upper"});
@@ -172,14 +182,15 @@ nlohmann::json study_basins_json(const StudyRun& run) {
     j["runs"].push_back(runs);
   }
   j["changes"] = nlohmann::json::array();
-  for (const auto& c : share_changes(walk, study_basins_branches(run))) {
+  for (const auto& c :
+       share_changes(walk, study_basins_branches(run), study_basins_equilibria(run))) {
     nlohmann::json events = nlohmann::json::array();
     for (const auto& e : c.events)
       events.push_back({{"branch", e.branch},
-                        {"type", to_string(e.event->type)},
-                        {"parameter", e.event->parameter},
-                        {"uncertainty", e.event->uncertainty},
-                        {"trusted", e.event->trusted()}});
+                        {"type", e.type},
+                        {"parameter", e.parameter},
+                        {"uncertainty", e.uncertainty},
+                        {"trusted", e.trusted}});
     j["changes"].push_back({{"name", c.name},
                             {"appears", c.appears},
                             {"before", c.before},

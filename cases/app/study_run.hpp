@@ -91,6 +91,8 @@ void run_study_equilibria(StudyRun& run, std::size_t k, const std::atomic<bool>*
 void prepare_study_basins(StudyRun& run, std::vector<std::pair<std::string, std::string>>& outputs);
 // The study's branches that name the walk's attractors: those computed, in the walked parameter.
 std::vector<NamedBranch> study_basins_branches(const StudyRun& run);
+// The study's [[equilibria]] entries that name the walk's attractors at rest: those computed.
+std::vector<NamedEquilibria> study_basins_equilibria(const StudyRun& run);
 // The walk (after the branches: their orbits name the attractors), its CSV written; `doing` told
 // each value as it starts.
 void run_study_basins(StudyRun& run, const std::atomic<bool>* stop,

@@ -194,7 +194,8 @@ void print_equilibrium_events(std::FILE* out, const EquilibriumBranch& branch) {
 }
 
 void print_basins_walk(std::FILE* out, const BasinWalk& walk, const std::string& parameter,
-                       const std::vector<NamedBranch>& branches) {
+                       const std::vector<NamedBranch>& branches,
+                       const std::vector<NamedEquilibria>& equilibria) {
   const std::size_t starts = walk.values.empty() ? 0 : walk.values.front().runs.size();
   std::fprintf(out, "basins along %s, %zu starts each (share [95%% interval]):\n",
                parameter.c_str(), starts);
@@ -225,7 +226,7 @@ void print_basins_walk(std::FILE* out, const BasinWalk& walk, const std::string&
     std::fprintf(out, "%s  (%s)\n", line.c_str(), fates.c_str());
   }
   if (walk.interrupted) std::fprintf(out, "  interrupted: the values after these were not run\n");
-  for (const auto& c : share_changes(walk, branches)) {
+  for (const auto& c : share_changes(walk, branches, equilibria)) {
     std::string line = "  " + c.name + (c.appears ? " appears" : " disappears") + " between " +
                        parameter + " = " + format_number(c.before) + " and " +
                        format_number(c.after) + ":";
@@ -234,12 +235,12 @@ void print_basins_walk(std::FILE* out, const BasinWalk& walk, const std::string&
     else if (c.events.empty())
       line.append(" no located event of the branches there");
     for (std::size_t i = 0; i < c.events.size(); ++i) {
-      const Bifurcation& e = *c.events[i].event;
+      const ShareChange::Event& e = c.events[i];
       line.append(i ? "," : "")
           .append(" ")
-          .append(to_string(e.type))
+          .append(e.type)
           .append(" of ")
-          .append(c.events[i].branch)
+          .append(e.branch)
           .append(" at ")
           .append(format_number(e.parameter));
     }

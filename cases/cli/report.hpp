@@ -38,8 +38,9 @@ void print_equilibrium_events(std::FILE* out, const EquilibriumBranch& branch);
 
 // A walk of basin shares along `parameter` (a study's [basins]): per value the attractors with a
 // share (each with its 95% interval) and how the runs ended; then where each share appears or
-// disappears, with the events `branches` located there.
+// disappears, with the events `branches` and `equilibria` located there.
 void print_basins_walk(std::FILE* out, const BasinWalk& walk, const std::string& parameter,
-                       const std::vector<NamedBranch>& branches);
+                       const std::vector<NamedBranch>& branches,
+                       const std::vector<NamedEquilibria>& equilibria);
 
 }  // namespace sympathy::cli

@@ -66,7 +66,8 @@ int run_study(const std::vector<std::string>& argv) {
     print_equilibrium_events(stdout, e);
   }
   if (run.basins)
-    print_basins_walk(stdout, *run.basins, study.parameter, study_basins_branches(run));
+    print_basins_walk(stdout, *run.basins, study.parameter, study_basins_branches(run),
+                      study_basins_equilibria(run));
   write_study_json(run, clock.seconds());
   std::printf("  wrote %s, %zu CSV files of points and %zu of events; run time %.2f s\n",
               json_path.c_str(), study.branches.size() + study.equilibria.size(),

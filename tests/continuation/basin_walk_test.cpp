@@ -17,6 +17,7 @@
 #include "sympathy/continuation/basin_walk_journal.hpp"
 #include "sympathy/continuation/branch_switching.hpp"
 #include "sympathy/continuation/continuation.hpp"
+#include "sympathy/continuation/equilibrium_branch.hpp"
 #include "sympathy/core/autodiff_system.hpp"
 #include "tests/support/math.hpp"
 #include "tests/support/test_systems.hpp"
@@ -242,7 +243,7 @@ TEST(BasinWalk, ThePairAppearsAtTheBranchPoint) {
     EXPECT_DOUBLE_EQ(c.after, 0.05);
     ASSERT_EQ(c.events.size(), 1u) << c.name;
     EXPECT_EQ(c.events[0].branch, "base");
-    EXPECT_EQ(c.events[0].event->type, BifurcationType::BranchPoint);
+    EXPECT_EQ(c.events[0].type, "BP");
     // Not the sampling: the circle is no attractor after, the pair none before.
     EXPECT_EQ(c.present_before, !c.appears) << c.name;
     EXPECT_EQ(c.present_after, c.appears) << c.name;
@@ -353,6 +354,82 @@ TEST(BasinWalk, AResumedWalkEqualsTheWalkThatWroteItsJournal) {
     FAIL() << "a bad row read";
   } catch (const InputError& e) {
     EXPECT_EQ(std::string(e.what()), "J.csv: task 0: column 'fate': not a fate, 'lost'");
+  }
+}
+
+// The supercritical Hopf normal form x' = mu x - y - x r^2, y' = x + mu y - y r^2: the origin is
+// the attractor for mu < 0, the circle r = sqrt(mu) (period 2 pi) for mu > 0, born at the Hopf
+// point mu = 0.
+class SupercriticalHopf final : public AutoDiffSystem<SupercriticalHopf> {
+ public:
+  explicit SupercriticalHopf(double mu) { set_parameter_layout({{"mu", {0}}}, {mu}); }
+  int dimension() const override { return 2; }
+  std::vector<std::string> state_names() const override { return {"x", "y"}; }
+  template <class T, class P>
+  void evaluate(double, const T* z, const P* p, T* dz) const {
+    const T r2 = z[0] * z[0] + z[1] * z[1];
+    dz[0] = p[0] * z[0] - z[1] - z[0] * r2;
+    dz[1] = z[0] + p[0] * z[1] - z[1] * r2;
+  }
+};
+
+// Attractors at rest named by a branch of equilibria: across the Hopf point, the runs end at the
+// origin before it, counted under the equilibria entry's name ("origin", its state 0 to 1e-12),
+// and on the circles after it (the family's name); both changes between the values around mu = 0
+// are placed at the HB the equilibria located (to 1e-8).
+TEST(BasinWalk, AttractorsAtRestNamedByTheirBranchOfEquilibria) {
+  const SupercriticalHopf system(-0.3);
+  EquilibriumProblem problem;
+  problem.parameter = 0;
+  problem.values = system.default_parameters();
+  problem.from = -0.3;
+  problem.to = 0.3;
+  problem.start_state = Eigen::Vector2d(0.0, 0.0);
+  const EquilibriumBranch origin = continue_equilibria(system, problem, EquilibriumOptions{});
+  ASSERT_TRUE(origin.started()) << origin.stop_reason;
+  const PeriodicOrbit circle =
+      solve_periodic_orbit(system, system.with_parameter(system.default_parameters(), 0, 0.3),
+                           Eigen::Vector2d(std::sqrt(0.3), 0.0), 2 * kPi, {}, OrbitOptions{});
+  ASSERT_TRUE(circle.converged()) << circle.newton.reason;
+  ContinuationOptions co;
+  co.lower = -0.3;
+  co.upper = 0.3;
+  const Branch circles = Continuation(system, 0, co).run(circle, -1);
+  BasinWalkOptions o;
+  o.parameter = 0;
+  o.values = {-0.2, -0.1, 0.1, 0.2};
+  o.starts = 8;
+  o.lower = Eigen::Vector2d(-1.0, -1.0);
+  o.upper = Eigen::Vector2d(1.0, 1.0);
+  o.run = run_options();
+  o.run.t_end = 120.0;  // from r = 1.4 at mu = -0.1: 2e-5 at the end
+  o.tasks.threads = 2;
+  const std::vector<NamedBranch> branches{{"circles", &circles}};
+  const std::vector<NamedEquilibria> equilibria{{"origin", &origin}};
+  const BasinWalk walk =
+      walk_basins(system, system.default_parameters(), branches, o, nullptr, equilibria);
+  ASSERT_EQ(walk.values.size(), 4u);
+  for (const auto& v : walk.values) {
+    const std::string winner = v.value < 0 ? "origin" : "circles";
+    EXPECT_EQ(share(v, winner).proportion.count, 8) << "mu = " << v.value;
+    for (const auto& a : v.attractors)
+      if (a.name == "origin") {
+        ASSERT_TRUE(a.at_rest());
+        EXPECT_EQ(a.branch, "origin");
+        EXPECT_LT(a.rest.lpNorm<Eigen::Infinity>(), 1e-12);
+      }
+    for (const auto& f : v.runs)
+      EXPECT_EQ(f.fate, v.value < 0 ? Fate::Equilibrium : Fate::Certified) << f.note;
+  }
+  const auto changes = share_changes(walk, branches, equilibria);
+  ASSERT_EQ(changes.size(), 2u);
+  for (const auto& c : changes) {
+    EXPECT_EQ(c.appears, c.name == "circles") << c.name;
+    EXPECT_EQ(c.before, -0.1);
+    ASSERT_EQ(c.events.size(), 1u) << c.name;
+    EXPECT_EQ(c.events[0].type, "HB");
+    EXPECT_EQ(c.events[0].branch, "origin");
+    EXPECT_NEAR(c.events[0].parameter, 0.0, 1e-8);
   }
 }
 

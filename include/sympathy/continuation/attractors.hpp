@@ -17,6 +17,7 @@
 #include "sympathy/continuation/branch.hpp"
 #include "sympathy/continuation/convergence_certificate.hpp"
 #include "sympathy/continuation/equilibrium.hpp"
+#include "sympathy/continuation/equilibrium_branch.hpp"
 #include "sympathy/continuation/periodic_orbit.hpp"
 
 namespace sympathy {
@@ -44,6 +45,11 @@ bool stable_equilibrium(const Equilibrium& e);
 struct NamedBranch {
   std::string name;
   const Branch* branch = nullptr;
+};
+// A branch of equilibria with the name it goes by (a study's [[equilibria]] entry: "origin").
+struct NamedEquilibria {
+  std::string name;
+  const EquilibriumBranch* branch = nullptr;
 };
 
 struct AttractorOptions {
@@ -75,6 +81,16 @@ std::vector<Attractor> attractors_on_branches(const OdeSystem& system, const Par
                                               const std::vector<NamedBranch>& branches,
                                               const AttractorOptions& options);
 
+// The stable equilibria (stable_equilibrium) that `branches` of equilibria hold at parameter
+// values `p`, as attractors at rest: on every pair of neighbouring points whose parameters
+// bracket the value (not both unstable), Newton on f = 0 at p from the state interpolated between
+// them; named as attractors_on_branches names orbits (the entry's name, " (k)" where one branch
+// holds more than one), each once.
+std::vector<Attractor> attractors_at_rest_on_branches(const OdeSystem& system,
+                                                      const ParameterValues& p,
+                                                      const std::vector<NamedEquilibria>& branches,
+                                                      const AttractorOptions& options);
+
 // The attractors of another parameter value continued to `p`: Newton from each orbit (its point
 // and period) at p, kept with its name where it converges to a stable orbit (with the
 // certificate's margin); Newton on f = 0 from each equilibrium, kept where it converges to a
@@ -83,10 +99,11 @@ std::vector<Attractor> continue_attractors(const OdeSystem& system, const Parame
                                            const std::vector<Attractor>& previous,
                                            const AttractorOptions& options);
 
-// The attractors at a value of a walk: `on_branches` (attractors_on_branches at it), each taking
-// the name of the continued attractor (continue_attractors from the previous value) that is the
-// same orbit, then the continued ones that are on no branch there, with their names. A branch's
-// attractor whose own name another one now has gets the next free " (k)".
+// The attractors at a value of a walk: `on_branches` (attractors_on_branches and
+// attractors_at_rest_on_branches at it), each taking the name of the continued attractor
+// (continue_attractors from the previous value) that is the same orbit or equilibrium, then the
+// continued ones that are on no branch there, with their names. A branch's attractor whose own name
+// another one now has gets the next free " (k)".
 std::vector<Attractor> merge_attractors(const OdeSystem& system, std::vector<Attractor> on_branches,
                                         std::vector<Attractor> continued,
                                         const AttractorOptions& options);

@@ -1,12 +1,13 @@
 // Basin shares continued along a parameter (issue 39, item 3): the values of one parameter walked
-// in order; at each, the attractors are the stable orbits the given branches hold there
-// (attractors_on_branches) and those of the previous value continued to it by Newton
-// (continue_attractors: an attractor keeps its name because it is the same orbit continued,
-// merge_attractors), then random starts run to their fates (run_to_attractor) in parallel, and
-// the stable orbits they found that are none of these are named "new k" (name_new_attractors) and
-// carried on like the others. The share of each attractor at each value, with its 95% Wilson
-// interval, is a curve along the parameter: where an attractor appears or disappears lies between
-// two values, and a bifurcation the branches located there is where it happens.
+// in order; at each, the attractors are the stable orbits and equilibria the given branches hold
+// there (attractors_on_branches, attractors_at_rest_on_branches) and those of the previous value
+// continued to it by Newton (continue_attractors: an attractor keeps its name because it is the
+// same orbit continued, merge_attractors), then random starts run to their fates (run_to_attractor)
+// in parallel, and the stable orbits they found that are none of these are named "new k"
+// (name_new_attractors) and carried on like the others. The share of each attractor at each value,
+// with its 95% Wilson interval, is a curve along the parameter: where an attractor appears or
+// disappears lies between two values, and a bifurcation the branches located there is where it
+// happens.
 //
 // Deterministic: the starts of a value run in parallel, the values one after another, value j
 // knowing only value j-1's finished results (never whatever finished first); start s of value j
@@ -90,24 +91,30 @@ struct ShareChange {
   // orbit is still there (present at both) is the starts' sampling, not the attractor's end.
   bool present_before = false, present_after = false;
   struct Event {
-    std::string branch;
-    const Bifurcation* event = nullptr;
+    std::string branch;  // the branch of orbits or of equilibria that located it
+    std::string type;    // "BP", "NS", "HB", ...
+    double parameter = 0.0, uncertainty = 0.0;
+    bool trusted = false;  // an orbit branch's trusted event, an equilibrium branch's located one
   };
-  // Located on `branches` with the parameter between the two, each once (the mirror halves of a
-  // symmetric branch locate the same events: one type at one value to 1e-9 relative).
+  // Located on `branches` and `equilibria` with the parameter between the two, each once (the
+  // mirror halves of a symmetric branch locate the same events: one type at one value to 1e-9
+  // relative).
   std::vector<Event> events;
 };
 std::vector<ShareChange> share_changes(const BasinWalk& walk,
-                                       const std::vector<NamedBranch>& branches);
+                                       const std::vector<NamedBranch>& branches,
+                                       const std::vector<NamedEquilibria>& equilibria = {});
 
 // The start of run `s` at value `j`: uniform in the box, from task_seed(seed, j * starts + s).
 Eigen::VectorXd walk_start(const BasinWalkOptions& options, std::size_t j, std::size_t s);
 
 // Walks options.values at parameter values `p` (the walked one set at each), with the attractors
-// of `branches` (continued in options.parameter). Throws std::invalid_argument for invalid
-// options (validate first to name the field) or a branch continued in another parameter.
+// of `branches` and the stable equilibria of `equilibria` (each continued in
+// options.parameter). Throws std::invalid_argument for invalid options (validate first to name
+// the field) or a branch continued in another parameter.
 BasinWalk walk_basins(const OdeSystem& system, const ParameterValues& p,
                       const std::vector<NamedBranch>& branches, const BasinWalkOptions& options,
-                      const std::atomic<bool>* stop = nullptr);
+                      const std::atomic<bool>* stop = nullptr,
+                      const std::vector<NamedEquilibria>& equilibria = {});
 
 }  // namespace sympathy
