@@ -86,27 +86,33 @@ BasinWalk walk_basins(const OdeSystem& system, const ParameterValues& p,
     if (options.on_value) options.on_value(j);
     const auto starts = static_cast<std::size_t>(options.starts);
     std::vector<std::optional<AttractorFate>> fates(starts);
+    // A new orbit read back (a journal's row, another process's fate): solved again from its
+    // state and period, where Newton stops at once (the same bits as the run's).
+    const auto restore = [&](AttractorFate& f) {
+      if (f.fate == Fate::NewOrbit && f.orbit && f.orbit->floquet.multipliers.empty())
+        f.orbit = solve_periodic_orbit(system, at, f.orbit->state0, f.orbit->period,
+                                       InvariantSubspace{}, options.run.attractors.orbit);
+    };
     std::vector<bool> done(starts, false);
     if (options.journaled)
       for (std::size_t s = 0; s < starts; ++s) {
         fates[s] = options.journaled(j * starts + s);
         done[s] = fates[s].has_value();
-        if (done[s] && fates[s]->fate == Fate::NewOrbit && fates[s]->orbit)
-          fates[s]->orbit =
-              solve_periodic_orbit(system, at, fates[s]->orbit->state0, fates[s]->orbit->period,
-                                   InvariantSubspace{}, options.run.attractors.orbit);
+        if (done[s]) restore(*fates[s]);
       }
-    const TaskRunSummary summary = run_tasks<AttractorFate>(
-        starts, done,
-        [&](std::size_t s) {
-          return run_to_attractor(system, at, walk_start(options, j, s), value.attractors,
-                                  options.run, stop);
-        },
-        [&](std::size_t s, AttractorFate&& f) {
-          if (options.on_run) options.on_run(j * starts + s, f);
-          fates[s] = std::move(f);
-        },
-        options.tasks, stop);
+    const std::function<std::optional<AttractorFate>(std::size_t)> work = [&](std::size_t s) {
+      return run_to_attractor(system, at, walk_start(options, j, s), value.attractors, options.run,
+                              stop);
+    };
+    const std::function<void(std::size_t, AttractorFate &&)> record = [&](std::size_t s,
+                                                                          AttractorFate&& f) {
+      restore(f);
+      if (options.on_run) options.on_run(j * starts + s, f);
+      fates[s] = std::move(f);
+    };
+    const TaskRunSummary summary =
+        options.runner ? options.runner(starts, done, work, record)
+                       : run_tasks<AttractorFate>(starts, done, work, record, options.tasks, stop);
     if (summary.interrupted) {
       walk.interrupted = true;
       break;

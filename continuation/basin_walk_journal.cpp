@@ -1,5 +1,6 @@
 #include "sympathy/continuation/basin_walk_journal.hpp"
 
+#include <cctype>
 #include <cstdio>
 #include <sstream>
 
@@ -56,11 +57,16 @@ TaskJournal::Row walk_journal_header() {
 }
 
 TaskJournal::Row walk_journal_row(double value, std::size_t start, const AttractorFate& fate) {
-  std::string note = fate.note;
-  for (char& ch : note) {
-    if (ch == ',') ch = ';';
-    if (ch == '"') ch = '\'';
-    if (ch == '\n' || ch == '\r') ch = ' ';
+  std::string note;
+  for (const char ch : fate.note) {
+    if (ch == ',' || ch == '"' || ch == '\n' || ch == '\r' || ch == '%' || ch == '\x1e' ||
+        ch == '\x1f') {
+      char code[4];
+      std::snprintf(code, sizeof code, "%%%02X", static_cast<unsigned char>(ch));
+      note += code;
+    } else {
+      note += ch;
+    }
   }
   const bool orbit = fate.fate == Fate::NewOrbit && fate.orbit;
   return {exact(value),
@@ -97,7 +103,17 @@ AttractorFate walk_journal_fate(const TaskJournal::Row& row, const std::string& 
     fate.orbit->state0 = vector_of(row[7], where);
   }
   if (fate.fate == Fate::Equilibrium) fate.equilibrium_state = vector_of(row[7], where);
-  fate.note = row[8];
+  const std::string& note = row[8];
+  for (std::size_t i = 0; i < note.size(); ++i) {
+    if (note[i] == '%' && i + 2 < note.size() &&
+        std::isxdigit(static_cast<unsigned char>(note[i + 1])) &&
+        std::isxdigit(static_cast<unsigned char>(note[i + 2]))) {
+      fate.note += static_cast<char>(std::stoi(note.substr(i + 1, 2), nullptr, 16));
+      i += 2;
+    } else {
+      fate.note += note[i];
+    }
+  }
   return fate;
 }
 

@@ -159,6 +159,14 @@ std::vector<bool> MpiSession::all(bool ok) const {
   return {every.begin(), every.end()};
 }
 
+void MpiSession::broadcast(std::string& text) const {
+  if (!initialized_) return;
+  std::uint64_t length = text.size();
+  check(MPI_Bcast(&length, 1, MPI_UINT64_T, 0, MPI_COMM_WORLD), "broadcast");
+  text.resize(length);
+  check(MPI_Bcast(text.data(), static_cast<int>(length), MPI_CHAR, 0, MPI_COMM_WORLD), "broadcast");
+}
+
 TaskRunSummary run_tasks_mpi(const MpiSession& session, std::size_t count,
                              const std::vector<bool>& done,
                              const std::function<std::optional<TaskRow>(std::size_t)>& work,

@@ -43,6 +43,9 @@ class MpiSession {
   // Every rank's `ok` (collective: every rank calls it), so that a failure before any work ends
   // every rank instead of leaving the others waiting.
   std::vector<bool> all(bool ok) const;
+  // Rank 0's `text` on every rank (collective: every rank calls it; a session of one process
+  // leaves it as it is).
+  void broadcast(std::string& text) const;
 
  private:
   bool initialized_ = false;

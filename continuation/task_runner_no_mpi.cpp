@@ -26,6 +26,8 @@ std::vector<bool> MpiSession::all(bool ok) const {
   return {ok};
 }
 
+void MpiSession::broadcast(std::string&) const {}
+
 TaskRunSummary run_tasks_mpi(const MpiSession&, std::size_t, const std::vector<bool>&,
                              const std::function<std::optional<TaskRow>(std::size_t)>&,
                              const std::function<void(std::size_t, TaskRow&&)>&,

@@ -87,29 +87,107 @@ std::vector<NamedEquilibria> study_basins_equilibria(const StudyRun& run) {
   return equilibria;
 }
 
+namespace {
+
+// A value's runs spread over the ranks of an MPI job (task_runner_mpi.hpp): rank 0 hands them out
+// and records each fate as the worker that ran it sends it back (its journal row); then it sends
+// the value's every row (the journal's for the runs read back from it) and whether the value was
+// interrupted to the workers, which record the same fates and walk on, or stop, with it. Rows
+// carry every bit of a fate that the walk reads (basin_walk_journal.hpp), so the ranks walk
+// alike and the files equal a run's on threads.
+BasinWalkOptions::ValueRunner mpi_runner(const MpiSession& mpi, const TaskJournal* journal,
+                                         const std::size_t& value, const std::atomic<bool>* stop) {
+  constexpr char kRowEnd = '\x1e', kField = '\x1f';
+  return [&mpi, journal, &value, stop](
+             std::size_t count, const std::vector<bool>& done,
+             const std::function<std::optional<AttractorFate>(std::size_t)>& work,
+             const std::function<void(std::size_t, AttractorFate &&)>& record) {
+    const auto where = [&](std::size_t s) {
+      return "rank 0: run " + std::to_string(s) + " of value " + std::to_string(value + 1);
+    };
+    std::vector<std::optional<TaskRow>> rows(count);
+    TaskRunSummary summary;
+    std::string text;
+    if (mpi.rank() == 0) {
+      summary = run_tasks_mpi(
+          mpi, count, done, {},
+          [&](std::size_t s, TaskRow&& row) {
+            record(s, walk_journal_fate(row, where(s)));
+            rows[s] = std::move(row);
+          },
+          stop);
+      for (std::size_t s = 0; s < count; ++s)
+        if (!done.empty() && done[s]) rows[s] = journal->rows().at(value * count + s);
+      text = summary.interrupted ? "1" : "0";
+      for (const auto& row : rows) {
+        text += kRowEnd;
+        if (!row) continue;
+        text += '+';
+        for (std::size_t f = 0; f < row->size(); ++f) text.append(f ? 1 : 0, kField) += (*row)[f];
+      }
+    } else {
+      summary = run_tasks_mpi(
+          mpi, count, {},
+          [&](std::size_t s) -> std::optional<TaskRow> {
+            auto fate = work(s);
+            if (!fate) return std::nullopt;
+            return walk_journal_row(0.0, s, *fate);
+          },
+          {}, stop);
+    }
+    mpi.broadcast(text);
+    if (mpi.rank() > 0) {
+      summary.tasks = count;
+      summary.interrupted = text.front() == '1';
+      std::size_t s = 0, from = 2;
+      for (; s < count; ++s) {
+        const std::size_t end = std::min(text.find(kRowEnd, from), text.size());
+        if (end > from && text[from] == '+') {
+          TaskRow row;
+          std::size_t a = from + 1;
+          for (std::size_t b; (b = text.find(kField, a)) < end; a = b + 1)
+            row.push_back(text.substr(a, b - a));
+          row.push_back(text.substr(a, end - a));
+          record(s, walk_journal_fate(row, where(s)));
+        }
+        from = end + 1;
+      }
+    }
+    return summary;
+  };
+}
+
+}  // namespace
+
 void run_study_basins(StudyRun& run, const std::atomic<bool>* stop,
                       const std::function<void(const std::string&)>& doing) {
   if (!run.basins_options) return;
   BasinWalkOptions o = *run.basins_options;
   const std::vector<NamedBranch> branches = study_basins_branches(run);
-  if (doing)
-    o.on_value = [&](std::size_t j) {
+  std::size_t value = 0;  // the index of the value being walked
+  o.on_value = [&](std::size_t j) {
+    value = j;
+    if (doing)
       doing("basins: " + run.study.parameter + " = " + format_number(o.values[j]) + " (" +
             std::to_string(j + 1) + " of " + std::to_string(o.values.size()) + ")");
-    };
-  TaskJournal& journal = *run.basins_journal;
+  };
+  TaskJournal* journal = run.basins_journal.get();  // rank 0's, or this machine's
   const auto starts = static_cast<std::size_t>(o.starts);
-  o.on_run = [&](std::size_t task, const AttractorFate& fate) {
-    journal.append(task, walk_journal_row(o.values[task / starts], task % starts, fate));
-  };
-  o.journaled = [&](std::size_t task) -> std::optional<AttractorFate> {
-    const auto it = journal.rows().find(task);
-    if (it == journal.rows().end()) return std::nullopt;
-    return walk_journal_fate(it->second, journal.path() + ": task " + std::to_string(task));
-  };
+  if (journal) {
+    o.on_run = [&](std::size_t task, const AttractorFate& fate) {
+      journal->append(task, walk_journal_row(o.values[task / starts], task % starts, fate));
+    };
+    o.journaled = [&](std::size_t task) -> std::optional<AttractorFate> {
+      const auto it = journal->rows().find(task);
+      if (it == journal->rows().end()) return std::nullopt;
+      return walk_journal_fate(it->second, journal->path() + ": task " + std::to_string(task));
+    };
+  }
+  if (run.mpi && run.mpi->size() > 1) o.runner = mpi_runner(*run.mpi, journal, value, stop);
   run.basins = walk_basins(run.first().system(), run.basins_values, branches, o, stop,
                            study_basins_equilibria(run));
-  journal.close();
+  if (!run.writes()) return;
+  journal->close();
   CsvWriter csv(run.basins_csv,
                 {"value", "attractor", "branch", "count", "trials", "share", "lower", "upper"});
   for (const auto& v : run.basins->values)

@@ -20,8 +20,9 @@
 
 namespace sympathy::app {
 
-StudyRun study_run(const Arguments& args) {
+StudyRun study_run(const Arguments& args, const MpiSession* mpi) {
   StudyRun run;
+  run.mpi = mpi;
   run.study = load_study(args.positional(0));
   Study& study = run.study;
   run.out = args.text("--out", "out/figures");
@@ -29,7 +30,11 @@ StudyRun study_run(const Arguments& args) {
   run.jobs = args.integer("--jobs", 2);
   run.resume = args.flag("--resume");
   if (run.jobs < 1) throw InputError("--jobs: expected a positive integer");
-  std::filesystem::create_directories(out);
+  if (mpi && mpi->size() > 1 && !study.basins)
+    throw InputError("mpirun -np " + std::to_string(mpi->size()) + ": " + study.path +
+                     " has no [basins]: the ranks share a walk's runs, and a study without one "
+                     "would be computed by each; expected a study with [basins], or no mpirun");
+  if (run.writes()) std::filesystem::create_directories(out);
 
   // Every branch's case, set and start checked before anything is computed: a metronome case
   // file or an equation case file (compiled once, its values per branch).
@@ -85,6 +90,8 @@ StudyRun study_run(const Arguments& args) {
   }
   std::vector<std::pair<std::string, std::string>> equilibria_outputs;
   prepare_study_equilibria(run, equilibria_outputs);
+  if (!run.writes())
+    for (auto& r : run.equilibria_requests) r.csv_path.clear();
   const LoadedSystem& first = run.first();
   for (const auto& set : study.marks) {
     const auto values = first.set_values(set);  // throws naming the set if the case has none
@@ -108,7 +115,8 @@ StudyRun study_run(const Arguments& args) {
   }
   outputs.insert(outputs.end(), equilibria_outputs.begin(), equilibria_outputs.end());
   prepare_study_basins(run, outputs);
-  for (const auto& [what, path] : outputs) check_writable(path, study.path + ": " + what);
+  if (run.writes())
+    for (const auto& [what, path] : outputs) check_writable(path, study.path + ": " + what);
   std::vector<std::pair<std::string, std::string>> inputs{{"study file", study.path},
                                                           {"case file", first.path()}};
   for (const auto& b : study.branches)
@@ -122,7 +130,7 @@ StudyRun study_run(const Arguments& args) {
                      " has no [basins] walk to resume; expected a study with [basins]");
   if (run.basins_options) {
     run.basins_record = study_record(args, inputs, {"--jobs", "--out", "--resume", "--quiet"});
-    open_study_basins_journal(run);
+    if (run.writes()) open_study_basins_journal(run);
   }
 
   auto& requests = run.requests;
@@ -131,8 +139,10 @@ StudyRun study_run(const Arguments& args) {
     BranchRequest r = b.request;
     r.start_data = recorded[i];
     if (args.has("--accuracy")) apply_accuracy(accuracy(args), r.continuation);
-    r.csv_path = out + "/" + study.name + "-" + b.name + ".csv";
-    r.events_path = out + "/" + study.name + "-" + b.name + "-events.csv";
+    if (run.writes()) {
+      r.csv_path = out + "/" + study.name + "-" + b.name + ".csv";
+      r.events_path = out + "/" + study.name + "-" + b.name + "-events.csv";
+    }
     r.progress = nullptr;
     requests.push_back(r);
   }

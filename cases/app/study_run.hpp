@@ -15,6 +15,7 @@
 #include "cases/app/requests.hpp"
 #include "cases/app/study_file.hpp"
 #include "cases/app/study_record.hpp"
+#include "continuation/task_runner_mpi.hpp"
 #include "sympathy/continuation/basin_walk.hpp"
 #include "sympathy/continuation/task_journal.hpp"
 
@@ -62,12 +63,19 @@ struct StudyRun {
   // The walk's journal (OUT/NAME-basins-journal.csv: each run's fate as it finishes, so that a
   // killed walk keeps them), opened before any work; `--resume` reads it and runs only the rest.
   bool resume = false;
+  // Under mpirun (the command line's): rank 0 computes the study and writes its files; the
+  // others compute the branches again without writing anything and run the walk's runs that rank
+  // 0 hands out (study_basins_run.cpp). Null, or one rank: this machine's threads.
+  const MpiSession* mpi = nullptr;
+  bool writes() const { return !mpi || mpi->rank() == 0; }
   StudyRecord basins_record;  // what the journal may be resumed by (study_record.hpp)
   std::string basins_journal_path;
   std::unique_ptr<TaskJournal> basins_journal;
   std::size_t job_count() const { return study.branches.size() + study.equilibria.size(); }
 };
-StudyRun study_run(const Arguments& args);
+// The study `args` asks for, checked before any work; under `mpi` with more than one rank, only a
+// study with [basins] (whose runs the ranks share), and files only on rank 0.
+StudyRun study_run(const Arguments& args, const MpiSession* mpi = nullptr);
 void run_study_branches(StudyRun& run, const std::atomic<bool>* stop,
                         const JobCallbacks& callbacks = {});
 // The study's JSON (run.json_path): per branch its JSON (branch_json) with its name, its CSV's

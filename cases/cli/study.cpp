@@ -6,12 +6,14 @@
 #include <fstream>
 #include <memory>
 #include <mutex>
+#include <optional>
 #include <thread>
 
 #include "cases/app/branch_run.hpp"
 #include "cases/app/case_arguments.hpp"
 #include "cases/app/study_file.hpp"
 #include "cases/app/study_run.hpp"
+#include "cases/app/task_run.hpp"
 #include "cases/cli/commands.hpp"
 #include "cases/cli/common.hpp"
 #include "cases/cli/progress.hpp"
@@ -22,7 +24,19 @@ namespace sympathy::cli {
 int run_study(const std::vector<std::string>& argv) {
   Arguments args("study", argv, study_options(), {"STUDY"});
   Stopwatch clock;
-  StudyRun run = study_run(args);
+  // Under mpirun (a study with [basins]): rank 0 computes and writes everything, the others
+  // compute the branches again, silently, and share the walk's runs (study_basins_run.cpp).
+  // Every rank checks the input; a failure on any rank ends every rank before any work.
+  const MpiSession mpi;
+  std::optional<StudyRun> prepared;
+  if (const auto exit = prepare_every_rank(mpi, [&] { prepared.emplace(study_run(args, &mpi)); }))
+    return *exit;
+  StudyRun& run = *prepared;
+  if (!run.writes()) {
+    run_study_branches(run, interrupt_flag());
+    run_study_basins(run, interrupt_flag(), {});
+    return 0;
+  }
   const Study& study = run.study;
   const LoadedSystem& first = run.first();
   const auto& results = run.results;

@@ -6,9 +6,11 @@
 # branches, their orbits exact to 1e-8, the share changes placed at the located BP; the CSV and
 # the JSON; the row setup's walk, each change at its located event; bad [basins] tables refused
 # before any work, each message checked; the walk's journal and its resume. About 17 s.
-# Usage: study_basins_test.sh SYMPATHY_BINARY SOURCE_DIR WORK_DIR
+# With MPIRUN (built with MPI), the row setup's walk under mpirun with 2 and 3 ranks gives the
+# files of the walk on threads, and resumes from a journal cut short (about 15 s more).
+# Usage: study_basins_test.sh SYMPATHY_BINARY SOURCE_DIR WORK_DIR [MPIRUN]
 set -u
-bin=$1 src=$2 work=$3
+bin=$1 src=$2 work=$3 mpirun=${4:-}
 rm -rf "$work"
 mkdir -p "$work"
 . "$(dirname "$0")/check.sh"
@@ -87,6 +89,37 @@ check "a resume by another study: exit 2" test $? -eq 2
 check "... naming the difference" grep -q "basins-journal.csv" "$work/cut.err"
 "$bin" study "$study" --out "$work/cp" --resume > /dev/null 2> "$work/cut.err"
 check "--resume of a walk whose journal is complete exits 0" test $? -eq 0
+
+# Under mpirun: rank 0 computes the study and writes its files, the others compute the branches
+# again and share the walk's runs; the files are those of the walk on threads. A study without
+# [basins] is refused (each rank would compute it whole). As root in a container: the flags.
+if [ -n "$mpirun" ]; then
+  same_walk() {  # same_walk DIR: DIR's shares CSV and JSON walk are the threads' walk's
+    cmp -s "$work/walk/basins_walk_k-basins.csv" "$1/basins_walk_k-basins.csv" &&
+      test "$(/usr/bin/python3 -c "
+import json, sys
+a, b = (json.load(open(f))['basins'] for f in sys.argv[1:])
+print(a == b)" "$work/walk/basins_walk_k.json" "$1/basins_walk_k.json")" = True
+  }
+  for np in 2 3; do
+    "$mpirun" --allow-run-as-root --oversubscribe -np $np "$bin" study "$walk" --out "$work/mpi$np" \
+      > "$work/mpi$np.out" 2> "$work/mpi$np.err"
+    check "the walk under mpirun -np $np exits 0" test $? -eq 0
+    check "... its files those of the walk on threads" same_walk "$work/mpi$np"
+  done
+  check "... one report (rank 0's)" test "$(grep -c "^basins along" "$work/mpi3.out")" -eq 1
+  mkdir -p "$work/mpicut"
+  cp "$work/walk/basins_walk_k-basins-journal.csv.study" "$work/mpicut/"
+  head -n 24 "$work/walk/basins_walk_k-basins-journal.csv" > "$work/mpicut/basins_walk_k-basins-journal.csv"
+  "$mpirun" --allow-run-as-root --oversubscribe -np 3 "$bin" study "$walk" --out "$work/mpicut" \
+    --resume > /dev/null 2> "$work/mpicut.err"
+  check "a walk cut short resumed under mpirun -np 3 exits 0" test $? -eq 0
+  check "... its files those of the walk on threads" same_walk "$work/mpicut"
+  "$mpirun" --allow-run-as-root --oversubscribe -np 2 "$bin" study "$src/cases/figures/fig08.toml" \
+    --out "$work/mpif8" > /dev/null 2> "$work/mpif8.err"
+  check "a study without [basins] under mpirun: exit 2" test $? -eq 2
+  check "... saying why" grep -q "fig08.toml has no \[basins\]: the ranks share a walk's runs" "$work/mpif8.err"
+fi
 
 # Bad [basins] tables: refused before any work (exit 2), file, line and key named.
 head -n 19 "$study" | sed "s#case = \"cycle_pitchfork.toml\"#case = \"$src/cases/examples/cycle_pitchfork.toml\"#" > "$work/head.toml"

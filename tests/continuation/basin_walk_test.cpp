@@ -346,6 +346,11 @@ TEST(BasinWalk, AResumedWalkEqualsTheWalkThatWroteItsJournal) {
       EXPECT_EQ(x.shares[k].proportion.count, y.shares[k].proportion.count);
   }
   EXPECT_EQ(news, 4);  // "new 1" and "new 2" at mu = 0.15 and 0.25
+  // A note comes back as it was, its commas, quotes, line breaks and '%' kept.
+  AttractorFate noted;
+  noted.fate = Fate::Unresolved;
+  noted.note = "no return, \"near\" 2%\nof it";
+  EXPECT_EQ(walk_journal_fate(walk_journal_row(0.5, 3, noted), "J.csv: task 3").note, noted.note);
   // A row that is not one is refused, naming where.
   TaskJournal::Row bad = rows.at(0);
   bad[2] = "lost";

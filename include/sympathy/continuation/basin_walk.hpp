@@ -49,6 +49,16 @@ struct BasinWalkOptions {
   // orbit's solved again from its recorded state and period: the same bits).
   std::function<void(std::size_t, const AttractorFate&)> on_run;
   std::function<std::optional<AttractorFate>(std::size_t)> journaled;
+  // How a value's runs are spread (optional; by default this machine's threads, run_tasks with
+  // `tasks`): `run(count, done, work, record)` runs work(s) for every s < count with !done[s] and
+  // hands each fate to record(s, fate), every fate on every process that walks (the command
+  // line's MPI ranks: the manager's fates, sent to the workers as journal rows). A new orbit's
+  // fate may come with its orbit's state0 and period alone: it is solved again, as a journaled one.
+  using ValueRunner =
+      std::function<TaskRunSummary(std::size_t, const std::vector<bool>&,
+                                   const std::function<std::optional<AttractorFate>(std::size_t)>&,
+                                   const std::function<void(std::size_t, AttractorFate&&)>&)>;
+  ValueRunner runner;
 
   // The first field out of its domain, for a system of `dimension` states and `parameters`
   // named parameters.

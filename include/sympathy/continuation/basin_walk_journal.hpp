@@ -23,7 +23,8 @@ namespace sympathy {
 // period, state, note.
 TaskJournal::Row walk_journal_header();
 // Run `start` at value `value` (the walked parameter's) ended with `fate`. A note's commas,
-// quotes and line breaks become ';', '\'' and ' ' (the journal's fields are plain).
+// quotes, line breaks, '%' and the separators 0x1e, 0x1f are written %XX (the journal's fields
+// are plain), and read back as they were.
 TaskJournal::Row walk_journal_row(double value, std::size_t start, const AttractorFate& fate);
 // The fate a row records (a new orbit's `orbit` holds only its state0 and period). Throws
 // InputError naming `where` (the journal's file and task) for a row that is not one.
