@@ -141,9 +141,14 @@ BasinWalk walk_basins(const OdeSystem& system, const ParameterValues& p,
           add(to_string(f), "");
   for (auto& v : walk.values) {
     std::map<std::string, std::size_t> counts;
-    for (const auto& f : v.runs) ++counts[share_name(v, f)];
+    std::map<std::string, std::vector<double>> certified;  // the stop times of certified runs
+    for (const auto& f : v.runs) {
+      ++counts[share_name(v, f)];
+      if (f.fate == Fate::Certified) certified[share_name(v, f)].push_back(f.stopped_at);
+    }
     for (const auto& [n, branch] : names)
-      v.shares.push_back({n, branch, wilson_interval(counts[n], v.runs.size())});
+      v.shares.push_back(
+          {n, branch, wilson_interval(counts[n], v.runs.size()), quartiles(certified[n])});
   }
   return walk;
 }

@@ -3,6 +3,7 @@
 // that ends on an orbit of branch NAME counts under NAME, one on a stable orbit no branch holds
 // under "new k", found by the runs and continued from value to value like the others.
 #include <algorithm>
+#include <cmath>
 #include <filesystem>
 
 #include "cases/app/study_run.hpp"
@@ -189,12 +190,15 @@ void run_study_basins(StudyRun& run, const std::atomic<bool>* stop,
   if (!run.writes()) return;
   journal->close();
   CsvWriter csv(run.basins_csv,
-                {"value", "attractor", "branch", "count", "trials", "share", "lower", "upper"});
+                {"value", "attractor", "branch", "count", "trials", "share", "lower", "upper",
+                 "certified_q1", "certified_median", "certified_q3"});
   for (const auto& v : run.basins->values)
     for (const auto& s : v.shares)
       csv.row({format_number(v.value), s.name, s.branch, std::to_string(s.proportion.count),
                std::to_string(s.proportion.trials), format_number(s.proportion.share),
-               format_number(s.proportion.lower), format_number(s.proportion.upper)});
+               format_number(s.proportion.lower), format_number(s.proportion.upper),
+               format_number(s.certified_at.q1), format_number(s.certified_at.median),
+               format_number(s.certified_at.q3)});
   csv.close();
 }
 
@@ -218,13 +222,21 @@ nlohmann::json study_basins_json(const StudyRun& run) {
       nlohmann::json s;
       s["name"] = walk.values.front().shares[k].name;
       s["branch"] = walk.values.front().shares[k].branch;
-      for (const char* key : {"count", "share", "lower", "upper"}) s[key] = nlohmann::json::array();
+      for (const char* key :
+           {"count", "share", "lower", "upper", "certified_q1", "certified_median", "certified_q3"})
+        s[key] = nlohmann::json::array();
       for (const auto& v : walk.values) {
         const Proportion& p = v.shares[k].proportion;
         s["count"].push_back(p.count);
         s["share"].push_back(p.share);
         s["lower"].push_back(p.lower);
         s["upper"].push_back(p.upper);
+        // The certified runs' stop times' quartiles (null where none was certified).
+        const Quartiles& q = v.shares[k].certified_at;
+        for (const auto& [key, x] :
+             {std::pair{"certified_q1", q.q1}, std::pair{"certified_median", q.median},
+              std::pair{"certified_q3", q.q3}})
+          s[key].push_back(std::isnan(x) ? nlohmann::json(nullptr) : nlohmann::json(x));
       }
       j["shares"].push_back(s);
     }

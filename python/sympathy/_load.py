@@ -93,11 +93,16 @@ def kind_of(j: Any) -> str:
 
 def _walk(j: dict) -> SimpleNamespace:
     """A study's [basins] walk: values (an array), shares (a dict by attractor: branch, and
-    count, share, lower, upper as arrays over the values), attractors (per value, each with name,
-    branch, point, period, max_multiplier, state), fates and runs per value, changes (each with
-    name, appears, before, after, present_before, present_after, events)."""
-    shares = {s["name"]: SimpleNamespace(**{k: (np.asarray(v) if isinstance(v, list) else v)
-                                            for k, v in s.items()})
+    count, share, lower, upper, certified_q1, certified_median, certified_q3 as arrays over the
+    values, NaN where no run was certified), attractors (per value, each with name, branch,
+    point, period, max_multiplier, state), fates and runs per value, changes (each with name,
+    appears, before, after, present_before, present_after, events)."""
+    def array(key: str, v: Any) -> Any:
+        if not isinstance(v, list):
+            return v
+        return np.asarray(v, dtype=float) if key.startswith("certified_") else np.asarray(v)
+
+    shares = {s["name"]: SimpleNamespace(**{k: array(k, v) for k, v in s.items()})
               for s in j["shares"]}
     attractors = [[SimpleNamespace(**a) for a in value] for value in j["attractors"]]
     changes = [SimpleNamespace(**{**c, "events": [SimpleNamespace(**e) for e in c["events"]]})

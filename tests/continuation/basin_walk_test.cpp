@@ -381,7 +381,8 @@ class SupercriticalHopf final : public AutoDiffSystem<SupercriticalHopf> {
 // Attractors at rest named by a branch of equilibria: across the Hopf point, the runs end at the
 // origin before it, counted under the equilibria entry's name ("origin", its state 0 to 1e-12),
 // and on the circles after it (the family's name); both changes between the values around mu = 0
-// are placed at the HB the equilibria located (to 1e-8).
+// are placed at the HB the equilibria located (to 1e-8); the circles' share says when its runs
+// were certified (the quartiles of their stop times).
 TEST(BasinWalk, AttractorsAtRestNamedByTheirBranchOfEquilibria) {
   const SupercriticalHopf system(-0.3);
   EquilibriumProblem problem;
@@ -425,6 +426,17 @@ TEST(BasinWalk, AttractorsAtRestNamedByTheirBranchOfEquilibria) {
       }
     for (const auto& f : v.runs)
       EXPECT_EQ(f.fate, v.value < 0 ? Fate::Equilibrium : Fate::Certified) << f.note;
+    // When the circles' runs were certified: the quartiles of their stop times (none at rest).
+    std::vector<double> stops;
+    for (const auto& f : v.runs) stops.push_back(f.stopped_at);
+    const Quartiles q = share(v, winner).certified_at;
+    if (v.value < 0) {
+      EXPECT_TRUE(std::isnan(q.median));
+    } else {
+      EXPECT_EQ(q.median, quartiles(stops).median);
+      EXPECT_GT(q.q1, 0.0);
+      EXPECT_LT(q.q3, o.run.t_end);
+    }
   }
   const auto changes = share_changes(walk, branches, equilibria);
   ASSERT_EQ(changes.size(), 2u);

@@ -54,6 +54,12 @@ def test_the_walk_from_python_and_from_its_json(walk):
             for a in attractors:
                 if a.branch == "pair":
                     assert abs(abs(a.state[2]) - math.sqrt(value)) < 1e-8
+        # When each share's runs were certified: every run is, so the quartiles are numbers
+        # where the share is not zero and NaN where it is.
+        circle = walk.shares["circle"]
+        assert circle.certified_median.dtype == float
+        np.testing.assert_array_equal(np.isnan(circle.certified_median), circle.count == 0)
+        assert np.all(circle.certified_q1[~after] <= circle.certified_q3[~after])
         assert [c.name for c in walk.changes] == ["circle", "pair (1)", "pair (2)"]
         assert all(c.events[0].type == "BP" and abs(c.events[0].parameter) < 1e-8
                    for c in walk.changes)

@@ -27,6 +27,7 @@
 #include "sympathy/continuation/attractor_run.hpp"
 #include "sympathy/continuation/task_runner.hpp"
 #include "sympathy/core/proportion.hpp"
+#include "sympathy/core/quartiles.hpp"
 
 namespace sympathy {
 
@@ -70,6 +71,9 @@ struct BasinWalkShare {
   std::string name;    // an attractor's, or "equilibrium", "unresolved", "failed"
   std::string branch;  // the branch its orbit lies on (empty: none, or not an orbit)
   Proportion proportion;
+  // When the runs certified on it were (their stop times): how long its basin takes to
+  // converge, from the user's distribution of starts (NaN where none was certified).
+  Quartiles certified_at;
 };
 
 struct BasinWalkValue {
