@@ -184,14 +184,20 @@ std::optional<AttractorFate> run_to_attractor(const OdeSystem& system, const Par
                                               const AttractorRunOptions& options,
                                               const std::atomic<bool>* stop) {
   if (auto wrong = options.validate()) throw std::invalid_argument(wrong->message());
-  // A certificate per orbit attractor (equilibria are told at the end), with its index.
+  // A certificate per attractor, with its index: an orbit's, an equilibrium's.
   std::vector<ConvergenceCertificate> certificates;
   std::vector<int> certified_index;
-  for (std::size_t i = 0; i < attractors.size(); ++i)
+  std::vector<RestCertificate> rests;
+  std::vector<int> rest_index;
+  for (std::size_t i = 0; i < attractors.size(); ++i) {
     if (!attractors[i].at_rest()) {
       certificates.emplace_back(system, attractors[i].neighbourhood);
       certified_index.push_back(static_cast<int>(i));
+    } else if (system.autonomous()) {
+      rests.emplace_back(system, p, attractors[i].rest, options.attractors.certificate);
+      rest_index.push_back(static_cast<int>(i));
     }
+  }
   const std::vector<double> times = sample_times(options.t_end, options.dt);
   AttractorFate fate;
   fate.end_state = start;
@@ -203,6 +209,8 @@ std::optional<AttractorFate> run_to_attractor(const OdeSystem& system, const Par
       fate.stopped_at = t;
       for (std::size_t c = 0; c < certificates.size() && fate.attractor < 0; ++c)
         if (certificates[c].add(t, z)) fate.attractor = certified_index[c];
+      for (std::size_t c = 0; c < rests.size() && fate.attractor < 0; ++c)
+        if (rests[c].add(z)) fate.attractor = rest_index[c];
       return (stop && stop->load()) || fate.attractor >= 0;
     });
   } catch (const IntegrationError& e) {

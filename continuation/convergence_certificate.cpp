@@ -162,4 +162,44 @@ bool ConvergenceCertificate::add(double t, const Eigen::VectorXd& z) {
   return certified_;
 }
 
+RestCertificate::RestCertificate(const OdeSystem& system, const ParameterValues& p,
+                                 const Eigen::VectorXd& rest, CertificateOptions options)
+    : system_(system), p_(p), rest_(rest), options_(options), f_(rest.size()) {
+  if (auto wrong = options.validate()) throw std::invalid_argument(wrong->message());
+  const auto n = rest.size();
+  Eigen::MatrixXd a(n, n);
+  system.jacobian(0.0, rest.data(), p.data(), a);
+  const Eigen::EigenSolver<Eigen::MatrixXd> eigen(a);
+  if (eigen.info() != Eigen::Success) return;
+  const Eigen::VectorXcd& lambda = eigen.eigenvalues();
+  alpha_ = lambda.real().maxCoeff();
+  const double largest = lambda.cwiseAbs().maxCoeff();
+  if (!(alpha_ < -options.margin * largest)) return;
+  const Eigen::MatrixXcd v = eigen.eigenvectors();
+  const Eigen::PartialPivLU<Eigen::MatrixXcd> lu(v);
+  coordinates_ = lu.inverse();
+  const double condition =
+      v.cwiseAbs().colwise().sum().maxCoeff() * coordinates_.cwiseAbs().colwise().sum().maxCoeff();
+  if (!(condition <= 1e8)) return;
+  scale_ = std::max(1.0, rest.lpNorm<Eigen::Infinity>());
+  eligible_ = true;
+}
+
+bool RestCertificate::add(const Eigen::VectorXd& z) {
+  if (certified_ || !eligible_) return certified_;
+  const Eigen::VectorXcd c = coordinates_ * (z - rest_).cast<std::complex<double>>();
+  const double size = c.squaredNorm();
+  if (size == 0.0) return certified_ = true;  // at x* itself
+  system_.rhs(0.0, z.data(), p_.data(), f_.data());
+  const double falling = c.dot(coordinates_ * f_.cast<std::complex<double>>()).real() / size;
+  const bool inside = c.cwiseAbs().maxCoeff() <= options_.radius * scale_;
+  if (!(inside && falling <= (1.0 - options_.slack) * alpha_)) {
+    streak_start_ = std::numeric_limits<double>::quiet_NaN();
+    return false;
+  }
+  if (std::isnan(streak_start_)) streak_start_ = size;
+  certified_ = size <= streak_start_ * std::exp(-2.0);
+  return certified_;
+}
+
 }  // namespace sympathy

@@ -9,6 +9,7 @@
 
 #include "sympathy/core/autodiff_system.hpp"
 #include "sympathy/core/flow.hpp"
+#include "tests/support/test_systems.hpp"
 
 namespace sympathy {
 namespace {
@@ -130,6 +131,37 @@ TEST(ConvergenceCertificate, NeverAtAnUnstableOrbit) {
   EXPECT_GT(certified_at, last_near_small);
   const auto& d = near_large.distances();
   EXPECT_LT(d.back(), 0.25);
+}
+
+// A stable focus's certificate: the damped oscillator x'' + 0.2 x' + x = 0 (eigenvalues -0.1 +-
+// 0.995 i) from x = 0.1 decays in its eigen-coordinates exactly as e^(-0.1 t), at the linear
+// rate everywhere: certified where |c| has fallen by e since it was first inside, at t = 10 (to a
+// sample of 0.01). An unstable equilibrium (the inverted pendulum-like saddle x'' = x) has no
+// eligible certificate, and a run that passes it is never certified.
+TEST(RestCertificate, ExactlyOneEFoldIntoAFocusAndNeverAtASaddle) {
+  const testing::DampedOscillator focus(1.0, 0.2, 1.0);
+  const ParameterValues p = focus.default_parameters();
+  RestCertificate certificate(focus, p, Eigen::Vector2d::Zero());
+  ASSERT_TRUE(certificate.eligible());
+  EXPECT_NEAR(certificate.rate(), -0.1, 1e-14);
+  FlowOptions o;
+  o.rtol = 1e-11;
+  o.atol = 1e-13;
+  Flow flow(focus, o);
+  std::vector<double> times;
+  for (int k = 0; k <= 2000; ++k) times.push_back(0.01 * k);
+  double certified_at = -1.0;
+  flow.sample_until(Eigen::Vector2d(0.1, 0.0), p, 0.0, times,
+                    [&](double t, const Eigen::VectorXd& z) {
+                      if (certificate.add(z) && certified_at < 0.0) certified_at = t;
+                      return certified_at >= 0.0;
+                    });
+  EXPECT_NEAR(certified_at, 10.0, 0.0100001);
+
+  const testing::DampedOscillator saddle(1.0, 0.0, -1.0);
+  RestCertificate never(saddle, saddle.default_parameters(), Eigen::Vector2d::Zero());
+  EXPECT_FALSE(never.eligible());
+  for (double x : {1e-3, 1e-6, 0.0}) EXPECT_FALSE(never.add(Eigen::Vector2d(x, -x)));
 }
 
 }  // namespace

@@ -109,4 +109,35 @@ class ConvergenceCertificate {
   std::vector<double> times_, distances_;
 };
 
+// The same for a stable equilibrium x*: with A = f_x(x*), every eigenvalue's real part below 0
+// (alpha, the largest, below -margin times the largest |lambda|), the deviation e = x - x* in A's
+// eigenvectors (each of unit length; not where they are nearly dependent, condition above 1e8),
+// c = V^-1 e, has |c|^2 falling along the linear flow at least at the rate 2 alpha. The field
+// itself says how fast it falls at a sample: (|c|^2)' / (2 |c|^2) = Re(c^H V^-1 f(x)) / |c|^2.
+// Certified once, over consecutive samples each within `radius` of x* (in the eigen-coordinates,
+// relative to max(1, |x*|_inf)) and each falling at least at (1 - slack) alpha (half the linear
+// rate by default: the slack for the nonlinear terms), |c| has fallen by a factor e: the linear
+// decay dominates there, and the run converges to x*. A run that passes near an unstable
+// equilibrium never certifies (no eligible certificate), nor one near x* that does not fall.
+class RestCertificate {
+ public:
+  RestCertificate(const OdeSystem& system, const ParameterValues& p, const Eigen::VectorXd& rest,
+                  CertificateOptions options = {});
+  bool eligible() const { return eligible_; }
+  double rate() const { return alpha_; }
+  // One sample of a trajectory, in time order; true once certified (and after).
+  bool add(const Eigen::VectorXd& z);
+
+ private:
+  const OdeSystem& system_;
+  ParameterValues p_;
+  Eigen::VectorXd rest_;
+  CertificateOptions options_;
+  Eigen::MatrixXcd coordinates_;  // V^-1
+  double alpha_ = 0.0, scale_ = 1.0;
+  bool eligible_ = false, certified_ = false;
+  double streak_start_ = std::numeric_limits<double>::quiet_NaN();  // |c|^2 where it began
+  Eigen::VectorXd f_;
+};
+
 }  // namespace sympathy
