@@ -124,7 +124,10 @@ BasinWalkOptions::ValueRunner mpi_runner(const MpiSession& mpi, const TaskJourna
         text += kRowEnd;
         if (!row) continue;
         text += '+';
-        for (std::size_t f = 0; f < row->size(); ++f) text.append(f ? 1 : 0, kField) += (*row)[f];
+        for (std::size_t f = 0; f < row->size(); ++f) {
+          if (f > 0) text += kField;
+          text += (*row)[f];
+        }
       }
     } else {
       summary = run_tasks_mpi(

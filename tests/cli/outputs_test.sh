@@ -115,6 +115,7 @@ check "... saying it has none" grep -q "an equation case file has no escapement"
 # [basins] on it: runs certified against the hybrid branches' stable orbits (at k = 60 N/m the
 # anti-phase orbit, stable beyond its NS point at 56.11), about 1 s.
 { sed "s|\.\./row2.toml|$row2|" "$src/cases/figures/fig08_impulsive.toml"; printf '[basins]\nfrom = 58.0\nto = 60.0\ncount = 2\nstarts = 4\nt_end = 100.0\nstart = "anti-phase"\nbox = { th1 = [0.3, 0.5] }\n'; } > "$work/esc_basins.toml"
+rm -rf "$work/esc_basins"  # a walk's journal from an earlier run of this test is kept, not overwritten
 "$bin" study "$work/esc_basins.toml" --out "$work/esc_basins" > "$work/out" 2> "$work/err"
 check "[basins] of the impulsive escapement run" test $? -eq 0
 check "... each start certified on the anti-phase orbit" grep -qE "k = 60: +anti-phase 1 .*certified 4" "$work/out"
