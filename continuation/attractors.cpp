@@ -3,6 +3,7 @@
 #include <algorithm>
 #include <cmath>
 #include <limits>
+#include <optional>
 #include <set>
 
 #include "sympathy/continuation/equilibrium.hpp"
@@ -83,6 +84,41 @@ bool known(const OdeSystem& system, const std::vector<Attractor>& list, const At
 
 }  // namespace
 
+namespace {
+
+// The attractors one branch holds at the value v of its parameter, appended to `found`: on every
+// pair of neighbouring points whose parameters bracket v (each value once: a point exactly at v
+// belongs to the pair it starts), not both unstable, `attractor(lo, hi, w)` (w: hi's weight)
+// gives the one interpolated there, if any; those not already found, named by the branch (" (k)"
+// where it holds more than one), with the nearer point's index. One scan for branches of orbits
+// and of equilibria.
+template <class Point, class Unstable, class Interpolated>
+void add_branch_attractors(const OdeSystem& system, const std::vector<Point>& points, double v,
+                           const std::string& name, const AttractorOptions& options,
+                           Unstable unstable, Interpolated attractor,
+                           std::vector<Attractor>& found) {
+  std::vector<Attractor> on_this;
+  for (std::size_t i = 0; i + 1 < points.size(); ++i) {
+    const Point& lo = points[i];
+    const Point& hi = points[i + 1];
+    if (!((lo.parameter - v) * (hi.parameter - v) < 0.0 || lo.parameter == v)) continue;
+    if (unstable(lo) && unstable(hi)) continue;
+    const double w =
+        hi.parameter == lo.parameter ? 0.0 : (v - lo.parameter) / (hi.parameter - lo.parameter);
+    std::optional<Attractor> a = attractor(lo, hi, w);
+    if (!a || known(system, found, *a, options) || known(system, on_this, *a, options)) continue;
+    a->branch = name;
+    a->point = (w < 0.5 ? lo : hi).index;
+    on_this.push_back(std::move(*a));
+  }
+  for (std::size_t k = 0; k < on_this.size(); ++k) {
+    on_this[k].name = on_this.size() == 1 ? name : name + " (" + std::to_string(k + 1) + ")";
+    found.push_back(std::move(on_this[k]));
+  }
+}
+
+}  // namespace
+
 std::vector<Attractor> attractors_on_branches(const OdeSystem& system, const ParameterValues& p,
                                               const std::vector<NamedBranch>& branches,
                                               const AttractorOptions& options) {
@@ -90,33 +126,17 @@ std::vector<Attractor> attractors_on_branches(const OdeSystem& system, const Par
   std::vector<Attractor> found;
   for (const auto& named : branches) {
     const Branch& b = *named.branch;
-    const double v = system.parameter(p, b.parameter);
-    std::vector<Attractor> on_this;
-    for (std::size_t i = 0; i + 1 < b.points.size(); ++i) {
-      const ContinuationPoint& lo = b.points[i];
-      const ContinuationPoint& hi = b.points[i + 1];
-      // Each value once: a point exactly at v belongs to the pair it starts.
-      if (!((lo.parameter - v) * (hi.parameter - v) < 0.0 || lo.parameter == v)) continue;
-      if (lo.orbit.floquet.stability == Stability::Unstable &&
-          hi.orbit.floquet.stability == Stability::Unstable)
-        continue;
-      const double w =
-          hi.parameter == lo.parameter ? 0.0 : (v - lo.parameter) / (hi.parameter - lo.parameter);
-      const ContinuationPoint& nearer = w < 0.5 ? lo : hi;
-      if (lo.orbit.state0.size() != hi.orbit.state0.size()) continue;
-      auto a = stable_orbit(system, p, (1 - w) * lo.orbit.state0 + w * hi.orbit.state0,
-                            (1 - w) * lo.orbit.period + w * hi.orbit.period, nearer.orbit.subspace,
-                            options);
-      if (!a || known(system, found, *a, options) || known(system, on_this, *a, options)) continue;
-      a->branch = named.name;
-      a->point = nearer.index;
-      on_this.push_back(std::move(*a));
-    }
-    for (std::size_t k = 0; k < on_this.size(); ++k) {
-      on_this[k].name =
-          on_this.size() == 1 ? named.name : named.name + " (" + std::to_string(k + 1) + ")";
-      found.push_back(std::move(on_this[k]));
-    }
+    add_branch_attractors(
+        system, b.points, system.parameter(p, b.parameter), named.name, options,
+        [](const ContinuationPoint& q) { return q.orbit.floquet.stability == Stability::Unstable; },
+        [&](const ContinuationPoint& lo, const ContinuationPoint& hi,
+            double w) -> std::optional<Attractor> {
+          if (lo.orbit.state0.size() != hi.orbit.state0.size()) return std::nullopt;
+          return stable_orbit(system, p, (1 - w) * lo.orbit.state0 + w * hi.orbit.state0,
+                              (1 - w) * lo.orbit.period + w * hi.orbit.period,
+                              (w < 0.5 ? lo : hi).orbit.subspace, options);
+        },
+        found);
   }
   return found;
 }
@@ -129,29 +149,18 @@ std::vector<Attractor> attractors_at_rest_on_branches(const OdeSystem& system,
   std::vector<Attractor> found;
   for (const auto& named : branches) {
     const EquilibriumBranch& b = *named.branch;
-    const double v = system.parameter(p, b.parameter);
-    std::vector<Attractor> on_this;
-    for (std::size_t i = 0; i + 1 < b.points.size(); ++i) {
-      const EquilibriumPoint& lo = b.points[i];
-      const EquilibriumPoint& hi = b.points[i + 1];
-      if (!((lo.parameter - v) * (hi.parameter - v) < 0.0 || lo.parameter == v)) continue;
-      if (lo.unstable > 0 && hi.unstable > 0) continue;
-      const double w =
-          hi.parameter == lo.parameter ? 0.0 : (v - lo.parameter) / (hi.parameter - lo.parameter);
-      const Equilibrium e = solve_equilibrium(system, p, (1 - w) * lo.state + w * hi.state);
-      if (!stable_equilibrium(e)) continue;
-      Attractor a;
-      a.rest = e.state;
-      if (known(system, found, a, options) || known(system, on_this, a, options)) continue;
-      a.branch = named.name;
-      a.point = (w < 0.5 ? lo : hi).index;
-      on_this.push_back(std::move(a));
-    }
-    for (std::size_t k = 0; k < on_this.size(); ++k) {
-      on_this[k].name =
-          on_this.size() == 1 ? named.name : named.name + " (" + std::to_string(k + 1) + ")";
-      found.push_back(std::move(on_this[k]));
-    }
+    add_branch_attractors(
+        system, b.points, system.parameter(p, b.parameter), named.name, options,
+        [](const EquilibriumPoint& q) { return q.unstable > 0; },
+        [&](const EquilibriumPoint& lo, const EquilibriumPoint& hi,
+            double w) -> std::optional<Attractor> {
+          const Equilibrium e = solve_equilibrium(system, p, (1 - w) * lo.state + w * hi.state);
+          if (!stable_equilibrium(e)) return std::nullopt;
+          Attractor a;
+          a.rest = e.state;
+          return a;
+        },
+        found);
   }
   return found;
 }

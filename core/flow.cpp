@@ -275,10 +275,13 @@ void Flow::start_sides(const Eigen::VectorXd& z0) {
   call_->sides.assign(m, 1);
   for (int i = 0; i < m; ++i)
     if (g[i] < 0.0) call_->sides[i] = -1;
-  Eigen::VectorXd f(n);
-  system_.rhs(t_, z0.data(), p, f.data());
+  Eigen::VectorXd f;  // the field at z0, where it lies on a surface
   for (int i = 0; i < m; ++i) {
     if (g[i] != 0.0) continue;
+    if (f.size() == 0) {
+      f.resize(n);
+      system_.rhs(t_, z0.data(), p, f.data());
+    }
     StartSide s = side_entered(*call_->hybrid, t_, z0, call_->values, call_->sides, i, f);
     call_->sides[i] = s.side;
     if (!s.two_solutions.empty())
