@@ -42,6 +42,10 @@ sympathy::EquationSystem renamed(sympathy::EquationSystem system) {
     rename(zone.width, names);
     if (zone.scale) rename(*zone.scale, names);
   }
+  for (auto& impact : system.impacts) {
+    rename(impact.surface, names);
+    for (auto& [state, value] : impact.reset) rename(value, names);
+  }
   if (system.forcing_period) rename(*system.forcing_period, names);
   return system;
 }
