@@ -2,6 +2,7 @@
 
 #include <algorithm>
 #include <cmath>
+#include <map>
 #include <memory>
 #include <stdexcept>
 #include <utility>
@@ -234,37 +235,33 @@ std::optional<driver::Ending> CurveContinuation::grazing(const Point& a, const P
   if (crossings_b_ == crossings_) return std::nullopt;
   system_.set_section(a.unknowns);
   system_.set_borders(*b.borders);
-  double s_near = 0.0, s_far = b.step;
-  CurvePoint near = a, far = b;
-  std::string failed;
-  constexpr int kMostProbes = 60;
-  for (int probe = 0; probe < kMostProbes && s_far - s_near > options_.location_tolerance;
-       ++probe) {
-    const double s = 0.5 * (s_near + s_far);
-    auto r = along(a, s);
-    std::vector<int> at;
-    if (r.converged) {
-      const CurvePoint q = system_.point(r.u, r.evaluation, a.jacobian, a.tangent);
-      try {
-        at = crossings_of(q);
-      } catch (const IntegrationError& e) {
-        failed = e.what();
-      }
-      if (!at.empty()) (at == crossings_ ? s_near : s_far) = s;
-      if (!at.empty()) (at == crossings_ ? near : far) = q;
-    } else {
-      failed = r.reason;
-    }
-    if (at.empty()) break;
-  }
+  std::map<double, CurvePoint> probed{{0.0, a}, {b.step, b}};
+  const CrossingBracket bracket = bisect_crossing_change(
+      b.step, crossings_,
+      [&](double s, std::string& why) -> std::optional<std::vector<int>> {
+        auto r = along(a, s);
+        if (!r.converged) {
+          why = r.reason;
+          return std::nullopt;
+        }
+        const CurvePoint& q = probed[s] = system_.point(r.u, r.evaluation, a.jacobian, a.tangent);
+        try {
+          return crossings_of(q);
+        } catch (const IntegrationError& e) {
+          why = e.what();
+          return std::nullopt;
+        }
+      },
+      [&](double near, double far) { return far - near <= options_.location_tolerance; });
+  const CurvePoint &near = probed.at(bracket.near), &far = probed.at(bracket.far);
   std::string note =
       "grazing near " + where(far) + " (probes " +
       format_number(system_.norm(far.unknowns - near.unknowns)) +
       " apart, scaled): " + describe_crossing_change(system_.system(), crossings_, crossings_b_) +
       "; the orbits' flow has no derivative there, so the curve ends";
-  if (!failed.empty()) note += "; a probe failed: " + failed;
+  if (!bracket.failed.empty()) note += "; a probe failed: " + bracket.failed;
   std::erase_if(events, [&](const CurveEvent& e) {
-    return system_.norm(e.at.unknowns - a.unknowns) > s_near;
+    return system_.norm(e.at.unknowns - a.unknowns) > bracket.near;
   });
   return driver::Ending{driver::Stop::Nonsmooth, note, false};
 }

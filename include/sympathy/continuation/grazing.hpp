@@ -10,6 +10,8 @@
 // locates the change by bisection along the step and ends the branch (StopReason::Nonsmooth).
 #pragma once
 
+#include <functional>
+#include <optional>
 #include <string>
 #include <vector>
 
@@ -28,6 +30,21 @@ std::vector<int> crossings_per_period(const OdeSystem& system, const FlowOptions
 // system's switching_name).
 std::string describe_crossing_change(const OdeSystem& system, const std::vector<int>& before,
                                      const std::vector<int>& after);
+
+// Where along a step of length `length` (its arclength) the crossings per period change from
+// `before`: bisection, probe(s, why) giving the crossings of the point corrected at arclength s
+// (nullopt where it could not be had, `why` saying why: the bisection ends there), until
+// narrow(near, far) or 60 probes. Bisection, not a secant on a test function: the count is an
+// integer, and the tangency it changes at has no smooth measure common to every surface. The one
+// location of a grazing, for branches (Continuation::crossing_change) and curves.
+struct CrossingBracket {
+  double near = 0.0, far = 0.0;  // the last probes with `before`'s crossings and with others
+  std::string failed;            // why a probe failed, if one did
+};
+CrossingBracket bisect_crossing_change(
+    double length, const std::vector<int>& before,
+    const std::function<std::optional<std::vector<int>>(double, std::string&)>& probe,
+    const std::function<bool(double, double)>& narrow);
 
 // A change of the crossings located between two points of a branch: the parameter bracket of
 // the last probe before it and the first after it.
