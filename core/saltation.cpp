@@ -10,13 +10,23 @@ namespace sympathy {
 
 namespace {
 
+// h_z f + h_t, the rate at which a field f moves h, and whether it moves h at all: beyond the
+// grazing tolerance against its parts (a field tangent to the surface decides no side).
+struct SurfaceRate {
+  double value = 0.0;
+  bool transversal = false;
+};
+SurfaceRate surface_rate(const Eigen::VectorXd& f, const Eigen::RowVectorXd& h_z, double h_t) {
+  const double rate = h_z.dot(f) + h_t;
+  return {rate, std::abs(rate) > kGrazingTolerance * (h_z.norm() * f.norm() + std::abs(h_t))};
+}
+
 // h_z f- + h_t, the rate at which the flow arrives at the surface; refused where it is too small
 // against its parts for the crossing time to have a derivative (a grazing).
 double arrival_rate(const Eigen::VectorXd& f_minus, const Eigen::RowVectorXd& h_z, double h_t,
                     double t, const std::string& surface) {
-  const double rate = h_z.dot(f_minus) + h_t;
-  const double scale = h_z.norm() * f_minus.norm() + std::abs(h_t);
-  if (!(std::abs(rate) > kGrazingTolerance * scale)) {
+  const auto [rate, transversal] = surface_rate(f_minus, h_z, h_t);
+  if (!transversal) {
     std::ostringstream msg;
     msg.precision(12);
     msg << "grazing: the flow touches " << surface << " at t = " << t << " (h_z f + h_t = " << rate
@@ -31,9 +41,8 @@ double arrival_rate(const Eigen::VectorXd& f_minus, const Eigen::RowVectorXd& h_
 // solution slides along it (Filippov), which no region's field describes; refused with that name.
 void check_not_sliding(const Eigen::VectorXd& f_plus, const Eigen::RowVectorXd& h_z, double h_t,
                        double arrival, double t, const std::string& surface) {
-  const double rate = h_z.dot(f_plus) + h_t;
-  const double scale = h_z.norm() * f_plus.norm() + std::abs(h_t);
-  if (rate * arrival < 0.0 && std::abs(rate) > kGrazingTolerance * scale) {
+  const auto [rate, transversal] = surface_rate(f_plus, h_z, h_t);
+  if (rate * arrival < 0.0 && transversal) {
     std::ostringstream msg;
     msg.precision(12);
     msg << "sliding: at t = " << t << " the fields on both sides of " << surface
@@ -168,16 +177,16 @@ StartSide side_entered(const HybridSystem& system, double t, const Eigen::Vector
   const int along_field = h_z.dot(field) + h_t < 0.0 ? -1 : 1;
   if (system.has_reset(surface) || system.crossing_direction(surface) != 0)
     return {along_field, ""};
-  // The rate h_z f + h_t of each side's field, and whether it leaves the surface (beyond the
-  // grazing tolerance: a field tangent to the surface decides nothing).
+  // Each side's field: the rate it moves h at, and whether it leaves the surface.
   Eigen::VectorXd f(n);
   double rate[2];
   bool leaves[2];
   for (int k = 0; k < 2; ++k) {
     sides[surface] = k == 0 ? 1 : -1;
     system.rhs_on_sides(t, z.data(), p.data(), sides.data(), f.data());
-    rate[k] = h_z.dot(f) + h_t;
-    leaves[k] = std::abs(rate[k]) > kGrazingTolerance * (h_z.norm() * f.norm() + std::abs(h_t));
+    const SurfaceRate r = surface_rate(f, h_z, h_t);
+    rate[k] = r.value;
+    leaves[k] = r.transversal;
   }
   const bool both = leaves[0] && leaves[1];
   if (both && rate[0] < 0.0 && rate[1] > 0.0) {
