@@ -47,6 +47,7 @@ class Continuation::Run {
   driver::Screen screen(const OrbitNode* before, const OrbitNode& a, const OrbitNode& b, double ds);
   bool outside(const OrbitNode& b) const;
   std::string edge_message(const OrbitNode& b) const;
+  std::string past_note() const;
   std::optional<OrbitNode> onto_edge(const OrbitNode& a, const OrbitNode& b);
   driver::Found<Bifurcation> detect(const OrbitNode* before, const OrbitNode& a,
                                     const OrbitNode& b);
@@ -55,8 +56,10 @@ class Continuation::Run {
   void accept(OrbitNode& b);
   bool refine(OrbitNode& a, const std::string& why);
   bool resample(OrbitNode& a, int segments);
-  // The most shooting segments a refinement takes a branch to.
-  static constexpr int kMostSegments = 8;
+  // The most shooting segments a refinement takes a branch to; past its homoclinic approach,
+  // toward a longer period asked for, kMostSegmentsPast (AUTO's ab to T = 1000: 256 segments
+  // of about 4 s, each growing perturbations by at most 1e4).
+  static constexpr int kMostSegments = 8, kMostSegmentsPast = 1024;
   // A branch on more segments than asked goes back to half as many after this many accepted
   // points in a row whose growth on half (OrbitNode::halved_growth) stays below kHalvedGrowth:
   // a hundredth of the lowest growth at which one segment was seen to fail (1.3e4, AUTO's ab
@@ -97,6 +100,21 @@ class Continuation::Run {
   int resolved_points_ = 0;  // in a row, resolved on half the segments (kHalvedGrowth)
   // The first value to stop at that detect located in the step: its arclength from a and note.
   std::optional<std::pair<double, std::string>> stop_at_;
+  // Where the branch went on past its homoclinic approach toward a longer period asked for
+  // (AUTO's UZSTOP on PERIOD): beyond, steps are neither screened nor searched for bifurcations,
+  // and the branch's stop message says from where. Their multipliers are noise there (on AUTO's
+  // ab at p2 = 17 a PD, an NS and a BP every few points, trivial errors up to 1e220), and the
+  // parameter stays within its rounding while the period grows (ab: p1 = 0.12010169875 from
+  // T 90 to 1000), so that the sign of the tangent's parameter component, which finds folds,
+  // is noise too (an LP at T 325, 1e-14 wide, whose turn then ended the branch).
+  std::optional<PeriodRecord> past_;
+  bool blind() const { return past_.has_value(); }
+  // The shortest segment duration (period / segments) at which the corrector failed and the
+  // branch was refined. Past the homoclinic approach the period grows without bound and the
+  // parameter stays put, so the segments are doubled before their duration comes back to 3/4 of
+  // it (AUTO's ab at p2 = 17 failed at 6.5, 5.6, 5.5, 4.3 and 5.2 s a segment from T 26 to 330;
+  // each failure cost 30-50 points: the step shortened to the minimum, then grown again).
+  double failed_duration_ = std::numeric_limits<double>::infinity();
   // A hybrid system's: the last accepted point's crossings per period (grazing.hpp), and those
   // of the step's end that ends() computed, which accept() keeps.
   const bool carries_crossings_;  // a hybrid system with switching surfaces
@@ -494,7 +512,7 @@ Branch Continuation::run_from(const PeriodicOrbit& start, int direction,
   branch.rejected.multipliers = count(driver::Cause::Multipliers);
   branch.rejected.location = count(driver::Cause::Location);
   branch.hopf_end = run.hopf_end;
-  return finish(result.stop, result.message);
+  return finish(result.stop, result.message + run.past_note());
 }
 
 // One way along a branch of periodic orbits, as the driver's problem (driver.hpp): the pieces of
@@ -592,6 +610,7 @@ driver::Screen Continuation::Run::screen(const OrbitNode* before, const OrbitNod
   // A step whose multipliers could not be paired with confidence, or moved too far near the
   // circle, is rejected after its whole cost: the retry, and the step after an accepted one,
   // aim below both limits at the rates just seen.
+  if (blind()) return {};
   tracked_ = track(before, a, b);
   tracked_unknowns_ = b.unknowns;
   tracked_parameter_ = b.parameter;
@@ -619,7 +638,7 @@ driver::Found<Bifurcation> Continuation::Run::detect(const OrbitNode* before, co
                                                      const OrbitNode& b) {
   driver::Found<Bifurcation> found;
   const ContinuationOptions& options = c_.options_;
-  if (options.detect_bifurcations) {
+  if (options.detect_bifurcations && !blind()) {
     // Location probes along a's tangent in a's section, guessed on the cubic through a and b
     // and corrected from the Jacobian interpolated between theirs (a's alone where b lies on the
     // bound: its Jacobian is not in a's section's step).
@@ -722,39 +741,36 @@ std::optional<driver::Ending> Continuation::Run::ends(const OrbitNode& a, const 
   // resolve (their trivial error 1e-3 at T 94); fhn's canard grows it 1.6 times.
   // Or seen through its orbits, which are no longer resolved while the period grows (AUTO's pen).
   periods_.push_back(record_of(b));
-  // A stop asked for at a longer period (AUTO's UZSTOP on PERIOD: pen's families to T = 30)
-  // goes on toward it while the orbits' multipliers are resolved (trivial error within
-  // kUnresolved): the homoclinic approach is where a run would otherwise go on without end, and
-  // this one has its end. Beyond, the corrector crawls: AUTO's ab at p2 = 18 took 400 points from
-  // T 23.28 to 23.29, each with untrusted PD and BP events (trivial errors about 1).
+  // A stop asked for at a longer period (AUTO's UZSTOP on PERIOD: pen's families to T = 30,
+  // ab's to T = 1000) goes on toward it: the homoclinic approach is where a run would otherwise
+  // go on without end, and this one has its end. Past the approach the orbits' multipliers are
+  // noise (trivial errors 1e-2 to 1e120 on ab), so bifurcations are no longer sought where they
+  // are not resolved (blind); the corrector alone carries the branch there, and its stop at the
+  // period rests on the corrector, as every user value does.
   const auto longer_period = std::ranges::find_if(c_.options_.user_values, [&](const UserValue& v) {
     return v.stop && v.quantity == UserValue::Quantity::Period && v.value > b.orbit.period;
   });
   const bool asked = longer_period != c_.options_.user_values.end();
   const auto homoclinic =
-      asked && b.orbit.floquet.trivial_error <= kUnresolved
-          ? std::nullopt
-          : homoclinic_approach(periods_, 1e-4 * std::max(1.0, std::abs(b.parameter)));
+      homoclinic_approach(periods_, 1e-4 * std::max(1.0, std::abs(b.parameter)));
   const auto unresolved = homoclinic ? std::nullopt : unresolved_approach(periods_);
   periods_.pop_back();
   if ((homoclinic || unresolved) && c_.system_.autonomous()) {
-    const HomoclinicApproach& h = homoclinic ? *homoclinic : *unresolved;
-    char what[320];
-    std::snprintf(what, sizeof what,
-                  "approaching a homoclinic orbit near %s = %.10g: the period grew from %.6g to "
-                  "%.6g while %s moved by %.2g%s; stopped there",
-                  name().c_str(), h.parameter, h.from_period, h.to_period, name().c_str(),
-                  h.parameter_spread,
-                  homoclinic ? ""
-                             : " and the orbits' multipliers were not resolved (trivial-multiplier "
-                               "errors above 1e-2)");
-    std::string why = what;
-    if (asked)
-      why += "; the stop at " + longer_period->name + " = " + format_double(longer_period->value) +
-             " not reached: the orbits' multipliers are no longer resolved (trivial-multiplier "
-             "error " +
-             format_number(b.orbit.floquet.trivial_error) + " above 1e-2)";
-    return driver::Ending{driver::Stop::Homoclinic, why, true};
+    if (asked) {
+      if (!past_) past_ = record_of(b);
+    } else {
+      const HomoclinicApproach& h = homoclinic ? *homoclinic : *unresolved;
+      char what[320];
+      std::snprintf(what, sizeof what,
+                    "approaching a homoclinic orbit near %s = %.10g: the period grew from %.6g to "
+                    "%.6g while %s moved by %.2g%s; stopped there",
+                    name().c_str(), h.parameter, h.from_period, h.to_period, name().c_str(),
+                    h.parameter_spread,
+                    homoclinic ? ""
+                               : " and the orbits' multipliers were not resolved "
+                                 "(trivial-multiplier errors above 1e-2)");
+      return driver::Ending{driver::Stop::Homoclinic, what, true};
+    }
   }
   // A branch that turned back without a multiplier at +1 and now retraces itself: b lies on one
   // of the branch's chords before the turn (driver::on_chord). Stopped there, b not kept.
@@ -831,10 +847,17 @@ void Continuation::Run::accept(OrbitNode& b) {
   // refinement at a canard or a spike (AUTO's fhn, ab at p2 = 16) otherwise ran the rest of the
   // branch on 4 segments where one resolves it. b is re-sampled onto half (each new segment's
   // start is an old one's), corrected and its tangent recomputed, as a refinement does.
+  // Past the homoclinic approach (past_) the segments only grow with the period.
+  const int m = c_.problem_->segments();
+  if (past_) {
+    if (b.orbit.period / m > 0.75 * failed_duration_ && 2 * m <= kMostSegmentsPast)
+      resample(b, 2 * m);
+    return;
+  }
   resolved_points_ = b.halved_growth < kHalvedGrowth ? resolved_points_ + 1 : 0;
   if (resolved_points_ >= kResolvedPoints) {
     resolved_points_ = 0;
-    resample(b, c_.problem_->segments() / 2);
+    resample(b, m / 2);
   }
 }
 
@@ -847,7 +870,11 @@ bool Continuation::Run::refine(OrbitNode& a, const std::string&) {
   // the criterion, not the segment's growth: one segment failed at a growth of 1.3e4 (AUTO's ab,
   // p2 = 15) where others converge at 7e5 (fhn) and 1.9e6 (pp2), all at rtol 5e-12.
   const int m = c_.problem_->segments();
-  return c_.system_.autonomous() && 2 * m <= kMostSegments && resample(a, 2 * m);
+  if (!(c_.system_.autonomous() && 2 * m <= (past_ ? kMostSegmentsPast : kMostSegments) &&
+        resample(a, 2 * m)))
+    return false;
+  failed_duration_ = std::min(failed_duration_, a.orbit.period / m);
+  return true;
 }
 
 bool Continuation::Run::resample(OrbitNode& a, int segments) {
@@ -918,6 +945,15 @@ bool Continuation::Run::resample(OrbitNode& a, int segments) {
   } catch (const IntegrationError&) {
     return restore();
   }
+}
+
+std::string Continuation::Run::past_note() const {
+  if (!past_) return "";
+  const std::string name = c_.system_.parameter_names()[c_.parameter_];
+  return "; past its homoclinic approach (from T = " + format_number(past_->period) + ", " + name +
+         " = " + format_double(past_->parameter) +
+         ") the branch went on toward the period asked for, its orbits' multipliers unresolved: "
+         "no bifurcation was sought beyond";
 }
 
 std::string Continuation::Run::edge_message(const OrbitNode&) const {

@@ -2,6 +2,7 @@
 
 #include <algorithm>
 #include <cmath>
+#include <limits>
 #include <numeric>
 #include <stdexcept>
 
@@ -139,6 +140,11 @@ void summarize(FloquetAnalysis& a, const FloquetOptions& options) {
   for (int i = 0; i < static_cast<int>(a.multipliers.size()); ++i)
     if (a.multipliers[i].trivial) a.trivial = i;
   if (a.trivial >= 0) a.trivial_error = std::abs(a.multipliers[a.trivial].value - 1.0);
+  // A trivial multiplier out of the range of double (|M| past 1e308 near a homoclinic orbit:
+  // its value inf times a phase, NaN) resolves nothing: its error is infinite, never NaN, which
+  // every comparison below would take for a small one (such orbits of AUTO's ab at T 325 came
+  // out "stable").
+  if (std::isnan(a.trivial_error)) a.trivial_error = std::numeric_limits<double>::infinity();
 
   const double tol = options.stability_tolerance;
   a.max_modulus = 0.0;

@@ -1,6 +1,11 @@
 #include "sympathy/floquet/floquet.hpp"
 
+#include <cmath>
+#include <limits>
+
 #include <gtest/gtest.h>
+
+#include "../../floquet/summary.hpp"
 
 namespace sympathy {
 namespace {
@@ -68,6 +73,30 @@ TEST(Floquet, VerdictsHoldWithinTheTrivialMultipliersError) {
   EXPECT_EQ(verdict(1.0 + 1e-9, 1.0005), Stability::Unstable);
   EXPECT_EQ(verdict(1.0 + 1e-9, 1.0 + 5e-7), Stability::Marginal);
   EXPECT_EQ(to_string(Stability::Unresolved), "unresolved");
+}
+
+// A trivial multiplier out of the range of double (near a homoclinic orbit its value came out
+// NaN: an overflowing modulus times a phase) resolves nothing: its error is infinite and the
+// verdict unresolved. NaN compared as a small error had made AUTO's ab orbits at T 325 "stable"
+// with a largest other multiplier of 0.
+TEST(Floquet, ATrivialMultiplierOutOfRangeResolvesNothing) {
+  const double nan = std::numeric_limits<double>::quiet_NaN();
+  for (const std::complex<double> value :
+       {std::complex<double>(nan, nan), std::complex<double>(nan, 0.0),
+        std::complex<double>(HUGE_VAL, 0.0)}) {
+    FloquetAnalysis a;
+    a.multipliers = {{value, 800.0, true}, {{0.5, 0.0}, std::log(0.5)}};
+    summarize(a, FloquetOptions{});
+    EXPECT_EQ(a.trivial, 0);
+    EXPECT_TRUE(std::isinf(a.trivial_error));
+    EXPECT_EQ(a.stability, Stability::Unresolved);
+  }
+  // The same with a trivial multiplier at 1 + 1e-9: stable, its error 1e-9.
+  FloquetAnalysis a;
+  a.multipliers = {{{1.0 + 1e-9, 0.0}, 1e-9, true}, {{0.5, 0.0}, std::log(0.5)}};
+  summarize(a, FloquetOptions{});
+  EXPECT_NEAR(a.trivial_error, 1e-9, 1e-15);
+  EXPECT_EQ(a.stability, Stability::Stable);
 }
 
 // A family's structural multiplier (eigenvector along the family's direction) is marked and
