@@ -57,8 +57,8 @@ class Continuation::Run {
   bool refine(OrbitNode& a, const std::string& why);
   bool resample(OrbitNode& a, int segments);
   // The most shooting segments a refinement takes a branch to; past its homoclinic approach,
-  // toward a longer period asked for, kMostSegmentsPast (AUTO's ab to T = 1000: 256 segments
-  // of about 4 s, each growing perturbations by at most 1e4).
+  // toward a longer period asked for, kMostSegmentsPast (AUTO's ab at p2 = 17 to T = 1000: 512
+  // segments from T 815 on, about 2 s each).
   static constexpr int kMostSegments = 8, kMostSegmentsPast = 1024;
   // A branch on more segments than asked goes back to half as many after this many accepted
   // points in a row whose growth on half (OrbitNode::halved_growth) stays below kHalvedGrowth:
@@ -743,10 +743,10 @@ std::optional<driver::Ending> Continuation::Run::ends(const OrbitNode& a, const 
   periods_.push_back(record_of(b));
   // A stop asked for at a longer period (AUTO's UZSTOP on PERIOD: pen's families to T = 30,
   // ab's to T = 1000) goes on toward it: the homoclinic approach is where a run would otherwise
-  // go on without end, and this one has its end. Past the approach the orbits' multipliers are
-  // noise (trivial errors 1e-2 to 1e120 on ab), so bifurcations are no longer sought where they
-  // are not resolved (blind); the corrector alone carries the branch there, and its stop at the
-  // period rests on the corrector, as every user value does.
+  // go on without end, and this one has its end. Past the approach no bifurcation is sought
+  // (blind, past_: the multipliers and the parameter's motion are noise there); the corrector
+  // alone carries the branch, and its stop at the period rests on the corrector, as every user
+  // value does.
   const auto longer_period = std::ranges::find_if(c_.options_.user_values, [&](const UserValue& v) {
     return v.stop && v.quantity == UserValue::Quantity::Period && v.value > b.orbit.period;
   });
