@@ -35,6 +35,9 @@ constexpr double kCorrectedPoint = 1e-9;
 // loosen the default's points (at 1.6e-9 the NS curve's end at c = 0 moved by 2.5e-7 N/m, away
 // from the one-parameter branch's NS there).
 constexpr double kTunedNoise = 1e-8;
+// The least noise a central difference's step assumes: a monodromy's rounding (1e-12 relative
+// gives a step of 4.6e-7 scaled).
+constexpr double kLeastNoise = 1e-12;
 
 // "1.2e-07": a scaled step for a message.
 std::string scientific(double v) {
@@ -198,13 +201,20 @@ std::optional<Eigen::MatrixXd> CurveSystem::jacobian(const Eigen::VectorXd& u,
   j.topLeftCorner(m_, m_) = v_.transpose() * e.monodromy * v_ - Eigen::MatrixXd::Identity(m_, m_);
   j.block(0, m_, m_, 1) = v_.transpose() * e.end_rate;
   j.block(m_, 0, 1, m_) = normal_.transpose();
-  // Central differences on fold curves (see kDifferenceStep); forward ones elsewhere: on BP
-  // curves central ones lost the BP parabola's turn and the start at a 1:1 resonance
+  // Central differences on fold and PD curves (see kDifferenceStep); forward ones elsewhere: on
+  // BP curves central ones lost the BP parabola's turn and the start at a 1:1 resonance
   // (bifurcation_curve_test), which is not understood yet.
-  const bool central = kind_ == BifurcationType::Fold;
+  const bool central = kind_ == BifurcationType::Fold || kind_ == BifurcationType::PeriodDoubling;
+  // A forward difference errs by its truncation, ~h, plus the noise over h: least where h grows
+  // as the noise's square root. A central one's truncation is ~h^2: its step goes as the noise's
+  // cube root, both kDifferenceStep at kTunedNoise. On AUTO's pen (noise 1.2e-11, central step
+  // 1.1e-6) the PD curve reaches T = 30 (AUTO's UZSTOP) in 167 points; at 1e-5 the truncation
+  // grew with the period's monodromy (|M| 1e8 at T 25), the chord took 7-8 iterations a point
+  // and the curve ended at its 200-point limit at T 28.8 (forward differences: T 19.9).
+  const double scale =
+      central ? std::cbrt(std::max(noise_, kLeastNoise) / kTunedNoise) : std::sqrt(noise_factor());
   for (int c = 0; c < cols; ++c) {
-    // Differences lose the noise over the step: the step grows as its square root.
-    const double h = kDifferenceStep * std::sqrt(noise_factor()) / weights_[c];
+    const double h = kDifferenceStep * scale / weights_[c];
     Eigen::VectorXd up = u;
     up[c] += h;
     const Evaluation du = evaluate(up);
