@@ -1,6 +1,7 @@
 #include "sympathy/cases/case_file.hpp"
 #include "sympathy/cases/names.hpp"
 #include "sympathy/cases/toml_reader.hpp"
+#include "sympathy/core/text.hpp"
 
 #include <toml++/toml.h>
 
@@ -52,15 +53,11 @@ Assignment parse_assignment(const std::string& text, const std::string& option) 
     throw InputError(option + " " + text + ": expected KEY=VALUE");
   a.key = text.substr(0, eq);
   const std::string value = text.substr(eq + 1);
-  std::size_t used = 0;
-  try {
-    a.value = std::stod(value, &used);
-  } catch (const std::exception&) {
-    used = 0;
-  }
-  if (used == 0 || used != value.size() || !std::isfinite(a.value))
+  const auto x = finite_number(value);
+  if (!x)
     throw InputError(option + " " + text + ": expected a finite number after '" + a.key +
                      "=', got '" + value + "'");
+  a.value = *x;
   return a;
 }
 

@@ -8,6 +8,7 @@
 #include "sympathy/cases/metronome_model.hpp"
 #include "sympathy/cases/platform_model.hpp"
 #include "sympathy/core/csv.hpp"
+#include "sympathy/core/text.hpp"
 
 namespace sympathy {
 
@@ -47,13 +48,9 @@ Range parse_range(const std::string& text, const std::string& option) {
   const auto eq = text.find('=');
   const auto colon = eq == std::string::npos ? std::string::npos : text.find(':', eq);
   auto number = [&](const std::string& s, double& v) {
-    std::size_t used = 0;
-    try {
-      v = std::stod(s, &used);
-    } catch (const std::exception&) {
-      used = 0;
-    }
-    return used != 0 && used == s.size() && std::isfinite(v);
+    const auto x = finite_number(s);
+    if (x) v = *x;
+    return x.has_value();
   };
   if (eq == std::string::npos || eq == 0 || colon == std::string::npos ||
       !number(text.substr(eq + 1, colon - eq - 1), r.lower) ||

@@ -5,6 +5,7 @@
 #include <sstream>
 
 #include "sympathy/core/errors.hpp"
+#include "sympathy/core/text.hpp"
 
 namespace sympathy {
 
@@ -26,16 +27,10 @@ std::string numbers(const Eigen::VectorXd& v) {
 }
 
 double number(const std::string& text, const std::string& where, const char* column) {
-  std::size_t used = 0;
-  double x = 0.0;
-  try {
-    x = std::stod(text, &used);
-  } catch (const std::exception&) {
-    used = 0;
-  }
-  if (text.empty() || used != text.size())
+  const auto x = whole_number(text);
+  if (!x)
     throw InputError(where + ": column '" + column + "': expected a number, got '" + text + "'");
-  return x;
+  return *x;
 }
 
 Eigen::VectorXd vector_of(const std::string& text, const std::string& where) {

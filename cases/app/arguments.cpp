@@ -7,22 +7,11 @@
 #include <cmath>
 #include <cstdlib>
 
+#include "sympathy/core/text.hpp"
+
 namespace sympathy::app {
 
 namespace {
-
-// `text` as a finite number; nullopt unless all of it is one.
-std::optional<double> finite_number(const std::string& text) {
-  std::size_t used = 0;
-  double x = 0.0;
-  try {
-    x = std::stod(text, &used);
-  } catch (const std::exception&) {
-    return std::nullopt;
-  }
-  if (used != text.size() || !std::isfinite(x)) return std::nullopt;
-  return x;
-}
 
 double parse_number(const std::string& option, const std::string& v) {
   const auto x = finite_number(v);

@@ -5,6 +5,7 @@
 #include <vector>
 
 #include "sympathy/core/errors.hpp"
+#include "sympathy/core/text.hpp"
 
 namespace sympathy::app {
 
@@ -24,15 +25,9 @@ GridAxis parse_grid(const std::string& text, const std::string& option) {
     parts.push_back(text.substr(from, colon - from));
   parts.push_back(text.substr(from));
   const auto number = [&](const std::string& s) {
-    std::size_t used = 0;
-    double v = 0.0;
-    try {
-      v = std::stod(s, &used);
-    } catch (const std::exception&) {
-      throw fail();
-    }
-    if (used != s.size() || !std::isfinite(v)) throw fail();
-    return v;
+    const auto v = finite_number(s);
+    if (!v) throw fail();
+    return *v;
   };
   if (parts.size() == 1) {
     a.from = a.to = number(parts[0]);

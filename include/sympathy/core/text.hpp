@@ -2,6 +2,7 @@
 #pragma once
 
 #include <chrono>
+#include <optional>
 #include <string>
 #include <vector>
 
@@ -12,6 +13,12 @@ std::string join(const std::vector<std::string>& items, const std::string& separ
 
 // A number for a message: 12 significant digits, no trailing zeros.
 std::string format_number(double v);
+
+// `text` as a number (std::stod's forms, "inf" and "nan" among them): nullopt unless all of it
+// is one. The one reader of a number from a word of text: options, case and data files, journals.
+std::optional<double> whole_number(const std::string& text);
+// The same, and finite.
+std::optional<double> finite_number(const std::string& text);
 
 // Wall time since construction.
 class Stopwatch {
