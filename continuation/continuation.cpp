@@ -108,7 +108,6 @@ class Continuation::Run {
   // T 90 to 1000), so that the sign of the tangent's parameter component, which finds folds,
   // is noise too (an LP at T 325, 1e-14 wide, whose turn then ended the branch).
   std::optional<PeriodRecord> past_;
-  bool blind() const { return past_.has_value(); }
   // The shortest segment duration (period / segments) at which the corrector failed and the
   // branch was refined. Past the homoclinic approach the period grows without bound and the
   // parameter stays put, so the segments are doubled before their duration comes back to 3/4 of
@@ -610,7 +609,7 @@ driver::Screen Continuation::Run::screen(const OrbitNode* before, const OrbitNod
   // A step whose multipliers could not be paired with confidence, or moved too far near the
   // circle, is rejected after its whole cost: the retry, and the step after an accepted one,
   // aim below both limits at the rates just seen.
-  if (blind()) return {};
+  if (past_) return {};
   tracked_ = track(before, a, b);
   tracked_unknowns_ = b.unknowns;
   tracked_parameter_ = b.parameter;
@@ -638,7 +637,7 @@ driver::Found<Bifurcation> Continuation::Run::detect(const OrbitNode* before, co
                                                      const OrbitNode& b) {
   driver::Found<Bifurcation> found;
   const ContinuationOptions& options = c_.options_;
-  if (options.detect_bifurcations && !blind()) {
+  if (options.detect_bifurcations && !past_) {
     // Location probes along a's tangent in a's section, guessed on the cubic through a and b
     // and corrected from the Jacobian interpolated between theirs (a's alone where b lies on the
     // bound: its Jacobian is not in a's section's step).
@@ -744,13 +743,12 @@ std::optional<driver::Ending> Continuation::Run::ends(const OrbitNode& a, const 
   // A stop asked for at a longer period (AUTO's UZSTOP on PERIOD: pen's families to T = 30,
   // ab's to T = 1000) goes on toward it: the homoclinic approach is where a run would otherwise
   // go on without end, and this one has its end. Past the approach no bifurcation is sought
-  // (blind, past_: the multipliers and the parameter's motion are noise there); the corrector
+  // (past_: the multipliers and the parameter's motion are noise there); the corrector
   // alone carries the branch, and its stop at the period rests on the corrector, as every user
   // value does.
-  const auto longer_period = std::ranges::find_if(c_.options_.user_values, [&](const UserValue& v) {
+  const bool asked = std::ranges::any_of(c_.options_.user_values, [&](const UserValue& v) {
     return v.stop && v.quantity == UserValue::Quantity::Period && v.value > b.orbit.period;
   });
-  const bool asked = longer_period != c_.options_.user_values.end();
   const auto homoclinic =
       homoclinic_approach(periods_, 1e-4 * std::max(1.0, std::abs(b.parameter)));
   const auto unresolved = homoclinic ? std::nullopt : unresolved_approach(periods_);
