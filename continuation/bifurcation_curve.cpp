@@ -120,9 +120,9 @@ class CurveContinuation {
   std::vector<Watch> watches() const;
   CurveEvent locate(const Watch& w, const Point& from, const Point& to, double f0, double f1);
   CurveEvent locate_turn(int k, const Point& from, const Point& to, double t0);
-  // A hybrid orbit's crossings per period at a point (grazing.hpp), and the step's arclength
-  // and note of where they change between a and b.
-  std::vector<int> crossings_of(const CurvePoint& p) const;
+  // A hybrid orbit's crossings per period at the curve's unknowns u (grazing.hpp), and the
+  // step's arclength and note of where they change between a and b.
+  std::vector<int> crossings_of(const Eigen::VectorXd& u) const;
   std::optional<driver::Ending> grazing(const Point& a, const Point& b, std::vector<Event>& events);
 
   CurveSystem& system_;
@@ -207,11 +207,11 @@ std::optional<CurveNode> CurveContinuation::onto_edge(const Point& a, const Poin
   return n;
 }
 
-std::vector<int> CurveContinuation::crossings_of(const CurvePoint& p) const {
+std::vector<int> CurveContinuation::crossings_of(const Eigen::VectorXd& u) const {
   PeriodicOrbit orbit;
-  orbit.state0 = p.state0;
-  orbit.period = p.period;
-  orbit.parameters = system_.values(p.unknowns);
+  orbit.state0 = system_.state(u);
+  orbit.period = u[system_.first_index() - 1];
+  orbit.parameters = system_.values(u);
   return crossings_per_period(system_.system(), system_.options().orbit.shooting.flow, orbit);
 }
 
@@ -221,21 +221,24 @@ std::vector<int> CurveContinuation::crossings_of(const CurvePoint& p) const {
 // bracket's near end dropped (their orbits lie past the grazing).
 std::optional<driver::Ending> CurveContinuation::grazing(const Point& a, const Point& b,
                                                          std::vector<Event>& events) {
-  const auto where = [&](const CurvePoint& p) {
-    return curve_.first_name + " = " + format_number(p.first) + ", " + curve_.second_name + " = " +
-           format_number(p.second);
+  const auto where = [&](const Eigen::VectorXd& u) {
+    return curve_.first_name + " = " + format_number(u[system_.first_index()]) + ", " +
+           curve_.second_name + " = " + format_number(u[system_.second_index()]);
   };
   try {
-    if (crossings_.empty()) crossings_ = crossings_of(a);
-    crossings_b_ = crossings_of(b);
+    if (crossings_.empty()) crossings_ = crossings_of(a.unknowns);
+    crossings_b_ = crossings_of(b.unknowns);
   } catch (const IntegrationError& e) {
     return driver::Ending{driver::Stop::Nonsmooth,
-                          "the orbit at " + where(b) + " is not smooth: " + e.what(), false};
+                          "the orbit at " + where(b.unknowns) + " is not smooth: " + e.what(),
+                          false};
   }
   if (crossings_b_ == crossings_) return std::nullopt;
   system_.set_section(a.unknowns);
   system_.set_borders(*b.borders);
-  std::map<double, CurvePoint> probed{{0.0, a}, {b.step, b}};
+  // The probes' unknowns by their arclength (only what the crossings and the note need: no
+  // multipliers of a probe).
+  std::map<double, Eigen::VectorXd> probed{{0.0, a.unknowns}, {b.step, b.unknowns}};
   const CrossingBracket bracket = bisect_crossing_change(
       b.step, crossings_,
       [&](double s, std::string& why) -> std::optional<std::vector<int>> {
@@ -244,19 +247,18 @@ std::optional<driver::Ending> CurveContinuation::grazing(const Point& a, const P
           why = r.reason;
           return std::nullopt;
         }
-        const CurvePoint& q = probed[s] = system_.point(r.u, r.evaluation, a.jacobian, a.tangent);
+        probed[s] = r.u;
         try {
-          return crossings_of(q);
+          return crossings_of(r.u);
         } catch (const IntegrationError& e) {
           why = e.what();
           return std::nullopt;
         }
       },
       [&](double near, double far) { return far - near <= options_.location_tolerance; });
-  const CurvePoint &near = probed.at(bracket.near), &far = probed.at(bracket.far);
+  const Eigen::VectorXd &near = probed.at(bracket.near), &far = probed.at(bracket.far);
   std::string note =
-      "grazing near " + where(far) + " (probes " +
-      format_number(system_.norm(far.unknowns - near.unknowns)) +
+      "grazing near " + where(far) + " (probes " + format_number(system_.norm(far - near)) +
       " apart, scaled): " + describe_crossing_change(system_.system(), crossings_, crossings_b_) +
       "; the orbits' flow has no derivative there, so the curve ends";
   if (!bracket.failed.empty()) note += "; a probe failed: " + bracket.failed;
