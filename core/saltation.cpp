@@ -188,28 +188,28 @@ StartSide side_entered(const HybridSystem& system, double t, const Eigen::Vector
     rate[k] = r.value;
     leaves[k] = r.transversal;
   }
+  // Where both fields leave the surface or both arrive: the state, the surface and both rates,
+  // for the message that says so.
+  const auto both_sides = [&](int precision, const char* push) {
+    std::ostringstream msg;
+    msg.precision(precision);
+    msg << "at t = " << t << " the state lies on " << system.switching_name(surface) << push
+        << " (h_z f + h_t = " << rate[0] << " on its positive side, " << rate[1]
+        << " on its negative side)";
+    return msg.str();
+  };
   const bool both = leaves[0] && leaves[1];
-  if (both && rate[0] < 0.0 && rate[1] > 0.0) {
-    std::ostringstream msg;
-    msg.precision(12);
-    msg << "sliding: at t = " << t << " the state lies on " << system.switching_name(surface)
-        << " and the fields on both sides push towards it (h_z f + h_t = " << rate[0]
-        << " on its positive side, " << rate[1]
-        << " on its negative side): the solution slides along the surface, which the flow does "
-           "not follow";
-    throw NonsmoothFlowError(msg.str(), t);
-  }
-  if (both && rate[0] > 0.0 && rate[1] < 0.0) {
-    std::ostringstream msg;
-    msg.precision(6);
-    msg << "two solutions: at t = " << t << " the state lies on " << system.switching_name(surface)
-        << ", which the fields on both sides push away from (h_z f + h_t = " << rate[0]
-        << " on its positive side, " << rate[1]
-        << " on its negative side); followed: the one into its "
-        << (along_field > 0 ? "positive" : "negative") << " side, where the field at the state "
-        << "points";
-    return {along_field, msg.str()};
-  }
+  if (both && rate[0] < 0.0 && rate[1] > 0.0)
+    throw NonsmoothFlowError(
+        "sliding: " + both_sides(12, " and the fields on both sides push towards it") +
+            ": the solution slides along the surface, which the flow does "
+            "not follow",
+        t);
+  if (both && rate[0] > 0.0 && rate[1] < 0.0)
+    return {along_field,
+            "two solutions: " + both_sides(6, ", which the fields on both sides push away from") +
+                "; followed: the one into its " + (along_field > 0 ? "positive" : "negative") +
+                " side, where the field at the state points"};
   if (leaves[0]) return {rate[0] > 0.0 ? 1 : -1, ""};
   if (leaves[1]) return {rate[1] > 0.0 ? 1 : -1, ""};
   return {along_field, ""};
