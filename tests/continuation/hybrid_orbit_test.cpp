@@ -114,29 +114,21 @@ TEST(HybridOrbit, TwoRelaysInPhaseCrossTogether) {
   for (const auto& mu : others) EXPECT_NEAR(mu.real(), rho * rho, 1e-8);
 }
 
-// The Hopf normal form x' = mu x - y - x r^2, y' = x + mu y - y r^2 (circles of radius sqrt(mu),
-// period 2 pi) with a switching surface x = c across which nothing jumps: its orbits cross it
-// twice a period where sqrt(mu) > c, never where sqrt(mu) < c, and graze it at mu = c^2 exactly.
-class HopfWithMark final : public AutoDiffHybridSystem<HopfWithMark> {
+// A smooth planar field (Derived::evaluate, states x and y) with a switching surface x = p[C]
+// across which nothing jumps: the regions share the field, and the surface only counts crossings
+// (where their number changes, an orbit grazes it).
+template <class Derived, int C>
+class MarkedAtX : public AutoDiffHybridSystem<Derived> {
  public:
-  explicit HopfWithMark(double mu, double c) {
-    set_parameter_layout({{"mu", {0}}, {"c", {1}}}, {mu, c});
-  }
   int dimension() const override { return 2; }
   std::vector<std::string> state_names() const override { return {"x", "y"}; }
   template <class T, class P>
-  void evaluate(double, const T* z, const P* p, T* dz) const {
-    const T r2 = z[0] * z[0] + z[1] * z[1];
-    dz[0] = p[0] * z[0] - z[1] - z[0] * r2;
-    dz[1] = z[0] + p[0] * z[1] - z[1] * r2;
-  }
-  template <class T, class P>
   void evaluate_on_sides(double t, const T* z, const P* p, T* dz, const int*) const {
-    evaluate(t, z, p, dz);
+    static_cast<const Derived&>(*this).evaluate(t, z, p, dz);
   }
   int switching_count() const override { return 1; }
   void switching_functions(double, const double* z, const double* p, double* g) const override {
-    g[0] = z[0] - p[1];
+    g[0] = z[0] - p[C];
   }
   double switching_gradient(double, const double*, const double*, int, double* h_z) const override {
     h_z[0] = 1.0;
@@ -146,7 +138,23 @@ class HopfWithMark final : public AutoDiffHybridSystem<HopfWithMark> {
   std::string switching_name(int) const override { return "x = c"; }
   double switching_parameter_derivative(double, const double*, const double*, int,
                                         int parameter) const override {
-    return parameter == 1 ? -1.0 : 0.0;
+    return parameter == C ? -1.0 : 0.0;
+  }
+};
+
+// The Hopf normal form x' = mu x - y - x r^2, y' = x + mu y - y r^2 (circles of radius sqrt(mu),
+// period 2 pi) with a switching surface x = c across which nothing jumps: its orbits cross it
+// twice a period where sqrt(mu) > c, never where sqrt(mu) < c, and graze it at mu = c^2 exactly.
+class HopfWithMark final : public MarkedAtX<HopfWithMark, 1> {
+ public:
+  explicit HopfWithMark(double mu, double c) {
+    set_parameter_layout({{"mu", {0}}, {"c", {1}}}, {mu, c});
+  }
+  template <class T, class P>
+  void evaluate(double, const T* z, const P* p, T* dz) const {
+    const T r2 = z[0] * z[0] + z[1] * z[1];
+    dz[0] = p[0] * z[0] - z[1] - z[0] * r2;
+    dz[1] = z[0] + p[0] * z[1] - z[1] * r2;
   }
 };
 
@@ -209,37 +217,17 @@ TEST(HybridOrbit, BranchEndsWhereItsOrbitGrazesASurface) {
 // The fold normal form's cycles (r^2 solving mu + (1 + a) r^2 - r^4 = 0, period 2 pi) with a
 // surface x = c across which nothing jumps: its LP curve mu = -(1 + a)^2 / 4, at r^2 = (1 + a) /
 // 2, grazes the surface where r = c, at a = 2 c^2 - 1 exactly. Parameters mu, a, c.
-class FoldWithMark final : public AutoDiffHybridSystem<FoldWithMark> {
+class FoldWithMark final : public MarkedAtX<FoldWithMark, 2> {
  public:
   FoldWithMark(double mu, double a, double c) {
     set_parameter_layout({{"mu", {0}}, {"a", {1}}, {"c", {2}}}, {mu, a, c});
   }
-  int dimension() const override { return 2; }
-  std::vector<std::string> state_names() const override { return {"x", "y"}; }
   template <class T, class P>
   void evaluate(double, const T* z, const P* p, T* dz) const {
     const T r2 = z[0] * z[0] + z[1] * z[1];
     const T g = p[0] + (1.0 + p[1]) * r2 - r2 * r2;
     dz[0] = -z[1] + z[0] * g;
     dz[1] = z[0] + z[1] * g;
-  }
-  template <class T, class P>
-  void evaluate_on_sides(double t, const T* z, const P* p, T* dz, const int*) const {
-    evaluate(t, z, p, dz);
-  }
-  int switching_count() const override { return 1; }
-  void switching_functions(double, const double* z, const double* p, double* g) const override {
-    g[0] = z[0] - p[2];
-  }
-  double switching_gradient(double, const double*, const double*, int, double* h_z) const override {
-    h_z[0] = 1.0;
-    h_z[1] = 0.0;
-    return 0.0;
-  }
-  std::string switching_name(int) const override { return "x = c"; }
-  double switching_parameter_derivative(double, const double*, const double*, int,
-                                        int parameter) const override {
-    return parameter == 2 ? -1.0 : 0.0;
   }
 };
 
